@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# DIRT engine: one entry point for newcomers and CI.
+#   ./dirt.sh run    install what is missing, build, render the default scene
+#   ./dirt.sh test   install what is missing, build, run every test
+#   ./dirt.sh build  install what is missing, build into build/
+#   ./dirt.sh asan   the tests again in an AddressSanitizer/UBSan build (build-asan/)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+# Debian 12 packages the build, the tests and the programs need.
+PACKAGES=(
+  gcc g++ pkg-config cmake meson ninja-build
+  libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libglfw3-dev libcglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libopenexr-dev libembree-dev glslang-tools
+  xvfb xauth
+)
+
+say() { printf '%s\n' "dirt.sh: $*" >&2; }
+
+install_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$p")
+    fi
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  say "installing ${missing[*]}"
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null; then sudo=(sudo); else
+      say "need root to install packages: apt-get install ${missing[*]}"; exit 2
+    fi
+  fi
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >/dev/null
+}
+
+build() {
+  local dir=${1:-build}; shift || true
+  install_packages
+  if [ ! -f "$dir/build.ninja" ]; then
+    meson setup "$dir" "$@" >/dev/null || { say "meson setup failed"; exit 1; }
+  fi
+  ninja -C "$dir" >/dev/null || ninja -C "$dir"
+}
+
+run_tests() {
+  local dir=$1
+  local rc=0
+  meson test -C "$dir" --print-errorlogs --num-processes 2 || rc=$?
+  # One plain summary line from meson's JSON log.
+  if [ -f "$dir/meson-logs/testlog.json" ]; then
+    awk -F'"result": "' 'NF > 1 { split($2, a, "\""); r[a[1]]++ }
+      END { printf "%d passed, %d failed, %d skipped\n", r["OK"] + r["EXPECTEDFAIL"],
+            r["FAIL"] + r["TIMEOUT"] + r["ERROR"] + r["UNEXPECTEDPASS"], r["SKIP"] }' \
+      "$dir/meson-logs/testlog.json"
+  fi
+  return $rc
+}
+
+case "${1:-}" in
+  build)
+    build build
+    say "built into build/ (programs in build/src/app/)"
+    ;;
+  run)
+    build build
+    mkdir -p out
+    ./build/src/app/dirt-render -o out/default.exr --png -W 640 -H 480
+    say "images: $(pwd)/out/default.exr (float RGBA) and $(pwd)/out/default.png (preview)"
+    ;;
+  test)
+    build build
+    run_tests build
+    ;;
+  asan)
+    build build-asan -Db_sanitize=address,undefined -Db_lundef=false
+    run_tests build-asan
+    ;;
+  *)
+    sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'
+    [ -z "${1:-}" ] || exit 2
+    ;;
+esac

@@ -1,0 +1,101 @@
+/* Data layouts shared by C and GLSL: the single definition of every record
+ * that crosses the CPU/GPU boundary. Included from C (src/) and from GLSL
+ * (glsl/). Every member is a 16-byte vector so std430 and C agree without
+ * padding rules; C checks the sizes with _Static_assert.
+ *
+ * This file must stay valid as both C11 and GLSL 4.50: only structs of
+ * DIRT_V4/DIRT_IV4/DIRT_UV4 members and #defines. */
+#ifndef DIRT_COMMON_LAYOUT_H
+#define DIRT_COMMON_LAYOUT_H
+
+#ifdef GL_core_profile
+#define DIRT_V4 vec4
+#define DIRT_IV4 ivec4
+#define DIRT_UV4 uvec4
+#else
+typedef struct dirt_f4 { float x, y, z, w; } dirt_f4;
+typedef struct dirt_i4 { int x, y, z, w; } dirt_i4;
+typedef struct dirt_u4 { unsigned int x, y, z, w; } dirt_u4;
+#define DIRT_V4 dirt_f4
+#define DIRT_IV4 dirt_i4
+#define DIRT_UV4 dirt_u4
+#endif
+
+/* Binding points of storage buffers used by the raster preview. */
+#define DIRT_BIND_PREVIEW_MATERIALS 0
+#define DIRT_BIND_PREVIEW_LIGHTS 1
+
+/* Light kinds of the raster preview (punctual kinds match dirt_light_type). */
+#define DIRT_PREVIEW_LIGHT_DIRECTIONAL 0
+#define DIRT_PREVIEW_LIGHT_POINT 1
+#define DIRT_PREVIEW_LIGHT_SPOT 2
+#define DIRT_PREVIEW_LIGHT_EMITTER 3 /* an emissive surface lumped into one point */
+
+/* One material (64 bytes). */
+struct dirt_gpu_material {
+    DIRT_V4 base_color;  /* linear RGBA factor */
+    DIRT_V4 emissive;    /* rgb = emissive factor * strength, w unused */
+    DIRT_V4 pbr;         /* x metallic, y roughness, zw unused */
+    DIRT_IV4 textures;   /* x base colour, y metallic-roughness, z emissive (-1 none), w flags */
+};
+
+/* One preview light (64 bytes). */
+struct dirt_gpu_light {
+    DIRT_V4 position;    /* xyz world position, w kind (DIRT_PREVIEW_LIGHT_*) */
+    DIRT_V4 direction;   /* xyz unit direction the light shines along (emitter: its normal) */
+    DIRT_V4 color;       /* rgb intensity (emitter: radiance * area), w range (0 = inf) */
+    DIRT_V4 cone;        /* x cos inner, y cos outer (spot) */
+};
+
+/* ---- DIRT acceleration structure (src/dirt/build.c, glsl/dirt/) ---- */
+
+/* Storage buffer bindings of the build passes and the trace. */
+#define DIRT_BIND_VERTICES 0   /* dirt_gpu_vertex[3 * primitives] */
+#define DIRT_BIND_VIEWS 1      /* dirt_gpu_view[views] */
+#define DIRT_BIND_PARAMS 2     /* dirt_gpu_ads_params */
+#define DIRT_BIND_DEPTH 3      /* uvec2[pyramid entries]: float bits of (zmin, zmax) */
+#define DIRT_BIND_HEADS 4      /* uint[buckets * tiles]: first node or DIRT_LIST_END */
+#define DIRT_BIND_NODES 5      /* uvec2[capacity]: (primitive id, next node) */
+#define DIRT_BIND_COUNTERS 6   /* dirt_gpu_ads_counters */
+
+#define DIRT_LIST_END 0xFFFFFFFFu
+/* Cleared depth bounds: zmin = +inf, zmax = 0 (empty: zmin > zmax). Depths
+ * are positive, so their float bits order like the floats. */
+#define DIRT_DEPTH_CLEAR_MIN 0x7F800000u
+#define DIRT_DEPTH_CLEAR_MAX 0u
+/* How far the GPU moves every tile-frustum plane outwards before clipping:
+ * side planes by DIRT_CLIP_EPS tile widths, near/far by DIRT_CLIP_EPS / 100
+ * in NDC depth. Float rounding is far below this, so the GPU never misses a
+ * (primitive, tile) pair the exact clip has; the CPU reference uses 0 for
+ * the pairs that must be present and 2 * DIRT_CLIP_EPS for those that may. */
+#define DIRT_CLIP_EPS 1e-3
+
+/* One vertex of the per-frame vertex buffer (32 bytes); vertex v of
+ * primitive p is entry 3p + v. */
+struct dirt_gpu_vertex {
+    DIRT_V4 position;    /* xyz world position, w texture u */
+    DIRT_V4 normal;      /* xyz world normal, w texture v */
+};
+
+/* One view (192 bytes); see dirt/views.h. */
+struct dirt_gpu_view {
+    DIRT_V4 view_proj[4]; /* columns of proj * view */
+    DIRT_V4 eye_near;     /* xyz centre of projection, w znear */
+    DIRT_V4 forward_far;  /* xyz view axis, w zfar */
+    DIRT_IV4 size;        /* width, height, tiles_x, tiles_y */
+    DIRT_IV4 placement;   /* tile_base, atlas_x, num_levels, face (-1 camera) */
+    DIRT_IV4 level_base[4]; /* first pyramid entry of levels 0..15 */
+};
+
+/* Build parameters (32 bytes). */
+struct dirt_gpu_ads_params {
+    DIRT_IV4 config;     /* views, tile size S, buckets B, tiles */
+    DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas width, atlas height */
+};
+
+/* Counters written by the fill pass (16 bytes). */
+struct dirt_gpu_ads_counters {
+    DIRT_UV4 fill;       /* x nodes requested, y (primitive, tile) pairs, zw 0 */
+};
+
+#endif

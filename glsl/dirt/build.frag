@@ -1,0 +1,77 @@
+#version 450 core
+// DIRT build passes, fragment stage: one invocation per (primitive, view,
+// tile) candidate. Clips the triangle exactly against the tile frustum and
+// drops empty clips. Then:
+//  DIRT_PASS_DEPTH: atomic min/max of the clipped polygon's depth into the
+//                   tile's depth bounds (pyramid level 0);
+//  DIRT_PASS_FILL:  one {primitive id, next} node per bucket the clipped
+//                   depth range overlaps (DIRT paper eq. 1a/1b, clamped),
+//                   pushed on the list of (bucket, tile). Nodes past the
+//                   pool's capacity are counted, not written, so the host
+//                   can grow the pool and run the pass again.
+#include "common/layout.h"
+#include "dirt/clip.glsl"
+
+layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
+    dirt_gpu_view views[];
+};
+layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
+    dirt_gpu_ads_params params;
+};
+layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
+    uvec2 depth[];
+};
+#ifdef DIRT_PASS_FILL
+layout(std430, binding = DIRT_BIND_HEADS) buffer Heads {
+    uint heads[];
+};
+layout(std430, binding = DIRT_BIND_NODES) buffer Nodes {
+    uvec2 nodes[];
+};
+layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
+    dirt_gpu_ads_counters counters;
+};
+#endif
+
+layout(location = 0) flat in vec4 g_c0;
+layout(location = 1) flat in vec4 g_c1;
+layout(location = 2) flat in vec4 g_c2;
+layout(location = 3) flat in uint g_prim;
+layout(location = 4) flat in int g_view;
+
+void main()
+{
+    dirt_gpu_view v = views[g_view];
+    ivec2 tile = ivec2(gl_FragCoord.xy) - ivec2(v.placement.y, 0);
+    if (any(lessThan(tile, ivec2(0))) || any(greaterThanEqual(tile, v.size.zw)))
+        return;
+    int S = params.config.y;
+    float zmin, zmax;
+    if (!dirt_clip_tile(v, S, tile, g_c0, g_c1, g_c2, float(DIRT_CLIP_EPS), zmin, zmax))
+        return;
+    uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
+#ifdef DIRT_PASS_DEPTH
+    atomicMin(depth[t].x, floatBitsToUint(zmin));
+    atomicMax(depth[t].y, floatBitsToUint(zmax));
+#else
+    float tmin = uintBitsToFloat(depth[t].x);
+    float trange = uintBitsToFloat(depth[t].y) - tmin;
+    int B = params.config.z;
+    int b0 = 0, b1 = 0;
+    if (trange > 0.0) {
+        b0 = clamp(int(floor(float(B) * (zmin - tmin) / trange)), 0, B - 1);
+        b1 = clamp(int(floor(float(B) * (zmax - tmin) / trange)), 0, B - 1);
+    }
+    atomicAdd(counters.fill.y, 1u);
+    uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
+    uint capacity = params.pool.x;
+    uint tiles = uint(params.config.w);
+    for (int b = b0; b <= b1; b++) {
+        uint node = first + uint(b - b0);
+        if (node < capacity) {
+            uint prev = atomicExchange(heads[uint(b) * tiles + t], node);
+            nodes[node] = uvec2(g_prim, prev);
+        }
+    }
+#endif
+}

@@ -1,0 +1,283 @@
+#include "dirt/ads_ref.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/layout.h"
+#include "dirt/log.h"
+
+typedef struct pair {
+    uint32_t tile;
+    ads_ref_entry e;
+} pair;
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const pair *x = a, *y = b;
+    if (x->tile != y->tile)
+        return x->tile < y->tile ? -1 : 1;
+    return x->e.prim < y->e.prim ? -1 : x->e.prim > y->e.prim;
+}
+
+bool ads_ref_build(const dirt_view_set *set, const dirt_frame *f, double eps, ads_ref *out)
+{
+    memset(out, 0, sizeof(*out));
+    size_t cap = 1024, n = 0;
+    pair *pairs = malloc(cap * sizeof(*pairs));
+    out->offsets = calloc((size_t)set->num_tiles + 1, sizeof(uint32_t));
+    if (!pairs || !out->offsets)
+        goto oom;
+    for (int vi = 0; vi < set->count; vi++) {
+        const dirt_view *v = &set->views[vi];
+        for (size_t p = 0; p < f->num_triangles; p++) {
+            const float(*tri)[3] = (const float(*)[3])f->position[3 * p];
+            int rect[4];
+            if (!dirt_triangle_tile_rect(v, set->tile_size, tri, 1.0, rect))
+                continue;
+            for (int ty = rect[2]; ty <= rect[3]; ty++) {
+                for (int tx = rect[0]; tx <= rect[1]; tx++) {
+                    double lo, hi;
+                    if (!dirt_clip_triangle_tile(v, set->tile_size, tx, ty, tri, eps, &lo, &hi))
+                        continue;
+                    if (n == cap) {
+                        cap *= 2;
+                        pair *g = realloc(pairs, cap * sizeof(*pairs));
+                        if (!g)
+                            goto oom;
+                        pairs = g;
+                    }
+                    pairs[n++] = (pair){(uint32_t)(v->tile_base + ty * v->tiles_x + tx),
+                                        {(uint32_t)p, lo, hi}};
+                }
+            }
+        }
+    }
+    qsort(pairs, n, sizeof(*pairs), cmp_pair);
+    out->entries = malloc((n ? n : 1) * sizeof(*out->entries));
+    if (!out->entries)
+        goto oom;
+    for (size_t i = 0; i < n; i++) {
+        out->entries[i] = pairs[i].e;
+        out->offsets[pairs[i].tile + 1]++;
+    }
+    for (int t = 0; t < set->num_tiles; t++)
+        out->offsets[t + 1] += out->offsets[t];
+    out->num_tiles = set->num_tiles;
+    out->num_entries = n;
+    free(pairs);
+    return true;
+oom:
+    DIRT_ERROR("out of memory building the reference structure");
+    free(pairs);
+    ads_ref_free(out);
+    return false;
+}
+
+void ads_ref_free(ads_ref *r)
+{
+    if (!r)
+        return;
+    free(r->offsets);
+    free(r->entries);
+    memset(r, 0, sizeof(*r));
+}
+
+static const ads_ref_entry *find_entry(const ads_ref *r, int tile, uint32_t prim)
+{
+    uint32_t lo = r->offsets[tile], hi = r->offsets[tile + 1];
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (r->entries[mid].prim < prim)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < r->offsets[tile + 1] && r->entries[lo].prim == prim ? &r->entries[lo] : NULL;
+}
+
+/* Bucket of depth z in a tile with bounds [tmin, tmin + range] (eq. 1a/1b). */
+static int bucket_of(double z, double tmin, double range, int B)
+{
+    if (!(range > 0))
+        return 0;
+    double b = floor(B * (z - tmin) / range);
+    return b < 0 ? 0 : b > B - 1 ? B - 1 : (int)b;
+}
+
+/* A primitive's buckets in one tile, as found in the GPU lists. */
+typedef struct gpu_pair {
+    uint32_t prim;
+    int bucket;
+} gpu_pair;
+
+static int cmp_gpu_pair(const void *a, const void *b)
+{
+    const gpu_pair *x = a, *y = b;
+    if (x->prim != y->prim)
+        return x->prim < y->prim ? -1 : 1;
+    return (x->bucket > y->bucket) - (x->bucket < y->bucket);
+}
+
+bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_data *d,
+               double tol, ads_check_report *rep)
+{
+    memset(rep, 0, sizeof(*rep));
+    ads_ref req, allow;
+    if (!ads_ref_build(set, f, 0.0, &req))
+        return false;
+    if (!ads_ref_build(set, f, 2.0 * DIRT_CLIP_EPS, &allow)) {
+        ads_ref_free(&req);
+        return false;
+    }
+    const int B = d->buckets, T = d->num_tiles;
+    size_t cap = 256;
+    gpu_pair *gp = malloc(cap * sizeof(*gp));
+    bool ok = gp != NULL;
+    rep->tiles = (uint64_t)T;
+    rep->required_pairs = req.num_entries;
+    rep->allowed_pairs = allow.num_entries;
+    for (int t = 0; ok && t < T; t++) {
+        /* Gather (prim, bucket) from the lists of this tile. */
+        size_t n = 0;
+        for (int b = 0; b < B; b++) {
+            uint32_t node = d->heads[(size_t)b * T + t];
+            size_t steps = 0;
+            while (node != DIRT_LIST_END) {
+                if (node >= d->num_nodes || ++steps > d->num_nodes) {
+                    rep->bad_list_links++;
+                    break;
+                }
+                if (n == cap) {
+                    cap *= 2;
+                    gpu_pair *g = realloc(gp, cap * sizeof(*gp));
+                    if (!g) {
+                        ok = false;
+                        break;
+                    }
+                    gp = g;
+                }
+                gp[n++] = (gpu_pair){d->nodes[node][0], b};
+                node = d->nodes[node][1];
+            }
+        }
+        if (!ok)
+            break;
+        qsort(gp, n, sizeof(*gp), cmp_gpu_pair);
+        double tmin = d->depth[t][0], tmax = d->depth[t][1];
+        double range = tmax - tmin;
+        /* Walk the primitives found on the GPU. */
+        for (size_t i = 0; i < n;) {
+            size_t j = i;
+            while (j < n && gp[j].prim == gp[i].prim)
+                j++;
+            uint32_t prim = gp[i].prim;
+            rep->gpu_pairs++;
+            bool contiguous = true;
+            for (size_t k = i + 1; k < j; k++) {
+                if (gp[k].bucket == gp[k - 1].bucket)
+                    rep->duplicates++;
+                else if (gp[k].bucket != gp[k - 1].bucket + 1)
+                    contiguous = false;
+            }
+            int b0 = gp[i].bucket, b1 = gp[j - 1].bucket;
+            const ads_ref_entry *r = find_entry(&req, t, prim);
+            const ads_ref_entry *a = find_entry(&allow, t, prim);
+            if (!a) {
+                rep->beyond_tolerance++;
+            } else {
+                /* Must cover the buckets of the exact range (shrunk by tol)
+                 * and stay within those of the widened one. */
+                double s = tol * fmax(fabs(tmax), 1e-6);
+                int amin = bucket_of(a->zmin - s, tmin, range, B);
+                int amax = bucket_of(a->zmax + s, tmin, range, B);
+                bool bad = !contiguous || b0 < amin || b1 > amax;
+                if (r) {
+                    double lo = fmin(r->zmin + s, r->zmax), hi = fmax(r->zmax - s, lo);
+                    if (b0 > bucket_of(lo, tmin, range, B) || b1 < bucket_of(hi, tmin, range, B))
+                        bad = true;
+                }
+                if (bad)
+                    rep->bad_buckets++;
+            }
+            i = j;
+        }
+        /* Every required pair must be there. */
+        for (uint32_t k = req.offsets[t]; k < req.offsets[t + 1]; k++) {
+            gpu_pair key = {req.entries[k].prim, -1};
+            size_t lo = 0, hi = n;
+            while (lo < hi) {
+                size_t mid = (lo + hi) / 2;
+                if (cmp_gpu_pair(&gp[mid], &key) < 0)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            if (lo >= n || gp[lo].prim != key.prim)
+                rep->missing++;
+        }
+        /* Depth bounds: between the exact and the widened references. */
+        uint32_t r0 = req.offsets[t], r1 = req.offsets[t + 1];
+        uint32_t a0 = allow.offsets[t], a1 = allow.offsets[t + 1];
+        if (a0 == a1) {
+            if (!(isinf(tmin) && tmax == 0))
+                rep->bad_bounds++;
+        } else {
+            double rmin = INFINITY, rmax = -INFINITY, amin = INFINITY, amax = -INFINITY;
+            for (uint32_t k = r0; k < r1; k++) {
+                rmin = fmin(rmin, req.entries[k].zmin);
+                rmax = fmax(rmax, req.entries[k].zmax);
+            }
+            for (uint32_t k = a0; k < a1; k++) {
+                amin = fmin(amin, allow.entries[k].zmin);
+                amax = fmax(amax, allow.entries[k].zmax);
+            }
+            double s = tol * fmax(amax, 1e-6);
+            if (r0 == r1) {
+                /* Only boundary primitives: the GPU may or may not have them. */
+                if (!(isinf(tmin) && tmax == 0) && (tmin < amin - s || tmax > amax + s))
+                    rep->bad_bounds++;
+            } else if (tmin < amin - s || tmin > rmin + s || tmax > amax + s || tmax < rmax - s) {
+                rep->bad_bounds++;
+            }
+        }
+    }
+    free(gp);
+    ads_ref_free(&req);
+    ads_ref_free(&allow);
+    if (!ok)
+        DIRT_ERROR("out of memory checking the structure");
+    return ok;
+}
+
+uint64_t ads_check_pyramid(const dirt_view_set *set, const dirt_ads_data *d)
+{
+    uint64_t bad = 0;
+    for (int vi = 0; vi < set->count; vi++) {
+        const dirt_view *v = &set->views[vi];
+        for (int lvl = 1; lvl < v->num_levels; lvl++) {
+            int cw = (v->tiles_x + (1 << (lvl - 1)) - 1) >> (lvl - 1);
+            int ch = (v->tiles_y + (1 << (lvl - 1)) - 1) >> (lvl - 1);
+            int w = (v->tiles_x + (1 << lvl) - 1) >> lvl, h = (v->tiles_y + (1 << lvl) - 1) >> lvl;
+            const float(*child)[2] = d->depth + set->level_base[lvl - 1][vi];
+            const float(*level)[2] = d->depth + set->level_base[lvl][vi];
+            for (int y = 0; y < h; y++) {
+                for (int x = 0; x < w; x++) {
+                    float lo = INFINITY, hi = 0;
+                    for (int j = 0; j < 2; j++) {
+                        for (int i = 0; i < 2; i++) {
+                            int cx = 2 * x + i, cy = 2 * y + j;
+                            if (cx < cw && cy < ch) {
+                                lo = fminf(lo, child[cy * cw + cx][0]);
+                                hi = fmaxf(hi, child[cy * cw + cx][1]);
+                            }
+                        }
+                    }
+                    if (memcmp(&lo, &level[y * w + x][0], 4) || memcmp(&hi, &level[y * w + x][1], 4))
+                        bad++;
+                }
+            }
+        }
+    }
+    return bad;
+}

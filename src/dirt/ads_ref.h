@@ -1,0 +1,51 @@
+/* CPU reference of the DIRT acceleration structure and the checker that
+ * compares a GPU build against it. Double precision; slow but exact. */
+#ifndef DIRT_DIRT_ADS_REF_H
+#define DIRT_DIRT_ADS_REF_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "dirt/ads.h"
+
+typedef struct ads_ref_entry {
+    uint32_t prim;
+    double zmin, zmax;
+} ads_ref_entry;
+
+/* Per global tile, the primitives whose clipped polygon is non-empty
+ * (planes moved out by eps, see dirt_clip_triangle_tile), sorted by id:
+ * entries[offsets[t] .. offsets[t+1]). */
+typedef struct ads_ref {
+    int num_tiles;
+    uint32_t *offsets;
+    ads_ref_entry *entries;
+    uint64_t num_entries;
+} ads_ref;
+
+bool ads_ref_build(const dirt_view_set *set, const dirt_frame *frame, double eps, ads_ref *out);
+void ads_ref_free(ads_ref *ref);
+
+/* Result of comparing a GPU build with the references. */
+typedef struct ads_check_report {
+    uint64_t tiles, required_pairs, gpu_pairs, allowed_pairs;
+    uint64_t missing;          /* required pair absent from the GPU lists */
+    uint64_t beyond_tolerance; /* GPU pair not even in the allowed set */
+    uint64_t duplicates;       /* a primitive twice in one bucket list */
+    uint64_t bad_buckets;      /* buckets not exactly those the range overlaps */
+    uint64_t bad_bounds;       /* tile depth bounds outside the reference sandwich */
+    uint64_t bad_list_links;   /* node index out of range in a list */
+} ads_check_report;
+
+/* Checks `data` (read back from a build over `set`, `frame`, B buckets)
+ * against the exact references at eps 0 (must be present) and
+ * 2 * DIRT_CLIP_EPS (may be present). Depth bounds and bucket edges are
+ * compared with relative tolerance `tol`. */
+bool ads_check(const dirt_view_set *set, const dirt_frame *frame, const dirt_ads_data *data,
+               double tol, ads_check_report *report);
+
+/* CPU min/max pyramid from level 0 of `data` (same layout), compared
+ * exactly with the GPU's; returns the number of differing entries. */
+uint64_t ads_check_pyramid(const dirt_view_set *set, const dirt_ads_data *data);
+
+#endif

@@ -1,0 +1,448 @@
+/* DIRT build stage: depth bounds, Hi-Z mip and fill-primitives passes. */
+#include "dirt/ads.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/layout.h"
+#include "dirt/clock.h"
+#include "gl/gl.h"
+#include "gl/program.h"
+
+_Static_assert(sizeof(struct dirt_gpu_vertex) == 32, "vertex layout");
+_Static_assert(sizeof(struct dirt_gpu_view) == 192, "view layout");
+_Static_assert(sizeof(struct dirt_gpu_ads_params) == 32, "params layout");
+_Static_assert(sizeof(struct dirt_gpu_ads_counters) == 16, "counters layout");
+
+const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
+    "clear", "depth bounds", "mip", "fill primitives",
+};
+
+struct dirt_ads {
+    dirt_gpu *gpu;
+    dirt_ads_opts opts;
+    int num_views;
+    bool use_nv;
+    GLuint prog_depth, prog_fill, prog_mip;
+    GLuint vao, fbo;
+    int fbo_width, fbo_height;
+    /* buffers and their capacities in bytes */
+    GLuint vertices, views, params, depth, heads, nodes, counters;
+    size_t vertices_size, depth_size, heads_size;
+    size_t node_capacity;     /* nodes */
+    gl_timer timers[DIRT_ADS_NUM_PASSES];
+    dirt_view_set set;
+    size_t num_primitives;
+    struct dirt_gpu_vertex *staging;
+    size_t staging_cap;
+    dirt_ads_stats stats;
+};
+
+static int views_in_mode(enum dirt_view_mode m)
+{
+    return m == DIRT_VIEWS_SINGLE ? 1 : m == DIRT_VIEWS_CUBE ? 6 : 7;
+}
+
+dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
+{
+    dirt_ads *a = calloc(1, sizeof(*a));
+    if (!a) {
+        DIRT_ERROR("out of memory");
+        return NULL;
+    }
+    a->gpu = gpu;
+    if (opts)
+        a->opts = *opts;
+    if (a->opts.buckets <= 0)
+        a->opts.buckets = 16;
+    if (a->opts.views.mode < DIRT_VIEWS_SINGLE || a->opts.views.mode > DIRT_VIEWS_CUBE_CAMERA) {
+        DIRT_ERROR("unknown view mode %d", (int)a->opts.views.mode);
+        goto error;
+    }
+    a->num_views = views_in_mode(a->opts.views.mode);
+    a->use_nv = dirt_gpu_get_caps(gpu)->nv_conservative_raster && !a->opts.force_emulation;
+
+    char nviews[8];
+    snprintf(nviews, sizeof(nviews), "%d", a->num_views);
+    glsl_define defs[3] = {{"DIRT_NUM_VIEWS", nviews}, {"DIRT_PASS_DEPTH", "1"},
+                           {"DIRT_CONSERVATIVE_NV", "1"}};
+    size_t ndefs = a->use_nv ? 3 : 2;
+    const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
+    a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
+    defs[1].name = "DIRT_PASS_FILL";
+    a->prog_fill = gl_program_create("dirt fill primitives", paths, defs, ndefs);
+    a->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
+    if (!a->prog_depth || !a->prog_fill || !a->prog_mip)
+        goto error;
+    glCreateVertexArrays(1, &a->vao);
+    gl_label(GL_VERTEX_ARRAY, a->vao, "dirt build vao");
+    glCreateFramebuffers(1, &a->fbo);
+    gl_label(GL_FRAMEBUFFER, a->fbo, "dirt build atlas");
+    a->views = gl_buffer_create(gpu, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view), NULL,
+                                false, "dirt views");
+    a->params = gl_buffer_create(gpu, sizeof(struct dirt_gpu_ads_params), NULL, false,
+                                 "dirt params");
+    a->counters = gl_buffer_create(gpu, sizeof(struct dirt_gpu_ads_counters), NULL, true,
+                                   "dirt counters");
+    if (!a->views || !a->params || !a->counters)
+        goto error;
+    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
+        if (!gl_timer_init(&a->timers[i], a->opts.cpu_timing, dirt_ads_pass_names[i]))
+            goto error;
+    }
+    a->node_capacity = a->opts.initial_nodes;
+    return a;
+error:
+    dirt_ads_destroy(a);
+    return NULL;
+}
+
+void dirt_ads_destroy(dirt_ads *a)
+{
+    if (!a)
+        return;
+    gl_program_destroy(&a->prog_depth);
+    gl_program_destroy(&a->prog_fill);
+    gl_program_destroy(&a->prog_mip);
+    if (a->vao)
+        glDeleteVertexArrays(1, &a->vao);
+    if (a->fbo)
+        glDeleteFramebuffers(1, &a->fbo);
+    GLuint *bufs[] = {&a->vertices, &a->views, &a->params, &a->depth,
+                      &a->heads, &a->nodes, &a->counters};
+    for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
+        gl_buffer_destroy(bufs[i]);
+    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++)
+        gl_timer_release(&a->timers[i]);
+    free(a->staging);
+    free(a);
+}
+
+/* (Re)allocates `*buf` when it is smaller than `size` bytes. */
+static bool ensure_buffer(dirt_ads *a, GLuint *buf, size_t *cap, size_t size, bool readback,
+                          const char *label)
+{
+    if (*buf && *cap >= size)
+        return true;
+    gl_buffer_destroy(buf);
+    *buf = gl_buffer_create(a->gpu, size, NULL, readback, label);
+    *cap = *buf ? size : 0;
+    return *buf != 0;
+}
+
+static bool upload_frame(dirt_ads *a, const dirt_frame *f)
+{
+    size_t nv = f->num_triangles * 3;
+    if (nv > a->staging_cap) {
+        struct dirt_gpu_vertex *s = realloc(a->staging, nv * sizeof(*s));
+        if (!s) {
+            DIRT_ERROR("out of memory for %zu vertices", nv);
+            return false;
+        }
+        a->staging = s;
+        a->staging_cap = nv;
+    }
+    for (size_t i = 0; i < nv; i++) {
+        a->staging[i].position = (dirt_f4){f->position[i][0], f->position[i][1],
+                                           f->position[i][2], f->uv[i][0]};
+        a->staging[i].normal = (dirt_f4){f->normal[i][0], f->normal[i][1], f->normal[i][2],
+                                         f->uv[i][1]};
+    }
+    size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
+    if (!ensure_buffer(a, &a->vertices, &a->vertices_size, bytes ? bytes : 16, false,
+                       "dirt vertices"))
+        return false;
+    if (bytes)
+        glNamedBufferSubData(a->vertices, 0, (GLsizeiptr)bytes, a->staging);
+    a->num_primitives = f->num_triangles;
+    return true;
+}
+
+static void upload_views(dirt_ads *a)
+{
+    struct dirt_gpu_view gv[DIRT_MAX_VIEWS];
+    memset(gv, 0, sizeof(gv));
+    for (int i = 0; i < a->set.count; i++) {
+        const dirt_view *v = &a->set.views[i];
+        for (int c = 0; c < 4; c++) {
+            gv[i].view_proj[c] = (dirt_f4){v->view_proj[c * 4], v->view_proj[c * 4 + 1],
+                                           v->view_proj[c * 4 + 2], v->view_proj[c * 4 + 3]};
+        }
+        gv[i].eye_near = (dirt_f4){v->eye[0], v->eye[1], v->eye[2], v->znear};
+        gv[i].forward_far = (dirt_f4){v->forward[0], v->forward[1], v->forward[2], v->zfar};
+        gv[i].size = (dirt_i4){v->width, v->height, v->tiles_x, v->tiles_y};
+        gv[i].placement = (dirt_i4){v->tile_base, v->atlas_x, v->num_levels, v->face};
+        int lb[16] = {0};
+        for (int d = 0; d < DIRT_MAX_MIP_LEVELS; d++)
+            lb[d] = d < a->set.num_levels ? a->set.level_base[d][i] : 0;
+        for (int k = 0; k < 4; k++)
+            gv[i].level_base[k] = (dirt_i4){lb[4 * k], lb[4 * k + 1], lb[4 * k + 2], lb[4 * k + 3]};
+    }
+    glNamedBufferSubData(a->views, 0, (GLsizeiptr)sizeof(gv), gv);
+}
+
+static void upload_params(dirt_ads *a)
+{
+    struct dirt_gpu_ads_params p = {
+        .config = {a->set.count, a->set.tile_size, a->opts.buckets, a->set.num_tiles},
+        .pool = {(unsigned)a->node_capacity, (unsigned)a->set.pyramid_size,
+                 (unsigned)a->set.atlas_width, (unsigned)a->set.atlas_height},
+    };
+    glNamedBufferSubData(a->params, 0, sizeof(p), &p);
+}
+
+static bool ensure_nodes(dirt_ads *a, size_t nodes)
+{
+    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
+    if (max > 0 && (int64_t)(nodes * 8) > max) {
+        DIRT_ERROR("the primitive lists need %zu nodes (%.1f MB), more than this GPU's "
+                   "largest storage buffer (%.1f MB): use larger tiles, fewer buckets or "
+                   "smaller views", nodes, nodes * 8 / 1e6, max / 1e6);
+        return false;
+    }
+    if (a->nodes && a->node_capacity >= nodes)
+        return true;
+    gl_buffer_destroy(&a->nodes);
+    a->nodes = gl_buffer_create(a->gpu, nodes * 8, NULL, true, "dirt id nodes");
+    a->node_capacity = a->nodes ? nodes : 0;
+    return a->nodes != 0;
+}
+
+static bool ensure_targets(dirt_ads *a)
+{
+    const dirt_view_set *s = &a->set;
+    size_t heads = (size_t)a->opts.buckets * (size_t)s->num_tiles * 4;
+    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
+    if (max > 0 && (int64_t)heads > max) {
+        DIRT_ERROR("the list heads need %.1f MB, more than this GPU's largest storage "
+                   "buffer (%.1f MB): use larger tiles or fewer buckets", heads / 1e6, max / 1e6);
+        return false;
+    }
+    if (!ensure_buffer(a, &a->depth, &a->depth_size, (size_t)s->pyramid_size * 8, true,
+                       "dirt depth bounds") ||
+        !ensure_buffer(a, &a->heads, &a->heads_size, heads, true, "dirt list heads"))
+        return false;
+    if (!a->node_capacity)
+        a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
+    if (!ensure_nodes(a, a->node_capacity))
+        return false;
+    if (a->fbo_width != s->atlas_width || a->fbo_height != s->atlas_height) {
+        glNamedFramebufferParameteri(a->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, s->atlas_width);
+        glNamedFramebufferParameteri(a->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, s->atlas_height);
+        a->fbo_width = s->atlas_width;
+        a->fbo_height = s->atlas_height;
+    }
+    return true;
+}
+
+static void bind_all(dirt_ads *a)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, a->views);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PARAMS, a->params);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_DEPTH, a->depth);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HEADS, a->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_NODES, a->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_COUNTERS, a->counters);
+}
+
+static void clear_lists(dirt_ads *a)
+{
+    static const uint32_t end = DIRT_LIST_END, zero = 0;
+    glClearNamedBufferData(a->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    glClearNamedBufferData(a->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+/* Draws every triangle into every view with `program`. */
+static void raster_views(dirt_ads *a, GLuint program)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
+    glViewport(0, 0, a->set.atlas_width, a->set.atlas_height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    if (a->use_nv)
+        glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
+    glUseProgram(program);
+    glBindVertexArray(a->vao);
+    if (a->num_primitives)
+        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
+    glBindVertexArray(0);
+    if (a->use_nv)
+        glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+static void pass_begin(dirt_ads *a, int pass)
+{
+    gl_group_push(dirt_ads_pass_names[pass]);
+    gl_timer_begin(&a->timers[pass]);
+}
+
+static void pass_end(dirt_ads *a, int pass, double *gpu_acc, double *cpu_acc)
+{
+    gl_timer_end(&a->timers[pass]);
+    gl_group_pop();
+    gpu_acc[pass] += a->timers[pass].gpu_ms;
+    if (a->timers[pass].cpu_ms >= 0)
+        cpu_acc[pass] += a->timers[pass].cpu_ms;
+}
+
+bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
+{
+    dirt_ads_stats *st = &a->stats;
+    double gpu_ms[DIRT_ADS_NUM_PASSES] = {0}, cpu_ms[DIRT_ADS_NUM_PASSES] = {0};
+    int max_fb = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_fb);
+    if (!dirt_views_setup(&a->set, cam, f->bounds_min, f->bounds_max, &a->opts.views, max_fb))
+        return false;
+    int max_fb_h = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_fb_h);
+    if (a->set.atlas_height > max_fb_h) {
+        DIRT_ERROR("views need a raster %d tiles high, more than this GPU's %d",
+                   a->set.atlas_height, max_fb_h);
+        return false;
+    }
+    gl_group_push("dirt build");
+    bool ok = false;
+    if (!upload_frame(a, f) || !ensure_targets(a))
+        goto done;
+    upload_views(a);
+    upload_params(a);
+    bind_all(a);
+
+    pass_begin(a, DIRT_ADS_PASS_CLEAR);
+    static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
+    glClearNamedBufferData(a->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
+    clear_lists(a);
+    pass_end(a, DIRT_ADS_PASS_CLEAR, gpu_ms, cpu_ms);
+
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    pass_begin(a, DIRT_ADS_PASS_DEPTH);
+    raster_views(a, a->prog_depth);
+    pass_end(a, DIRT_ADS_PASS_DEPTH, gpu_ms, cpu_ms);
+
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    pass_begin(a, DIRT_ADS_PASS_MIP);
+    glUseProgram(a->prog_mip);
+    for (int d = 1; d < a->set.num_levels; d++) {
+        int w = 0, h = 0;
+        for (int i = 0; i < a->set.count; i++) {
+            const dirt_view *v = &a->set.views[i];
+            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
+            w = lw > w ? lw : w;
+            h = lh > h ? lh : h;
+        }
+        glUniform1i(0, d);
+        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)a->set.count);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    pass_end(a, DIRT_ADS_PASS_MIP, gpu_ms, cpu_ms);
+
+    st->fill_runs = 0;
+    struct dirt_gpu_ads_counters counters;
+    for (;;) {
+        st->fill_runs++;
+        pass_begin(a, DIRT_ADS_PASS_FILL);
+        raster_views(a, a->prog_fill);
+        pass_end(a, DIRT_ADS_PASS_FILL, gpu_ms, cpu_ms);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        if (!gl_buffer_read(a->counters, 0, sizeof(counters), &counters))
+            goto done;
+        size_t need = counters.fill.x;
+        if (need <= a->node_capacity)
+            break;
+        size_t grown = need + need / 4;
+        int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
+        if (max > 0 && (int64_t)(grown * 8) > max)
+            grown = need;
+        DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB); fill pass rerun",
+                  a->node_capacity, grown, grown * 8 / 1e6);
+        if (!ensure_nodes(a, grown))
+            goto done;
+        upload_params(a);
+        bind_all(a);
+        clear_lists(a);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+
+    st->primitives = a->num_primitives;
+    st->samples = counters.fill.y;
+    st->nodes = counters.fill.x;
+    st->buckets_per_sample = st->samples ? (double)st->nodes / (double)st->samples : 0;
+    st->conservative_nv = a->use_nv;
+    st->bytes_vertices = a->num_primitives * 3 * sizeof(struct dirt_gpu_vertex);
+    st->bytes_depth = (uint64_t)a->set.pyramid_size * 8;
+    st->bytes_heads = (uint64_t)a->opts.buckets * (uint64_t)a->set.num_tiles * 4;
+    st->bytes_nodes_allocated = (uint64_t)a->node_capacity * 8;
+    st->bytes_nodes_used = st->nodes * 8;
+    st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
+                                st->bytes_nodes_allocated;
+    st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
+                           st->bytes_nodes_used;
+    st->bytes_table3 = (double)a->set.num_tiles * (8.0 * 1.33 + 4.0 * a->opts.buckets) +
+                       8.0 * st->buckets_per_sample * (double)st->samples;
+    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
+        st->gpu_ms[i] = gpu_ms[i];
+        st->cpu_ms[i] = a->opts.cpu_timing ? cpu_ms[i] : -1;
+    }
+    ok = gl_check("dirt build");
+done:
+    glUseProgram(0);
+    gl_group_pop();
+    return ok;
+}
+
+const dirt_ads_stats *dirt_ads_get_stats(const dirt_ads *a)
+{
+    return &a->stats;
+}
+
+const dirt_view_set *dirt_ads_views(const dirt_ads *a)
+{
+    return &a->set;
+}
+
+int dirt_ads_buckets(const dirt_ads *a)
+{
+    return a->opts.buckets;
+}
+
+bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
+{
+    memset(out, 0, sizeof(*out));
+    out->num_tiles = a->set.num_tiles;
+    out->buckets = a->opts.buckets;
+    out->pyramid_size = a->set.pyramid_size;
+    out->num_nodes = (uint32_t)(a->stats.nodes < a->node_capacity ? a->stats.nodes
+                                                                   : a->node_capacity);
+    size_t heads = (size_t)out->buckets * (size_t)out->num_tiles;
+    out->depth = malloc((size_t)out->pyramid_size * sizeof(*out->depth) + 8);
+    out->heads = malloc(heads * 4 + 4);
+    out->nodes = malloc((size_t)out->num_nodes * 8 + 8);
+    if (!out->depth || !out->heads || !out->nodes) {
+        DIRT_ERROR("out of memory reading the structure back");
+        dirt_ads_data_free(out);
+        return false;
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (!gl_buffer_read(a->depth, 0, (size_t)out->pyramid_size * 8, out->depth) ||
+        !gl_buffer_read(a->heads, 0, heads * 4, out->heads) ||
+        (out->num_nodes && !gl_buffer_read(a->nodes, 0, (size_t)out->num_nodes * 8, out->nodes))) {
+        dirt_ads_data_free(out);
+        return false;
+    }
+    return true;
+}
+
+void dirt_ads_data_free(dirt_ads_data *d)
+{
+    if (!d)
+        return;
+    free(d->depth);
+    free(d->heads);
+    free(d->nodes);
+    memset(d, 0, sizeof(*d));
+}

@@ -1,0 +1,301 @@
+/* GL 4.5 core contexts: headless EGL (Mesa surfaceless, then EGL devices) and
+ * GLFW windows; the capability probe. */
+#include "gl/gl.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GLFW/glfw3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef EGL_PLATFORM_SURFACELESS_MESA
+#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
+#endif
+
+static const char *egl_error_name(EGLint e)
+{
+    switch (e) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    default: return "EGL error";
+    }
+}
+
+static bool has_ext(const char *list, const char *name)
+{
+    if (!list)
+        return false;
+    size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)); p += n) {
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+            return true;
+    }
+    return false;
+}
+
+/* Initialises `dpy` and makes a 4.5 core context current without a surface.
+ * Returns false (with `dpy` terminated) when that is not possible. */
+static bool egl_make_context(dirt_gpu *gpu, EGLDisplay dpy)
+{
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(dpy, &major, &minor)) {
+        DIRT_DEBUG("eglInitialize failed: %s", egl_error_name(eglGetError()));
+        return false;
+    }
+    const char *exts = eglQueryString(dpy, EGL_EXTENSIONS);
+    if (!has_ext(exts, "EGL_KHR_surfaceless_context")) {
+        DIRT_DEBUG("EGL display lacks EGL_KHR_surfaceless_context");
+        goto error;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+        DIRT_DEBUG("eglBindAPI(OpenGL) failed: %s", egl_error_name(eglGetError()));
+        goto error;
+    }
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    if (!has_ext(exts, "EGL_KHR_no_config_context")) {
+        const EGLint cfg_attr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                                   EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLint n = 0;
+        if (!eglChooseConfig(dpy, cfg_attr, &config, 1, &n) || n < 1) {
+            DIRT_DEBUG("no EGL config with OpenGL + pbuffer");
+            goto error;
+        }
+    }
+    EGLint ctx_attr[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 4,
+        EGL_CONTEXT_MINOR_VERSION, 5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        EGL_CONTEXT_OPENGL_DEBUG, gpu->opts.no_debug ? EGL_FALSE : EGL_TRUE,
+        EGL_NONE,
+    };
+    EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, ctx_attr);
+    if (ctx == EGL_NO_CONTEXT) {
+        DIRT_DEBUG("eglCreateContext(4.5 core) failed: %s", egl_error_name(eglGetError()));
+        goto error;
+    }
+    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+        DIRT_DEBUG("eglMakeCurrent failed: %s", egl_error_name(eglGetError()));
+        eglDestroyContext(dpy, ctx);
+        goto error;
+    }
+    gpu->egl_display = dpy;
+    gpu->egl_context = ctx;
+    return true;
+error:
+    eglTerminate(dpy);
+    return false;
+}
+
+static bool egl_create(dirt_gpu *gpu)
+{
+    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!gpu->opts.force_device_platform && has_ext(client, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA,
+                                               EGL_DEFAULT_DISPLAY, NULL);
+        if (dpy != EGL_NO_DISPLAY && egl_make_context(gpu, dpy)) {
+            gpu->caps.platform = "egl-surfaceless";
+            return true;
+        }
+    }
+    if (has_ext(client, "EGL_EXT_platform_device")) {
+        PFNEGLQUERYDEVICESEXTPROC query_devices =
+            (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+        EGLDeviceEXT devices[16];
+        EGLint n = 0;
+        if (query_devices && query_devices(16, devices, &n)) {
+            for (EGLint i = 0; i < n; i++) {
+                EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT,
+                                                       devices[i], NULL);
+                if (dpy != EGL_NO_DISPLAY && egl_make_context(gpu, dpy)) {
+                    gpu->caps.platform = "egl-device";
+                    return true;
+                }
+            }
+        }
+    }
+    DIRT_ERROR("no headless OpenGL 4.5 core context: neither the Mesa surfaceless "
+               "platform nor an EGL device could make one (is libegl-mesa0 or an "
+               "NVIDIA driver installed?)");
+    return false;
+}
+
+static void glfw_error(int code, const char *desc)
+{
+    DIRT_WARN("GLFW error 0x%x: %s", code, desc);
+}
+
+static bool glfw_create(dirt_gpu *gpu)
+{
+    glfwSetErrorCallback(glfw_error);
+    if (!glfwInit()) {
+        DIRT_ERROR("glfwInit failed: no window system (set DISPLAY, or use xvfb-run)");
+        return false;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, gpu->opts.no_debug ? GLFW_FALSE : GLFW_TRUE);
+    int w = gpu->opts.width > 0 ? gpu->opts.width : 1280;
+    int h = gpu->opts.height > 0 ? gpu->opts.height : 720;
+    GLFWwindow *win = glfwCreateWindow(w, h, gpu->opts.title ? gpu->opts.title : "DIRT",
+                                       NULL, NULL);
+    if (!win) {
+        DIRT_ERROR("could not open a %dx%d window with an OpenGL 4.5 core context", w, h);
+        glfwTerminate();
+        return false;
+    }
+    glfwMakeContextCurrent(win);
+    glfwSwapInterval(gpu->opts.vsync ? 1 : 0);
+    gpu->window = win;
+    gpu->caps.platform = "glfw";
+    return true;
+}
+
+static bool contains_ci(const char *s, const char *needle)
+{
+    size_t n = strlen(needle);
+    for (; *s; s++) {
+        size_t i = 0;
+        while (i < n && s[i] && (s[i] | 32) == (needle[i] | 32))
+            i++;
+        if (i == n)
+            return true;
+    }
+    return false;
+}
+
+static void probe_caps(dirt_gpu *gpu)
+{
+    dirt_gpu_caps *c = &gpu->caps;
+    glGetIntegerv(GL_MAJOR_VERSION, &c->gl_major);
+    glGetIntegerv(GL_MINOR_VERSION, &c->gl_minor);
+    snprintf(c->version, sizeof(c->version), "%s", (const char *)glGetString(GL_VERSION));
+    snprintf(c->renderer, sizeof(c->renderer), "%s", (const char *)glGetString(GL_RENDERER));
+    snprintf(c->vendor, sizeof(c->vendor), "%s", (const char *)glGetString(GL_VENDOR));
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; i++) {
+        const char *e = (const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i);
+        if (e && strcmp(e, "GL_NV_conservative_raster") == 0)
+            c->nv_conservative_raster = true;
+    }
+    if (gpu->opts.disable_conservative)
+        c->nv_conservative_raster = false;
+    c->software = contains_ci(c->renderer, "llvmpipe") || contains_ci(c->renderer, "softpipe");
+    GLint bits = 0;
+    glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
+    c->timer_query = bits > 0;
+    GLint64 v64 = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &v64);
+    c->max_ssbo_size = v64;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &c->max_texture_size);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &c->max_array_layers);
+    glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &c->max_compute_group_invocations);
+    glGetIntegerv(GL_MAX_IMAGE_UNITS, &c->max_image_units);
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &c->max_ssbo_bindings);
+}
+
+dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
+{
+    dirt_gpu *gpu = calloc(1, sizeof(*gpu));
+    if (!gpu) {
+        DIRT_ERROR("out of memory");
+        return NULL;
+    }
+    if (opts)
+        gpu->opts = *opts;
+    if (!(gpu->opts.window ? glfw_create(gpu) : egl_create(gpu)))
+        goto error;
+    probe_caps(gpu);
+    if (gpu->caps.gl_major * 10 + gpu->caps.gl_minor < 45) {
+        DIRT_ERROR("OpenGL %d.%d context, need 4.5 core (%s)", gpu->caps.gl_major,
+                   gpu->caps.gl_minor, gpu->caps.renderer);
+        goto error;
+    }
+    if (!gpu->opts.no_debug)
+        gl_debug_install(gpu);
+    char desc[512];
+    dirt_gpu_describe(gpu, desc, sizeof(desc));
+    DIRT_DEBUG("%s", desc);
+    return gpu;
+error:
+    dirt_gpu_destroy(gpu);
+    return NULL;
+}
+
+void dirt_gpu_destroy(dirt_gpu *gpu)
+{
+    if (!gpu)
+        return;
+    if (gpu->egl_display) {
+        eglMakeCurrent(gpu->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (gpu->egl_context)
+            eglDestroyContext(gpu->egl_display, gpu->egl_context);
+        eglTerminate(gpu->egl_display);
+        eglReleaseThread();
+    }
+    if (gpu->window) {
+        glfwDestroyWindow(gpu->window);
+        glfwTerminate();
+    }
+    free(gpu);
+}
+
+const dirt_gpu_caps *dirt_gpu_get_caps(const dirt_gpu *gpu)
+{
+    return &gpu->caps;
+}
+
+void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size)
+{
+    const dirt_gpu_caps *c = &gpu->caps;
+    snprintf(buf, size, "OpenGL %s | %s | %s | %s | conservative raster: %s | timer queries: %s",
+             c->version, c->renderer, c->vendor, c->platform,
+             c->nv_conservative_raster ? "GL_NV_conservative_raster" : "no (emulated)",
+             c->timer_query ? (c->software ? "yes (software: raster not timed)" : "yes") : "no");
+}
+
+void dirt_gpu_finish(dirt_gpu *gpu)
+{
+    (void)gpu;
+    glFinish();
+}
+
+bool dirt_gpu_window_should_close(dirt_gpu *gpu)
+{
+    return gpu->window ? glfwWindowShouldClose(gpu->window) : false;
+}
+
+void dirt_gpu_window_swap(dirt_gpu *gpu)
+{
+    if (gpu->window)
+        glfwSwapBuffers(gpu->window);
+}
+
+void dirt_gpu_window_poll(dirt_gpu *gpu)
+{
+    if (gpu->window)
+        glfwPollEvents();
+}
+
+void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height)
+{
+    *width = *height = 0;
+    if (gpu->window)
+        glfwGetFramebufferSize(gpu->window, width, height);
+}
+
+uint64_t dirt_gpu_error_count(const dirt_gpu *gpu)
+{
+    return gpu->error_count;
+}

@@ -1,0 +1,88 @@
+/* Internal GL layer: the only headers that pull in OpenGL. Everything that
+ * calls GL includes this file and lives in src/gl/ or in a technique file
+ * that owns a pass body and uses these helpers. */
+#ifndef DIRT_GL_GL_H
+#define DIRT_GL_GL_H
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dirt/gpu.h"
+#include "dirt/log.h"
+
+#ifndef GL_CONSERVATIVE_RASTERIZATION_NV
+#define GL_CONSERVATIVE_RASTERIZATION_NV 0x9346
+#endif
+
+struct dirt_gpu {
+    dirt_gpu_caps caps;
+    dirt_gpu_opts opts;
+    /* EGL (headless) */
+    void *egl_display;
+    void *egl_context;
+    /* GLFW (window) */
+    void *window;
+    uint64_t error_count;
+    bool in_finish_timer;
+};
+
+/* ---- debug output, labels, groups (debug.c) ---- */
+
+/* Installs the debug callback that routes GL messages into the engine log. */
+void gl_debug_install(dirt_gpu *gpu);
+/* glObjectLabel with a printf-style name. `type` is GL_BUFFER, GL_TEXTURE,
+ * GL_PROGRAM, GL_FRAMEBUFFER, GL_QUERY, ... */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+void gl_label(GLenum type, GLuint id, const char *fmt, ...);
+void gl_group_push(const char *name);
+void gl_group_pop(void);
+/* Drains glGetError; logs each error with the caller's location and returns
+ * false when there was one. */
+bool gl_check_(const char *file, int line, const char *what);
+#define gl_check(what) gl_check_(__FILE__, __LINE__, (what))
+
+/* ---- buffers and textures (resource.c) ---- */
+
+/* Immutable-storage buffer (glNamedBufferStorage) with GL_DYNAMIC_STORAGE_BIT
+ * and, when `readback`, GL_MAP_READ_BIT. `data` may be NULL. Returns 0 after
+ * logging when the size exceeds what the GPU allows or allocation fails. */
+GLuint gl_buffer_create(dirt_gpu *gpu, size_t size, const void *data,
+                        bool readback, const char *label);
+void gl_buffer_destroy(GLuint *buf);
+/* Copies `size` bytes from offset 0 of `buf` into `out` (glGetNamedBufferSubData). */
+bool gl_buffer_read(GLuint buf, size_t offset, size_t size, void *out);
+
+/* 2D texture with immutable storage. levels >= 1. */
+GLuint gl_texture_2d(GLenum internal_format, int width, int height, int levels,
+                     const char *label);
+GLuint gl_texture_2d_array(GLenum internal_format, int width, int height,
+                           int layers, int levels, const char *label);
+void gl_texture_destroy(GLuint *tex);
+
+/* ---- timers (timer.c) ---- */
+
+/* Measures GPU time of a region with GL_TIME_ELAPSED queries, and CPU wall
+ * time around glFinish when `cpu_finish` is set (llvmpipe: timestamps do not
+ * time rasterization). Results are read after gl_timer_end. */
+typedef struct gl_timer {
+    GLuint query;
+    bool cpu_finish;
+    bool running;
+    double cpu_start;
+    double gpu_ms;  /* -1 when unavailable */
+    double cpu_ms;  /* -1 when cpu_finish was off */
+} gl_timer;
+
+bool gl_timer_init(gl_timer *t, bool cpu_finish, const char *label);
+void gl_timer_begin(gl_timer *t);
+/* Ends the region; waits for the query result (blocking). */
+void gl_timer_end(gl_timer *t);
+void gl_timer_release(gl_timer *t);
+
+#endif

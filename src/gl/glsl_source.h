@@ -1,0 +1,43 @@
+/* GLSL source assembly: #include resolution and #define injection.
+ * Pure C, no GL: shared by the run-time program loader and the build-time
+ * validator (dirt-glsl-pp), so both see exactly the same text. */
+#ifndef DIRT_GL_GLSL_SOURCE_H
+#define DIRT_GL_GLSL_SOURCE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* One injected macro: `#define name value` (value may be NULL or ""). */
+typedef struct glsl_define {
+    const char *name;
+    const char *value;
+} glsl_define;
+
+#define GLSL_MAX_FILES 64
+
+/* Files that went into an assembled source. Index i is the source-string
+ * number used in the `#line` directives of the text, so compiler messages
+ * of the form "i:LINE" name files[i]. */
+typedef struct glsl_files {
+    int count;
+    char path[GLSL_MAX_FILES][256]; /* relative to the glsl root */
+} glsl_files;
+
+/* Directory of the shader sources: $DIRT_GLSL_DIR when set, else the source
+ * tree's glsl/ compiled in, else <exe dir>/../share/dirt/glsl. */
+const char *glsl_root(void);
+
+/* Reads `path` (relative to `root`), which must start with a #version line,
+ * inserts the defines right after it, and replaces every line
+ * `#include "rel/path.glsl"` (relative to `root`) by that file's text. A file
+ * is included at most once (later includes of it are dropped), so cycles are
+ * harmless. Returns a malloc'd string or NULL after logging (missing file,
+ * missing #version, malformed include, too many files). `files` may be NULL. */
+char *glsl_assemble(const char *root, const char *path, const glsl_define *defines,
+                    size_t num_defines, glsl_files *files);
+
+/* Pipeline stage from a file name's extension (.vert .tesc .tese .geom .frag
+ * .comp), as a short name ("vert", ...), or NULL when unknown. */
+const char *glsl_stage_of(const char *path);
+
+#endif

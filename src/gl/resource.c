@@ -1,0 +1,86 @@
+/* Buffers and textures with immutable storage, labelled. */
+#include "gl/gl.h"
+
+GLuint gl_buffer_create(dirt_gpu *gpu, size_t size, const void *data, bool readback,
+                        const char *label)
+{
+    if (size == 0)
+        size = 16; /* GL forbids zero-sized storage; keep a tiny valid buffer */
+    if (gpu && gpu->caps.max_ssbo_size > 0 && (int64_t)size > gpu->caps.max_ssbo_size) {
+        DIRT_ERROR("buffer '%s' needs %zu bytes, more than this GPU's maximum storage "
+                   "block size (%lld bytes)", label ? label : "?", size,
+                   (long long)gpu->caps.max_ssbo_size);
+        return 0;
+    }
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    GLuint buf = 0;
+    glCreateBuffers(1, &buf);
+    GLbitfield flags = GL_DYNAMIC_STORAGE_BIT | (readback ? GL_MAP_READ_BIT : 0);
+    glNamedBufferStorage(buf, (GLsizeiptr)size, data, flags);
+    if (!gl_check("glNamedBufferStorage")) {
+        DIRT_ERROR("could not allocate %zu bytes for buffer '%s'", size, label ? label : "?");
+        glDeleteBuffers(1, &buf);
+        return 0;
+    }
+    if (label)
+        gl_label(GL_BUFFER, buf, "%s", label);
+    return buf;
+}
+
+void gl_buffer_destroy(GLuint *buf)
+{
+    if (*buf)
+        glDeleteBuffers(1, buf);
+    *buf = 0;
+}
+
+bool gl_buffer_read(GLuint buf, size_t offset, size_t size, void *out)
+{
+    glGetNamedBufferSubData(buf, (GLintptr)offset, (GLsizeiptr)size, out);
+    return gl_check("glGetNamedBufferSubData");
+}
+
+GLuint gl_texture_2d(GLenum internal_format, int width, int height, int levels,
+                     const char *label)
+{
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, levels, internal_format, width, height);
+    if (!gl_check("glTextureStorage2D")) {
+        DIRT_ERROR("could not allocate %dx%d texture '%s'", width, height, label ? label : "?");
+        glDeleteTextures(1, &tex);
+        return 0;
+    }
+    if (label)
+        gl_label(GL_TEXTURE, tex, "%s", label);
+    return tex;
+}
+
+GLuint gl_texture_2d_array(GLenum internal_format, int width, int height, int layers,
+                           int levels, const char *label)
+{
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tex);
+    glTextureStorage3D(tex, levels, internal_format, width, height, layers);
+    if (!gl_check("glTextureStorage3D")) {
+        DIRT_ERROR("could not allocate %dx%dx%d texture array '%s'", width, height, layers,
+                   label ? label : "?");
+        glDeleteTextures(1, &tex);
+        return 0;
+    }
+    if (label)
+        gl_label(GL_TEXTURE, tex, "%s", label);
+    return tex;
+}
+
+void gl_texture_destroy(GLuint *tex)
+{
+    if (*tex)
+        glDeleteTextures(1, tex);
+    *tex = 0;
+}

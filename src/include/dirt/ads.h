@@ -1,0 +1,94 @@
+/* DIRT engine: the per-primitive image-space acceleration structure (ADS)
+ * of DIRT (HPG 2016, section 4.1), rebuilt every frame on the GPU:
+ *   1 depth bounds: every view's tiles get the min/max eye-space depth of the
+ *     triangles clipped exactly to the tile frustum;
+ *   2 mip: a min/max (Hi-Z) pyramid of those bounds, any size;
+ *   3 fill primitives: per (view, bucket, tile) a linked list of the ids of
+ *     the triangles whose clipped depth range overlaps the bucket (eq. 1a/1b).
+ * Complete by construction: a (primitive, tile) pair whose exact clip is
+ * non-empty is always stored, in every bucket its range overlaps. Node pools
+ * grow and the fill pass reruns in the same frame when they overflow. */
+#ifndef DIRT_ADS_H
+#define DIRT_ADS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dirt/gpu.h"
+#include "dirt/scene.h"
+#include "dirt/views.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct dirt_ads dirt_ads;
+
+/* Zero-initialised = single camera view 640x480, S = 2, B = 16, automatic
+ * initial node capacity. */
+typedef struct dirt_ads_opts {
+    dirt_view_opts views;
+    int buckets;              /* B >= 1 (default 16) */
+    size_t initial_nodes;     /* first node capacity (0 = automatic) */
+    bool force_emulation;     /* ignore GL_NV_conservative_raster */
+    bool cpu_timing;          /* time passes with glFinish + CPU clock too */
+} dirt_ads_opts;
+
+enum { DIRT_ADS_PASS_CLEAR, DIRT_ADS_PASS_DEPTH, DIRT_ADS_PASS_MIP, DIRT_ADS_PASS_FILL,
+       DIRT_ADS_NUM_PASSES };
+
+typedef struct dirt_ads_stats {
+    /* Counts of the last build. */
+    uint64_t primitives;
+    uint64_t samples;         /* n_p: (primitive, tile) pairs with a non-empty clip */
+    uint64_t nodes;           /* id nodes = sum over samples of buckets overlapped */
+    double buckets_per_sample; /* c = nodes / samples */
+    int fill_runs;            /* 1, or more when the node pool grew */
+    bool conservative_nv;     /* the hardware conservative path was used */
+    /* Bytes. */
+    uint64_t bytes_vertices;  /* vertex buffer */
+    uint64_t bytes_depth;     /* depth bounds incl. pyramid: 8 B per entry */
+    uint64_t bytes_heads;     /* 4 B * B * tiles */
+    uint64_t bytes_nodes_allocated, bytes_nodes_used; /* 8 B per node */
+    uint64_t bytes_total_allocated, bytes_total_used;
+    /* DIRT paper Table 3 per tile: 8 B * 1.33 (depth + mips) + 4 B * B
+     * (heads) + 8 B * c * n_p / tiles (nodes), times the tiles. */
+    double bytes_table3;
+    /* Pass times of the last build, ms (-1 unavailable). */
+    double gpu_ms[DIRT_ADS_NUM_PASSES];
+    double cpu_ms[DIRT_ADS_NUM_PASSES];
+} dirt_ads_stats;
+
+extern const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES];
+
+/* Compiles the build programs. NULL on failure (logged). */
+dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts);
+void dirt_ads_destroy(dirt_ads *ads);
+
+/* Builds the structure for `frame` seen from `cam`. Returns false (logged)
+ * when a buffer would exceed the GPU's limits or GL fails. */
+bool dirt_ads_build(dirt_ads *ads, const dirt_frame *frame, const dirt_camera *cam);
+
+const dirt_ads_stats *dirt_ads_get_stats(const dirt_ads *ads);
+const dirt_view_set *dirt_ads_views(const dirt_ads *ads);
+int dirt_ads_buckets(const dirt_ads *ads);
+
+/* CPU copy of the built structure, for checks and pictures. */
+typedef struct dirt_ads_data {
+    int num_tiles, buckets;
+    int pyramid_size;
+    float (*depth)[2];        /* pyramid: (zmin, zmax); +inf/0 for empty tiles */
+    uint32_t *heads;          /* buckets * tiles, bucket-major */
+    uint32_t (*nodes)[2];     /* (primitive, next) */
+    uint32_t num_nodes;
+} dirt_ads_data;
+
+/* Reads the structure back (blocking). Free with dirt_ads_data_free. */
+bool dirt_ads_read(dirt_ads *ads, dirt_ads_data *out);
+void dirt_ads_data_free(dirt_ads_data *data);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

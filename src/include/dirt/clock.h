@@ -1,0 +1,15 @@
+/* DIRT engine: monotonic wall clock. */
+#ifndef DIRT_CLOCK_H
+#define DIRT_CLOCK_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Milliseconds from an arbitrary fixed point (CLOCK_MONOTONIC). */
+double dirt_clock_ms(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,61 @@
+/* DIRT engine: atomic file output.
+ *
+ * Every file the engine writes (images, JSON stats, ...) goes through an
+ * atomic file: the bytes go to a temporary file `<path>.tmp.XXXXXX` created
+ * with mkstemp(3) in the same directory as `path`; commit flushes, fsyncs and
+ * rename(2)s it over `path`. Readers therefore see either the previous file
+ * (or no file) or the complete new one, never a partial write. On any failure
+ * and on abort the temporary file is removed and `path` is left untouched.
+ *
+ *     dirt_atomic_file *f = dirt_atomic_open("out/stats.json");
+ *     if (!f) return false;                  // reason already logged
+ *     fprintf(dirt_atomic_stream(f), "{...}\n");
+ *     if (!dirt_atomic_commit(f)) return false; // f is freed either way
+ *
+ * A dirt_atomic_file is used by one thread at a time. */
+#ifndef DIRT_FILE_H
+#define DIRT_FILE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct dirt_atomic_file dirt_atomic_file;
+
+/* Creates the temporary file for an atomic write of `path`. The new file gets
+ * mode 0644, or the permission bits of the file it replaces when `path`
+ * already exists. Returns NULL after logging why (directory missing or not
+ * writable, path too long, out of memory). */
+dirt_atomic_file *dirt_atomic_open(const char *path);
+
+/* Binary stdio stream onto the temporary file, owned by `f`: write (and
+ * seek) freely, never fclose it. Errors on it are detected at commit. */
+FILE *dirt_atomic_stream(dirt_atomic_file *f);
+
+/* Path of the temporary file (for messages) and the final path. */
+const char *dirt_atomic_temp_path(const dirt_atomic_file *f);
+const char *dirt_atomic_target_path(const dirt_atomic_file *f);
+
+/* Flushes, fsyncs and renames the temporary file to the target path, then
+ * fsyncs the directory (a failure there is only a warning). Frees `f` in
+ * every case. On failure (including any earlier error on the stream) logs
+ * why, removes the temporary file and returns false; the target path keeps
+ * its previous content or absence. */
+bool dirt_atomic_commit(dirt_atomic_file *f);
+
+/* Discards the write: closes and removes the temporary file and frees `f`.
+ * The target path is untouched. Accepts NULL. */
+void dirt_atomic_abort(dirt_atomic_file *f);
+
+/* Convenience: atomically replaces `path` with `size` bytes from `data`.
+ * Returns false after logging why; nothing is left behind on failure. */
+bool dirt_write_file_atomic(const char *path, const void *data, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,75 @@
+/* DIRT engine: GPU device (an OpenGL 4.5 core context).
+ *
+ * Applications create one dirt_gpu and hand it to the techniques; they never
+ * call GL themselves. Headless contexts use EGL (Mesa's surfaceless platform,
+ * then the EGL device platform, so both llvmpipe and a headless NVIDIA GPU
+ * work); windowed contexts use GLFW. The context is current on the creating
+ * thread. */
+#ifndef DIRT_GPU_H
+#define DIRT_GPU_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct dirt_gpu dirt_gpu;
+
+/* Options for dirt_gpu_create. Zero-initialised = headless, debug output on
+ * at warning level and above. */
+typedef struct dirt_gpu_opts {
+    bool window;             /* GLFW window instead of headless EGL */
+    int width, height;       /* window size (default 1280x720) */
+    const char *title;       /* window title (default "DIRT") */
+    bool vsync;              /* window: swap interval 1 */
+    bool no_debug;           /* no debug context / debug output */
+    bool force_device_platform; /* headless: skip Mesa surfaceless, use EGL devices */
+    bool disable_conservative;  /* report GL_NV_conservative_raster as absent */
+} dirt_gpu_opts;
+
+typedef struct dirt_gpu_caps {
+    int gl_major, gl_minor;
+    char version[160];
+    char renderer[160];
+    char vendor[160];
+    const char *platform;        /* "egl-surfaceless", "egl-device", "glfw" */
+    bool nv_conservative_raster; /* GL_NV_conservative_raster usable */
+    bool software;               /* llvmpipe/softpipe: timestamps don't time raster work */
+    bool timer_query;
+    int64_t max_ssbo_size;       /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
+    int max_texture_size;
+    int max_array_layers;
+    int max_compute_group_invocations;
+    int max_image_units;
+    int max_ssbo_bindings;
+} dirt_gpu_caps;
+
+/* Makes a GL 4.5 core context. Returns NULL after logging why (no EGL display,
+ * no GL 4.5, no window system). */
+dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts);
+void dirt_gpu_destroy(dirt_gpu *gpu);
+
+const dirt_gpu_caps *dirt_gpu_get_caps(const dirt_gpu *gpu);
+/* One line: "OpenGL 4.5 (Core Profile) Mesa ... | llvmpipe ... | conservative raster: no". */
+void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size);
+
+/* Waits for all GPU work (glFinish). */
+void dirt_gpu_finish(dirt_gpu *gpu);
+
+/* Windowed contexts only (false/no-op otherwise). */
+bool dirt_gpu_window_should_close(dirt_gpu *gpu);
+void dirt_gpu_window_swap(dirt_gpu *gpu);
+void dirt_gpu_window_poll(dirt_gpu *gpu);
+void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height);
+
+/* Number of GL debug messages of severity medium/high or type error logged
+ * since creation (tests use it to prove a run was clean). */
+uint64_t dirt_gpu_error_count(const dirt_gpu *gpu);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

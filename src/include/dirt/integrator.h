@@ -1,0 +1,224 @@
+/* DIRT engine: the light-transport model shared by the CPU reference
+ * (src/ref, Embree) and the GPU integrator (glsl/).
+ *
+ * Everything here is a small pure function of plain floats: no ray casting,
+ * no allocation except the area-light table, no global state. The GLSL side
+ * implements the same formulas (doc/light-transport.md is the specification;
+ * the random numbers come from src/integrator/rng.h, doc/rng.md).
+ *
+ * Conventions
+ *  - BSDF directions are in the local shading frame: the shading normal is
+ *    +z, both wo (towards the viewer) and wi (towards the light) point away
+ *    from the surface and are unit length.
+ *  - f(wo, wi) is the BSDF without the cosine; "weight" is f * cos / pdf.
+ *  - pdfs are per unit solid angle, except where a name says area.
+ *  - Colours are linear RGB. */
+#ifndef DIRT_INTEGRATOR_H
+#define DIRT_INTEGRATOR_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dirt/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct dirt_vec3 {
+    float x, y, z;
+} dirt_vec3;
+
+/* GGX alpha below which the specular lobe is a perfect mirror (delta). */
+#define DIRT_ALPHA_DELTA 1e-3f
+/* Dielectric normal-incidence reflectance of glTF (IOR 1.5). */
+#define DIRT_DIELECTRIC_F0 0.04f
+/* Russian roulette starts at path vertex DIRT_RR_START_VERTEX + 1
+ * (i.e. after this many scattering events). */
+#define DIRT_RR_START_VERTEX 3
+
+/* BSDF parameters at one surface point (after texturing). */
+typedef struct dirt_bsdf {
+    dirt_vec3 base_color; /* linear, each in [0,1] */
+    float metallic;       /* [0,1] */
+    float alpha;          /* GGX alpha = roughness^2; < DIRT_ALPHA_DELTA: mirror */
+    float specular;       /* dielectric specular weight (KHR_materials_specular
+                             factor) in [0,1]; glTF default 1 */
+} dirt_bsdf;
+
+/* Result of dirt_bsdf_sample. */
+typedef struct dirt_bsdf_sample {
+    dirt_vec3 wi;     /* sampled direction, local frame, wi.z > 0 */
+    dirt_vec3 weight; /* f * wi.z / pdf (for a delta lobe: F / p_spec) */
+    float pdf;        /* solid-angle pdf of the non-delta part (0 when delta) */
+    bool delta;       /* the mirror lobe was chosen */
+} dirt_bsdf_sample;
+
+/* ---- BSDF (src/integrator/bsdf.c) --------------------------------------- */
+
+/* True when the specular lobe is a perfect mirror (alpha < DIRT_ALPHA_DELTA). */
+bool dirt_bsdf_is_delta(const dirt_bsdf *b);
+
+/* Schlick Fresnel of the whole specular lobe at cos theta = c (RGB):
+ *   F(c) = (1 - metallic) * F_d(c) + metallic * (base + (1 - base)(1 - c)^5),
+ *   F_d(c) = specular * (0.04 + 0.96 (1 - c)^5)          (dielectric) */
+dirt_vec3 dirt_bsdf_fresnel(const dirt_bsdf *b, float c);
+/* The dielectric part F_d(c) alone (scalar). */
+float dirt_bsdf_fresnel_dielectric(const dirt_bsdf *b, float c);
+
+/* GGX normal distribution D(h) for the local half vector h (unit). */
+float dirt_ggx_d(float alpha, dirt_vec3 h);
+/* Smith Lambda of direction w, G1 = 1 / (1 + Lambda). */
+float dirt_ggx_lambda(float alpha, dirt_vec3 w);
+/* Height-correlated Smith masking-shadowing G2 = 1 / (1 + L(wo) + L(wi)). */
+float dirt_ggx_g2(float alpha, dirt_vec3 wo, dirt_vec3 wi);
+
+/* Probability of choosing the specular lobe when sampling from wo. */
+float dirt_bsdf_spec_probability(const dirt_bsdf *b, dirt_vec3 wo);
+
+/* f(wo, wi) of the non-delta part (diffuse + GGX; diffuse only when the
+ * specular lobe is a delta). Zero when wo.z <= 0 or wi.z <= 0. Symmetric in
+ * wo and wi. */
+dirt_vec3 dirt_bsdf_eval(const dirt_bsdf *b, dirt_vec3 wo, dirt_vec3 wi);
+
+/* Solid-angle pdf with which dirt_bsdf_sample returns wi from wo, for the
+ * non-delta part: p_spec * pdf_vndf + (1 - p_spec) * wi.z / pi (the first
+ * term absent for a delta lobe). Zero when wo.z <= 0 or wi.z <= 0. */
+float dirt_bsdf_pdf(const dirt_bsdf *b, dirt_vec3 wo, dirt_vec3 wi);
+
+/* Samples wi from wo with three uniform numbers in [0,1): u_lobe picks the
+ * lobe (specular when u_lobe < p_spec), (u1, u2) the direction (GGX visible
+ * normals or cosine). False when wo.z <= 0, when the sample falls below the
+ * surface or when its weight is zero (the path ends). */
+bool dirt_bsdf_sample_dir(const dirt_bsdf *b, dirt_vec3 wo, float u_lobe,
+                          float u1, float u2, dirt_bsdf_sample *out);
+
+/* ---- warps and frames (src/integrator/bsdf.c) --------------------------- */
+
+/* Cosine-weighted hemisphere about +z: r = sqrt(u1), phi = 2 pi u2,
+ * (r cos phi, r sin phi, sqrt(1 - u1)); pdf = z / pi. */
+dirt_vec3 dirt_sample_cosine(float u1, float u2);
+
+/* GGX visible normal from wo (wo.z > 0) by the spherical-cap method:
+ * pdf of h = G1(wo) max(0, wo.h) D(h) / wo.z. */
+dirt_vec3 dirt_sample_ggx_vndf(float alpha, dirt_vec3 wo, float u1, float u2);
+
+/* Uniform point on the unit disk: r = sqrt(u1), phi = 2 pi u2 -> (x, y). */
+void dirt_sample_disk(float u1, float u2, float *x, float *y);
+
+/* Uniform barycentrics on a triangle: s = sqrt(u1), b1 = 1 - s, b2 = u2 s;
+ * the point is (1 - b1 - b2) p0 + b1 p1 + b2 p2. */
+void dirt_sample_triangle(float u1, float u2, float *b1, float *b2);
+
+/* Orthonormal basis (t, b, n) about the unit vector n (Duff et al. 2017):
+ * s = n.z >= 0 ? 1 : -1, a = -1 / (s + n.z), c = n.x n.y a,
+ * t = (1 + s n.x^2 a, s c, -s n.x), b = (c, s + n.y^2 a, -n.y). */
+void dirt_onb(dirt_vec3 n, dirt_vec3 *t, dirt_vec3 *b);
+
+/* Power heuristic with exponent 2: a^2 / (a^2 + b^2), 0 when both are 0. */
+float dirt_mis_power(float a, float b);
+
+/* Russian-roulette survival probability for path throughput beta:
+ * min(1, max(beta.x, beta.y, beta.z)). */
+float dirt_rr_survival(dirt_vec3 beta);
+
+/* ---- textures and materials (src/integrator/texture.c) ------------------ */
+
+/* sRGB transfer function, decode (exact piecewise formula). */
+float dirt_srgb_to_linear(float c);
+
+/* Bilinear texture lookup with repeat wrapping. Texel (i, j) has its centre
+ * at uv ((i + 0.5) / w, (j + 0.5) / h), row j = 0 is the first row of the
+ * image. Each of the four texels is converted to float (c / 255) and, when
+ * `srgb`, its RGB decoded to linear before filtering; alpha is never
+ * decoded. A NULL texture, or one with no pixels, reads as (1,1,1,1).
+ * Non-finite u or v read as 0. */
+void dirt_texture_sample(const dirt_texture *tex, bool srgb, float u, float v,
+                         float out[4]);
+
+/* Surface description at a hit: BSDF parameters and emitted radiance. */
+typedef struct dirt_surface {
+    dirt_bsdf bsdf;
+    dirt_vec3 emission;   /* emitted radiance (front side, or both sides when
+                             double_sided) */
+    bool double_sided;
+} dirt_surface;
+
+/* Textures a material at (u, v):
+ *   base     = base_color.rgb * sRGB(base_color_tex).rgb
+ *   roughness= clamp(roughness * mr_tex.g), metallic = clamp(metallic * mr_tex.b)
+ *   alpha    = roughness^2
+ *   emission = emissive * emissive_strength * sRGB(emissive_tex).rgb
+ * Texture indices out of [0, num_textures) read as the white default.
+ * `specular` is the dielectric specular weight (1 for plain glTF). */
+void dirt_material_surface(const dirt_material *m, float specular,
+                           const dirt_texture *textures, size_t num_textures,
+                           float u, float v, dirt_surface *out);
+
+/* True when the material can emit (max(emissive) * emissive_strength > 0):
+ * its triangles are area lights. */
+bool dirt_material_is_emissive(const dirt_material *m);
+
+/* ---- lights (src/integrator/lights.c) ----------------------------------- */
+
+/* Incident light at point p from a punctual light: *wi = unit direction from
+ * p towards the light, *dist = distance (INFINITY for directional), *li =
+ * the product (radiant intensity or irradiance) x attenuation, so that the
+ * reflected radiance is f * cos * li. Point/spot: color / d^2 times the glTF
+ * range window clamp(1 - (d / range)^4, 0, 1) (range 0 = none); spot also
+ * times the smooth cone factor s^2, s = clamp((cd - cos_outer) /
+ * max(1e-3, cos_inner - cos_outer), 0, 1), cd = cosine between the spot
+ * direction and the direction light -> p. Directional: color, from
+ * -direction. False when li is zero. */
+bool dirt_punctual_light(const dirt_light *light, dirt_vec3 p, dirt_vec3 *wi,
+                         float *dist, dirt_vec3 *li);
+
+/* The emissive triangles of a frame, for uniform area-weighted selection:
+ * triangle i is chosen with probability area_i / total_area, so a point
+ * sampled uniformly on it has area pdf 1 / total_area. */
+typedef struct dirt_area_lights {
+    size_t count;
+    uint32_t *prim;     /* primitive ids, ascending */
+    float *cdf;         /* cdf[i] = sum of areas of 0..i (double-summed) */
+    float total_area;
+} dirt_area_lights;
+
+/* Collects every triangle with positive area whose material is emissive
+ * (dirt_material_is_emissive). Triangles whose material index is out of
+ * range are skipped. False on out-of-memory (logged). */
+bool dirt_area_lights_build(dirt_area_lights *out, const dirt_frame *frame,
+                            const dirt_material *materials, size_t num_materials);
+void dirt_area_lights_free(dirt_area_lights *lights);
+
+/* Index (into prim/cdf) of the triangle selected by u in [0,1): the first i
+ * with cdf[i] > u * total_area (binary search). count must be > 0. */
+size_t dirt_area_lights_select(const dirt_area_lights *lights, float u);
+
+/* Number of light sources NEE chooses among: 1 for the set of area lights
+ * (when not empty) plus one per punctual light. Source s = min(floor(u n),
+ * n - 1); source 0 is the area set when there is one. */
+static inline unsigned dirt_light_source_count(size_t num_area, size_t num_punctual)
+{
+    return (unsigned)((num_area > 0 ? 1u : 0u) + num_punctual);
+}
+
+/* ---- camera (src/integrator/lights.c) ----------------------------------- */
+
+/* Primary ray through the continuous pixel position (px, py) of a width x
+ * height image (px in [0, width), py in [0, height), py = 0 the top edge).
+ * Perspective: through the pinhole at eye, or, when aperture_radius > 0 and
+ * focus_distance > 0, from a point of the lens disk (lens_u, lens_v mapped by
+ * dirt_sample_disk, scaled by aperture_radius along right/up) towards the
+ * point where the pinhole ray meets the plane of focus (perpendicular to
+ * forward at focus_distance). Orthographic: parallel rays along forward from
+ * eye + x xmag right + y ymag up. aspect = camera aspect, or width / height
+ * when the camera has none. *dir is unit length. */
+void dirt_camera_ray(const dirt_camera *cam, int width, int height, float px,
+                     float py, float lens_u, float lens_v, dirt_vec3 *org,
+                     dirt_vec3 *dir);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

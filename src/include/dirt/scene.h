@@ -1,0 +1,207 @@
+/* DIRT engine: scene model.
+ *
+ * A scene is loaded once (glTF 2.0 .gltf/.glb, or the embedded default scene)
+ * and evaluated at a time t into a world-space triangle soup, `dirt_frame`,
+ * which is what every technique (raster preview, DIRT, MMRT, Embree) consumes.
+ *
+ * Primitive ids: triangle p of the frame is the p-th triangle in the order
+ * (mesh instance in depth-first node order, glTF primitive, index triple).
+ * The node hierarchy and meshes never change with t, so ids are stable over
+ * time: the same id names the same triangle in every frame. */
+#ifndef DIRT_SCENE_H
+#define DIRT_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct dirt_scene dirt_scene;
+
+#define DIRT_NO_TEXTURE (-1)
+
+/* Decoded texture, always 8-bit RGBA, rows top to bottom as stored in the
+ * image file (glTF UV (0,0) is the first texel of the first row). */
+typedef struct dirt_texture {
+    int width, height;
+    uint8_t *rgba; /* width*height*4 bytes, owned by the scene */
+    bool srgb;     /* true when used as base colour or emissive */
+    char name[64];
+} dirt_texture;
+
+/* glTF metallic-roughness material. Texture fields are indices into the
+ * scene's textures or DIRT_NO_TEXTURE. */
+typedef struct dirt_material {
+    char name[64];
+    float base_color[4];        /* linear RGBA factor */
+    int base_color_tex;         /* sRGB */
+    float metallic, roughness;  /* factors */
+    int metallic_roughness_tex; /* G = roughness, B = metallic (linear) */
+    float emissive[3];          /* linear factor */
+    float emissive_strength;    /* KHR_materials_emissive_strength, 1 if absent */
+    int emissive_tex;           /* sRGB */
+    bool double_sided;
+} dirt_material;
+
+enum dirt_camera_type { DIRT_CAMERA_PERSPECTIVE = 0, DIRT_CAMERA_ORTHOGRAPHIC = 1 };
+
+/* A camera as defined in the file; its pose comes from its node. */
+typedef struct dirt_camera_def {
+    char name[64];
+    enum dirt_camera_type type;
+    float yfov;         /* radians, perspective */
+    float aspect;       /* 0 when the file gives none */
+    float znear, zfar;  /* zfar 0 = infinite */
+    float xmag, ymag;   /* orthographic */
+    int node;           /* node carrying the camera */
+} dirt_camera_def;
+
+enum dirt_light_type {
+    DIRT_LIGHT_DIRECTIONAL = 0,
+    DIRT_LIGHT_POINT = 1,
+    DIRT_LIGHT_SPOT = 2,
+};
+
+/* KHR_lights_punctual light; pose from its node. */
+typedef struct dirt_light_def {
+    char name[64];
+    enum dirt_light_type type;
+    float color[3];
+    float intensity;    /* candela (point/spot) or lux (directional) */
+    float range;        /* 0 = infinite */
+    float inner_cone, outer_cone; /* radians, spot */
+    int node;
+} dirt_light_def;
+
+/* Options for dirt_scene_load. Zero-initialised = defaults. */
+typedef struct dirt_load_opts {
+    /* Reserved for later use; keep zero. */
+    int reserved;
+} dirt_load_opts;
+
+/* Loads a .gltf or .glb file. Returns NULL on failure (unreadable or
+ * malformed file: truncated data, out-of-range indices, non-finite
+ * positions...) after logging the reason. Missing or undecodable textures
+ * only warn: the material falls back to its factor (a white default texture).
+ * `opts` may be NULL. */
+dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
+
+/* The project's own default scene: a closed Cornell-style room (red left wall,
+ * green right wall, white floor/ceiling/back/front) with boxes and spheres of
+ * different materials (diffuse, metal, glossy), lit by an emissive ceiling
+ * panel, and one camera inside the room near the front wall looking at the
+ * back wall. Never fails except on out-of-memory (NULL, logged). */
+dirt_scene *dirt_scene_create_default(void);
+
+void dirt_scene_destroy(dirt_scene *scene);
+
+/* Read-only views into the scene. Pointers are owned by the scene. */
+const char *dirt_scene_name(const dirt_scene *scene);
+size_t dirt_scene_num_materials(const dirt_scene *scene);
+const dirt_material *dirt_scene_materials(const dirt_scene *scene);
+size_t dirt_scene_num_textures(const dirt_scene *scene);
+const dirt_texture *dirt_scene_textures(const dirt_scene *scene);
+size_t dirt_scene_num_cameras(const dirt_scene *scene);
+const dirt_camera_def *dirt_scene_cameras(const dirt_scene *scene);
+size_t dirt_scene_num_lights(const dirt_scene *scene);
+const dirt_light_def *dirt_scene_lights(const dirt_scene *scene);
+size_t dirt_scene_num_nodes(const dirt_scene *scene);
+/* Name of node i ("" when unnamed), NULL when out of range. */
+const char *dirt_scene_node_name(const dirt_scene *scene, size_t node);
+
+/* Triangles every frame of this scene has. */
+size_t dirt_scene_num_triangles(const dirt_scene *scene);
+
+/* Animation clips (glTF animations). */
+size_t dirt_scene_num_clips(const dirt_scene *scene);
+const char *dirt_scene_clip_name(const dirt_scene *scene, size_t clip);
+/* Length of the clip in seconds (largest sampler input time). */
+float dirt_scene_clip_duration(const dirt_scene *scene, size_t clip);
+
+/* Options for dirt_scene_evaluate. Zero-initialised = defaults:
+ * clip 0 (the first animation, if any), time clamped to the clip. */
+typedef struct dirt_eval_opts {
+    int clip;           /* clip index; -1 = no animation (rest pose) */
+    bool loop;          /* wrap t into [0, duration) instead of clamping */
+    bool all_clips;     /* apply every clip at once (ignores `clip`) */
+} dirt_eval_opts;
+
+/* A camera evaluated at time t, in world space. */
+typedef struct dirt_camera {
+    float eye[3];
+    float forward[3], up[3], right[3]; /* orthonormal; looks along forward */
+    float view[16];     /* world -> eye, column-major, eye looks down -Z */
+    enum dirt_camera_type type;
+    float yfov;         /* radians */
+    float aspect;       /* 0 = use the image's */
+    float znear, zfar;
+    float xmag, ymag;
+    /* Thin lens (0 = pinhole). Not in glTF; set by applications. */
+    float aperture_radius, focus_distance;
+} dirt_camera;
+
+/* A light evaluated at time t, in world space. */
+typedef struct dirt_light {
+    enum dirt_light_type type;
+    float position[3];
+    float direction[3]; /* direction the light shines (directional/spot) */
+    float color[3];     /* color * intensity */
+    float range;
+    float inner_cone, outer_cone;
+} dirt_light;
+
+/* The world-space triangle soup of one time step. Arrays hold 3 entries per
+ * triangle: vertex v of primitive p is at index 3*p + v. */
+typedef struct dirt_frame {
+    size_t num_triangles;
+    float (*position)[3];
+    float (*normal)[3];       /* unit length, world space */
+    float (*uv)[2];           /* UV0, (0,0) when the mesh has none */
+    uint32_t *material;       /* per triangle, index into the scene's materials */
+    uint32_t *instance;       /* per triangle, mesh instance it came from */
+    float bounds_min[3], bounds_max[3]; /* of all positions; 0 if no triangles */
+
+    size_t num_nodes;
+    float (*node_world)[16];  /* world matrix of every node, column-major */
+
+    size_t num_cameras;
+    dirt_camera *cameras;
+    size_t num_lights;
+    dirt_light *lights;
+    float time;               /* the t actually evaluated (after clamp/loop) */
+} dirt_frame;
+
+/* Evaluates the scene at time t (seconds). `opts` may be NULL. Returns a new
+ * frame owned by the caller (dirt_frame_destroy), or NULL on out-of-memory.
+ * Deterministic: the same (scene, t, opts) gives the same bits. */
+dirt_frame *dirt_scene_evaluate(const dirt_scene *scene, float t,
+                                const dirt_eval_opts *opts);
+
+/* Re-evaluates into an existing frame of the same scene (no allocation). */
+bool dirt_scene_evaluate_into(const dirt_scene *scene, float t,
+                              const dirt_eval_opts *opts, dirt_frame *frame);
+
+void dirt_frame_destroy(dirt_frame *frame);
+
+/* A camera framing the frame's bounds: looks at the centre from the +Z side
+ * (slightly above), 45 degree vertical field of view, near/far from the
+ * bounds. Used when the scene has no camera. */
+void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out);
+
+/* Builds a camera looking from eye at target with the given up vector. */
+void dirt_camera_look_at(dirt_camera *cam, const float eye[3],
+                         const float target[3], const float up[3]);
+
+/* Column-major projection matrix (OpenGL clip space, -1..1 depth) of the
+ * camera for an image of the given aspect (width / height) when the camera
+ * has none. Infinite far plane when zfar is 0. */
+void dirt_camera_projection(const dirt_camera *cam, float image_aspect,
+                            float out[16]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,98 @@
+/* DIRT engine: the counter-based random number generator shared by the CPU
+ * reference (src/ref) and the GPU integrator (glsl/common/rng.glsl).
+ *
+ * There is no state: the random number used for a decision is a pure function
+ * of (seed, pixel, sample, bounce, dimension), so the CPU and the GPU draw the
+ * same numbers for the same path and per-pixel comparisons are meaningful.
+ * The specification (and the allocation of dimensions below) is in
+ * doc/rng.md; glsl/common/rng.glsl must compute the same bits. Change both
+ * together and update the regression values in test/unit/test_ref_rng.c.
+ *
+ *   key   = dirt_rng_key(seed, pixel, sample, bounce)
+ *   u32   = dirt_rng_next(key, dim)            (== dirt_rng_u32(...))
+ *   float = (u32 >> 8) * 2^-24                 in [0, 1 - 2^-24], exact
+ *
+ * pixel = y * width + x with y = 0 the top row; sample = index of the sample
+ * in the pixel (counting across progressive passes); bounce = 0 for the
+ * camera ray, k for the decisions taken at the k-th path vertex. */
+#ifndef DIRT_INTEGRATOR_RNG_H
+#define DIRT_INTEGRATOR_RNG_H
+
+#include <stdint.h>
+
+/* ---- dimensions (identical #defines in glsl/common/rng.glsl) ----------- */
+
+/* bounce 0: camera ray */
+#define DIRT_RNG_DIM_PIXEL_X 0u   /* jitter inside the pixel */
+#define DIRT_RNG_DIM_PIXEL_Y 1u
+#define DIRT_RNG_DIM_LENS_U 2u    /* thin-lens aperture sample */
+#define DIRT_RNG_DIM_LENS_V 3u
+/* bounce k >= 1: decisions at path vertex k */
+#define DIRT_RNG_DIM_LIGHT_SELECT 0u /* which light source (area set or punctual) */
+#define DIRT_RNG_DIM_LIGHT_TRI 1u    /* which emissive triangle */
+#define DIRT_RNG_DIM_LIGHT_U 2u      /* point on that triangle */
+#define DIRT_RNG_DIM_LIGHT_V 3u
+#define DIRT_RNG_DIM_LOBE 4u         /* BSDF lobe choice */
+#define DIRT_RNG_DIM_BSDF_U 5u       /* BSDF direction (also the AO direction) */
+#define DIRT_RNG_DIM_BSDF_V 6u
+#define DIRT_RNG_DIM_RR 7u           /* Russian roulette */
+
+/* One 32-bit mixing round: bijective on uint32 (xor-shifts and odd
+ * multipliers), full avalanche. Constants from Chris Wellons' hash-prospector
+ * ("lowbias32"); see doc/rng.md. */
+static inline uint32_t dirt_rng_mix(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+/* Hash of the path prefix (seed, pixel, sample, bounce). Compute it once per
+ * path vertex and draw its dimensions with dirt_rng_next. */
+static inline uint32_t dirt_rng_key(uint32_t seed, uint32_t pixel,
+                                    uint32_t sample, uint32_t bounce)
+{
+    uint32_t h = dirt_rng_mix(seed + 0x9e3779b9u);
+    h = dirt_rng_mix(h ^ pixel);
+    h = dirt_rng_mix(h ^ sample);
+    h = dirt_rng_mix(h ^ bounce);
+    return h;
+}
+
+/* The 32-bit random number of dimension `dim` under `key`. */
+static inline uint32_t dirt_rng_next(uint32_t key, uint32_t dim)
+{
+    return dirt_rng_mix(key ^ dim);
+}
+
+/* Top 24 bits of x scaled by 2^-24: a float in [0, 1), every value exactly
+ * representable, so the CPU and the GPU agree bit for bit. */
+static inline float dirt_rng_to_float(uint32_t x)
+{
+    return (float)(x >> 8) * (1.0f / 16777216.0f);
+}
+
+/* The whole function in one call: uint32 of (seed, pixel, sample, bounce, dim). */
+static inline uint32_t dirt_rng_u32(uint32_t seed, uint32_t pixel, uint32_t sample,
+                                    uint32_t bounce, uint32_t dim)
+{
+    return dirt_rng_next(dirt_rng_key(seed, pixel, sample, bounce), dim);
+}
+
+/* The same as a float in [0, 1). */
+static inline float dirt_rng_float(uint32_t seed, uint32_t pixel, uint32_t sample,
+                                   uint32_t bounce, uint32_t dim)
+{
+    return dirt_rng_to_float(dirt_rng_u32(seed, pixel, sample, bounce, dim));
+}
+
+/* Float of dimension `dim` under a precomputed key. */
+static inline float dirt_rng_next_float(uint32_t key, uint32_t dim)
+{
+    return dirt_rng_to_float(dirt_rng_next(key, dim));
+}
+
+#endif

@@ -1,0 +1,220 @@
+/* Atomic file output: temp file in the target directory + fsync + rename.
+ * Contracts are documented in dirt/file.h. */
+#include "io/atomic_file.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "dirt/log.h"
+
+#define TEMP_SUFFIX ".tmp.XXXXXX"
+#define DEFAULT_MODE 0644
+
+struct dirt_atomic_file {
+    char *path; /* target */
+    char *temp; /* mkstemp result */
+    FILE *fp;   /* stream on the temp file, NULL once closed */
+};
+
+/* Directory part of `path` as a new string ("." when there is none);
+ * NULL when out of memory. */
+static char *dir_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return strdup(".");
+    size_t len = (size_t)(slash - path);
+    if (len == 0)
+        len = 1; /* "/name" -> "/" */
+    char *dir = malloc(len + 1);
+    if (!dir)
+        return NULL;
+    memcpy(dir, path, len);
+    dir[len] = '\0';
+    return dir;
+}
+
+/* Frees `f` after closing and removing the temp file if still present. */
+static void discard(dirt_atomic_file *f, bool remove_temp)
+{
+    if (f->fp)
+        fclose(f->fp);
+    if (remove_temp && unlink(f->temp) != 0 && errno != ENOENT)
+        DIRT_WARN("cannot remove temporary file '%s': %s", f->temp,
+                  strerror(errno));
+    free(f->temp);
+    free(f->path);
+    free(f);
+}
+
+dirt_atomic_file *dirt_atomic_open(const char *path)
+{
+    dirt_atomic_file *f = NULL;
+    char *dir = NULL;
+    int fd = -1;
+
+    if (!path || !*path) {
+        DIRT_ERROR("atomic write: empty output path");
+        return NULL;
+    }
+    size_t len = strlen(path);
+    if (path[len - 1] == '/') {
+        DIRT_ERROR("atomic write: output path '%s' names a directory", path);
+        return NULL;
+    }
+
+    mode_t mode = DEFAULT_MODE;
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            DIRT_ERROR("cannot write '%s': it is a directory", path);
+            return NULL;
+        }
+        if (S_ISREG(st.st_mode))
+            mode = st.st_mode & 07777;
+    }
+
+    f = calloc(1, sizeof(*f));
+    if (!f)
+        goto oom;
+    f->path = strdup(path);
+    f->temp = malloc(len + sizeof(TEMP_SUFFIX));
+    if (!f->path || !f->temp)
+        goto oom;
+    memcpy(f->temp, path, len);
+    memcpy(f->temp + len, TEMP_SUFFIX, sizeof(TEMP_SUFFIX));
+
+    fd = mkstemp(f->temp);
+    if (fd < 0) {
+        int err = errno;
+        dir = dir_of(path);
+        DIRT_ERROR("cannot write '%s': cannot create a temporary file in "
+                   "directory '%s': %s", path, dir ? dir : "?", strerror(err));
+        goto error;
+    }
+    if (fchmod(fd, mode) != 0)
+        DIRT_WARN("cannot set mode %o on '%s': %s", (unsigned)mode, f->temp,
+                  strerror(errno));
+    f->fp = fdopen(fd, "wb");
+    if (!f->fp) {
+        DIRT_ERROR("cannot write '%s': fdopen failed: %s", path,
+                   strerror(errno));
+        close(fd);
+        unlink(f->temp);
+        goto error;
+    }
+    return f;
+
+oom:
+    DIRT_ERROR("cannot write '%s': out of memory", path);
+error:
+    free(dir);
+    if (f) {
+        free(f->temp);
+        free(f->path);
+        free(f);
+    }
+    return NULL;
+}
+
+FILE *dirt_atomic_stream(dirt_atomic_file *f)
+{
+    return f ? f->fp : NULL;
+}
+
+const char *dirt_atomic_temp_path(const dirt_atomic_file *f)
+{
+    return f ? f->temp : NULL;
+}
+
+const char *dirt_atomic_target_path(const dirt_atomic_file *f)
+{
+    return f ? f->path : NULL;
+}
+
+/* fsync the directory holding `path` so the rename itself is durable.
+ * Failure is only a warning: the data is already safely in place. */
+static void sync_dir(const char *path)
+{
+    char *dir = dir_of(path);
+    if (!dir)
+        return;
+    int fd = open(dir, O_RDONLY | O_DIRECTORY);
+    if (fd >= 0) {
+        if (fsync(fd) != 0 && errno != EINVAL)
+            DIRT_WARN("fsync of directory '%s' failed: %s", dir,
+                      strerror(errno));
+        close(fd);
+    }
+    free(dir);
+}
+
+bool dirt_atomic_commit(dirt_atomic_file *f)
+{
+    if (!f) {
+        DIRT_ERROR("atomic commit: NULL file");
+        return false;
+    }
+    if (fflush(f->fp) != 0) {
+        DIRT_ERROR("cannot write '%s': writing '%s' failed: %s", f->path,
+                   f->temp, strerror(errno));
+        goto error;
+    }
+    if (ferror(f->fp)) {
+        DIRT_ERROR("cannot write '%s': an earlier write to '%s' failed",
+                   f->path, f->temp);
+        goto error;
+    }
+    if (fsync(fileno(f->fp)) != 0) {
+        DIRT_ERROR("cannot write '%s': fsync of '%s' failed: %s", f->path,
+                   f->temp, strerror(errno));
+        goto error;
+    }
+    FILE *fp = f->fp;
+    f->fp = NULL;
+    if (fclose(fp) != 0) {
+        DIRT_ERROR("cannot write '%s': closing '%s' failed: %s", f->path,
+                   f->temp, strerror(errno));
+        goto error;
+    }
+    if (rename(f->temp, f->path) != 0) {
+        DIRT_ERROR("cannot write '%s': rename from '%s' failed: %s", f->path,
+                   f->temp, strerror(errno));
+        goto error;
+    }
+    sync_dir(f->path);
+    discard(f, false);
+    return true;
+
+error:
+    discard(f, true);
+    return false;
+}
+
+void dirt_atomic_abort(dirt_atomic_file *f)
+{
+    if (f)
+        discard(f, true);
+}
+
+bool dirt_write_file_atomic(const char *path, const void *data, size_t size)
+{
+    if (size && !data) {
+        DIRT_ERROR("cannot write '%s': NULL data", path ? path : "(null)");
+        return false;
+    }
+    dirt_atomic_file *f = dirt_atomic_open(path);
+    if (!f)
+        return false;
+    if (size && fwrite(data, 1, size, f->fp) != size) {
+        DIRT_ERROR("cannot write '%s': writing '%s' failed: %s", path,
+                   f->temp, strerror(errno));
+        dirt_atomic_abort(f);
+        return false;
+    }
+    return dirt_atomic_commit(f);
+}

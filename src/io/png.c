@@ -1,0 +1,135 @@
+/* Tonemapped 8-bit sRGB PNG previews through stb_image_write.
+ * Contracts are documented in dirt/image.h. */
+#include "dirt/image.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <stb_image_write.h>
+
+#include "dirt/log.h"
+#include "io/atomic_file.h"
+
+unsigned char dirt_linear_to_srgb8(float v)
+{
+    if (!(v > 0.0f)) /* negative, zero and NaN */
+        return 0;
+    if (v >= 1.0f)
+        return 255;
+    float s = v <= 0.0031308f ? 12.92f * v
+                              : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f;
+    long q = lroundf(s * 255.0f);
+    return (unsigned char)(q < 0 ? 0 : q > 255 ? 255 : q);
+}
+
+/* Tonemap curve applied to one exposed linear value; the result is clamped
+ * by the sRGB step. */
+static float tonemap(float x, enum dirt_tonemap op)
+{
+    switch (op) {
+    case DIRT_TONEMAP_REINHARD:
+        return x > 0.0f ? x / (1.0f + x) : 0.0f;
+    case DIRT_TONEMAP_ACES:
+        /* Narkowicz 2015 fit of the ACES filmic curve (sRGB primaries). */
+        if (!(x > 0.0f))
+            return 0.0f;
+        return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+    case DIRT_TONEMAP_CLAMP:
+    default:
+        return x;
+    }
+}
+
+/* stb writer sink: appends to the atomic file's stream, remembers failure. */
+typedef struct png_sink {
+    FILE *fp;
+    bool failed;
+    int err;
+} png_sink;
+
+static void png_write(void *context, void *data, int size)
+{
+    png_sink *s = context;
+    if (s->failed || size <= 0)
+        return;
+    if (fwrite(data, 1, (size_t)size, s->fp) != (size_t)size) {
+        s->failed = true;
+        s->err = errno;
+    }
+}
+
+bool dirt_image_write_png(const dirt_image *img, const char *path,
+                          const dirt_png_options *opts)
+{
+    dirt_atomic_file *af = NULL;
+    unsigned char *pixels = NULL;
+    png_sink sink = {NULL, false, 0};
+
+    if (!img || !img->rgba || !path) {
+        DIRT_ERROR("PNG write: NULL image or path");
+        return false;
+    }
+    dirt_png_options o = {0};
+    if (opts)
+        o = *opts;
+    if (o.tonemap != DIRT_TONEMAP_CLAMP && o.tonemap != DIRT_TONEMAP_REINHARD &&
+        o.tonemap != DIRT_TONEMAP_ACES) {
+        DIRT_ERROR("PNG write '%s': unknown tonemap %d", path, (int)o.tonemap);
+        return false;
+    }
+    if (!isfinite(o.exposure)) {
+        DIRT_ERROR("PNG write '%s': exposure must be finite", path);
+        return false;
+    }
+
+    const int comp = o.alpha ? 4 : 3;
+    const size_t count = (size_t)img->width * (size_t)img->height;
+    /* stb_image_write sizes its buffers with int arithmetic. */
+    if (count * (size_t)(comp + 1) > (size_t)INT32_MAX / 2) {
+        DIRT_ERROR("PNG write '%s': %dx%d is too large for the PNG writer",
+                   path, img->width, img->height);
+        return false;
+    }
+    const float scale = exp2f(o.exposure);
+    pixels = malloc(count * (size_t)comp);
+    if (!pixels) {
+        DIRT_ERROR("PNG write '%s': out of memory", path);
+        return false;
+    }
+    for (size_t i = 0; i < count; i++) {
+        const float *src = img->rgba + i * 4;
+        unsigned char *dst = pixels + i * (size_t)comp;
+        for (int c = 0; c < 3; c++)
+            dst[c] = dirt_linear_to_srgb8(tonemap(src[c] * scale, o.tonemap));
+        if (o.alpha) {
+            float a = src[3];
+            a = a > 0.0f ? (a < 1.0f ? a : 1.0f) : 0.0f; /* NaN -> 0 */
+            dst[3] = (unsigned char)lroundf(a * 255.0f);
+        }
+    }
+
+    af = dirt_atomic_open(path);
+    if (!af)
+        goto error;
+    sink.fp = dirt_atomic_stream(af);
+    if (!stbi_write_png_to_func(png_write, &sink, img->width, img->height,
+                                comp, pixels, img->width * comp)) {
+        DIRT_ERROR("PNG write '%s': encoding failed", path);
+        goto error;
+    }
+    if (sink.failed) {
+        DIRT_ERROR("PNG write '%s': writing '%s' failed: %s", path,
+                   dirt_atomic_temp_path(af), strerror(sink.err));
+        goto error;
+    }
+    free(pixels);
+    return dirt_atomic_commit(af);
+
+error:
+    dirt_atomic_abort(af);
+    free(pixels);
+    return false;
+}

@@ -1,0 +1,336 @@
+/* DIRT engine: the built-in default scene, a closed Cornell-style room built
+ * procedurally (no file needed). */
+#include "scene/scene_internal.h"
+
+#include "dirt/log.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Growable vertex/index arrays of one primitive under construction. */
+typedef struct builder {
+    float (*pos)[3];
+    float (*nrm)[3];
+    float (*uv)[2];
+    size_t nv, cap_v;
+    uint32_t *idx;
+    size_t ni, cap_i;
+    bool oom;
+} builder;
+
+static bool reserve(builder *b, size_t nv, size_t ni)
+{
+    if (b->oom)
+        return false;
+    if (b->nv + nv > b->cap_v) {
+        size_t cap = (b->nv + nv) * 2;
+        float (*p)[3] = realloc(b->pos, cap * sizeof(*p));
+        if (p)
+            b->pos = p;
+        float (*n)[3] = realloc(b->nrm, cap * sizeof(*n));
+        if (n)
+            b->nrm = n;
+        float (*t)[2] = realloc(b->uv, cap * sizeof(*t));
+        if (t)
+            b->uv = t;
+        if (!p || !n || !t) {
+            b->oom = true;
+            return false;
+        }
+        b->cap_v = cap;
+    }
+    if (b->ni + ni > b->cap_i) {
+        size_t cap = (b->ni + ni) * 2;
+        uint32_t *i = realloc(b->idx, cap * sizeof(*i));
+        if (!i) {
+            b->oom = true;
+            return false;
+        }
+        b->idx = i;
+        b->cap_i = cap;
+    }
+    return true;
+}
+
+static uint32_t add_vertex(builder *b, const float p[3], const float n[3], float u, float v)
+{
+    uint32_t i = (uint32_t)b->nv++;
+    memcpy(b->pos[i], p, sizeof(b->pos[i]));
+    memcpy(b->nrm[i], n, sizeof(b->nrm[i]));
+    b->uv[i][0] = u;
+    b->uv[i][1] = v;
+    return i;
+}
+
+static void add_triangle(builder *b, uint32_t i0, uint32_t i1, uint32_t i2)
+{
+    b->idx[b->ni++] = i0;
+    b->idx[b->ni++] = i1;
+    b->idx[b->ni++] = i2;
+}
+
+/* Quad o, o+u, o+u+v, o+v facing along u x v (counter-clockwise seen from
+ * that side). */
+static void add_quad(builder *b, const float o[3], const float u[3], const float v[3])
+{
+    if (!reserve(b, 4, 6))
+        return;
+    float n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                  u[0] * v[1] - u[1] * v[0]};
+    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++)
+        n[k] /= l;
+    float p1[3], p2[3], p3[3];
+    for (int k = 0; k < 3; k++) {
+        p1[k] = o[k] + u[k];
+        p2[k] = o[k] + u[k] + v[k];
+        p3[k] = o[k] + v[k];
+    }
+    uint32_t i0 = add_vertex(b, o, n, 0.0f, 0.0f);
+    uint32_t i1 = add_vertex(b, p1, n, 1.0f, 0.0f);
+    uint32_t i2 = add_vertex(b, p2, n, 1.0f, 1.0f);
+    uint32_t i3 = add_vertex(b, p3, n, 0.0f, 1.0f);
+    add_triangle(b, i0, i1, i2);
+    add_triangle(b, i0, i2, i3);
+}
+
+/* Axis-aligned unit cube [-0.5, 0.5]^3, faces outward. */
+static void add_cube(builder *b)
+{
+    static const float faces[6][3][3] = {
+        {{0.5f, -0.5f, -0.5f}, {0, 1, 0}, {0, 0, 1}},   /* +x */
+        {{-0.5f, -0.5f, -0.5f}, {0, 0, 1}, {0, 1, 0}},  /* -x */
+        {{-0.5f, 0.5f, -0.5f}, {0, 0, 1}, {1, 0, 0}},   /* +y */
+        {{-0.5f, -0.5f, -0.5f}, {1, 0, 0}, {0, 0, 1}},  /* -y */
+        {{-0.5f, -0.5f, 0.5f}, {1, 0, 0}, {0, 1, 0}},   /* +z */
+        {{-0.5f, -0.5f, -0.5f}, {0, 1, 0}, {1, 0, 0}},  /* -z */
+    };
+    for (int f = 0; f < 6; f++)
+        add_quad(b, faces[f][0], faces[f][1], faces[f][2]);
+}
+
+/* Unit UV sphere, `slices` around y, `stacks` from pole to pole, outward
+ * winding, smooth normals; no degenerate pole triangles. */
+static void add_sphere(builder *b, int slices, int stacks)
+{
+    const float pi = 3.14159265358979f;
+    size_t nv = (size_t)(slices + 1) * (size_t)(stacks + 1);
+    if (!reserve(b, nv, (size_t)slices * (size_t)stacks * 6))
+        return;
+    uint32_t base = (uint32_t)b->nv;
+    for (int i = 0; i <= stacks; i++) {
+        float theta = pi * (float)i / (float)stacks;
+        for (int j = 0; j <= slices; j++) {
+            float phi = 2.0f * pi * (float)j / (float)slices;
+            float p[3] = {sinf(theta) * cosf(phi), cosf(theta), -sinf(theta) * sinf(phi)};
+            add_vertex(b, p, p, (float)j / (float)slices, (float)i / (float)stacks);
+        }
+    }
+    for (int i = 0; i < stacks; i++) {
+        for (int j = 0; j < slices; j++) {
+            uint32_t a = base + (uint32_t)(i * (slices + 1) + j);
+            uint32_t c = a + (uint32_t)(slices + 1);
+            /* Ring i is above ring i+1; phi grows counter-clockwise seen from
+             * +y, so (a, c, c+1) faces outward. */
+            if (i != stacks - 1) /* (c, c+1) collapse at the south pole */
+                add_triangle(b, a, c, c + 1);
+            if (i != 0) /* (a, a+1) collapse at the north pole */
+                add_triangle(b, a, c + 1, a + 1);
+        }
+    }
+}
+
+/* Moves the builder's arrays into `p`. */
+static bool finish_prim(builder *b, uint32_t material, scene_prim *p)
+{
+    if (b->oom) {
+        free(b->pos);
+        free(b->nrm);
+        free(b->uv);
+        free(b->idx);
+        memset(b, 0, sizeof(*b));
+        return false;
+    }
+    p->material = material;
+    p->num_vertices = b->nv;
+    p->position = b->pos;
+    p->normal = b->nrm;
+    p->uv = b->uv;
+    p->num_triangles = b->ni / 3;
+    p->indices = b->idx;
+    memset(b, 0, sizeof(*b));
+    return true;
+}
+
+enum { MAT_WHITE, MAT_RED, MAT_GREEN, MAT_LIGHT, MAT_METAL, MAT_GLOSSY, NUM_MATERIALS };
+
+static void set_material(dirt_material *m, const char *name, float r, float g, float b,
+                         float metallic, float roughness)
+{
+    memset(m, 0, sizeof(*m));
+    scene_copy_name(m->name, sizeof(m->name), name);
+    m->base_color[0] = r;
+    m->base_color[1] = g;
+    m->base_color[2] = b;
+    m->base_color[3] = 1.0f;
+    m->base_color_tex = DIRT_NO_TEXTURE;
+    m->metallic = metallic;
+    m->roughness = roughness;
+    m->metallic_roughness_tex = DIRT_NO_TEXTURE;
+    m->emissive_strength = 1.0f;
+    m->emissive_tex = DIRT_NO_TEXTURE;
+}
+
+static bool build_room(scene_mesh *mesh)
+{
+    /* Walls face inward: each quad's u x v points into the room. */
+    static const float white[4][3][3] = {
+        {{-1, 0, -1}, {0, 0, 2}, {2, 0, 0}}, /* floor, +y */
+        {{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}}, /* ceiling, -y */
+        {{-1, 0, -1}, {2, 0, 0}, {0, 2, 0}}, /* back wall z=-1, +z */
+        {{-1, 0, 1}, {0, 2, 0}, {2, 0, 0}},  /* front wall z=+1, -z */
+    };
+    static const float red[3][3] = {{-1, 0, -1}, {0, 2, 0}, {0, 0, 2}};  /* x=-1, +x */
+    static const float green[3][3] = {{1, 0, -1}, {0, 0, 2}, {0, 2, 0}}; /* x=+1, -x */
+    builder b = {0};
+    scene_copy_name(mesh->name, sizeof(mesh->name), "room");
+    for (int i = 0; i < 4; i++)
+        add_quad(&b, white[i][0], white[i][1], white[i][2]);
+    if (!finish_prim(&b, MAT_WHITE, &mesh->prims[mesh->num_prims]))
+        return false;
+    mesh->num_prims++;
+    add_quad(&b, red[0], red[1], red[2]);
+    if (!finish_prim(&b, MAT_RED, &mesh->prims[mesh->num_prims]))
+        return false;
+    mesh->num_prims++;
+    add_quad(&b, green[0], green[1], green[2]);
+    if (!finish_prim(&b, MAT_GREEN, &mesh->prims[mesh->num_prims]))
+        return false;
+    mesh->num_prims++;
+    return true;
+}
+
+static bool build_single(scene_mesh *mesh, const char *name, uint32_t material, int shape)
+{
+    builder b = {0};
+    scene_copy_name(mesh->name, sizeof(mesh->name), name);
+    if (shape == 0) {
+        /* Ceiling light: 0.5 x 0.5 quad just below the ceiling, facing down. */
+        static const float o[3] = {-0.25f, 1.98f, -0.25f}, u[3] = {0.5f, 0, 0},
+                           v[3] = {0, 0, 0.5f};
+        add_quad(&b, o, u, v);
+    } else if (shape == 1) {
+        add_cube(&b);
+    } else {
+        add_sphere(&b, 24, 16);
+    }
+    if (!finish_prim(&b, material, &mesh->prims[0]))
+        return false;
+    mesh->num_prims = 1;
+    return true;
+}
+
+static void set_node(scene_node *n, const char *name, int mesh, const float t[3],
+                     float yaw_deg, const float s[3])
+{
+    float half = 0.5f * yaw_deg * 3.14159265358979f / 180.0f;
+    scene_copy_name(n->name, sizeof(n->name), name);
+    n->parent = -1;
+    n->mesh = mesh;
+    n->skin = -1;
+    n->camera = -1;
+    n->light = -1;
+    memcpy(n->translation, t, sizeof(n->translation));
+    n->rotation[0] = 0.0f;
+    n->rotation[1] = sinf(half);
+    n->rotation[2] = 0.0f;
+    n->rotation[3] = cosf(half);
+    memcpy(n->scale, s, sizeof(n->scale));
+}
+
+dirt_scene *dirt_scene_create_default(void)
+{
+    enum { NUM_MESHES = 6, NUM_NODES = 7 };
+    dirt_scene *s = scene_new("default");
+    if (!s)
+        return NULL;
+
+    s->materials = calloc(NUM_MATERIALS, sizeof(*s->materials));
+    s->meshes = calloc(NUM_MESHES, sizeof(*s->meshes));
+    s->nodes = calloc(NUM_NODES, sizeof(*s->nodes));
+    s->camera_protos = calloc(1, sizeof(*s->camera_protos));
+    if (!s->materials || !s->meshes || !s->nodes || !s->camera_protos)
+        goto oom;
+    s->num_materials = NUM_MATERIALS;
+    s->num_meshes = NUM_MESHES;
+    s->num_nodes = NUM_NODES;
+    s->num_camera_protos = 1;
+
+    set_material(&s->materials[MAT_WHITE], "white", 0.73f, 0.73f, 0.73f, 0.0f, 1.0f);
+    set_material(&s->materials[MAT_RED], "red", 0.63f, 0.065f, 0.05f, 0.0f, 1.0f);
+    set_material(&s->materials[MAT_GREEN], "green", 0.14f, 0.45f, 0.091f, 0.0f, 1.0f);
+    set_material(&s->materials[MAT_LIGHT], "light", 1.0f, 1.0f, 1.0f, 0.0f, 1.0f);
+    /* Warm light: emissive * strength = (17, 12, 4). */
+    s->materials[MAT_LIGHT].emissive[0] = 1.0f;
+    s->materials[MAT_LIGHT].emissive[1] = 12.0f / 17.0f;
+    s->materials[MAT_LIGHT].emissive[2] = 4.0f / 17.0f;
+    s->materials[MAT_LIGHT].emissive_strength = 17.0f;
+    set_material(&s->materials[MAT_METAL], "metal", 0.95f, 0.93f, 0.88f, 1.0f, 0.05f);
+    set_material(&s->materials[MAT_GLOSSY], "glossy_blue", 0.1f, 0.25f, 0.8f, 0.0f, 0.3f);
+
+    static const int prims_per_mesh[NUM_MESHES] = {3, 1, 1, 1, 1, 1};
+    for (int i = 0; i < NUM_MESHES; i++) {
+        s->meshes[i].prims = calloc((size_t)prims_per_mesh[i], sizeof(scene_prim));
+        if (!s->meshes[i].prims)
+            goto oom;
+    }
+    if (!build_room(&s->meshes[0]) ||
+        !build_single(&s->meshes[1], "light", MAT_LIGHT, 0) ||
+        !build_single(&s->meshes[2], "tall_box", MAT_WHITE, 1) ||
+        !build_single(&s->meshes[3], "short_box", MAT_WHITE, 1) ||
+        !build_single(&s->meshes[4], "metal_sphere", MAT_METAL, 2) ||
+        !build_single(&s->meshes[5], "glossy_sphere", MAT_GLOSSY, 2))
+        goto oom;
+    for (int i = 0; i < NUM_MESHES; i++) {
+        for (size_t p = 0; p < s->meshes[i].num_prims; p++)
+            s->meshes[i].num_triangles += s->meshes[i].prims[p].num_triangles;
+    }
+
+    static const float zero[3] = {0, 0, 0}, one[3] = {1, 1, 1};
+    set_node(&s->nodes[0], "room", 0, zero, 0.0f, one);
+    set_node(&s->nodes[1], "light", 1, zero, 0.0f, one);
+    set_node(&s->nodes[2], "tall_box", 2, (const float[3]){-0.35f, 0.6f, -0.35f}, 20.0f,
+             (const float[3]){0.6f, 1.2f, 0.6f});
+    set_node(&s->nodes[3], "short_box", 3, (const float[3]){0.4f, 0.3f, 0.3f}, -18.0f,
+             (const float[3]){0.6f, 0.6f, 0.6f});
+    set_node(&s->nodes[4], "metal_sphere", 4, (const float[3]){0.4f, 0.82f, 0.3f}, 0.0f,
+             (const float[3]){0.22f, 0.22f, 0.22f});
+    set_node(&s->nodes[5], "glossy_sphere", 5, (const float[3]){-0.4f, 0.2f, 0.5f}, 0.0f,
+             (const float[3]){0.2f, 0.2f, 0.2f});
+    /* The camera looks down its local -Z, i.e. from the front wall at the
+     * back wall (0, 1, -1). */
+    set_node(&s->nodes[6], "camera", -1, (const float[3]){0.0f, 1.0f, 0.95f}, 0.0f, one);
+    s->nodes[6].camera = 0;
+
+    dirt_camera_def *cam = &s->camera_protos[0];
+    scene_copy_name(cam->name, sizeof(cam->name), "default");
+    cam->type = DIRT_CAMERA_PERSPECTIVE;
+    cam->yfov = 60.0f * 3.14159265358979f / 180.0f;
+    cam->aspect = 0.0f;
+    cam->znear = 0.01f;
+    cam->zfar = 100.0f;
+    cam->node = -1;
+
+    if (!scene_finalize(s, NULL, 0)) {
+        DIRT_ERROR("default scene failed validation");
+        dirt_scene_destroy(s);
+        return NULL;
+    }
+    return s;
+
+oom:
+    DIRT_ERROR("out of memory building the default scene");
+    dirt_scene_destroy(s);
+    return NULL;
+}

@@ -1,0 +1,1368 @@
+/* DIRT engine: glTF 2.0 (.gltf / .glb) loader. The only C++ translation unit
+ * of the project: tinygltf parses the file, this code validates every
+ * reference and byte range and converts the model into the plain C structs of
+ * scene_internal.h. Nothing here trusts the file: an accessor outside its
+ * buffer, an index past the vertex count, a non-finite position or a bad
+ * object reference ends the load with an error, never with a crash. */
+#include "scene/scene_internal.h"
+
+#include "dirt/log.h"
+
+#include <tiny_gltf.h>
+#include <stb_image.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+/* Unpacked accessor: where its elements are and how to read them. */
+struct AccessorView {
+    const unsigned char *data = nullptr; /* first element; nullptr = all zeros */
+    size_t stride = 0;
+    size_t count = 0;
+    int ncomp = 0;        /* components per element */
+    int rows = 0;         /* components per column (matrices), else ncomp */
+    size_t comp_size = 0;
+    size_t column_stride = 0;
+    size_t elem_size = 0;
+    int comp_type = 0;
+    bool normalized = false;
+};
+
+struct Loader {
+    const tinygltf::Model *m = nullptr;
+    dirt_scene *s = nullptr;
+    std::string path;
+    /* Decoded texture per (image, sRGB) pair: -2 = not tried yet. */
+    std::vector<int> texture_of;
+    uint32_t default_material = 0;
+};
+
+int num_components(int type, int *rows)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: *rows = 1; return 1;
+    case TINYGLTF_TYPE_VEC2: *rows = 2; return 2;
+    case TINYGLTF_TYPE_VEC3: *rows = 3; return 3;
+    case TINYGLTF_TYPE_VEC4: *rows = 4; return 4;
+    case TINYGLTF_TYPE_MAT2: *rows = 2; return 4;
+    case TINYGLTF_TYPE_MAT3: *rows = 3; return 9;
+    case TINYGLTF_TYPE_MAT4: *rows = 4; return 16;
+    default: *rows = 0; return 0;
+    }
+}
+
+size_t component_size(int ct)
+{
+    switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+/* Checks that [offset, offset + length) lies inside a block of `size` bytes
+ * without overflowing. */
+bool range_ok(size_t offset, size_t length, size_t size)
+{
+    return offset <= size && length <= size - offset;
+}
+
+/* Byte range of buffer view `index`, validated against its buffer. */
+bool buffer_view_bytes(const tinygltf::Model &m, int index, const char *what,
+                       const unsigned char **data, size_t *length, size_t *stride)
+{
+    if (index < 0 || (size_t)index >= m.bufferViews.size()) {
+        DIRT_ERROR("%s: bufferView %d out of range (%zu buffer views)", what, index,
+                   m.bufferViews.size());
+        return false;
+    }
+    const tinygltf::BufferView &bv = m.bufferViews[(size_t)index];
+    if (bv.buffer < 0 || (size_t)bv.buffer >= m.buffers.size()) {
+        DIRT_ERROR("%s: bufferView %d: buffer %d out of range (%zu buffers)", what, index,
+                   bv.buffer, m.buffers.size());
+        return false;
+    }
+    const tinygltf::Buffer &b = m.buffers[(size_t)bv.buffer];
+    if (!range_ok(bv.byteOffset, bv.byteLength, b.data.size())) {
+        DIRT_ERROR("%s: bufferView %d (offset %zu, length %zu) exceeds buffer %d of %zu "
+                   "bytes (truncated file?)",
+                   what, index, bv.byteOffset, bv.byteLength, bv.buffer, b.data.size());
+        return false;
+    }
+    *data = b.data.empty() ? nullptr : b.data.data() + bv.byteOffset;
+    *length = bv.byteLength;
+    if (stride)
+        *stride = bv.byteStride;
+    return true;
+}
+
+/* Resolves accessor `index` and checks that every element lies inside its
+ * buffer view. */
+bool view_accessor(const tinygltf::Model &m, int index, const char *what,
+                   AccessorView *v)
+{
+    if (index < 0 || (size_t)index >= m.accessors.size()) {
+        DIRT_ERROR("%s: accessor %d out of range (%zu accessors)", what, index,
+                   m.accessors.size());
+        return false;
+    }
+    const tinygltf::Accessor &a = m.accessors[(size_t)index];
+    v->ncomp = num_components(a.type, &v->rows);
+    v->comp_size = component_size(a.componentType);
+    if (v->ncomp == 0 || v->comp_size == 0) {
+        DIRT_ERROR("%s: accessor %d has an invalid type %d / component type %d", what,
+                   index, a.type, a.componentType);
+        return false;
+    }
+    v->comp_type = a.componentType;
+    v->normalized = a.normalized;
+    v->count = a.count;
+    if (v->count > SCENE_MAX_COUNT) {
+        DIRT_ERROR("%s: accessor %d has too many elements (%zu)", what, index, v->count);
+        return false;
+    }
+    /* Matrix columns start on 4-byte boundaries. */
+    int cols = v->ncomp / v->rows;
+    v->column_stride = (v->rows * v->comp_size + 3) & ~(size_t)3;
+    if (cols == 1)
+        v->column_stride = v->rows * v->comp_size;
+    v->elem_size = v->column_stride * (size_t)cols;
+    if (a.bufferView < 0) {
+        v->data = nullptr; /* zeros, possibly replaced by sparse values */
+        v->stride = v->elem_size;
+        return true;
+    }
+    const unsigned char *bytes = nullptr;
+    size_t length = 0, stride = 0;
+    char ctx[160];
+    snprintf(ctx, sizeof(ctx), "%s: accessor %d", what, index);
+    if (!buffer_view_bytes(m, a.bufferView, ctx, &bytes, &length, &stride))
+        return false;
+    if (stride == 0)
+        stride = v->elem_size;
+    if (stride < v->elem_size) {
+        DIRT_ERROR("%s: byteStride %zu is smaller than the element size %zu", ctx, stride,
+                   v->elem_size);
+        return false;
+    }
+    v->stride = stride;
+    if (v->count > 0) {
+        bool ok = a.byteOffset <= length && v->elem_size <= length - a.byteOffset &&
+                  (v->count - 1) <= (length - a.byteOffset - v->elem_size) / stride;
+        if (!ok) {
+            DIRT_ERROR("%s: %zu elements of %zu bytes (stride %zu) from offset %zu exceed "
+                       "buffer view %d of %zu bytes",
+                       ctx, v->count, v->elem_size, stride, a.byteOffset, a.bufferView,
+                       length);
+            return false;
+        }
+        v->data = bytes + a.byteOffset;
+    }
+    return true;
+}
+
+float read_component(const unsigned char *p, int ct, bool normalized)
+{
+    switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float f;
+        memcpy(&f, p, 4);
+        return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+        uint8_t x = p[0];
+        return normalized ? x / 255.0f : (float)x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        int8_t x;
+        memcpy(&x, p, 1);
+        return normalized ? std::fmax(x / 127.0f, -1.0f) : (float)x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t x;
+        memcpy(&x, p, 2);
+        return normalized ? x / 65535.0f : (float)x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t x;
+        memcpy(&x, p, 2);
+        return normalized ? std::fmax(x / 32767.0f, -1.0f) : (float)x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t x;
+        memcpy(&x, p, 4);
+        return normalized ? (float)(x / 4294967295.0) : (float)x;
+    }
+    default: return 0.0f;
+    }
+}
+
+uint32_t read_uint(const unsigned char *p, int ct)
+{
+    switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t x;
+        memcpy(&x, p, 2);
+        return x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t x;
+        memcpy(&x, p, 4);
+        return x;
+    }
+    default: return 0;
+    }
+}
+
+/* Element `i` of an accessor as floats (matrix padding skipped). */
+void read_element(const AccessorView &v, const unsigned char *elem, float *out)
+{
+    int cols = v.ncomp / v.rows;
+    for (int c = 0; c < cols; c++) {
+        const unsigned char *col = elem + (size_t)c * v.column_stride;
+        for (int r = 0; r < v.rows; r++)
+            out[c * v.rows + r] = read_component(col + (size_t)r * v.comp_size, v.comp_type,
+                                                 v.normalized);
+    }
+}
+
+/* Applies the sparse substitution of accessor `index` (if any) to `out`,
+ * which holds count * ncomp floats (as_float) or uint32s. */
+bool apply_sparse(const tinygltf::Model &m, int index, const AccessorView &v,
+                  const char *what, float *out_f, uint32_t *out_u)
+{
+    const tinygltf::Accessor &a = m.accessors[(size_t)index];
+    if (!a.sparse.isSparse)
+        return true;
+    char ctx[160];
+    snprintf(ctx, sizeof(ctx), "%s: sparse accessor %d", what, index);
+    if (a.sparse.count < 0 || (size_t)a.sparse.count > v.count) {
+        DIRT_ERROR("%s: sparse count %d out of range (accessor count %zu)", ctx,
+                   a.sparse.count, v.count);
+        return false;
+    }
+    size_t n = (size_t)a.sparse.count;
+    if (n == 0)
+        return true;
+    size_t isz = component_size(a.sparse.indices.componentType);
+    if (isz == 0 || a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+        a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+        a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+        a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0) {
+        DIRT_ERROR("%s: invalid sparse indices", ctx);
+        return false;
+    }
+    const unsigned char *ib = nullptr, *vb = nullptr;
+    size_t ilen = 0, vlen = 0;
+    if (!buffer_view_bytes(m, a.sparse.indices.bufferView, ctx, &ib, &ilen, nullptr) ||
+        !buffer_view_bytes(m, a.sparse.values.bufferView, ctx, &vb, &vlen, nullptr))
+        return false;
+    if (!range_ok((size_t)a.sparse.indices.byteOffset, n * isz, ilen) ||
+        !range_ok((size_t)a.sparse.values.byteOffset, n * v.elem_size, vlen)) {
+        DIRT_ERROR("%s: sparse indices/values exceed their buffer views", ctx);
+        return false;
+    }
+    ib += a.sparse.indices.byteOffset;
+    vb += a.sparse.values.byteOffset;
+    for (size_t k = 0; k < n; k++) {
+        uint32_t dst = read_uint(ib + k * isz, a.sparse.indices.componentType);
+        if (dst >= v.count) {
+            DIRT_ERROR("%s: sparse index %u >= count %zu", ctx, dst, v.count);
+            return false;
+        }
+        const unsigned char *elem = vb + k * v.elem_size;
+        if (out_f) {
+            read_element(v, elem, out_f + (size_t)dst * v.ncomp);
+        } else {
+            for (int c = 0; c < v.ncomp; c++)
+                out_u[(size_t)dst * v.ncomp + c] =
+                    read_uint(elem + (size_t)c * v.comp_size, v.comp_type);
+        }
+    }
+    return true;
+}
+
+/* Reads accessor `index` as floats (normalized integers mapped to [0,1] or
+ * [-1,1]). `want_ncomp` > 0 requires that many components per element. */
+bool read_floats(const tinygltf::Model &m, int index, const char *what, int want_ncomp,
+                 std::vector<float> *out, AccessorView *view_out = nullptr)
+{
+    AccessorView v;
+    if (!view_accessor(m, index, what, &v))
+        return false;
+    if (want_ncomp > 0 && v.ncomp != want_ncomp) {
+        DIRT_ERROR("%s: accessor %d has %d components per element, expected %d", what,
+                   index, v.ncomp, want_ncomp);
+        return false;
+    }
+    out->assign(v.count * (size_t)v.ncomp, 0.0f);
+    if (v.data) {
+        if (v.comp_type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+            /* Fast path: float elements have no column padding. */
+            for (size_t i = 0; i < v.count; i++)
+                memcpy(out->data() + i * (size_t)v.ncomp, v.data + i * v.stride,
+                       (size_t)v.ncomp * 4u);
+        } else {
+            for (size_t i = 0; i < v.count; i++)
+                read_element(v, v.data + i * v.stride, out->data() + i * (size_t)v.ncomp);
+        }
+    }
+    if (!apply_sparse(m, index, v, what, out->data(), nullptr))
+        return false;
+    if (view_out)
+        *view_out = v;
+    return true;
+}
+
+/* Reads an unsigned integer accessor (UNSIGNED_BYTE/SHORT/INT). */
+bool read_uints(const tinygltf::Model &m, int index, const char *what, int want_ncomp,
+                std::vector<uint32_t> *out)
+{
+    AccessorView v;
+    if (!view_accessor(m, index, what, &v))
+        return false;
+    if (v.ncomp != want_ncomp || v.ncomp != v.rows) {
+        DIRT_ERROR("%s: accessor %d has %d components per element, expected %d", what,
+                   index, v.ncomp, want_ncomp);
+        return false;
+    }
+    if (v.comp_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        v.comp_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        v.comp_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+        DIRT_ERROR("%s: accessor %d must hold unsigned integers (component type %d)", what,
+                   index, v.comp_type);
+        return false;
+    }
+    out->assign(v.count * (size_t)v.ncomp, 0u);
+    if (v.data) {
+        for (size_t i = 0; i < v.count; i++) {
+            const unsigned char *e = v.data + i * v.stride;
+            for (int c = 0; c < v.ncomp; c++)
+                (*out)[i * (size_t)v.ncomp + c] = read_uint(e + (size_t)c * v.comp_size,
+                                                            v.comp_type);
+        }
+    }
+    return apply_sparse(m, index, v, what, nullptr, out->data());
+}
+
+bool all_finite(const std::vector<float> &v)
+{
+    for (float x : v) {
+        if (!std::isfinite(x))
+            return false;
+    }
+    return true;
+}
+
+template <typename T> T *dup_array(const std::vector<T> &v)
+{
+    T *p = (T *)malloc((v.empty() ? 1 : v.size()) * sizeof(T));
+    if (!p)
+        throw std::bad_alloc();
+    if (!v.empty())
+        memcpy(p, v.data(), v.size() * sizeof(T));
+    return p;
+}
+
+template <typename T> T *alloc_zeroed(size_t n)
+{
+    T *p = (T *)calloc(n ? n : 1, sizeof(T));
+    if (!p)
+        throw std::bad_alloc();
+    return p;
+}
+
+/* ---- textures and materials -------------------------------------------- */
+
+/* Scene texture index for glTF texture `tex` used in colour space `srgb`,
+ * decoding its image on first use; DIRT_NO_TEXTURE (warned) when missing or
+ * undecodable. */
+int get_texture(Loader &L, int tex, bool srgb, const char *what)
+{
+    const tinygltf::Model &m = *L.m;
+    if (tex < 0)
+        return DIRT_NO_TEXTURE;
+    if ((size_t)tex >= m.textures.size()) {
+        DIRT_WARN("%s: %s: texture %d out of range (%zu textures); using the factor",
+                  L.path.c_str(), what, tex, m.textures.size());
+        L.s->stats.textures_failed++;
+        return DIRT_NO_TEXTURE;
+    }
+    int img = m.textures[(size_t)tex].source;
+    if (img < 0 || (size_t)img >= m.images.size()) {
+        DIRT_WARN("%s: %s: texture %d has no usable image (source %d); using the factor",
+                  L.path.c_str(), what, tex, img);
+        L.s->stats.textures_failed++;
+        return DIRT_NO_TEXTURE;
+    }
+    int &slot = L.texture_of[(size_t)img * 2 + (srgb ? 1 : 0)];
+    if (slot != -2)
+        return slot;
+    slot = DIRT_NO_TEXTURE;
+
+    const tinygltf::Image &image = m.images[(size_t)img];
+    const unsigned char *bytes = nullptr;
+    size_t size = 0;
+    std::string label = !image.name.empty() ? image.name
+                        : !image.uri.empty() && image.uri.compare(0, 5, "data:") != 0
+                            ? image.uri
+                            : "image " + std::to_string(img);
+    if (image.bufferView >= 0) {
+        char ctx[160];
+        snprintf(ctx, sizeof(ctx), "%s: image %d", L.path.c_str(), img);
+        if (!buffer_view_bytes(m, image.bufferView, ctx, &bytes, &size, nullptr))
+            bytes = nullptr;
+    } else if (!image.image.empty()) {
+        bytes = image.image.data();
+        size = image.image.size();
+    }
+    if (!bytes || size == 0) {
+        DIRT_WARN("%s: %s: image '%s' is missing; using the factor", L.path.c_str(), what,
+                  label.c_str());
+        L.s->stats.textures_failed++;
+        return slot;
+    }
+    if (size > (size_t)INT32_MAX) {
+        DIRT_WARN("%s: image '%s' is too large; using the factor", L.path.c_str(),
+                  label.c_str());
+        L.s->stats.textures_failed++;
+        return slot;
+    }
+    int w = 0, h = 0, comp = 0;
+    unsigned char *pixels = stbi_load_from_memory(bytes, (int)size, &w, &h, &comp, 4);
+    if (!pixels || w <= 0 || h <= 0) {
+        DIRT_WARN("%s: %s: cannot decode image '%s' (%s); using the factor",
+                  L.path.c_str(), what, label.c_str(),
+                  stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
+        if (pixels)
+            stbi_image_free(pixels);
+        L.s->stats.textures_failed++;
+        return slot;
+    }
+    size_t nbytes = (size_t)w * (size_t)h * 4u;
+    uint8_t *rgba = (uint8_t *)malloc(nbytes);
+    if (!rgba) {
+        stbi_image_free(pixels);
+        throw std::bad_alloc();
+    }
+    memcpy(rgba, pixels, nbytes);
+    stbi_image_free(pixels);
+
+    dirt_texture *t = &L.s->textures[L.s->num_textures];
+    t->width = w;
+    t->height = h;
+    t->rgba = rgba;
+    t->srgb = srgb;
+    scene_copy_name(t->name, sizeof(t->name), label.c_str());
+    slot = (int)L.s->num_textures++;
+    return slot;
+}
+
+int texture_slot(Loader &L, const tinygltf::TextureInfo &ti, bool srgb, const char *slot,
+                 const std::string &mat)
+{
+    if (ti.index < 0)
+        return DIRT_NO_TEXTURE;
+    std::string what = "material '" + mat + "' " + slot;
+    if (ti.texCoord != 0)
+        DIRT_WARN("%s: %s uses TEXCOORD_%d; only TEXCOORD_0 is supported", L.path.c_str(),
+                  what.c_str(), ti.texCoord);
+    return get_texture(L, ti.index, srgb, what.c_str());
+}
+
+float finite_or(double x, float fallback)
+{
+    return std::isfinite(x) ? (float)x : fallback;
+}
+
+void default_material(dirt_material *d, const char *name)
+{
+    memset(d, 0, sizeof(*d));
+    scene_copy_name(d->name, sizeof(d->name), name);
+    for (int k = 0; k < 4; k++)
+        d->base_color[k] = 1.0f;
+    d->base_color_tex = DIRT_NO_TEXTURE;
+    d->metallic = 1.0f; /* glTF defaults */
+    d->roughness = 1.0f;
+    d->metallic_roughness_tex = DIRT_NO_TEXTURE;
+    d->emissive_strength = 1.0f;
+    d->emissive_tex = DIRT_NO_TEXTURE;
+}
+
+void convert_materials(Loader &L, bool need_default)
+{
+    const tinygltf::Model &m = *L.m;
+    dirt_scene *s = L.s;
+    size_t n = m.materials.size();
+    s->materials = alloc_zeroed<dirt_material>(n + 1);
+    s->textures = alloc_zeroed<dirt_texture>(m.images.size() * 2);
+    L.texture_of.assign(m.images.size() * 2, -2);
+    for (size_t i = 0; i < n; i++) {
+        const tinygltf::Material &src = m.materials[i];
+        dirt_material *d = &s->materials[i];
+        std::string name = src.name.empty() ? "material " + std::to_string(i) : src.name;
+        default_material(d, name.c_str());
+        const tinygltf::PbrMetallicRoughness &pbr = src.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4) {
+            for (int k = 0; k < 4; k++)
+                d->base_color[k] = finite_or(pbr.baseColorFactor[k], 1.0f);
+        }
+        d->metallic = finite_or(pbr.metallicFactor, 1.0f);
+        d->roughness = finite_or(pbr.roughnessFactor, 1.0f);
+        if (src.emissiveFactor.size() == 3) {
+            for (int k = 0; k < 3; k++)
+                d->emissive[k] = finite_or(src.emissiveFactor[k], 0.0f);
+        }
+        auto ext = src.extensions.find("KHR_materials_emissive_strength");
+        if (ext != src.extensions.end() && ext->second.IsObject() &&
+            ext->second.Has("emissiveStrength")) {
+            const tinygltf::Value &v = ext->second.Get("emissiveStrength");
+            if (v.IsNumber() && std::isfinite(v.GetNumberAsDouble()) &&
+                v.GetNumberAsDouble() >= 0.0)
+                d->emissive_strength = (float)v.GetNumberAsDouble();
+            else
+                DIRT_WARN("%s: material '%s': invalid emissiveStrength ignored",
+                          L.path.c_str(), name.c_str());
+        }
+        d->double_sided = src.doubleSided;
+        d->base_color_tex = texture_slot(L, pbr.baseColorTexture, true, "baseColorTexture",
+                                         name);
+        d->metallic_roughness_tex = texture_slot(L, pbr.metallicRoughnessTexture, false,
+                                                 "metallicRoughnessTexture", name);
+        d->emissive_tex = texture_slot(L, src.emissiveTexture, true, "emissiveTexture", name);
+    }
+    s->num_materials = n;
+    L.default_material = (uint32_t)n;
+    if (need_default) {
+        default_material(&s->materials[n], "default");
+        s->num_materials = n + 1;
+    }
+}
+
+/* ---- meshes ------------------------------------------------------------- */
+
+/* Triangle list of TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN indices. */
+void convert_triangles(const std::vector<uint32_t> &idx, int mode, const char *what,
+                       std::vector<uint32_t> *tris)
+{
+    size_t n = idx.size();
+    tris->clear();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (n % 3 != 0)
+            DIRT_WARN("%s: %zu indices is not a multiple of 3; the last %zu are ignored",
+                      what, n, n % 3);
+        tris->assign(idx.begin(), idx.begin() + (ptrdiff_t)(n - n % 3));
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < n; i++) {
+            /* Odd triangles swap their first two vertices to keep the winding. */
+            if (i % 2 == 0)
+                tris->insert(tris->end(), {idx[i], idx[i + 1], idx[i + 2]});
+            else
+                tris->insert(tris->end(), {idx[i + 1], idx[i], idx[i + 2]});
+        }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t i = 0; i + 2 < n; i++)
+            tris->insert(tris->end(), {idx[i + 1], idx[i + 2], idx[0]});
+    }
+}
+
+/* Converts one glTF primitive. Returns false on a fatal error; sets *skip
+ * when the primitive holds no triangles to keep (points, lines). */
+bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
+                  scene_prim *dst, bool *skip)
+{
+    const tinygltf::Model &m = *L.m;
+    *skip = false;
+    int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        DIRT_WARN("%s: mode %d (points/lines) is not supported; primitive skipped", what,
+                  mode);
+        *skip = true;
+        return true;
+    }
+    auto attr = [&](const char *name) {
+        auto it = src.attributes.find(name);
+        return it == src.attributes.end() ? -1 : it->second;
+    };
+    int a_pos = attr("POSITION");
+    if (a_pos < 0) {
+        DIRT_WARN("%s: no POSITION attribute; primitive skipped", what);
+        *skip = true;
+        return true;
+    }
+    if (src.material < -1 ||
+        (src.material >= 0 && (size_t)src.material >= m.materials.size())) {
+        DIRT_ERROR("%s: material %d out of range (%zu materials)", what, src.material,
+                   m.materials.size());
+        return false;
+    }
+    dst->material = src.material >= 0 ? (uint32_t)src.material : L.default_material;
+
+    std::string ctx = std::string(what) + " POSITION";
+    std::vector<float> pos;
+    if (!read_floats(m, a_pos, ctx.c_str(), 3, &pos))
+        return false;
+    if (!all_finite(pos)) {
+        DIRT_ERROR("%s: non-finite (NaN/Inf) vertex position", what);
+        return false;
+    }
+    size_t nv = pos.size() / 3;
+    dst->num_vertices = nv;
+    dst->position = (float(*)[3])dup_array(pos);
+
+    int a_nrm = attr("NORMAL");
+    if (a_nrm >= 0) {
+        std::vector<float> nrm;
+        ctx = std::string(what) + " NORMAL";
+        if (!read_floats(m, a_nrm, ctx.c_str(), 3, &nrm))
+            return false;
+        if (nrm.size() != pos.size()) {
+            DIRT_ERROR("%s: NORMAL has %zu elements, POSITION %zu", what, nrm.size() / 3, nv);
+            return false;
+        }
+        if (!all_finite(nrm))
+            DIRT_WARN("%s: non-finite normals; using flat normals", what);
+        else
+            dst->normal = (float(*)[3])dup_array(nrm);
+    }
+
+    int a_uv = attr("TEXCOORD_0");
+    if (a_uv >= 0) {
+        std::vector<float> uv;
+        ctx = std::string(what) + " TEXCOORD_0";
+        if (!read_floats(m, a_uv, ctx.c_str(), 2, &uv))
+            return false;
+        if (uv.size() / 2 != nv) {
+            DIRT_ERROR("%s: TEXCOORD_0 has %zu elements, POSITION %zu", what, uv.size() / 2,
+                       nv);
+            return false;
+        }
+        for (float &x : uv) {
+            if (!std::isfinite(x))
+                x = 0.0f;
+        }
+        dst->uv = (float(*)[2])dup_array(uv);
+    }
+
+    int a_j = attr("JOINTS_0"), a_w = attr("WEIGHTS_0");
+    if ((a_j >= 0) != (a_w >= 0)) {
+        DIRT_WARN("%s: JOINTS_0 without WEIGHTS_0 (or the reverse); not skinned", what);
+    } else if (a_j >= 0) {
+        if (attr("JOINTS_1") >= 0)
+            DIRT_WARN("%s: JOINTS_1/WEIGHTS_1 ignored (4 influences per vertex)", what);
+        std::vector<uint32_t> joints;
+        std::vector<float> weights;
+        ctx = std::string(what) + " JOINTS_0";
+        if (!read_uints(m, a_j, ctx.c_str(), 4, &joints))
+            return false;
+        ctx = std::string(what) + " WEIGHTS_0";
+        if (!read_floats(m, a_w, ctx.c_str(), 4, &weights))
+            return false;
+        if (joints.size() / 4 != nv || weights.size() / 4 != nv) {
+            DIRT_ERROR("%s: JOINTS_0/WEIGHTS_0 counts (%zu/%zu) differ from POSITION (%zu)",
+                       what, joints.size() / 4, weights.size() / 4, nv);
+            return false;
+        }
+        dst->joints = alloc_zeroed<uint16_t[4]>(nv);
+        dst->weights = alloc_zeroed<float[4]>(nv);
+        size_t zero_sum = 0;
+        for (size_t v = 0; v < nv; v++) {
+            double sum = 0.0;
+            for (int k = 0; k < 4; k++) {
+                float w = weights[4 * v + k];
+                uint32_t j = joints[4 * v + k];
+                if (!std::isfinite(w) || w < 0.0f) {
+                    DIRT_ERROR("%s: vertex %zu has an invalid skin weight %g", what, v,
+                               (double)w);
+                    return false;
+                }
+                if (j > UINT16_MAX) {
+                    DIRT_ERROR("%s: vertex %zu joint %u out of range", what, v, j);
+                    return false;
+                }
+                dst->joints[v][k] = (uint16_t)j;
+                dst->weights[v][k] = w;
+                sum += w;
+            }
+            if (sum <= 0.0) {
+                /* No influence at all: bind rigidly to the first joint. */
+                zero_sum++;
+                dst->weights[v][0] = 1.0f;
+                dst->weights[v][1] = dst->weights[v][2] = dst->weights[v][3] = 0.0f;
+                L.s->stats.weights_normalized++;
+            } else if (std::fabs(sum - 1.0) > 1e-6) {
+                for (int k = 0; k < 4; k++)
+                    dst->weights[v][k] = (float)(dst->weights[v][k] / sum);
+                L.s->stats.weights_normalized++;
+            }
+        }
+        if (zero_sum)
+            DIRT_WARN("%s: %zu vertices have all skin weights zero; bound to their first "
+                      "joint", what, zero_sum);
+    }
+
+    /* Morph targets. */
+    size_t nt = src.targets.size();
+    if (nt > 0) {
+        dst->num_targets = nt;
+        bool any_pos = false, any_nrm = false;
+        for (const auto &t : src.targets) {
+            any_pos |= t.count("POSITION") > 0;
+            any_nrm |= t.count("NORMAL") > 0;
+        }
+        if (nv > SCENE_MAX_COUNT / (nt ? nt : 1)) {
+            DIRT_ERROR("%s: too many morph target vertices", what);
+            return false;
+        }
+        if (any_pos)
+            dst->target_position = alloc_zeroed<float[3]>(nt * nv);
+        if (any_nrm)
+            dst->target_normal = alloc_zeroed<float[3]>(nt * nv);
+        for (size_t k = 0; k < nt; k++) {
+            for (int which = 0; which < 2; which++) {
+                const char *name = which == 0 ? "POSITION" : "NORMAL";
+                auto it = src.targets[k].find(name);
+                if (it == src.targets[k].end())
+                    continue;
+                std::vector<float> d;
+                ctx = std::string(what) + " target " + std::to_string(k) + " " + name;
+                if (!read_floats(m, it->second, ctx.c_str(), 3, &d))
+                    return false;
+                if (d.size() != pos.size()) {
+                    DIRT_ERROR("%s: %zu elements, POSITION has %zu", ctx.c_str(),
+                               d.size() / 3, nv);
+                    return false;
+                }
+                if (!all_finite(d)) {
+                    DIRT_ERROR("%s: non-finite (NaN/Inf) morph target delta", ctx.c_str());
+                    return false;
+                }
+                float(*out)[3] = which == 0 ? dst->target_position : dst->target_normal;
+                memcpy(out + k * nv, d.data(), d.size() * sizeof(float));
+            }
+        }
+    }
+
+    /* Indices -> triangle list. */
+    std::vector<uint32_t> idx;
+    if (src.indices >= 0) {
+        ctx = std::string(what) + " indices";
+        if (!read_uints(m, src.indices, ctx.c_str(), 1, &idx))
+            return false;
+        for (size_t i = 0; i < idx.size(); i++) {
+            if (idx[i] >= nv) {
+                DIRT_ERROR("%s: index %zu is %u but there are only %zu vertices", what, i,
+                           idx[i], nv);
+                return false;
+            }
+        }
+    } else {
+        idx.resize(nv);
+        for (size_t i = 0; i < nv; i++)
+            idx[i] = (uint32_t)i;
+    }
+    std::vector<uint32_t> tris;
+    convert_triangles(idx, mode, what, &tris);
+    dst->num_triangles = tris.size() / 3;
+    dst->indices = dup_array(tris);
+    return true;
+}
+
+bool convert_meshes(Loader &L)
+{
+    const tinygltf::Model &m = *L.m;
+    dirt_scene *s = L.s;
+    s->meshes = alloc_zeroed<scene_mesh>(m.meshes.size());
+    s->num_meshes = m.meshes.size();
+    for (size_t i = 0; i < m.meshes.size(); i++) {
+        const tinygltf::Mesh &src = m.meshes[i];
+        scene_mesh *dst = &s->meshes[i];
+        scene_copy_name(dst->name, sizeof(dst->name), src.name.c_str());
+        dst->prims = alloc_zeroed<scene_prim>(src.primitives.size());
+        size_t max_targets = 0;
+        for (size_t p = 0; p < src.primitives.size(); p++) {
+            char what[256];
+            snprintf(what, sizeof(what), "%s: mesh %zu ('%s') primitive %zu", L.path.c_str(),
+                     i, src.name.c_str(), p);
+            scene_prim *pr = &dst->prims[dst->num_prims];
+            bool skip = false;
+            /* Count the primitive before converting so that a failure frees
+             * whatever it allocated. */
+            dst->num_prims++;
+            if (!convert_prim(L, src.primitives[p], what, pr, &skip))
+                return false;
+            if (skip) {
+                dst->num_prims--;
+                memset(pr, 0, sizeof(*pr));
+                s->stats.prims_skipped++;
+                continue;
+            }
+            dst->num_triangles += pr->num_triangles;
+            if (pr->num_targets > max_targets)
+                max_targets = pr->num_targets;
+        }
+        dst->num_weights = max_targets;
+        dst->weights = alloc_zeroed<float>(max_targets);
+        if (!src.weights.empty() && src.weights.size() != max_targets)
+            DIRT_WARN("%s: mesh %zu has %zu default weights for %zu morph targets",
+                      L.path.c_str(), i, src.weights.size(), max_targets);
+        for (size_t k = 0; k < max_targets && k < src.weights.size(); k++)
+            dst->weights[k] = finite_or(src.weights[k], 0.0f);
+    }
+    return true;
+}
+
+/* ---- nodes, skins, cameras, lights -------------------------------------- */
+
+bool convert_nodes(Loader &L)
+{
+    const tinygltf::Model &m = *L.m;
+    dirt_scene *s = L.s;
+    s->nodes = alloc_zeroed<scene_node>(m.nodes.size());
+    s->num_nodes = m.nodes.size();
+    for (size_t i = 0; i < m.nodes.size(); i++) {
+        const tinygltf::Node &src = m.nodes[i];
+        scene_node *d = &s->nodes[i];
+        scene_copy_name(d->name, sizeof(d->name), src.name.c_str());
+        d->parent = -1;
+        d->mesh = src.mesh;
+        d->skin = src.skin;
+        d->camera = src.camera;
+        d->light = -1;
+        d->rotation[3] = 1.0f;
+        d->scale[0] = d->scale[1] = d->scale[2] = 1.0f;
+        d->children = dup_array(src.children);
+        d->num_children = src.children.size();
+
+        bool finite = true;
+        auto take = [&](const std::vector<double> &v, size_t n, float *out, const char *what) {
+            if (v.empty())
+                return;
+            if (v.size() != n) {
+                DIRT_WARN("%s: node %zu: %s has %zu values, expected %zu; ignored",
+                          L.path.c_str(), i, what, v.size(), n);
+                return;
+            }
+            for (size_t k = 0; k < n; k++) {
+                out[k] = (float)v[k];
+                finite &= std::isfinite(out[k]);
+            }
+        };
+        take(src.translation, 3, d->translation, "translation");
+        take(src.rotation, 4, d->rotation, "rotation");
+        take(src.scale, 3, d->scale, "scale");
+        if (!src.matrix.empty()) {
+            if (src.matrix.size() == 16) {
+                d->has_matrix = true;
+                take(src.matrix, 16, d->matrix, "matrix");
+            } else {
+                DIRT_WARN("%s: node %zu: matrix has %zu values; ignored", L.path.c_str(), i,
+                          src.matrix.size());
+            }
+        }
+        if (!finite) {
+            DIRT_ERROR("%s: node %zu has a non-finite transform", L.path.c_str(), i);
+            return false;
+        }
+        float q2 = d->rotation[0] * d->rotation[0] + d->rotation[1] * d->rotation[1] +
+                   d->rotation[2] * d->rotation[2] + d->rotation[3] * d->rotation[3];
+        if (q2 < 1e-12f) {
+            DIRT_WARN("%s: node %zu has a zero rotation quaternion; identity used",
+                      L.path.c_str(), i);
+            d->rotation[0] = d->rotation[1] = d->rotation[2] = 0.0f;
+            d->rotation[3] = 1.0f;
+        } else {
+            float inv = 1.0f / std::sqrt(q2);
+            for (int k = 0; k < 4; k++)
+                d->rotation[k] *= inv;
+        }
+        if (!src.weights.empty()) {
+            std::vector<float> w(src.weights.size());
+            for (size_t k = 0; k < w.size(); k++)
+                w[k] = finite_or(src.weights[k], 0.0f);
+            d->weights = dup_array(w);
+            d->num_weights = w.size();
+        }
+        auto ext = src.extensions.find("KHR_lights_punctual");
+        if (ext != src.extensions.end() && ext->second.IsObject() &&
+            ext->second.Has("light")) {
+            const tinygltf::Value &v = ext->second.Get("light");
+            if (v.IsNumber())
+                d->light = v.GetNumberAsInt();
+            if (d->light < 0) {
+                DIRT_ERROR("%s: node %zu: invalid KHR_lights_punctual light", L.path.c_str(), i);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+bool convert_skins(Loader &L)
+{
+    const tinygltf::Model &m = *L.m;
+    dirt_scene *s = L.s;
+    s->skins = alloc_zeroed<scene_skin>(m.skins.size());
+    s->num_skins = m.skins.size();
+    for (size_t i = 0; i < m.skins.size(); i++) {
+        const tinygltf::Skin &src = m.skins[i];
+        scene_skin *d = &s->skins[i];
+        size_t nj = src.joints.size();
+        d->joints = dup_array(src.joints);
+        d->num_joints = nj;
+        d->inverse_bind = alloc_zeroed<float[16]>(nj);
+        for (size_t j = 0; j < nj; j++)
+            scene_mat4_identity(d->inverse_bind[j]);
+        if (src.inverseBindMatrices >= 0) {
+            char what[200];
+            snprintf(what, sizeof(what), "%s: skin %zu inverseBindMatrices", L.path.c_str(),
+                     i);
+            std::vector<float> ibm;
+            if (!read_floats(m, src.inverseBindMatrices, what, 16, &ibm))
+                return false;
+            if (ibm.size() / 16 < nj) {
+                DIRT_ERROR("%s: %zu matrices for %zu joints", what, ibm.size() / 16, nj);
+                return false;
+            }
+            if (!all_finite(ibm)) {
+                DIRT_ERROR("%s: non-finite values", what);
+                return false;
+            }
+            memcpy(d->inverse_bind, ibm.data(), nj * 16 * sizeof(float));
+        }
+    }
+    return true;
+}
+
+void convert_cameras_lights(Loader &L)
+{
+    const tinygltf::Model &m = *L.m;
+    dirt_scene *s = L.s;
+    s->camera_protos = alloc_zeroed<dirt_camera_def>(m.cameras.size());
+    s->num_camera_protos = m.cameras.size();
+    for (size_t i = 0; i < m.cameras.size(); i++) {
+        const tinygltf::Camera &src = m.cameras[i];
+        dirt_camera_def *d = &s->camera_protos[i];
+        scene_copy_name(d->name, sizeof(d->name), src.name.c_str());
+        d->node = -1;
+        if (src.type == "orthographic") {
+            d->type = DIRT_CAMERA_ORTHOGRAPHIC;
+            d->xmag = finite_or(src.orthographic.xmag, 1.0f);
+            d->ymag = finite_or(src.orthographic.ymag, 1.0f);
+            d->znear = finite_or(src.orthographic.znear, 0.0f);
+            d->zfar = finite_or(src.orthographic.zfar, 0.0f);
+        } else {
+            if (src.type != "perspective")
+                DIRT_WARN("%s: camera %zu: unknown type '%s'; perspective assumed",
+                          L.path.c_str(), i, src.type.c_str());
+            d->type = DIRT_CAMERA_PERSPECTIVE;
+            d->yfov = finite_or(src.perspective.yfov, 0.0f);
+            if (!(d->yfov > 0.0f && d->yfov < 3.14159f)) {
+                DIRT_WARN("%s: camera %zu: invalid yfov %g; 45 degrees used", L.path.c_str(),
+                          i, (double)d->yfov);
+                d->yfov = 0.785398163f;
+            }
+            d->aspect = finite_or(src.perspective.aspectRatio, 0.0f);
+            d->znear = finite_or(src.perspective.znear, 0.0f);
+            d->zfar = finite_or(src.perspective.zfar, 0.0f);
+        }
+    }
+    s->light_protos = alloc_zeroed<dirt_light_def>(m.lights.size());
+    s->num_light_protos = m.lights.size();
+    for (size_t i = 0; i < m.lights.size(); i++) {
+        const tinygltf::Light &src = m.lights[i];
+        dirt_light_def *d = &s->light_protos[i];
+        scene_copy_name(d->name, sizeof(d->name), src.name.c_str());
+        d->node = -1;
+        if (src.type == "directional") {
+            d->type = DIRT_LIGHT_DIRECTIONAL;
+        } else if (src.type == "spot") {
+            d->type = DIRT_LIGHT_SPOT;
+        } else {
+            if (src.type != "point")
+                DIRT_WARN("%s: light %zu: unknown type '%s'; point assumed", L.path.c_str(),
+                          i, src.type.c_str());
+            d->type = DIRT_LIGHT_POINT;
+        }
+        for (int k = 0; k < 3; k++)
+            d->color[k] = src.color.size() == 3 ? finite_or(src.color[k], 1.0f) : 1.0f;
+        d->intensity = finite_or(src.intensity, 1.0f);
+        d->range = finite_or(src.range, 0.0f);
+        d->inner_cone = finite_or(src.spot.innerConeAngle, 0.0f);
+        d->outer_cone = finite_or(src.spot.outerConeAngle, 0.785398163f);
+    }
+}
+
+/* ---- animations --------------------------------------------------------- */
+
+bool convert_sampler(Loader &L, const tinygltf::AnimationSampler &src, size_t width,
+                     bool quat, const char *what, scene_sampler *d)
+{
+    const tinygltf::Model &m = *L.m;
+    if (src.interpolation == "STEP") {
+        d->interp = SCENE_INTERP_STEP;
+    } else if (src.interpolation == "CUBICSPLINE") {
+        d->interp = SCENE_INTERP_CUBIC;
+    } else {
+        if (src.interpolation != "LINEAR")
+            DIRT_WARN("%s: unknown interpolation '%s'; LINEAR used", what,
+                      src.interpolation.c_str());
+        d->interp = SCENE_INTERP_LINEAR;
+    }
+    std::vector<float> times, values;
+    std::string ctx = std::string(what) + " input";
+    if (!read_floats(m, src.input, ctx.c_str(), 1, &times))
+        return false;
+    ctx = std::string(what) + " output";
+    if (!read_floats(m, src.output, ctx.c_str(), 0, &values))
+        return false;
+    if (times.empty()) {
+        DIRT_ERROR("%s: no keyframes", what);
+        return false;
+    }
+    for (size_t k = 0; k < times.size(); k++) {
+        if (!std::isfinite(times[k]) || (k > 0 && times[k] < times[k - 1])) {
+            DIRT_ERROR("%s: key times must be finite and increasing (key %zu)", what, k);
+            return false;
+        }
+    }
+    if (!all_finite(values)) {
+        DIRT_ERROR("%s: non-finite output values", what);
+        return false;
+    }
+    size_t per_key = width * (d->interp == SCENE_INTERP_CUBIC ? 3 : 1);
+    if (values.size() / per_key < times.size()) {
+        DIRT_ERROR("%s: %zu output values for %zu keys of %zu values", what, values.size(),
+                   times.size(), per_key);
+        return false;
+    }
+    values.resize(times.size() * per_key);
+    if (quat && d->interp != SCENE_INTERP_CUBIC) {
+        for (size_t k = 0; k < times.size(); k++) {
+            float *q = &values[4 * k];
+            float l = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+            if (l > 1e-12f) {
+                for (int c = 0; c < 4; c++)
+                    q[c] /= l;
+            } else {
+                q[0] = q[1] = q[2] = 0.0f;
+                q[3] = 1.0f;
+            }
+        }
+    }
+    d->num_keys = times.size();
+    d->width = width;
+    d->times = dup_array(times);
+    d->values = dup_array(values);
+    return true;
+}
+
+bool convert_animations(Loader &L)
+{
+    const tinygltf::Model &m = *L.m;
+    dirt_scene *s = L.s;
+    s->clips = alloc_zeroed<scene_clip>(m.animations.size());
+    s->num_clips = m.animations.size();
+    for (size_t a = 0; a < m.animations.size(); a++) {
+        const tinygltf::Animation &src = m.animations[a];
+        scene_clip *clip = &s->clips[a];
+        std::string name = src.name.empty() ? "animation " + std::to_string(a) : src.name;
+        scene_copy_name(clip->name, sizeof(clip->name), name.c_str());
+        /* One sampler per channel (a shared glTF sampler is duplicated). */
+        clip->channels = alloc_zeroed<scene_channel>(src.channels.size());
+        clip->samplers = alloc_zeroed<scene_sampler>(src.channels.size());
+        for (size_t c = 0; c < src.channels.size(); c++) {
+            const tinygltf::AnimationChannel &ch = src.channels[c];
+            char what[300];
+            snprintf(what, sizeof(what), "%s: animation %zu ('%s') channel %zu",
+                     L.path.c_str(), a, name.c_str(), c);
+            if (ch.target_node < 0) {
+                DIRT_WARN("%s: no target node; ignored", what);
+                continue;
+            }
+            if ((size_t)ch.target_node >= s->num_nodes) {
+                DIRT_ERROR("%s: target node %d out of range (%zu nodes)", what,
+                           ch.target_node, s->num_nodes);
+                return false;
+            }
+            if (ch.sampler < 0 || (size_t)ch.sampler >= src.samplers.size()) {
+                DIRT_ERROR("%s: sampler %d out of range (%zu samplers)", what, ch.sampler,
+                           src.samplers.size());
+                return false;
+            }
+            const scene_node *node = &s->nodes[ch.target_node];
+            enum scene_path path;
+            size_t width;
+            if (ch.target_path == "translation") {
+                path = SCENE_PATH_TRANSLATION;
+                width = 3;
+            } else if (ch.target_path == "rotation") {
+                path = SCENE_PATH_ROTATION;
+                width = 4;
+            } else if (ch.target_path == "scale") {
+                path = SCENE_PATH_SCALE;
+                width = 3;
+            } else if (ch.target_path == "weights") {
+                path = SCENE_PATH_WEIGHTS;
+                if (node->mesh < 0 || (size_t)node->mesh >= s->num_meshes ||
+                    s->meshes[node->mesh].num_weights == 0) {
+                    DIRT_WARN("%s: weights of node %d, which has no morph targets; ignored",
+                              what, ch.target_node);
+                    continue;
+                }
+                width = s->meshes[node->mesh].num_weights;
+            } else {
+                DIRT_WARN("%s: unsupported path '%s'; ignored", what, ch.target_path.c_str());
+                continue;
+            }
+            if (node->has_matrix && path != SCENE_PATH_WEIGHTS) {
+                DIRT_WARN("%s: node %d is defined by a matrix and cannot be animated; "
+                          "ignored", what, ch.target_node);
+                continue;
+            }
+            scene_sampler *smp = &clip->samplers[clip->num_samplers];
+            clip->num_samplers++; /* counted first so that a failure frees it */
+            if (!convert_sampler(L, src.samplers[(size_t)ch.sampler], width,
+                                 path == SCENE_PATH_ROTATION, what, smp))
+                return false;
+            scene_channel *dc = &clip->channels[clip->num_channels++];
+            dc->node = ch.target_node;
+            dc->path = path;
+            dc->sampler = (int)(clip->num_samplers - 1);
+            float last = smp->times[smp->num_keys - 1];
+            if (last > clip->duration)
+                clip->duration = last;
+        }
+    }
+    return true;
+}
+
+/* ---- file reading ------------------------------------------------------- */
+
+bool read_file(const char *path, std::vector<unsigned char> *out)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        DIRT_ERROR("cannot open '%s': %s", path, strerror(errno));
+        return false;
+    }
+    unsigned char buf[1 << 16];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof(buf), f)) > 0)
+        out->insert(out->end(), buf, buf + n);
+    bool err = ferror(f) != 0;
+    fclose(f);
+    if (err) {
+        DIRT_ERROR("cannot read '%s'", path);
+        return false;
+    }
+    return true;
+}
+
+/* Keeps encoded image bytes for decoding on first use (only the images that
+ * materials reference get decoded, and a bad image only warns). Images in
+ * buffer views are read later, with range checks. */
+bool keep_encoded_image(tinygltf::Image *image, const int, std::string *, std::string *, int,
+                        int, const unsigned char *bytes, int size, void *)
+{
+    if (image->bufferView >= 0)
+        return true;
+    if (bytes && size > 0)
+        image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+void log_lines(bool error, const char *path, const std::string &text)
+{
+    size_t start = 0;
+    while (start < text.size()) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos)
+            end = text.size();
+        if (end > start) {
+            std::string line = text.substr(start, end - start);
+            if (error)
+                DIRT_ERROR("%s: %s", path, line.c_str());
+            else
+                DIRT_WARN("%s: %s", path, line.c_str());
+        }
+        start = end + 1;
+    }
+}
+
+std::string file_stem(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+    size_t dot = base.find_last_of('.');
+    return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+bool parse_model(const char *path, tinygltf::Model *model)
+{
+    std::vector<unsigned char> bytes;
+    if (!read_file(path, &bytes))
+        return false;
+    if (bytes.empty()) {
+        DIRT_ERROR("'%s' is empty", path);
+        return false;
+    }
+    if (bytes.size() > UINT32_MAX) {
+        DIRT_ERROR("'%s' is larger than 4 GiB", path);
+        return false;
+    }
+    std::string p(path);
+    size_t slash = p.find_last_of('/');
+    std::string base_dir = slash == std::string::npos ? "." : p.substr(0, slash);
+    if (base_dir.empty())
+        base_dir = "/";
+
+    tinygltf::TinyGLTF gltf;
+    gltf.SetImageLoader(keep_encoded_image, nullptr);
+    std::string err, warn;
+    bool ok;
+    bool binary = bytes.size() >= 4 && memcmp(bytes.data(), "glTF", 4) == 0;
+    if (binary) {
+        if (bytes.size() < 20) {
+            DIRT_ERROR("'%s': truncated .glb (%zu bytes, header needs 20)", path, bytes.size());
+            return false;
+        }
+        uint32_t length = le32(&bytes[8]);
+        uint32_t json_len = le32(&bytes[12]);
+        if (length > bytes.size()) {
+            DIRT_ERROR("'%s': truncated .glb: header says %u bytes, file has %zu", path,
+                       length, bytes.size());
+            return false;
+        }
+        if ((uint64_t)json_len + 20u > length) {
+            DIRT_ERROR("'%s': truncated .glb: JSON chunk of %u bytes exceeds the file", path,
+                       json_len);
+            return false;
+        }
+        if (length >= (uint64_t)json_len + 28u) {
+            uint32_t bin_len = le32(&bytes[20 + json_len]);
+            if ((uint64_t)json_len + 28u + bin_len > length) {
+                DIRT_ERROR("'%s': truncated .glb: BIN chunk of %u bytes exceeds the file",
+                           path, bin_len);
+                return false;
+            }
+        }
+        ok = gltf.LoadBinaryFromMemory(model, &err, &warn, bytes.data(),
+                                       (unsigned int)bytes.size(), base_dir);
+    } else {
+        ok = gltf.LoadASCIIFromString(model, &err, &warn, (const char *)bytes.data(),
+                                      (unsigned int)bytes.size(), base_dir);
+    }
+    log_lines(false, path, warn);
+    if (!ok) {
+        if (err.empty())
+            err = "tinygltf could not parse the file";
+        log_lines(true, path, err);
+        DIRT_ERROR("cannot load '%s'", path);
+        return false;
+    }
+    return true;
+}
+
+/* Destroys the scene under construction unless released (also when a
+ * conversion step throws). */
+struct SceneGuard {
+    dirt_scene *s;
+    ~SceneGuard() { dirt_scene_destroy(s); }
+    dirt_scene *release()
+    {
+        dirt_scene *r = s;
+        s = nullptr;
+        return r;
+    }
+};
+
+bool convert(Loader &L, const tinygltf::Model &model, const char *path)
+{
+    bool need_default = false;
+    for (const auto &mesh : model.meshes) {
+        for (const auto &p : mesh.primitives)
+            need_default |= p.material < 0;
+    }
+
+    /* The default scene, else scene 0, else (no scenes) every root node. */
+    static const int no_roots = 0;
+    std::vector<int> roots;
+    const int *roots_ptr = nullptr;
+    if (!model.scenes.empty()) {
+        int sc = model.defaultScene;
+        if (sc >= 0 && (size_t)sc >= model.scenes.size()) {
+            DIRT_ERROR("%s: default scene %d out of range (%zu scenes)", path, sc,
+                       model.scenes.size());
+            return false;
+        }
+        if (sc < 0)
+            sc = 0;
+        roots = model.scenes[(size_t)sc].nodes;
+        roots_ptr = roots.empty() ? &no_roots : roots.data();
+    }
+
+    convert_materials(L, need_default);
+    if (!convert_meshes(L) || !convert_nodes(L) || !convert_skins(L))
+        return false;
+    convert_cameras_lights(L);
+    if (!convert_animations(L))
+        return false;
+    return scene_finalize(L.s, roots_ptr, roots.size());
+}
+
+dirt_scene *load(const char *path)
+{
+    tinygltf::Model model;
+    if (!parse_model(path, &model))
+        return nullptr;
+
+    SceneGuard guard{scene_new(file_stem(path).c_str())};
+    if (!guard.s)
+        return nullptr;
+    Loader L;
+    L.m = &model;
+    L.s = guard.s;
+    L.path = path;
+    if (!convert(L, model, path)) {
+        DIRT_ERROR("cannot load '%s'", path);
+        return nullptr;
+    }
+    return guard.release();
+}
+
+} // namespace
+
+extern "C" dirt_scene *scene_load_gltf(const char *path)
+{
+    try {
+        return load(path);
+    } catch (const std::bad_alloc &) {
+        DIRT_ERROR("out of memory loading '%s'", path);
+    } catch (const std::exception &e) {
+        DIRT_ERROR("cannot load '%s': %s", path, e.what());
+    } catch (...) {
+        DIRT_ERROR("cannot load '%s': unknown error", path);
+    }
+    return nullptr;
+}

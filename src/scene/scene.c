@@ -1,0 +1,514 @@
+/* DIRT engine: scene ownership, validation of the node graph, accessors. */
+#include "scene/scene_internal.h"
+
+#include "dirt/log.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void scene_copy_name(char *dst, size_t size, const char *src)
+{
+    if (size == 0)
+        return;
+    if (!src)
+        src = "";
+    size_t n = strlen(src);
+    if (n >= size)
+        n = size - 1;
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
+dirt_scene *scene_new(const char *name)
+{
+    dirt_scene *s = calloc(1, sizeof(*s));
+    if (!s) {
+        DIRT_ERROR("out of memory allocating a scene");
+        return NULL;
+    }
+    scene_copy_name(s->name, sizeof(s->name), name);
+    return s;
+}
+
+void scene_mat4_identity(float m[16])
+{
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = m[5] = m[10] = m[15] = 1.0f;
+}
+
+void scene_mat4_mul(float out[16], const float a[16], const float b[16])
+{
+    float r[16];
+    for (int c = 0; c < 4; c++) {
+        for (int row = 0; row < 4; row++) {
+            r[c * 4 + row] = a[0 * 4 + row] * b[c * 4 + 0] + a[1 * 4 + row] * b[c * 4 + 1] +
+                             a[2 * 4 + row] * b[c * 4 + 2] + a[3 * 4 + row] * b[c * 4 + 3];
+        }
+    }
+    memcpy(out, r, sizeof(r));
+}
+
+void scene_mat4_from_trs(float out[16], const float t[3], const float q[4],
+                         const float s[3])
+{
+    float x = q[0], y = q[1], z = q[2], w = q[3];
+    float xx = x * x, yy = y * y, zz = z * z;
+    float xy = x * y, xz = x * z, yz = y * z;
+    float wx = w * x, wy = w * y, wz = w * z;
+    /* Columns of R scaled by S. */
+    out[0] = (1.0f - 2.0f * (yy + zz)) * s[0];
+    out[1] = (2.0f * (xy + wz)) * s[0];
+    out[2] = (2.0f * (xz - wy)) * s[0];
+    out[3] = 0.0f;
+    out[4] = (2.0f * (xy - wz)) * s[1];
+    out[5] = (1.0f - 2.0f * (xx + zz)) * s[1];
+    out[6] = (2.0f * (yz + wx)) * s[1];
+    out[7] = 0.0f;
+    out[8] = (2.0f * (xz + wy)) * s[2];
+    out[9] = (2.0f * (yz - wx)) * s[2];
+    out[10] = (1.0f - 2.0f * (xx + yy)) * s[2];
+    out[11] = 0.0f;
+    out[12] = t[0];
+    out[13] = t[1];
+    out[14] = t[2];
+    out[15] = 1.0f;
+}
+
+static bool check_node_refs(const dirt_scene *s)
+{
+    for (size_t i = 0; i < s->num_nodes; i++) {
+        const scene_node *n = &s->nodes[i];
+        if (n->mesh < -1 || (n->mesh >= 0 && (size_t)n->mesh >= s->num_meshes)) {
+            DIRT_ERROR("node %zu: mesh %d out of range (%zu meshes)", i, n->mesh,
+                       s->num_meshes);
+            return false;
+        }
+        if (n->skin < -1 || (n->skin >= 0 && (size_t)n->skin >= s->num_skins)) {
+            DIRT_ERROR("node %zu: skin %d out of range (%zu skins)", i, n->skin,
+                       s->num_skins);
+            return false;
+        }
+        if (n->camera < -1 ||
+            (n->camera >= 0 && (size_t)n->camera >= s->num_camera_protos)) {
+            DIRT_ERROR("node %zu: camera %d out of range (%zu cameras)", i, n->camera,
+                       s->num_camera_protos);
+            return false;
+        }
+        if (n->light < -1 || (n->light >= 0 && (size_t)n->light >= s->num_light_protos)) {
+            DIRT_ERROR("node %zu: light %d out of range (%zu lights)", i, n->light,
+                       s->num_light_protos);
+            return false;
+        }
+    }
+    for (size_t k = 0; k < s->num_skins; k++) {
+        const scene_skin *sk = &s->skins[k];
+        for (size_t j = 0; j < sk->num_joints; j++) {
+            if (sk->joints[j] < 0 || (size_t)sk->joints[j] >= s->num_nodes) {
+                DIRT_ERROR("skin %zu: joint %zu is node %d, out of range (%zu nodes)", k, j,
+                           sk->joints[j], s->num_nodes);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/* Sets parents; fails on a child index out of range, a node listed as a child
+ * twice (two parents) or a node that is its own child. */
+static bool link_parents(dirt_scene *s)
+{
+    for (size_t i = 0; i < s->num_nodes; i++)
+        s->nodes[i].parent = -1;
+    for (size_t i = 0; i < s->num_nodes; i++) {
+        const scene_node *n = &s->nodes[i];
+        for (size_t c = 0; c < n->num_children; c++) {
+            int ch = n->children[c];
+            if (ch < 0 || (size_t)ch >= s->num_nodes) {
+                DIRT_ERROR("node %zu: child %d out of range (%zu nodes)", i, ch,
+                           s->num_nodes);
+                return false;
+            }
+            if ((size_t)ch == i) {
+                DIRT_ERROR("node %zu is its own child (node cycle)", i);
+                return false;
+            }
+            if (s->nodes[ch].parent != -1) {
+                DIRT_ERROR("node %d has more than one parent (%d and %zu)", ch,
+                           s->nodes[ch].parent, i);
+                return false;
+            }
+            s->nodes[ch].parent = (int)i;
+        }
+    }
+    return true;
+}
+
+/* Pre-order walk of the subtree at `root` with an explicit stack (children in
+ * file order). Calls visit(s, node, user) for each node; `stack` has room for
+ * num_nodes entries. Cycle-free graphs only. */
+typedef void (*visit_fn)(dirt_scene *s, int node, void *user);
+
+static void walk(dirt_scene *s, int root, int *stack, visit_fn visit, void *user)
+{
+    size_t top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+        int n = stack[--top];
+        visit(s, n, user);
+        const scene_node *node = &s->nodes[n];
+        for (size_t c = node->num_children; c > 0; c--)
+            stack[top++] = node->children[c - 1];
+    }
+}
+
+static void visit_order(dirt_scene *s, int node, void *user)
+{
+    size_t *count = user;
+    s->eval_order[(*count)++] = node;
+}
+
+typedef struct gather_state {
+    size_t num_instances, num_cameras, num_lights;
+    bool fill;
+} gather_state;
+
+static void visit_gather(dirt_scene *s, int node, void *user)
+{
+    gather_state *g = user;
+    const scene_node *n = &s->nodes[node];
+    if (n->mesh >= 0) {
+        if (g->fill) {
+            scene_instance *in = &s->instances[g->num_instances];
+            in->node = node;
+            in->mesh = n->mesh;
+            in->skin = n->skin;
+            in->first_triangle = s->num_triangles;
+            s->num_triangles += s->meshes[n->mesh].num_triangles;
+        }
+        g->num_instances++;
+    }
+    if (n->camera >= 0) {
+        if (g->fill) {
+            dirt_camera_def *c = &s->cameras[g->num_cameras];
+            *c = s->camera_protos[n->camera];
+            c->node = node;
+        }
+        g->num_cameras++;
+    }
+    if (n->light >= 0) {
+        if (g->fill) {
+            dirt_light_def *l = &s->lights[g->num_lights];
+            *l = s->light_protos[n->light];
+            l->node = node;
+        }
+        g->num_lights++;
+    }
+}
+
+static bool check_skinned_instances(const dirt_scene *s)
+{
+    for (size_t i = 0; i < s->num_instances; i++) {
+        const scene_instance *in = &s->instances[i];
+        if (in->skin < 0)
+            continue;
+        const scene_skin *sk = &s->skins[in->skin];
+        const scene_mesh *m = &s->meshes[in->mesh];
+        for (size_t p = 0; p < m->num_prims; p++) {
+            const scene_prim *pr = &m->prims[p];
+            if (!pr->joints)
+                continue;
+            for (size_t v = 0; v < pr->num_vertices; v++) {
+                for (int k = 0; k < 4; k++) {
+                    if (pr->weights[v][k] != 0.0f && pr->joints[v][k] >= sk->num_joints) {
+                        DIRT_ERROR("node %d: mesh %d primitive %zu vertex %zu uses joint %u "
+                                   "but skin %d has %zu joints",
+                                   in->node, in->mesh, p, v, (unsigned)pr->joints[v][k],
+                                   in->skin, sk->num_joints);
+                        return false;
+                    }
+                }
+            }
+        }
+    }
+    return true;
+}
+
+bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
+{
+    int *stack = NULL;
+    bool *seen = NULL;
+
+    if (!check_node_refs(s) || !link_parents(s))
+        goto error;
+
+    size_t n = s->num_nodes;
+    stack = malloc((n ? n : 1) * sizeof(*stack));
+    seen = calloc(n ? n : 1, sizeof(*seen));
+    s->eval_order = malloc((n ? n : 1) * sizeof(*s->eval_order));
+    if (!stack || !seen || !s->eval_order) {
+        DIRT_ERROR("out of memory finalizing scene '%s'", s->name);
+        goto error;
+    }
+
+    /* With at most one parent per node, a node unreachable from the
+     * parentless nodes lies on a cycle. */
+    size_t count = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (s->nodes[i].parent == -1)
+            walk(s, (int)i, stack, visit_order, &count);
+    }
+    if (count != n) {
+        DIRT_ERROR("scene '%s': node cycle (%zu of %zu nodes unreachable from a root)",
+                   s->name, n - count, n);
+        goto error;
+    }
+
+    /* The shown roots: validated, parentless, without duplicates. */
+    if (!roots) {
+        for (size_t i = 0; i < n; i++)
+            num_roots += s->nodes[i].parent == -1;
+    }
+    s->roots = malloc((num_roots ? num_roots : 1) * sizeof(*s->roots));
+    if (!s->roots) {
+        DIRT_ERROR("out of memory finalizing scene '%s'", s->name);
+        goto error;
+    }
+    if (!roots) {
+        for (size_t i = 0; i < n; i++) {
+            if (s->nodes[i].parent == -1)
+                s->roots[s->num_roots++] = (int)i;
+        }
+    } else {
+        for (size_t i = 0; i < num_roots; i++) {
+            int r = roots[i];
+            if (r < 0 || (size_t)r >= n) {
+                DIRT_ERROR("scene '%s': root node %d out of range (%zu nodes)", s->name, r,
+                           n);
+                goto error;
+            }
+            if (s->nodes[r].parent != -1) {
+                DIRT_WARN("scene '%s': root node %d has a parent; ignored", s->name, r);
+                continue;
+            }
+            if (seen[r]) {
+                DIRT_WARN("scene '%s': root node %d listed twice; ignored", s->name, r);
+                continue;
+            }
+            seen[r] = true;
+            s->roots[s->num_roots++] = r;
+        }
+    }
+
+    /* Node weights must match their mesh's morph target count. */
+    s->total_weights = 0;
+    for (size_t i = 0; i < n; i++) {
+        scene_node *node = &s->nodes[i];
+        node->weight_offset = s->total_weights;
+        if (node->mesh < 0)
+            continue;
+        size_t nw = s->meshes[node->mesh].num_weights;
+        if (node->weights && node->num_weights != nw) {
+            DIRT_WARN("node %zu: %zu morph weights but mesh %d has %zu targets; using the "
+                      "mesh's", i, node->num_weights, node->mesh, nw);
+            free(node->weights);
+            node->weights = NULL;
+            node->num_weights = 0;
+        }
+        s->total_weights += nw;
+    }
+    s->total_joints = 0;
+    for (size_t k = 0; k < s->num_skins; k++) {
+        s->skins[k].joint_offset = s->total_joints;
+        s->total_joints += s->skins[k].num_joints;
+    }
+    s->max_prim_vertices = 0;
+    for (size_t m = 0; m < s->num_meshes; m++) {
+        for (size_t p = 0; p < s->meshes[m].num_prims; p++) {
+            if (s->meshes[m].prims[p].num_vertices > s->max_prim_vertices)
+                s->max_prim_vertices = s->meshes[m].prims[p].num_vertices;
+        }
+    }
+
+    /* Two passes over the shown hierarchy: count, then fill. */
+    gather_state g = {0};
+    for (size_t r = 0; r < s->num_roots; r++)
+        walk(s, s->roots[r], stack, visit_gather, &g);
+    s->instances = calloc(g.num_instances ? g.num_instances : 1, sizeof(*s->instances));
+    s->cameras = calloc(g.num_cameras ? g.num_cameras : 1, sizeof(*s->cameras));
+    s->lights = calloc(g.num_lights ? g.num_lights : 1, sizeof(*s->lights));
+    if (!s->instances || !s->cameras || !s->lights) {
+        DIRT_ERROR("out of memory finalizing scene '%s'", s->name);
+        goto error;
+    }
+    s->num_instances = g.num_instances;
+    s->num_cameras = g.num_cameras;
+    s->num_lights = g.num_lights;
+    s->num_triangles = 0;
+    g = (gather_state){.fill = true};
+    for (size_t r = 0; r < s->num_roots; r++)
+        walk(s, s->roots[r], stack, visit_gather, &g);
+    if (s->num_triangles > UINT32_MAX / 3) {
+        DIRT_ERROR("scene '%s': %zu triangles is too many", s->name, s->num_triangles);
+        goto error;
+    }
+
+    if (!check_skinned_instances(s))
+        goto error;
+
+    free(stack);
+    free(seen);
+    return true;
+
+error:
+    free(stack);
+    free(seen);
+    return false;
+}
+
+static void free_prim(scene_prim *p)
+{
+    free(p->position);
+    free(p->normal);
+    free(p->uv);
+    free(p->joints);
+    free(p->weights);
+    free(p->target_position);
+    free(p->target_normal);
+    free(p->indices);
+}
+
+void dirt_scene_destroy(dirt_scene *s)
+{
+    if (!s)
+        return;
+    for (size_t i = 0; i < s->num_nodes; i++) {
+        free(s->nodes[i].children);
+        free(s->nodes[i].weights);
+    }
+    free(s->nodes);
+    for (size_t i = 0; i < s->num_meshes; i++) {
+        for (size_t p = 0; p < s->meshes[i].num_prims; p++)
+            free_prim(&s->meshes[i].prims[p]);
+        free(s->meshes[i].prims);
+        free(s->meshes[i].weights);
+    }
+    free(s->meshes);
+    for (size_t i = 0; i < s->num_skins; i++) {
+        free(s->skins[i].joints);
+        free(s->skins[i].inverse_bind);
+    }
+    free(s->skins);
+    free(s->materials);
+    for (size_t i = 0; i < s->num_textures; i++)
+        free(s->textures[i].rgba);
+    free(s->textures);
+    free(s->camera_protos);
+    free(s->light_protos);
+    for (size_t i = 0; i < s->num_clips; i++) {
+        for (size_t k = 0; k < s->clips[i].num_samplers; k++) {
+            free(s->clips[i].samplers[k].times);
+            free(s->clips[i].samplers[k].values);
+        }
+        free(s->clips[i].samplers);
+        free(s->clips[i].channels);
+    }
+    free(s->clips);
+    free(s->roots);
+    free(s->eval_order);
+    free(s->instances);
+    free(s->cameras);
+    free(s->lights);
+    free(s);
+}
+
+dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
+{
+    (void)opts;
+    if (!path || !*path) {
+        DIRT_ERROR("dirt_scene_load: no path given");
+        return NULL;
+    }
+    return scene_load_gltf(path);
+}
+
+const char *dirt_scene_name(const dirt_scene *s)
+{
+    return s ? s->name : "";
+}
+
+size_t dirt_scene_num_materials(const dirt_scene *s)
+{
+    return s ? s->num_materials : 0;
+}
+
+const dirt_material *dirt_scene_materials(const dirt_scene *s)
+{
+    return s ? s->materials : NULL;
+}
+
+size_t dirt_scene_num_textures(const dirt_scene *s)
+{
+    return s ? s->num_textures : 0;
+}
+
+const dirt_texture *dirt_scene_textures(const dirt_scene *s)
+{
+    return s ? s->textures : NULL;
+}
+
+size_t dirt_scene_num_cameras(const dirt_scene *s)
+{
+    return s ? s->num_cameras : 0;
+}
+
+const dirt_camera_def *dirt_scene_cameras(const dirt_scene *s)
+{
+    return s ? s->cameras : NULL;
+}
+
+size_t dirt_scene_num_lights(const dirt_scene *s)
+{
+    return s ? s->num_lights : 0;
+}
+
+const dirt_light_def *dirt_scene_lights(const dirt_scene *s)
+{
+    return s ? s->lights : NULL;
+}
+
+size_t dirt_scene_num_nodes(const dirt_scene *s)
+{
+    return s ? s->num_nodes : 0;
+}
+
+const char *dirt_scene_node_name(const dirt_scene *s, size_t node)
+{
+    if (!s || node >= s->num_nodes)
+        return NULL;
+    return s->nodes[node].name;
+}
+
+size_t dirt_scene_num_triangles(const dirt_scene *s)
+{
+    return s ? s->num_triangles : 0;
+}
+
+size_t dirt_scene_num_clips(const dirt_scene *s)
+{
+    return s ? s->num_clips : 0;
+}
+
+const char *dirt_scene_clip_name(const dirt_scene *s, size_t clip)
+{
+    if (!s || clip >= s->num_clips)
+        return NULL;
+    return s->clips[clip].name;
+}
+
+float dirt_scene_clip_duration(const dirt_scene *s, size_t clip)
+{
+    if (!s || clip >= s->num_clips)
+        return 0.0f;
+    return s->clips[clip].duration;
+}

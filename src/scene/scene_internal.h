@@ -1,0 +1,202 @@
+/* DIRT engine: scene model internals, shared by the glTF loader (C++), the
+ * procedural scenes and the animation evaluator (C).
+ *
+ * Builders (gltf.cpp, default_scene.c) allocate a scene with scene_new(),
+ * fill nodes, meshes, skins, materials, textures, camera/light prototypes and
+ * clips with malloc'd arrays, then call scene_finalize() with the root nodes
+ * of the scene to show. scene_finalize() validates the hierarchy and derives
+ * everything the evaluator needs (instances, evaluation order, offsets).
+ * dirt_scene_destroy() frees every array below with free(). */
+#ifndef DIRT_SCENE_INTERNAL_H
+#define DIRT_SCENE_INTERNAL_H
+
+#include "dirt/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Upper bound on the vertices, indices or keys of one array, so that every
+ * size computation below stays far from overflow. */
+#define SCENE_MAX_COUNT ((size_t)1 << 28)
+
+typedef struct scene_node {
+    char name[64];
+    int parent;              /* -1 for a root (set by scene_finalize) */
+    int *children;
+    size_t num_children;
+    /* Rest pose. When has_matrix is set the node is not animatable and
+     * `matrix` (column-major) is its local transform; otherwise T * R * S. */
+    float translation[3];
+    float rotation[4];       /* quaternion x, y, z, w */
+    float scale[3];
+    bool has_matrix;
+    float matrix[16];
+    int mesh, skin, camera, light;  /* -1 when absent; camera/light index the
+                                       prototypes */
+    float *weights;          /* morph weights of this instance, NULL = mesh's */
+    size_t num_weights;
+    size_t weight_offset;    /* into the evaluator's per-node weights (finalize) */
+} scene_node;
+
+/* One triangle-list primitive. Vertex attributes are per vertex; indices are
+ * always present (non-indexed glTF primitives get 0..n-1) and every index is
+ * < num_vertices. */
+typedef struct scene_prim {
+    uint32_t material;           /* index into scene materials */
+    size_t num_vertices;
+    float (*position)[3];
+    float (*normal)[3];          /* NULL: flat normals at evaluation */
+    float (*uv)[2];              /* NULL: (0,0) */
+    uint16_t (*joints)[4];       /* NULL when the primitive has no skin data */
+    float (*weights)[4];         /* sum to 1 (normalised at load) */
+    size_t num_targets;          /* morph targets */
+    float (*target_position)[3]; /* num_targets * num_vertices deltas,
+                                    target-major, NULL if no target has one */
+    float (*target_normal)[3];   /* same layout, NULL if none */
+    size_t num_triangles;
+    uint32_t *indices;           /* 3 * num_triangles */
+} scene_prim;
+
+typedef struct scene_mesh {
+    char name[64];
+    scene_prim *prims;
+    size_t num_prims;
+    float *weights;              /* default morph weights, num_weights long */
+    size_t num_weights;          /* max num_targets over the primitives */
+    size_t num_triangles;        /* sum over the primitives */
+} scene_mesh;
+
+typedef struct scene_skin {
+    int *joints;                 /* node indices */
+    float (*inverse_bind)[16];   /* one per joint, column-major */
+    size_t num_joints;
+    size_t joint_offset;         /* into the evaluator's joint matrices */
+} scene_skin;
+
+enum scene_path {
+    SCENE_PATH_TRANSLATION = 0,
+    SCENE_PATH_ROTATION = 1,
+    SCENE_PATH_SCALE = 2,
+    SCENE_PATH_WEIGHTS = 3,
+};
+
+enum scene_interp {
+    SCENE_INTERP_STEP = 0,
+    SCENE_INTERP_LINEAR = 1,
+    SCENE_INTERP_CUBIC = 2,
+};
+
+/* Keyframes. `values` holds num_keys elements of `width` floats, or for
+ * cubic splines num_keys triples (in-tangent, value, out-tangent) of
+ * elements. Times are finite and non-decreasing. */
+typedef struct scene_sampler {
+    enum scene_interp interp;
+    size_t num_keys;
+    float *times;
+    size_t width;
+    float *values;
+} scene_sampler;
+
+typedef struct scene_channel {
+    int node;
+    enum scene_path path;
+    int sampler;                 /* index into the clip's samplers */
+} scene_channel;
+
+typedef struct scene_clip {
+    char name[64];
+    scene_channel *channels;
+    size_t num_channels;
+    scene_sampler *samplers;
+    size_t num_samplers;
+    float duration;              /* largest key time */
+} scene_clip;
+
+/* A node carrying a mesh, reached from the scene roots. */
+typedef struct scene_instance {
+    int node;
+    int mesh;
+    int skin;                    /* -1 = rigid */
+    size_t first_triangle;       /* primitive id of its first triangle */
+} scene_instance;
+
+/* Counters gathered while loading (for diagnostics and tests). */
+typedef struct scene_load_stats {
+    size_t weights_normalized;   /* vertices whose WEIGHTS_0 summed to a value
+                                    farther than 1e-6 from 1 */
+    size_t textures_failed;      /* referenced images missing/undecodable */
+    size_t prims_skipped;        /* point/line primitives, or no POSITION */
+} scene_load_stats;
+
+struct dirt_scene {
+    char name[256];
+
+    scene_node *nodes;
+    size_t num_nodes;
+    scene_mesh *meshes;
+    size_t num_meshes;
+    scene_skin *skins;
+    size_t num_skins;
+    dirt_material *materials;
+    size_t num_materials;
+    dirt_texture *textures;
+    size_t num_textures;
+    dirt_camera_def *camera_protos; /* as in the file; node = -1 */
+    size_t num_camera_protos;
+    dirt_light_def *light_protos;
+    size_t num_light_protos;
+    scene_clip *clips;
+    size_t num_clips;
+
+    /* Derived by scene_finalize. */
+    int *roots;                  /* the shown scene's root nodes, in order */
+    size_t num_roots;
+    int *eval_order;             /* every node, parents before children */
+    scene_instance *instances;   /* depth-first over roots, pre-order */
+    size_t num_instances;
+    dirt_camera_def *cameras;    /* one per camera node, depth-first */
+    size_t num_cameras;
+    dirt_light_def *lights;      /* one per light node, depth-first */
+    size_t num_lights;
+    size_t num_triangles;
+    size_t total_weights;        /* sum of mesh num_weights over mesh nodes */
+    size_t total_joints;         /* sum of skin joints */
+    size_t max_prim_vertices;
+
+    scene_load_stats stats;
+};
+
+/* A zeroed scene with the given name, NULL (logged) on out-of-memory. */
+dirt_scene *scene_new(const char *name);
+
+/* Validates the node graph (child indices in range, at most one parent per
+ * node, no cycles), the references of nodes (mesh, skin, camera, light),
+ * skins (joint indices) and skinned instances (JOINTS_0 < joint count), then
+ * derives the fields marked "derived" above. `roots` are the nodes of the
+ * scene to show; NULL with num_roots 0 means every parentless node. Returns
+ * false (logged) on an invalid scene. */
+bool scene_finalize(dirt_scene *scene, const int *roots, size_t num_roots);
+
+/* Copies `src` into a fixed-size name field, truncating, always terminated. */
+void scene_copy_name(char *dst, size_t size, const char *src);
+
+/* Reads a .gltf or .glb file into a finalized scene, NULL (logged) on error. */
+dirt_scene *scene_load_gltf(const char *path);
+
+/* Column-major 4x4 helpers shared by the evaluator and the builders. */
+void scene_mat4_identity(float m[16]);
+void scene_mat4_mul(float out[16], const float a[16], const float b[16]);
+void scene_mat4_from_trs(float out[16], const float t[3], const float q[4],
+                         const float s[3]);
+
+/* Sets forward (normalised `fwd`), right, up (orthonormalised against
+ * `up_hint`) and the view matrix of `cam` from its eye. Degenerate inputs
+ * fall back to -Z forward / any perpendicular up. */
+void scene_camera_set_basis(dirt_camera *cam, const float fwd[3],
+                            const float up_hint[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

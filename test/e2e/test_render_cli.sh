@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# dirt-render as a user runs it: --help, and every kind of bad input exits 2
+# with a one-line reason and leaves no file (not even a temporary one)
+# behind; good inputs write real images.
+#   test_render_cli.sh PATH/TO/dirt-render
+set -u
+render=$1
+tmp=$(mktemp -d /tmp/dirt-e2e-XXXXXX)
+trap 'rm -rf "$tmp"' EXIT
+fails=0 passes=0
+
+ok()   { passes=$((passes + 1)); }
+fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
+
+# expect_rc RC DESCRIPTION -- ARGS...: runs dirt-render, checks the exit code,
+# and for failures that stderr's last line names the program.
+expect_rc() {
+  local want=$1 what=$2; shift 3
+  "$render" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local rc=$?
+  if [ "$rc" -ne "$want" ]; then
+    fail "$what: exit $rc, want $want"; cat "$tmp/stderr" >&2; return
+  fi
+  if [ "$want" -ne 0 ] && ! tail -n 1 "$tmp/stderr" | grep -q '^dirt-render: '; then
+    fail "$what: no one-line reason on stderr"; cat "$tmp/stderr" >&2; return
+  fi
+  ok
+}
+
+# no_leftovers DIR: no image and no temporary file was left in DIR.
+no_leftovers() {
+  if [ -n "$(ls -A "$1")" ]; then fail "files left in $1: $(ls -A "$1")"; else ok; fi
+}
+
+# mkgltf NAME POSITION_BYTES INDEX_BYTES [MATERIAL_JSON]: a one-triangle glTF
+# with an embedded base64 buffer (bytes given as printf escapes).
+mkgltf() {
+  local name=$1 pos=$2 idx=$3 extra=${4:-}
+  local b64; b64=$(printf "$pos$idx" | base64 -w0)
+  local mat='' matref=''
+  if [ -n "$extra" ]; then mat=",$extra"; matref=',"material":0'; fi
+  cat > "$tmp/$name" <<JSON
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+ "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1$matref}]}],
+ "buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,$b64"}],
+ "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":8}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+              {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]$mat}
+JSON
+}
+ZERO='\x00\x00\x00\x00' ONE='\x00\x00\x80\x3f' NAN='\x00\x00\xc0\x7f'
+GOODPOS="$ZERO$ZERO$ZERO$ONE$ZERO$ZERO$ZERO$ONE$ZERO"
+mkgltf good.gltf "$GOODPOS" '\x00\x00\x01\x00\x02\x00\x00\x00'
+mkgltf badindex.gltf "$GOODPOS" '\x00\x00\x01\x00\x05\x00\x00\x00'
+mkgltf nan.gltf "$ZERO$ZERO$ZERO$NAN$ZERO$ZERO$ZERO$ONE$ZERO" '\x00\x00\x01\x00\x02\x00\x00\x00'
+mkgltf notex.gltf "$GOODPOS" '\x00\x00\x01\x00\x02\x00\x00\x00' \
+  '"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],"textures":[{"source":0}],"images":[{"uri":"missing.png"}]'
+printf 'glTF\x02\x00\x00\x00\x00\x10\x00\x00\x10\x00\x00\x00JSON{"asset"' > "$tmp/truncated.glb"
+printf '{"asset": {"version": "2.0"' > "$tmp/broken.gltf"
+
+out=$tmp/out; mkdir -p "$out"
+
+# --help
+expect_rc 0 "--help" -- --help
+grep -q '^Usage: dirt-render' "$tmp/stdout" && ok || fail "--help prints no usage"
+
+# bad options
+expect_rc 2 "unknown option" -- --bogus -o "$out/a.png"
+expect_rc 2 "no output" --
+expect_rc 2 "bad extension" -- -o "$out/a.bmp"
+expect_rc 2 "width not a number" -- -o "$out/a.png" -W abc
+expect_rc 2 "width zero" -- -o "$out/a.png" -W 0
+expect_rc 2 "missing value" -- -o "$out/a.png" -W
+expect_rc 2 "unknown engine" -- -o "$out/a.png" --engine optix
+expect_rc 2 "frames without pattern" -- -o "$out/a.png" --frames 0:3
+expect_rc 2 "frames reversed" -- -o "$out/a_%d.png" --frames 3:1
+expect_rc 2 "two scenes" -- "$tmp/good.gltf" "$tmp/good.gltf" -o "$out/a.png"
+no_leftovers "$out"
+
+# bad files
+expect_rc 2 "missing scene" -- "$tmp/nope.gltf" -o "$out/a.png"
+expect_rc 2 "truncated glb" -- "$tmp/truncated.glb" -o "$out/a.png"
+expect_rc 2 "malformed json" -- "$tmp/broken.gltf" -o "$out/a.png"
+expect_rc 2 "index out of range" -- "$tmp/badindex.gltf" -o "$out/a.png"
+expect_rc 2 "NaN position" -- "$tmp/nan.gltf" -o "$out/a.png"
+no_leftovers "$out"
+
+# unwritable outputs
+expect_rc 2 "missing output directory" -- -o "$tmp/no/such/dir/a.png"
+mkdir -p "$tmp/isdir.png"
+expect_rc 2 "output is a directory" -- -o "$tmp/isdir.png"
+expect_rc 2 "camera out of range" -- -o "$out/a.png" --camera 99
+no_leftovers "$out"
+
+# Good inputs need a GL context; without one the program says so with exit 3.
+"$render" -o "$out/default.png" -W 64 -H 48 >"$tmp/stdout" 2>"$tmp/stderr"
+rc=$?
+if [ $rc -eq 3 ]; then
+  echo "no OpenGL context: skipping the rendering half" >&2
+  echo "$passes passed, $fails failed"
+  [ $fails -eq 0 ] && exit 77 || exit 1
+fi
+[ $rc -eq 0 ] && ok || { fail "default render exit $rc"; cat "$tmp/stderr" >&2; }
+head -c 8 "$out/default.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' && ok || fail "default.png is not a PNG"
+grep -q "wrote $out/default.png" "$tmp/stdout" && ok || fail "output path not printed"
+
+expect_rc 0 "exr + png preview" -- -o "$out/d.exr" --png -W 32 -H 24
+head -c 4 "$out/d.exr" | od -An -tx1 | grep -q '76 2f 31 01' && ok || fail "d.exr is not an EXR"
+[ -s "$out/d.png" ] && ok || fail "no PNG preview beside the EXR"
+
+expect_rc 0 "frame range" -- "$tmp/good.gltf" -o "$out/f_%03d.png" --frames 2:4 -W 16 -H 16
+for i in 002 003 004; do [ -s "$out/f_$i.png" ] && ok || fail "frame $i missing"; done
+[ ! -e "$out/f_001.png" ] && [ ! -e "$out/f_005.png" ] && ok || fail "frames outside the range written"
+
+expect_rc 0 "missing texture only warns" -- "$tmp/notex.gltf" -o "$out/notex.png" -W 16 -H 16
+grep -qi "missing.png" "$tmp/stderr" && ok || fail "no warning naming the missing texture"
+
+ls "$out" | grep -q '\.tmp' && fail "temporary files left: $(ls "$out")" || ok
+echo "$passes passed, $fails failed"
+[ $fails -eq 0 ]

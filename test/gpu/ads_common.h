@@ -1,0 +1,65 @@
+/* Shared by the DIRT build tests: build, read back, check against the CPU
+ * reference, print the counts compared. */
+#ifndef DIRT_TEST_ADS_COMMON_H
+#define DIRT_TEST_ADS_COMMON_H
+
+#include "check.h"
+#include "dirt/ads.h"
+#include "dirt/ads_ref.h"
+
+/* Relative tolerance of depth-bound and bucket-edge comparisons: float
+ * rounding of clip-space coordinates (24-bit mantissa, a few operations). */
+#define ADS_DEPTH_TOL 1e-5
+
+static const char *mode_name(enum dirt_view_mode m)
+{
+    return m == DIRT_VIEWS_SINGLE ? "single" : m == DIRT_VIEWS_CUBE ? "cube" : "cube+camera";
+}
+
+/* Builds with `opts` and checks; returns false on any discrepancy. */
+static bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *f,
+                            const dirt_camera *cam, const dirt_ads_opts *opts)
+{
+    dirt_ads *ads = dirt_ads_create(gpu, opts);
+    CHECK(ads != NULL);
+    if (!ads)
+        return false;
+    bool ok = dirt_ads_build(ads, f, cam);
+    CHECK(ok);
+    dirt_ads_data data;
+    ads_check_report r = {0};
+    if (ok && (ok = dirt_ads_read(ads, &data))) {
+        const dirt_view_set *set = dirt_ads_views(ads);
+        CHECK(ads_check(set, f, &data, ADS_DEPTH_TOL, &r));
+        uint64_t pyr = ads_check_pyramid(set, &data);
+        const dirt_ads_stats *st = dirt_ads_get_stats(ads);
+        fprintf(stderr,
+                "%-14s %-11s S=%d B=%-2d: %6llu tiles, %7llu required pairs, %7llu on GPU, "
+                "%7llu allowed | missing %llu, beyond tol %llu, dup %llu, buckets %llu, "
+                "bounds %llu, links %llu, pyramid %llu | n_p %llu c %.2f runs %d\n",
+                label, mode_name(opts->views.mode), set->tile_size, opts->buckets,
+                (unsigned long long)r.tiles, (unsigned long long)r.required_pairs,
+                (unsigned long long)r.gpu_pairs, (unsigned long long)r.allowed_pairs,
+                (unsigned long long)r.missing, (unsigned long long)r.beyond_tolerance,
+                (unsigned long long)r.duplicates, (unsigned long long)r.bad_buckets,
+                (unsigned long long)r.bad_bounds, (unsigned long long)r.bad_list_links,
+                (unsigned long long)pyr, (unsigned long long)st->samples,
+                st->buckets_per_sample, st->fill_runs);
+        CHECK(r.missing == 0);
+        CHECK(r.beyond_tolerance == 0);
+        CHECK(r.duplicates == 0);
+        CHECK(r.bad_buckets == 0);
+        CHECK(r.bad_bounds == 0);
+        CHECK(r.bad_list_links == 0);
+        CHECK(pyr == 0);
+        CHECK(st->samples == r.gpu_pairs);
+        CHECK(r.required_pairs > 0);
+        ok = r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
+             r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 && pyr == 0;
+        dirt_ads_data_free(&data);
+    }
+    dirt_ads_destroy(ads);
+    return ok;
+}
+
+#endif

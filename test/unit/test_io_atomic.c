@@ -1,0 +1,271 @@
+/* Atomic writes: failures leave nothing behind, replacements are complete,
+ * aborts keep the original, temp files never survive. */
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "dirt/file.h"
+#include "dirt/image.h"
+
+static char g_dir[] = "/tmp/dirt_test_io_atomic.XXXXXX";
+
+static bool exists(const char *path)
+{
+    struct stat st;
+    return lstat(path, &st) == 0;
+}
+
+/* Number of entries in `dir` (excluding . and ..), and how many of them
+ * contain ".tmp." (leftover temp files). -1 when it cannot be opened. */
+static int count_entries(const char *dir, int *temps)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int n = 0;
+    *temps = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+            continue;
+        n++;
+        if (strstr(e->d_name, ".tmp."))
+            (*temps)++;
+    }
+    closedir(d);
+    return n;
+}
+
+/* Removes `path` and, when it is a directory, everything below it. */
+static void remove_tree(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return;
+    if (S_ISDIR(st.st_mode)) {
+        chmod(path, 0755);
+        DIR *d = opendir(path);
+        if (d) {
+            struct dirent *e;
+            char sub[1024];
+            while ((e = readdir(d))) {
+                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+                    continue;
+                snprintf(sub, sizeof(sub), "%s/%s", path, e->d_name);
+                remove_tree(sub);
+            }
+            closedir(d);
+        }
+        rmdir(path);
+    } else {
+        unlink(path);
+    }
+}
+
+static bool write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return false;
+    bool ok = fputs(text, f) >= 0;
+    return fclose(f) == 0 && ok;
+}
+
+/* True when the file at `path` holds exactly `text`. */
+static bool has_text(const char *path, const char *text)
+{
+    char buf[256] = {0};
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    size_t n = fread(buf, 1, sizeof(buf) - 1, f);
+    fclose(f);
+    return n == strlen(text) && memcmp(buf, text, n) == 0;
+}
+
+static dirt_image *small_image(float v)
+{
+    dirt_image *img = dirt_image_create(4, 3);
+    if (img)
+        for (int i = 0; i < 4 * 3 * 4; i++)
+            img->rgba[i] = v;
+    return img;
+}
+
+static void test_missing_directory(dirt_image *img)
+{
+    char dir[512], path[600];
+    snprintf(dir, sizeof(dir), "%s/does_not_exist", g_dir);
+    snprintf(path, sizeof(path), "%s/out.exr", dir);
+    CHECK(!dirt_image_write_exr(img, path, NULL));
+    snprintf(path, sizeof(path), "%s/out.png", dir);
+    CHECK(!dirt_image_write_png(img, path, NULL));
+    CHECK(!dirt_image_write(img, path, NULL));
+    CHECK(!dirt_write_file_atomic(path, "x", 1));
+    CHECK(dirt_atomic_open(path) == NULL);
+    CHECK(!exists(dir) && !exists(path));
+
+    /* a parent that is a regular file fails even for root */
+    char file[512];
+    snprintf(file, sizeof(file), "%s/plain_file", g_dir);
+    CHECK(write_text(file, "plain"));
+    snprintf(path, sizeof(path), "%s/out.exr", file);
+    CHECK(!dirt_image_write_exr(img, path, NULL));
+    CHECK(has_text(file, "plain"));
+    unlink(file);
+
+    int temps = 0;
+    CHECK(count_entries(g_dir, &temps) == 0);
+}
+
+static void test_readonly_directory(dirt_image *img)
+{
+    char dir[512], path[600];
+    snprintf(dir, sizeof(dir), "%s/readonly", g_dir);
+    CHECK(mkdir(dir, 0755) == 0);
+    CHECK(chmod(dir, 0555) == 0);
+    if (access(dir, W_OK) == 0) {
+        fprintf(stderr, "note: permissions not enforced (root?), skipping "
+                        "the read-only directory check\n");
+    } else {
+        snprintf(path, sizeof(path), "%s/out.exr", dir);
+        CHECK(!dirt_image_write_exr(img, path, NULL));
+        snprintf(path, sizeof(path), "%s/out.png", dir);
+        CHECK(!dirt_image_write_png(img, path, NULL));
+        CHECK(!dirt_write_file_atomic(path, "x", 1));
+        int temps = 0;
+        CHECK(count_entries(dir, &temps) == 0);
+    }
+    chmod(dir, 0755);
+    remove_tree(dir);
+}
+
+static void test_overwrite(dirt_image *img)
+{
+    char path[512];
+    int temps = 0;
+    snprintf(path, sizeof(path), "%s/over.exr", g_dir);
+    CHECK(write_text(path, "old content"));
+    CHECK(chmod(path, 0600) == 0);
+    CHECK(dirt_image_write(img, path, NULL));
+    dirt_image *back = dirt_image_read_exr(path);
+    CHECK(back != NULL);
+    if (back) {
+        CHECK(back->width == 4 && back->height == 3);
+        CHECK(back->rgba[0] == img->rgba[0]);
+        dirt_image_destroy(back);
+    }
+    struct stat st;
+    CHECK(stat(path, &st) == 0 && (st.st_mode & 0777) == 0600);
+    CHECK(count_entries(g_dir, &temps) == 1 && temps == 0);
+
+    /* overwrite once more with a PNG over a PNG */
+    snprintf(path, sizeof(path), "%s/over.png", g_dir);
+    CHECK(dirt_image_write_png(img, path, NULL));
+    CHECK(dirt_image_write_png(img, path, NULL));
+    CHECK(count_entries(g_dir, &temps) == 2 && temps == 0);
+    CHECK(stat(path, &st) == 0 && (st.st_mode & 0777) == 0644);
+    remove_tree(path);
+    snprintf(path, sizeof(path), "%s/over.exr", g_dir);
+    remove_tree(path);
+}
+
+static void test_stream_api(void)
+{
+    char path[512];
+    int temps = 0;
+    snprintf(path, sizeof(path), "%s/stats.json", g_dir);
+    CHECK(write_text(path, "original"));
+
+    /* abort: original intact, temp file gone */
+    dirt_atomic_file *f = dirt_atomic_open(path);
+    CHECK(f != NULL);
+    if (f) {
+        const char *tmp = dirt_atomic_temp_path(f);
+        CHECK(tmp && strncmp(tmp, path, strlen(path)) == 0 &&
+              strstr(tmp, ".tmp.") != NULL);
+        CHECK(exists(tmp));
+        CHECK(strcmp(dirt_atomic_target_path(f), path) == 0);
+        fputs("garbage that must never appear", dirt_atomic_stream(f));
+        fflush(dirt_atomic_stream(f));
+        CHECK(has_text(path, "original"));
+        char tmp_copy[600];
+        snprintf(tmp_copy, sizeof(tmp_copy), "%s", tmp);
+        dirt_atomic_abort(f);
+        CHECK(!exists(tmp_copy));
+    }
+    CHECK(has_text(path, "original"));
+    CHECK(count_entries(g_dir, &temps) == 1 && temps == 0);
+    dirt_atomic_abort(NULL);
+
+    /* commit replaces the content */
+    f = dirt_atomic_open(path);
+    CHECK(f != NULL);
+    if (f) {
+        fprintf(dirt_atomic_stream(f), "{\"frames\": %d}\n", 3);
+        CHECK(dirt_atomic_commit(f));
+    }
+    CHECK(has_text(path, "{\"frames\": 3}\n"));
+    CHECK(dirt_write_file_atomic(path, "replaced", 8));
+    CHECK(has_text(path, "replaced"));
+    CHECK(count_entries(g_dir, &temps) == 1 && temps == 0);
+
+    /* commit that cannot rename (a directory appeared at the target):
+     * fails, removes its temp file, leaves the directory alone */
+    char target[512];
+    snprintf(target, sizeof(target), "%s/becomes_dir", g_dir);
+    f = dirt_atomic_open(target);
+    CHECK(f != NULL);
+    if (f) {
+        fputs("data", dirt_atomic_stream(f));
+        CHECK(mkdir(target, 0755) == 0);
+        char keep[600];
+        snprintf(keep, sizeof(keep), "%s/keep", target);
+        CHECK(write_text(keep, "k")); /* non-empty: rename must fail */
+        CHECK(!dirt_atomic_commit(f));
+        CHECK(has_text(keep, "k"));
+    }
+    CHECK(count_entries(g_dir, &temps) == 2 && temps == 0);
+    remove_tree(target);
+    CHECK(dirt_atomic_open(g_dir) == NULL); /* a directory is not a file */
+    remove_tree(path);
+}
+
+static void test_bad_extension(dirt_image *img)
+{
+    char path[512];
+    int temps = 0;
+    snprintf(path, sizeof(path), "%s/out.bmp", g_dir);
+    CHECK(!dirt_image_write(img, path, NULL));
+    CHECK(!exists(path));
+    snprintf(path, sizeof(path), "%s/noext", g_dir);
+    CHECK(!dirt_image_write(img, path, NULL));
+    snprintf(path, sizeof(path), "%s/.exr", g_dir); /* extension only */
+    CHECK(!dirt_image_write(img, path, NULL));
+    CHECK(count_entries(g_dir, &temps) == 0);
+}
+
+int main(void)
+{
+    if (!mkdtemp(g_dir)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    dirt_image *img = small_image(0.25f);
+    CHECK(img != NULL);
+    if (img) {
+        test_missing_directory(img);
+        test_readonly_directory(img);
+        test_overwrite(img);
+        test_stream_api();
+        test_bad_extension(img);
+    }
+    dirt_image_destroy(img);
+    remove_tree(g_dir);
+    return check_finish();
+}
