@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "app/cli.h"
+#include "dirt/ads.h"
 #include "dirt/clock.h"
 #include "dirt/gpu.h"
 #include "dirt/image.h"
@@ -32,6 +33,11 @@ typedef struct options {
     double exposure;
     bool quiet;
     bool cpu_timing;
+    /* DIRT structure */
+    const char *debug_ads;    /* directory for pictures, or NULL */
+    enum dirt_view_mode views;
+    long tile_size, buckets, face_size;
+    bool force_emulation;
 } options;
 
 static void usage(FILE *out)
@@ -64,6 +70,17 @@ static void usage(FILE *out)
 "Technique:\n"
 "      --engine NAME     raster: rasterized preview with direct lighting (default)\n"
 "      --cpu-timing      time passes with glFinish and the CPU clock too\n"
+"\n"
+"DIRT acceleration structure:\n"
+"      --debug-ads DIR   build the structure for the frame, print its stats and\n"
+"                        write heat maps of list lengths and depth bounds per\n"
+"                        view into DIR (single frame only)\n"
+"      --views MODE      single | cube | cube+camera (default single)\n"
+"  -S, --tile-size S     tile size 1, 2, 4 or 8 (default 2)\n"
+"  -B, --buckets B       depth buckets per tile, >= 1 (default 16)\n"
+"      --face-size N     cube face size in pixels (default max(W,H)/2)\n"
+"      --no-conservative-raster  emulate conservative rasterization even when\n"
+"                        GL_NV_conservative_raster is present\n"
 "\n"
 "Other:\n"
 "  -q, --quiet           print only errors\n"
@@ -122,7 +139,8 @@ static bool parse_frames(const char *text, options *o)
 /* Returns DIRT_EXIT_OK, or DIRT_EXIT_USAGE after printing why; -1 for --help. */
 static int parse_args(int argc, char **argv, options *o)
 {
-    *o = (options){.width = 640, .height = 480, .camera = -1, .fps = 24};
+    *o = (options){.width = 640, .height = 480, .camera = -1, .fps = 24, .tile_size = 2,
+                   .buckets = 16};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -187,6 +205,39 @@ static int parse_args(int argc, char **argv, options *o)
             NEED_VALUE();
             if (!cli_float(PROG, a, val, -64, 64, &o->exposure))
                 return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--debug-ads")) {
+            NEED_VALUE();
+            o->debug_ads = val;
+        } else if (!strcmp(a, "--views")) {
+            NEED_VALUE();
+            if (!strcmp(val, "single")) {
+                o->views = DIRT_VIEWS_SINGLE;
+            } else if (!strcmp(val, "cube")) {
+                o->views = DIRT_VIEWS_CUBE;
+            } else if (!strcmp(val, "cube+camera")) {
+                o->views = DIRT_VIEWS_CUBE_CAMERA;
+            } else {
+                cli_error(PROG, "--views expects single, cube or cube+camera, got '%s'", val);
+                return DIRT_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "-S") || !strcmp(a, "--tile-size")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 8, &o->tile_size))
+                return DIRT_EXIT_USAGE;
+            if (o->tile_size != 1 && o->tile_size != 2 && o->tile_size != 4 && o->tile_size != 8) {
+                cli_error(PROG, "%s expects 1, 2, 4 or 8, got '%s'", a, val);
+                return DIRT_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "-B") || !strcmp(a, "--buckets")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 1024, &o->buckets))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--face-size")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 16384, &o->face_size))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--no-conservative-raster")) {
+            o->force_emulation = true;
         } else if (!strcmp(a, "--cpu-timing")) {
             o->cpu_timing = true;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
@@ -221,6 +272,10 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (!many && strchr(o->output, '%') && !valid_frame_pattern(o->output)) {
         cli_error(PROG, "output '%s' has a stray '%%'", o->output);
+        return DIRT_EXIT_USAGE;
+    }
+    if (o->debug_ads && many) {
+        cli_error(PROG, "--debug-ads works on a single frame, not with --frames");
         return DIRT_EXIT_USAGE;
     }
     if (o->png_preview && !cli_has_ext(o->output, ".exr")) {
@@ -275,6 +330,7 @@ int main(int argc, char **argv)
     dirt_frame *frame = NULL;
     dirt_gpu *gpu = NULL;
     dirt_raster *raster = NULL;
+    dirt_ads *ads = NULL;
     dirt_image *img = NULL;
     rc = DIRT_EXIT_USAGE;
 
@@ -285,6 +341,12 @@ int main(int argc, char **argv)
     output_path(&o, first, path, sizeof(path));
     if (!cli_output_dir_ok(PROG, path))
         goto done;
+    if (o.debug_ads) {
+        char probe[4200];
+        snprintf(probe, sizeof(probe), "%s/ads.png", o.debug_ads);
+        if (!cli_output_dir_ok(PROG, probe))
+            goto done;
+    }
 
     scene = o.scene_path ? dirt_scene_load(o.scene_path, NULL) : dirt_scene_create_default();
     if (!scene) {
@@ -323,6 +385,18 @@ int main(int argc, char **argv)
     img = dirt_image_create((int)o.width, (int)o.height);
     if (!raster || !img)
         goto done;
+    if (o.debug_ads) {
+        dirt_ads_opts ao = {
+            .views = {.mode = o.views, .width = (int)o.width, .height = (int)o.height,
+                      .face_size = (int)o.face_size, .tile_size = (int)o.tile_size},
+            .buckets = (int)o.buckets,
+            .force_emulation = o.force_emulation,
+            .cpu_timing = o.cpu_timing,
+        };
+        ads = dirt_ads_create(gpu, &ao);
+        if (!ads)
+            goto done;
+    }
     if (!o.quiet) {
         char desc[512];
         dirt_gpu_describe(gpu, desc, sizeof(desc));
@@ -351,6 +425,16 @@ int main(int argc, char **argv)
         if (!dirt_raster_render(raster, frame, &cam, (int)o.width, (int)o.height, &ro,
                                 img->rgba, &st))
             goto done;
+        if (ads) {
+            if (!dirt_ads_build(ads, frame, &cam))
+                goto done;
+            if (!o.quiet)
+                dirt_ads_print_stats(ads, stderr);
+            if (!dirt_ads_write_debug(ads, o.debug_ads, o.quiet)) {
+                rc = DIRT_EXIT_USAGE;
+                goto done;
+            }
+        }
         output_path(&o, f, path, sizeof(path));
         if (!write_outputs(&o, img, path)) {
             rc = DIRT_EXIT_USAGE; /* unwritable output */
@@ -367,6 +451,7 @@ int main(int argc, char **argv)
 done:
     dirt_image_destroy(img);
     dirt_raster_destroy(raster);
+    dirt_ads_destroy(ads);
     dirt_frame_destroy(frame);
     dirt_gpu_destroy(gpu);
     dirt_scene_destroy(scene);

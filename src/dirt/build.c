@@ -285,7 +285,8 @@ static void pass_end(dirt_ads *a, int pass, double *gpu_acc, double *cpu_acc)
 {
     gl_timer_end(&a->timers[pass]);
     gl_group_pop();
-    gpu_acc[pass] += a->timers[pass].gpu_ms;
+    gpu_acc[pass] = a->timers[pass].gpu_ms < 0 || gpu_acc[pass] < 0
+                        ? -1 : gpu_acc[pass] + a->timers[pass].gpu_ms;
     if (a->timers[pass].cpu_ms >= 0)
         cpu_acc[pass] += a->timers[pass].cpu_ms;
 }

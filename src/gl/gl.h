@@ -74,8 +74,9 @@ typedef struct gl_timer {
     GLuint query;
     bool cpu_finish;
     bool running;
+    bool gpu_unreliable; /* software renderer: gpu_ms stays -1 */
     double cpu_start;
-    double gpu_ms;  /* -1 when unavailable */
+    double gpu_ms;  /* -1 when unavailable (software renderer) */
     double cpu_ms;  /* -1 when cpu_finish was off */
 } gl_timer;
 

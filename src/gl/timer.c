@@ -1,11 +1,22 @@
 /* GPU timer queries plus a CPU glFinish timer. */
 #include "gl/gl.h"
 
+#include <string.h>
+
 #include "dirt/clock.h"
+
+/* Software renderers (llvmpipe, softpipe) answer GL_TIME_ELAPSED without
+ * timing rasterization; their GPU times are reported as unavailable. */
+static bool software_renderer(void)
+{
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    return r && (strstr(r, "llvmpipe") || strstr(r, "softpipe"));
+}
 
 bool gl_timer_init(gl_timer *t, bool cpu_finish, const char *label)
 {
-    *t = (gl_timer){.cpu_finish = cpu_finish, .gpu_ms = -1, .cpu_ms = -1};
+    *t = (gl_timer){.cpu_finish = cpu_finish, .gpu_ms = -1, .cpu_ms = -1,
+                    .gpu_unreliable = software_renderer()};
     glCreateQueries(GL_TIME_ELAPSED, 1, &t->query);
     if (!t->query)
         return gl_check("glCreateQueries");
@@ -36,7 +47,7 @@ void gl_timer_end(gl_timer *t)
     }
     GLuint64 ns = 0;
     glGetQueryObjectui64v(t->query, GL_QUERY_RESULT, &ns);
-    t->gpu_ms = (double)ns * 1e-6;
+    t->gpu_ms = t->gpu_unreliable ? -1 : (double)ns * 1e-6;
 }
 
 void gl_timer_release(gl_timer *t)

@@ -373,6 +373,7 @@ typedef struct fg_phys_desc {
 
 /* One declared access, resolved for the backend. */
 typedef struct fg_binding {
+    fg_res res;
     fg_access access;
     bool texture;
     uint32_t name;                  /* GL name */

@@ -168,7 +168,7 @@ static void sample(const scene_sampler *smp, float t, bool quat, float *out)
         if (u > 1.0f)
             u = 1.0f;
         if (smp->interp == SCENE_INTERP_STEP) {
-            memcpy(out, VALUE(k + 1), w * sizeof(float));
+            memcpy(out, VALUE(k), w * sizeof(float));
         } else if (smp->interp == SCENE_INTERP_LINEAR) {
             const float *a = VALUE(k), *b = VALUE(k + 1);
             if (quat) {

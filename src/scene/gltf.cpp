@@ -79,33 +79,44 @@ bool range_ok(size_t offset, size_t length, size_t size)
     return offset <= size && length <= size - offset;
 }
 
-/* Byte range of buffer view `index`, validated against its buffer. */
-bool buffer_view_bytes(const tinygltf::Model &m, int index, const char *what,
-                       const unsigned char **data, size_t *length, size_t *stride)
+/* Byte range of buffer view `index`, validated against its buffer. Returns
+ * nullptr on success, else why it is invalid (nothing logged). */
+const char *buffer_view_problem(const tinygltf::Model &m, int index,
+                                const unsigned char **data, size_t *length, size_t *stride)
 {
-    if (index < 0 || (size_t)index >= m.bufferViews.size()) {
-        DIRT_ERROR("%s: bufferView %d out of range (%zu buffer views)", what, index,
-                   m.bufferViews.size());
-        return false;
-    }
+    if (index < 0 || (size_t)index >= m.bufferViews.size())
+        return "buffer view out of range";
     const tinygltf::BufferView &bv = m.bufferViews[(size_t)index];
-    if (bv.buffer < 0 || (size_t)bv.buffer >= m.buffers.size()) {
-        DIRT_ERROR("%s: bufferView %d: buffer %d out of range (%zu buffers)", what, index,
-                   bv.buffer, m.buffers.size());
-        return false;
-    }
+    if (bv.buffer < 0 || (size_t)bv.buffer >= m.buffers.size())
+        return "buffer of the buffer view out of range";
     const tinygltf::Buffer &b = m.buffers[(size_t)bv.buffer];
-    if (!range_ok(bv.byteOffset, bv.byteLength, b.data.size())) {
-        DIRT_ERROR("%s: bufferView %d (offset %zu, length %zu) exceeds buffer %d of %zu "
-                   "bytes (truncated file?)",
-                   what, index, bv.byteOffset, bv.byteLength, bv.buffer, b.data.size());
-        return false;
-    }
+    if (!range_ok(bv.byteOffset, bv.byteLength, b.data.size()))
+        return "buffer view exceeds its buffer (truncated file?)";
     *data = b.data.empty() ? nullptr : b.data.data() + bv.byteOffset;
     *length = bv.byteLength;
     if (stride)
         *stride = bv.byteStride;
-    return true;
+    return nullptr;
+}
+
+/* buffer_view_problem that logs the problem as an error. */
+bool buffer_view_bytes(const tinygltf::Model &m, int index, const char *what,
+                       const unsigned char **data, size_t *length, size_t *stride)
+{
+    const char *why = buffer_view_problem(m, index, data, length, stride);
+    if (!why)
+        return true;
+    const tinygltf::BufferView *bv =
+        index >= 0 && (size_t)index < m.bufferViews.size() ? &m.bufferViews[(size_t)index]
+                                                           : nullptr;
+    const tinygltf::Buffer *b = bv && bv->buffer >= 0 && (size_t)bv->buffer < m.buffers.size()
+                                    ? &m.buffers[(size_t)bv->buffer]
+                                    : nullptr;
+    DIRT_ERROR("%s: bufferView %d: %s (%zu buffer views; offset %zu, length %zu, buffer "
+               "%d of %zu bytes)",
+               what, index, why, m.bufferViews.size(), bv ? bv->byteOffset : 0,
+               bv ? bv->byteLength : 0, bv ? bv->buffer : -1, b ? b->data.size() : 0);
+    return false;
 }
 
 /* Resolves accessor `index` and checks that every element lies inside its
@@ -421,10 +432,12 @@ int get_texture(Loader &L, int tex, bool srgb, const char *what)
                             ? image.uri
                             : "image " + std::to_string(img);
     if (image.bufferView >= 0) {
-        char ctx[160];
-        snprintf(ctx, sizeof(ctx), "%s: image %d", L.path.c_str(), img);
-        if (!buffer_view_bytes(m, image.bufferView, ctx, &bytes, &size, nullptr))
+        const char *why = buffer_view_problem(m, image.bufferView, &bytes, &size, nullptr);
+        if (why) {
+            DIRT_WARN("%s: image '%s': bufferView %d: %s", L.path.c_str(), label.c_str(),
+                      image.bufferView, why);
             bytes = nullptr;
+        }
     } else if (!image.image.empty()) {
         bytes = image.image.data();
         size = image.image.size();

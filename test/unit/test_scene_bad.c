@@ -9,6 +9,8 @@
 #include "dirt/scene.h"
 #include "scene/scene_internal.h"
 
+#include <stb_image_write.h>
+
 #include <stdio.h>
 #include <string.h>
 
@@ -24,6 +26,7 @@ typedef struct variant {
     const char *mesh_extra;      /* extra primitive fields */
     const char *view_length;     /* bufferView byteLength override */
     const char *extra;           /* extra top-level members */
+    const char *extra_views;     /* extra bufferViews, each preceded by ',' */
 } variant;
 
 #define VARIANT(...) ((variant){__VA_ARGS__})
@@ -48,13 +51,14 @@ static char *quad_json(const variant *v, const char *buffer_json)
         "\"nodes\":%s,"
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1%s}]}],"
         "\"buffers\":[%s],"
-        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%s}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%s}%s],"
         "\"accessors\":["
         "{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"%s},"
         "%s]}",
         v->extra ? v->extra : "", v->scene_nodes ? v->scene_nodes : "[0]",
         v->nodes ? v->nodes : "[{\"mesh\":0}]", v->mesh_extra ? v->mesh_extra : "",
         buffer_json, v->view_length ? v->view_length : "60",
+        v->extra_views ? v->extra_views : "",
         v->positions_extra ? v->positions_extra : "",
         v->accessor_index ? v->accessor_index
                           : "{\"bufferView\":0,\"byteOffset\":48,\"componentType\":5123,"
@@ -358,34 +362,76 @@ static void test_glb(void)
     }
 }
 
-/* A material whose base colour texture image is missing, and one whose
- * image is not an image: both load with a warning and the factor. */
+static void png_to_vec(void *ctx, void *data, int size)
+{
+    char **out = ctx;
+    *out = data_uri(data, (size_t)size);
+}
+
+/* Materials whose textures are: missing (file absent), not an image, in a
+ * buffer view outside its buffer -- all three load with a warning and fall
+ * back to the factor -- and a valid 2x2 PNG embedded as a data URI, used as
+ * base colour (sRGB) and metallic-roughness (linear): decoded to RGBA8, rows
+ * top to bottom as stored. */
 static void test_textures(void)
 {
+    /* Texels: row 0 = red, green; row 1 = blue, white (RGB, no alpha). */
+    static const uint8_t rgb[12] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+    char *png_uri = NULL;
+    CHECK(stbi_write_png_to_func(png_to_vec, &png_uri, 2, 2, 3, rgb, 6) != 0);
+    if (!png_uri)
+        return;
     write_text(tmp_file("broken.png"), "this is not a PNG file");
-    const char *extra =
+    char *extra = strf(
         "\"materials\":[{\"name\":\"missing\",\"pbrMetallicRoughness\":{"
         "\"baseColorFactor\":[0.5,0.25,1,1],\"baseColorTexture\":{\"index\":0}}},"
         "{\"name\":\"broken\",\"emissiveFactor\":[1,1,1],\"emissiveTexture\":{\"index\":1},"
-        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":5}}}],"
-        "\"textures\":[{\"source\":0},{\"source\":1}],"
-        "\"images\":[{\"uri\":\"no_such_image.png\"},{\"uri\":\"broken.png\"}],";
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":5}}},"
+        "{\"name\":\"outside\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":2}}},"
+        "{\"name\":\"good\",\"doubleSided\":true,\"pbrMetallicRoughness\":{"
+        "\"metallicFactor\":0.25,\"roughnessFactor\":0.75,"
+        "\"baseColorTexture\":{\"index\":3},\"metallicRoughnessTexture\":{\"index\":3}}}],"
+        "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2},{\"source\":3}],"
+        "\"images\":[{\"uri\":\"no_such_image.png\"},{\"uri\":\"broken.png\"},"
+        "{\"bufferView\":1,\"mimeType\":\"image/png\"},{\"uri\":\"%s\"}],",
+        png_uri);
+    free(png_uri);
     log_capture_start();
-    dirt_scene *s = load_variant(&VARIANT(.extra = extra, .mesh_extra = ",\"material\":1"),
-                                 "textures.gltf");
+    dirt_scene *s = load_variant(
+        &VARIANT(.extra = extra, .mesh_extra = ",\"material\":1",
+                 .extra_views = ",{\"buffer\":0,\"byteOffset\":100000,\"byteLength\":50}"),
+        "textures.gltf");
+    free(extra);
     CHECK_MSG(s != NULL, "missing texture made the load fail");
     CHECK(log_errors_ == 0);
-    CHECK(log_warnings_ >= 2);
+    CHECK(log_warnings_ >= 3);
     if (s) {
-        CHECK(dirt_scene_num_materials(s) == 2);
+        CHECK(dirt_scene_num_materials(s) == 4);
         const dirt_material *m = dirt_scene_materials(s);
         CHECK(m[0].base_color_tex == DIRT_NO_TEXTURE);
         CHECK_NEAR(m[0].base_color[1], 0.25, 0.0);
         CHECK(m[1].emissive_tex == DIRT_NO_TEXTURE);
         CHECK_NEAR(m[1].emissive_strength, 5.0, 0.0);
         CHECK_NEAR(m[0].emissive_strength, 1.0, 0.0);
-        CHECK(s->stats.textures_failed == 2);
-        CHECK(dirt_scene_num_textures(s) == 0);
+        CHECK(m[2].base_color_tex == DIRT_NO_TEXTURE);
+        CHECK(s->stats.textures_failed == 3);
+        CHECK(m[3].double_sided && !m[0].double_sided);
+        CHECK_NEAR(m[3].metallic, 0.25, 0.0);
+        CHECK_NEAR(m[3].roughness, 0.75, 0.0);
+        /* One image, two colour spaces: two textures. */
+        CHECK(dirt_scene_num_textures(s) == 2);
+        int bc = m[3].base_color_tex, mr = m[3].metallic_roughness_tex;
+        CHECK(bc >= 0 && mr >= 0 && bc != mr && (size_t)bc < dirt_scene_num_textures(s) &&
+              (size_t)mr < dirt_scene_num_textures(s));
+        if (bc >= 0 && mr >= 0 && bc != mr) {
+            const dirt_texture *t = dirt_scene_textures(s);
+            CHECK(t[bc].srgb && !t[mr].srgb);
+            CHECK(t[bc].width == 2 && t[bc].height == 2);
+            static const uint8_t rgba[16] = {255, 0, 0, 255, 0, 255, 0, 255,
+                                             0, 0, 255, 255, 255, 255, 255, 255};
+            CHECK(memcmp(t[bc].rgba, rgba, 16) == 0);
+            CHECK(memcmp(t[mr].rgba, rgba, 16) == 0);
+        }
         dirt_frame *f = dirt_scene_evaluate(s, 0.0f, NULL);
         CHECK(f && f->material[0] == 1);
         dirt_frame_destroy(f);

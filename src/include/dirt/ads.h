@@ -88,6 +88,17 @@ typedef struct dirt_ads_data {
 bool dirt_ads_read(dirt_ads *ads, dirt_ads_data *out);
 void dirt_ads_data_free(dirt_ads_data *data);
 
+/* Writes per-view PNG pictures of the built structure into `dir` (which
+ * must exist): <dir>/ads_v<i>_<name>_lists.png (heat map of list length per
+ * tile: black 0, then blue, red, yellow, white at the longest list) and
+ * _zmin.png / _zmax.png (depth bounds, near = white, far = black, empty
+ * tiles dark red). Prints the file names on stdout unless `quiet`. */
+bool dirt_ads_write_debug(dirt_ads *ads, const char *dir, bool quiet);
+
+/* Prints a summary of the last build's stats (counts, bytes vs the DIRT
+ * paper's Table 3, pass times) to `out` (a FILE *). */
+void dirt_ads_print_stats(const dirt_ads *ads, void *out);
+
 #ifdef __cplusplus
 }
 #endif

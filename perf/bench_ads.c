@@ -1,0 +1,124 @@
+/* bench-ads: DIRT build stage per pass (ms) and memory (MB) over a grid of
+ * tile sizes and bucket counts, as a markdown table on stdout.
+ *   bench-ads [SCENE ...] [-W 1024 -H 512] [--views single|cube|cube+camera]
+ *             [-S 1,2,4] [-B 8,16,32] [--repeat N]
+ * SCENE "default" is the embedded scene. Times: GPU timer queries where the
+ * driver times rasterization, and always CPU wall time around glFinish (the
+ * only meaningful figure on llvmpipe). Each configuration is built once to
+ * warm up (pools grow), then N times; the mean of those N is reported. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dirt/ads.h"
+#include "dirt/gpu.h"
+#include "dirt/log.h"
+#include "dirt/scene.h"
+
+static int parse_list(const char *s, int *out, int max)
+{
+    int n = 0;
+    while (*s && n < max) {
+        out[n++] = atoi(s);
+        const char *c = strchr(s, ',');
+        if (!c)
+            break;
+        s = c + 1;
+    }
+    return n;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scenes[16];
+    int nscenes = 0, W = 1024, H = 512, repeat = 3;
+    int S[8] = {1, 2, 4}, nS = 3, B[8] = {8, 16, 32}, nB = 3;
+    enum dirt_view_mode mode = DIRT_VIEWS_SINGLE;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
+        if (!strcmp(a, "-W")) W = atoi(v), i++;
+        else if (!strcmp(a, "-H")) H = atoi(v), i++;
+        else if (!strcmp(a, "-S")) nS = parse_list(v, S, 8), i++;
+        else if (!strcmp(a, "-B")) nB = parse_list(v, B, 8), i++;
+        else if (!strcmp(a, "--repeat")) repeat = atoi(v), i++;
+        else if (!strcmp(a, "--views")) {
+            mode = !strcmp(v, "cube") ? DIRT_VIEWS_CUBE
+                 : !strcmp(v, "cube+camera") ? DIRT_VIEWS_CUBE_CAMERA : DIRT_VIEWS_SINGLE;
+            i++;
+        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            printf("usage: bench-ads [SCENE|default ...] [-W N -H N] [--views MODE] "
+                   "[-S 1,2,4] [-B 8,16,32] [--repeat N]\n");
+            return 0;
+        } else if (nscenes < 16) scenes[nscenes++] = a;
+    }
+    if (W <= 0 || H <= 0 || repeat <= 0 || nS <= 0 || nB <= 0) {
+        fprintf(stderr, "bench-ads: bad arguments (see --help)\n");
+        return 2;
+    }
+    if (!nscenes)
+        scenes[nscenes++] = "default";
+    dirt_log_set_level(DIRT_LOG_WARN);
+    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.no_debug = true});
+    if (!gpu)
+        return 3;
+    char desc[512];
+    dirt_gpu_describe(gpu, desc, sizeof(desc));
+    printf("GPU: %s\n\n", desc);
+    printf("| scene | tris | views | S | B | n_p | c | clear ms | depth ms | mip ms | fill ms "
+           "| total ms | MB used | MB alloc | Table 3 MB |\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int si = 0; si < nscenes; si++) {
+        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], NULL)
+                                                          : dirt_scene_create_default();
+        if (!scene)
+            return 2;
+        dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
+        dirt_camera cam;
+        if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
+            cam = f->cameras[0];
+        else
+            dirt_camera_auto(f, &cam);
+        const char *name = strrchr(scenes[si], '/') ? strrchr(scenes[si], '/') + 1 : scenes[si];
+        for (int s = 0; s < nS; s++) {
+            for (int b = 0; b < nB; b++) {
+                dirt_ads_opts o = {.views = {.mode = mode, .width = W, .height = H,
+                                             .tile_size = S[s]},
+                                   .buckets = B[b], .cpu_timing = true};
+                dirt_ads *ads = dirt_ads_create(gpu, &o);
+                if (!ads || !dirt_ads_build(ads, f, &cam))
+                    return 1;
+                double ms[DIRT_ADS_NUM_PASSES] = {0};
+                bool gpu_times = true;
+                for (int r = 0; r < repeat; r++) {
+                    if (!dirt_ads_build(ads, f, &cam))
+                        return 1;
+                    const dirt_ads_stats *st = dirt_ads_get_stats(ads);
+                    for (int p = 0; p < DIRT_ADS_NUM_PASSES; p++) {
+                        gpu_times &= st->gpu_ms[p] >= 0;
+                        ms[p] += (gpu_times ? st->gpu_ms[p] : st->cpu_ms[p]) / repeat;
+                    }
+                }
+                const dirt_ads_stats *st = dirt_ads_get_stats(ads);
+                double total = 0;
+                for (int p = 0; p < DIRT_ADS_NUM_PASSES; p++)
+                    total += ms[p];
+                printf("| %s | %llu | %s | %d | %d | %llu | %.2f | %.2f | %.2f | %.2f | %.2f | "
+                       "%.2f | %.2f | %.2f | %.2f |\n", name,
+                       (unsigned long long)st->primitives,
+                       mode == DIRT_VIEWS_SINGLE ? "single" : mode == DIRT_VIEWS_CUBE ? "cube" : "cube+camera",
+                       S[s], B[b], (unsigned long long)st->samples, st->buckets_per_sample,
+                       ms[0], ms[1], ms[2], ms[3], total, st->bytes_total_used / 1e6,
+                       st->bytes_total_allocated / 1e6, st->bytes_table3 / 1e6);
+                fflush(stdout);
+                dirt_ads_destroy(ads);
+            }
+        }
+        dirt_frame_destroy(f);
+        dirt_scene_destroy(scene);
+    }
+    printf("\nTimes: %s.\n", dirt_gpu_get_caps(gpu)->software
+                                 ? "CPU wall time around glFinish (software renderer)"
+                                 : "GPU timer queries (GL_TIME_ELAPSED)");
+    dirt_gpu_destroy(gpu);
+    return 0;
+}

@@ -1,0 +1,228 @@
+/* DIRT build edge cases:
+ *  - slivers, zero-area (collinear, repeated-point) and edge-on triangles,
+ *    triangles lying on tile boundaries and crossing the near plane are all
+ *    recorded wherever their exact clip is non-empty;
+ *  - overflow: starting from a node pool of 1 gives exactly the lists of a
+ *    run with ample capacity;
+ *  - odd view sizes (97x61): the Hi-Z pyramid equals a CPU min/max pyramid. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ads_common.h"
+#include "common/layout.h"
+#include "dirt/scene.h"
+#include "gpu.h"
+
+/* A frame of n hand-made triangles (only positions matter to the build). */
+static dirt_frame *frame_new(size_t n)
+{
+    dirt_frame *f = calloc(1, sizeof(*f));
+    f->num_triangles = n;
+    f->position = calloc(3 * n, sizeof(*f->position));
+    f->normal = calloc(3 * n, sizeof(*f->normal));
+    f->uv = calloc(3 * n, sizeof(*f->uv));
+    f->material = calloc(n, sizeof(*f->material));
+    f->instance = calloc(n, sizeof(*f->instance));
+    return f;
+}
+
+static void frame_free(dirt_frame *f)
+{
+    free(f->position);
+    free(f->normal);
+    free(f->uv);
+    free(f->material);
+    free(f->instance);
+    free(f);
+}
+
+static void frame_bounds(dirt_frame *f)
+{
+    for (int k = 0; k < 3; k++) {
+        f->bounds_min[k] = INFINITY;
+        f->bounds_max[k] = -INFINITY;
+    }
+    for (size_t i = 0; i < 3 * f->num_triangles; i++) {
+        for (int k = 0; k < 3; k++) {
+            f->bounds_min[k] = fminf(f->bounds_min[k], f->position[i][k]);
+            f->bounds_max[k] = fmaxf(f->bounds_max[k], f->position[i][k]);
+        }
+    }
+}
+
+static void set_tri(dirt_frame *f, size_t t, const float a[3], const float b[3], const float c[3])
+{
+    memcpy(f->position[3 * t], a, 12);
+    memcpy(f->position[3 * t + 1], b, 12);
+    memcpy(f->position[3 * t + 2], c, 12);
+}
+
+static float frand(unsigned *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return (float)(*s >> 8) / 16777216.0f;
+}
+
+static void test_slivers(dirt_gpu *gpu)
+{
+    enum { FIXED = 6, RANDOM = 400 };
+    dirt_frame *f = frame_new(FIXED + RANDOM);
+    /* Camera at z = 3 looking at the origin; the view plane z = 0 spans
+     * about [-1.7, 1.7] vertically. */
+    dirt_camera cam = {.type = DIRT_CAMERA_PERSPECTIVE, .yfov = 1.0471976f, .znear = 0.1f};
+    dirt_camera_look_at(&cam, (const float[3]){0, 0, 3}, (const float[3]){0, 0, 0},
+                        (const float[3]){0, 1, 0});
+    /* zero area: collinear, across many tiles */
+    set_tri(f, 0, (float[3]){-1, -0.5f, 0}, (float[3]){0, 0, 0}, (float[3]){1, 0.5f, 0});
+    /* zero area: one point three times */
+    set_tri(f, 1, (float[3]){0.3f, 0.2f, 0}, (float[3]){0.3f, 0.2f, 0}, (float[3]){0.3f, 0.2f, 0});
+    /* sliver 1e-4 wide */
+    set_tri(f, 2, (float[3]){-1, 0.1f, 0}, (float[3]){1, 0.1001f, 0}, (float[3]){1, 0.1f, 0});
+    /* degenerate segment on the vertical centre line (a tile boundary) */
+    set_tri(f, 3, (float[3]){0, -1, 0}, (float[3]){0, 1, 0}, (float[3]){0, 1, 0});
+    /* edge-on: its plane y = 0 contains the eye */
+    set_tri(f, 4, (float[3]){-0.5f, 0, 1}, (float[3]){0.5f, 0, 1}, (float[3]){0, 0, -1});
+    /* crosses the near plane and passes behind the eye */
+    set_tri(f, 5, (float[3]){0, 0.1f, 3.5f}, (float[3]){0.5f, 0.5f, 2.0f}, (float[3]){-0.5f, 0.2f, 2.5f});
+    unsigned seed = 12345;
+    for (size_t t = FIXED; t < FIXED + RANDOM; t++) {
+        float c[3] = {frand(&seed) * 3 - 1.5f, frand(&seed) * 3 - 1.5f, frand(&seed) * 2 - 1};
+        float d[3] = {frand(&seed) - 0.5f, frand(&seed) - 0.5f, frand(&seed) - 0.5f};
+        float w = t % 2 ? 1e-5f : 0.0f; /* half slivers, half exactly degenerate */
+        float e[3] = {c[0] + d[0], c[1] + d[1], c[2] + d[2]};
+        float g[3] = {c[0] + d[0] * 0.5f + w, c[1] + d[1] * 0.5f - w, c[2] + d[2] * 0.5f};
+        if (t % 5 == 0)
+            memcpy(e, c, 12), memcpy(g, c, 12); /* a point */
+        set_tri(f, t, c, e, g);
+    }
+    frame_bounds(f);
+    static const int sizes[] = {1, 2, 4};
+    for (int m = 0; m < 2; m++) {
+        for (int s = 0; s < 3; s++) {
+            dirt_ads_opts o = {
+                .views = {.mode = m ? DIRT_VIEWS_CUBE_CAMERA : DIRT_VIEWS_SINGLE,
+                          .width = 64, .height = 48, .face_size = 32, .tile_size = sizes[s]},
+                .buckets = 8,
+                .force_emulation = true,
+            };
+            build_and_check(gpu, "slivers", f, &cam, &o);
+            /* Every fixed degenerate triangle is in some list. */
+            dirt_ads *ads = dirt_ads_create(gpu, &o);
+            dirt_ads_data d;
+            if (ads && dirt_ads_build(ads, f, &cam) && dirt_ads_read(ads, &d)) {
+                bool seen[FIXED] = {false};
+                for (uint32_t i = 0; i < d.num_nodes; i++) {
+                    if (d.nodes[i][0] < FIXED)
+                        seen[d.nodes[i][0]] = true;
+                }
+                for (int t = 0; t < FIXED; t++)
+                    CHECK_MSG(seen[t], "degenerate triangle %d not recorded (S=%d)", t, sizes[s]);
+                dirt_ads_data_free(&d);
+            } else {
+                CHECK(false);
+            }
+            dirt_ads_destroy(ads);
+        }
+    }
+    frame_free(f);
+}
+
+/* Sorted (tile, bucket, primitive) triples of a read-back structure. */
+static uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
+{
+    uint64_t *out = malloc(((size_t)d->num_nodes + 1) * sizeof(*out));
+    size_t n = 0;
+    for (int b = 0; b < d->buckets; b++) {
+        for (int t = 0; t < d->num_tiles; t++) {
+            for (uint32_t node = d->heads[(size_t)b * d->num_tiles + t];
+                 node != DIRT_LIST_END && n <= d->num_nodes; node = d->nodes[node][1])
+                out[n++] = ((uint64_t)t << 40) | ((uint64_t)b << 32) | d->nodes[node][0];
+        }
+    }
+    for (size_t i = 1; i < n; i++) { /* insertion sort is fine at this size */
+        uint64_t v = out[i];
+        size_t j = i;
+        while (j > 0 && out[j - 1] > v) {
+            out[j] = out[j - 1];
+            j--;
+        }
+        out[j] = v;
+    }
+    *count = n;
+    return out;
+}
+
+static void test_overflow(dirt_gpu *gpu)
+{
+    dirt_scene *scene = dirt_scene_create_default();
+    dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
+    dirt_ads_opts o = {
+        .views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 48, .height = 32, .face_size = 24,
+                  .tile_size = 2},
+        .buckets = 8,
+        .force_emulation = true,
+    };
+    dirt_ads_data d[2];
+    size_t n[2] = {0};
+    uint64_t *tri[2] = {NULL};
+    int runs[2] = {0};
+    for (int i = 0; i < 2; i++) {
+        o.initial_nodes = i == 0 ? 1 : (size_t)1 << 20;
+        dirt_ads *ads = dirt_ads_create(gpu, &o);
+        CHECK(ads && dirt_ads_build(ads, f, &f->cameras[0]) && dirt_ads_read(ads, &d[i]));
+        runs[i] = dirt_ads_get_stats(ads)->fill_runs;
+        tri[i] = list_triples(&d[i], &n[i]);
+        /* A second build reuses the grown pool: one fill run. */
+        if (i == 0) {
+            CHECK(dirt_ads_build(ads, f, &f->cameras[0]));
+            CHECK(dirt_ads_get_stats(ads)->fill_runs == 1);
+        }
+        dirt_ads_destroy(ads);
+    }
+    fprintf(stderr, "overflow: %zu nodes from capacity 1 (%d fill runs), %zu with ample "
+            "capacity (%d run)\n", n[0], runs[0], n[1], runs[1]);
+    CHECK(runs[0] == 2 && runs[1] == 1);
+    CHECK(n[0] == n[1] && n[0] > 0);
+    CHECK(n[0] == n[1] && memcmp(tri[0], tri[1], n[0] * sizeof(uint64_t)) == 0);
+    /* Depth bounds are independent of the pool. */
+    CHECK(d[0].pyramid_size == d[1].pyramid_size &&
+          memcmp(d[0].depth, d[1].depth, (size_t)d[0].pyramid_size * 8) == 0);
+    for (int i = 0; i < 2; i++) {
+        free(tri[i]);
+        dirt_ads_data_free(&d[i]);
+    }
+    dirt_frame_destroy(f);
+    dirt_scene_destroy(scene);
+}
+
+static void test_odd_sizes(dirt_gpu *gpu)
+{
+    dirt_scene *scene = dirt_scene_create_default();
+    dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
+    static const int sizes[] = {1, 2, 8};
+    for (int s = 0; s < 3; s++) {
+        dirt_ads_opts o = {
+            .views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 97, .height = 61,
+                      .face_size = 37, .tile_size = sizes[s]},
+            .buckets = 4,
+            .force_emulation = true,
+        };
+        build_and_check(gpu, "odd 97x61", f, &f->cameras[0], &o);
+    }
+    dirt_frame_destroy(f);
+    dirt_scene_destroy(scene);
+}
+
+int main(void)
+{
+    dirt_gpu *gpu = test_gpu();
+    if (!gpu)
+        return TEST_SKIP;
+    test_slivers(gpu);
+    test_overflow(gpu);
+    test_odd_sizes(gpu);
+    CHECK(dirt_gpu_error_count(gpu) == 0);
+    dirt_gpu_destroy(gpu);
+    return check_finish();
+}
