@@ -98,4 +98,22 @@ struct dirt_gpu_ads_counters {
     DIRT_UV4 fill;       /* x nodes requested, y (primitive, tile) pairs, zw 0 */
 };
 
+/* ---- Rays and hits shared by every technique's trace ---- */
+
+#define DIRT_BIND_RAYS 7       /* dirt_gpu_ray[rays] */
+#define DIRT_BIND_HITS 8       /* dirt_gpu_hit[rays] (closest hit per ray) */
+#define DIRT_NO_HIT 0xFFFFFFFFu
+
+/* A ray of a batch (32 bytes): points p = origin + t * dir, t in (tmin, tmax). */
+struct dirt_gpu_ray {
+    DIRT_V4 origin_tmin;  /* xyz origin, w tmin */
+    DIRT_V4 dir_tmax;     /* xyz direction (need not be unit), w tmax */
+};
+
+/* The closest hit of a ray (32 bytes, the DIRT paper's hit node size). */
+struct dirt_gpu_hit {
+    DIRT_UV4 ids;         /* x primitive id (DIRT_NO_HIT), y view, z owner pixel, w next hit */
+    DIRT_V4 bary_t;       /* x, y barycentrics of vertices 1 and 2, z t, w unused */
+};
+
 #endif

@@ -104,6 +104,8 @@ enum {
     FG_BARRIER_TRANSFORM_FEEDBACK  = 0x0800,
     FG_BARRIER_ATOMIC_COUNTER      = 0x1000,
     FG_BARRIER_SHADER_STORAGE      = 0x2000,
+    /* every bit above: issued once at the first execute after a compile */
+    FG_BARRIER_ALL                 = 0x3fef,
 };
 
 /* The bit that makes earlier shader writes visible to `later` (and orders

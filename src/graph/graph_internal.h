@@ -136,6 +136,7 @@ struct fg_graph {
     fg_phys *phys;
     int num_phys;
     bool realized;
+    bool entry_barrier;     /* first execute after a realization: FG_BARRIER_ALL */
     fg_pass_stats *pstats;
     fg_res_stats *rstats;
 

@@ -242,13 +242,11 @@ static void apply_clip(const dirt_scene *s, const scene_clip *clip, float t,
 
 /* Morphed, then skinned or rigidly transformed vertices of one primitive into
  * fi->vpos / fi->vnrm (normals not normalised; zero when absent). */
-static void transform_prim(const dirt_scene *s, frame_impl *fi, const scene_prim *p,
-                           const float *weights, const float *world, const float *nmat,
-                           const scene_skin *skin)
+static void transform_prim(frame_impl *fi, const scene_prim *p, const float *weights,
+                           const float *world, const float *nmat, const scene_skin *skin)
 {
     size_t nv = p->num_vertices;
     float (*vp)[3] = fi->vpos, (*vn)[3] = fi->vnrm;
-    (void)s;
 
     for (size_t v = 0; v < nv; v++) {
         memcpy(vp[v], p->position[v], sizeof(vp[v]));
@@ -435,8 +433,8 @@ static void eval_frame(const dirt_scene *s, float t, const dirt_eval_opts *opts,
 
     rest_pose(s, fi);
 
-    f->time = 0.0f;
-    if (opts->all_clips) {
+    f->time = t; /* no clip applied: nothing to clamp to */
+    if (opts->all_clips && s->num_clips > 0) {
         float longest = 0.0f;
         for (size_t c = 0; c < s->num_clips; c++) {
             const scene_clip *clip = &s->clips[c];
@@ -492,7 +490,7 @@ static void eval_frame(const dirt_scene *s, float t, const dirt_eval_opts *opts,
         for (size_t p = 0; p < m->num_prims; p++) {
             const scene_prim *pr = &m->prims[p];
             bool skinned = skin && pr->joints;
-            transform_prim(s, fi, pr, weights, world, nmat, skinned ? skin : NULL);
+            transform_prim(fi, pr, weights, world, nmat, skinned ? skin : NULL);
             emit_prim(fi, pr, first, (uint32_t)i, !skinned && det < 0.0f);
             first += pr->num_triangles;
         }

@@ -216,8 +216,10 @@ static bool build_single(scene_mesh *mesh, const char *name, uint32_t material, 
     builder b = {0};
     scene_copy_name(mesh->name, sizeof(mesh->name), name);
     if (shape == 0) {
-        /* Ceiling light: 0.5 x 0.5 quad just below the ceiling, facing down. */
-        static const float o[3] = {-0.25f, 1.98f, -0.25f}, u[3] = {0.5f, 0, 0},
+        /* Ceiling light: 0.5 x 0.5 quad just below the ceiling, facing down,
+         * centred at (0, 1.98, -0.3): above the objects and, unlike the
+         * ceiling's centre, inside the camera's view. */
+        static const float o[3] = {-0.25f, 1.98f, -0.55f}, u[3] = {0.5f, 0, 0},
                            v[3] = {0, 0, 0.5f};
         add_quad(&b, o, u, v);
     } else if (shape == 1) {
@@ -300,23 +302,34 @@ dirt_scene *dirt_scene_create_default(void)
     static const float zero[3] = {0, 0, 0}, one[3] = {1, 1, 1};
     set_node(&s->nodes[0], "room", 0, zero, 0.0f, one);
     set_node(&s->nodes[1], "light", 1, zero, 0.0f, one);
-    set_node(&s->nodes[2], "tall_box", 2, (const float[3]){-0.35f, 0.6f, -0.35f}, 20.0f,
-             (const float[3]){0.6f, 1.2f, 0.6f});
-    set_node(&s->nodes[3], "short_box", 3, (const float[3]){0.4f, 0.3f, 0.3f}, -18.0f,
-             (const float[3]){0.6f, 0.6f, 0.6f});
-    set_node(&s->nodes[4], "metal_sphere", 4, (const float[3]){0.4f, 0.82f, 0.3f}, 0.0f,
+    /* Objects sit in the back half of the room: from a camera at the front
+     * wall at eye height the floor near the camera is out of view. */
+    set_node(&s->nodes[2], "tall_box", 2, (const float[3]){-0.35f, 0.6f, -0.45f}, 20.0f,
+             (const float[3]){0.55f, 1.2f, 0.55f});
+    set_node(&s->nodes[3], "short_box", 3, (const float[3]){0.4f, 0.275f, -0.15f}, -18.0f,
+             (const float[3]){0.55f, 0.55f, 0.55f});
+    set_node(&s->nodes[4], "metal_sphere", 4, (const float[3]){0.4f, 0.77f, -0.15f}, 0.0f,
              (const float[3]){0.22f, 0.22f, 0.22f});
-    set_node(&s->nodes[5], "glossy_sphere", 5, (const float[3]){-0.4f, 0.2f, 0.5f}, 0.0f,
+    set_node(&s->nodes[5], "glossy_sphere", 5, (const float[3]){0.5f, 0.2f, -0.75f}, 0.0f,
              (const float[3]){0.2f, 0.2f, 0.2f});
-    /* The camera looks down its local -Z, i.e. from the front wall at the
-     * back wall (0, 1, -1). */
+    /* The camera at the front wall looks down its local -Z towards the back
+     * wall, pitched up by atan(0.2 / 1.95) (it looks at (0, 1.2, -1)) so
+     * that with a 70 degree field of view the whole back wall, both side
+     * walls and the ceiling light are in view. */
     set_node(&s->nodes[6], "camera", -1, (const float[3]){0.0f, 1.0f, 0.95f}, 0.0f, one);
+    {
+        float half = 0.5f * atanf(0.2f / 1.95f); /* about +x: -Z tilts up */
+        s->nodes[6].rotation[0] = sinf(half);
+        s->nodes[6].rotation[1] = 0.0f;
+        s->nodes[6].rotation[2] = 0.0f;
+        s->nodes[6].rotation[3] = cosf(half);
+    }
     s->nodes[6].camera = 0;
 
     dirt_camera_def *cam = &s->camera_protos[0];
     scene_copy_name(cam->name, sizeof(cam->name), "default");
     cam->type = DIRT_CAMERA_PERSPECTIVE;
-    cam->yfov = 60.0f * 3.14159265358979f / 180.0f;
+    cam->yfov = 70.0f * 3.14159265358979f / 180.0f;
     cam->aspect = 0.0f;
     cam->znear = 0.01f;
     cam->zfar = 100.0f;

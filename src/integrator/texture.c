@@ -1,0 +1,127 @@
+/* DIRT engine: texture lookups and material evaluation of the light-transport
+ * model (doc/light-transport.md, "Textures" and "Materials"). */
+#include "dirt/integrator.h"
+
+#include <math.h>
+#include <pthread.h>
+
+#include "integrator/vec3.h"
+
+static float srgb_table[256];
+static pthread_once_t srgb_once = PTHREAD_ONCE_INIT;
+
+float dirt_srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+static void srgb_table_init(void)
+{
+    for (int i = 0; i < 256; i++)
+        srgb_table[i] = dirt_srgb_to_linear((float)i / 255.0f);
+}
+
+/* Wraps integer texel coordinate i into [0, n). */
+static int wrap(int i, int n)
+{
+    int r = i % n;
+    return r < 0 ? r + n : r;
+}
+
+/* Texel (x, y) as linear floats. */
+static void texel(const dirt_texture *tex, bool srgb, int x, int y, float out[4])
+{
+    const uint8_t *p = tex->rgba + ((size_t)y * (size_t)tex->width + (size_t)x) * 4;
+    for (int c = 0; c < 3; c++)
+        out[c] = srgb ? srgb_table[p[c]] : (float)p[c] / 255.0f;
+    out[3] = (float)p[3] / 255.0f;
+}
+
+void dirt_texture_sample(const dirt_texture *tex, bool srgb, float u, float v,
+                         float out[4])
+{
+    if (!tex || !tex->rgba || tex->width <= 0 || tex->height <= 0) {
+        out[0] = out[1] = out[2] = out[3] = 1.0f;
+        return;
+    }
+    if (srgb)
+        pthread_once(&srgb_once, srgb_table_init);
+    if (!isfinite(u))
+        u = 0.0f;
+    if (!isfinite(v))
+        v = 0.0f;
+    /* Repeat: bring u, v into [0, 1] first so the float -> int conversion
+     * below cannot overflow; wrap() handles the -1 and n of the neighbours. */
+    u -= floorf(u);
+    v -= floorf(v);
+    float x = u * (float)tex->width - 0.5f;
+    float y = v * (float)tex->height - 0.5f;
+    float x0f = floorf(x), y0f = floorf(y);
+    float fx = x - x0f, fy = y - y0f;
+    int x0 = (int)x0f, y0 = (int)y0f;
+    int xa = wrap(x0, tex->width), xb = wrap(x0 + 1, tex->width);
+    int ya = wrap(y0, tex->height), yb = wrap(y0 + 1, tex->height);
+    float t00[4], t10[4], t01[4], t11[4];
+    texel(tex, srgb, xa, ya, t00);
+    texel(tex, srgb, xb, ya, t10);
+    texel(tex, srgb, xa, yb, t01);
+    texel(tex, srgb, xb, yb, t11);
+    for (int c = 0; c < 4; c++) {
+        float top = t00[c] + (t10[c] - t00[c]) * fx;
+        float bottom = t01[c] + (t11[c] - t01[c]) * fx;
+        out[c] = top + (bottom - top) * fy;
+    }
+}
+
+static const dirt_texture *texture_at(const dirt_texture *textures, size_t n, int index)
+{
+    if (!textures || index < 0 || (size_t)index >= n)
+        return NULL;
+    return &textures[index];
+}
+
+void dirt_material_surface(const dirt_material *m, float specular,
+                           const dirt_texture *textures, size_t num_textures,
+                           float u, float v, dirt_surface *out)
+{
+    float bc[4], mr[4], em[4];
+    const dirt_texture *t;
+
+    t = texture_at(textures, num_textures, m->base_color_tex);
+    if (t)
+        dirt_texture_sample(t, true, u, v, bc);
+    else
+        bc[0] = bc[1] = bc[2] = bc[3] = 1.0f;
+    t = texture_at(textures, num_textures, m->metallic_roughness_tex);
+    if (t)
+        dirt_texture_sample(t, false, u, v, mr);
+    else
+        mr[0] = mr[1] = mr[2] = mr[3] = 1.0f;
+
+    out->bsdf.base_color = v3(clamp01(m->base_color[0] * bc[0]), clamp01(m->base_color[1] * bc[1]),
+                              clamp01(m->base_color[2] * bc[2]));
+    float roughness = clamp01(m->roughness * mr[1]);
+    out->bsdf.metallic = clamp01(m->metallic * mr[2]);
+    out->bsdf.alpha = roughness * roughness;
+    out->bsdf.specular = clamp01(specular);
+    out->double_sided = m->double_sided;
+
+    float s = m->emissive_strength;
+    if (dirt_material_is_emissive(m)) {
+        t = texture_at(textures, num_textures, m->emissive_tex);
+        if (t)
+            dirt_texture_sample(t, true, u, v, em);
+        else
+            em[0] = em[1] = em[2] = 1.0f;
+        out->emission = v3(m->emissive[0] * s * em[0], m->emissive[1] * s * em[1],
+                           m->emissive[2] * s * em[2]);
+    } else {
+        out->emission = v3(0.0f, 0.0f, 0.0f);
+    }
+}
+
+bool dirt_material_is_emissive(const dirt_material *m)
+{
+    float e = fmaxf(m->emissive[0], fmaxf(m->emissive[1], m->emissive[2]));
+    return e > 0.0f && m->emissive_strength > 0.0f && isfinite(e * m->emissive_strength);
+}
