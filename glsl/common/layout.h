@@ -59,6 +59,7 @@ struct dirt_gpu_light {
 #define DIRT_BIND_COUNTERS 6   /* dirt_gpu_ads_counters */
 
 #define DIRT_LIST_END 0xFFFFFFFFu
+#define DIRT_GPU_MAX_VIEWS 7   /* = DIRT_MAX_VIEWS of dirt/views.h */
 /* Cleared depth bounds: zmin = +inf, zmax = 0 (empty: zmin > zmax). Depths
  * are positive, so their float bits order like the floats. */
 #define DIRT_DEPTH_CLEAR_MIN 0x7F800000u

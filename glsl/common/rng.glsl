@@ -51,10 +51,11 @@ uint dirt_rng_key(uint seed, uint pixel, uint sample_index, uint bounce)
     return h;
 }
 
-// The 32-bit random number of dimension `dim` under `key`.
+// The 32-bit random number of dimension `dim` under `key` (dimensions spread
+// by the golden-ratio constant, wrapping mod 2^32).
 uint dirt_rng_next(uint key, uint dim)
 {
-    return dirt_rng_mix(key ^ dim);
+    return dirt_rng_mix(key + dim * 0x9e3779b9u);
 }
 
 // Top 24 bits scaled by 2^-24: exact, identical to the C conversion.

@@ -9,35 +9,18 @@
 #include "dirt/clock.h"
 #include "gl/gl.h"
 #include "gl/program.h"
+#include "dirt/ads_internal.h"
 
 _Static_assert(sizeof(struct dirt_gpu_vertex) == 32, "vertex layout");
 _Static_assert(sizeof(struct dirt_gpu_view) == 192, "view layout");
 _Static_assert(sizeof(struct dirt_gpu_ads_params) == 32, "params layout");
 _Static_assert(sizeof(struct dirt_gpu_ads_counters) == 16, "counters layout");
+_Static_assert(DIRT_GPU_MAX_VIEWS == DIRT_MAX_VIEWS, "view count");
 
 const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
     "clear", "depth bounds", "mip", "fill primitives",
 };
 
-struct dirt_ads {
-    dirt_gpu *gpu;
-    dirt_ads_opts opts;
-    int num_views;
-    bool use_nv;
-    GLuint prog_depth, prog_fill, prog_mip;
-    GLuint vao, fbo;
-    int fbo_width, fbo_height;
-    /* buffers and their capacities in bytes */
-    GLuint vertices, views, params, depth, heads, nodes, counters;
-    size_t vertices_size, depth_size, heads_size;
-    size_t node_capacity;     /* nodes */
-    gl_timer timers[DIRT_ADS_NUM_PASSES];
-    dirt_view_set set;
-    size_t num_primitives;
-    struct dirt_gpu_vertex *staging;
-    size_t staging_cap;
-    dirt_ads_stats stats;
-};
 
 static int views_in_mode(enum dirt_view_mode m)
 {
@@ -73,7 +56,10 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     defs[1].name = "DIRT_PASS_FILL";
     a->prog_fill = gl_program_create("dirt fill primitives", paths, defs, ndefs);
     a->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
-    if (!a->prog_depth || !a->prog_fill || !a->prog_mip)
+    a->prog_trace = gl_program_compute("dirt/trace.comp", NULL, 0);
+    if (!a->prog_depth || !a->prog_fill || !a->prog_mip || !a->prog_trace)
+        goto error;
+    if (!gl_timer_init(&a->trace_timer, a->opts.cpu_timing, "dirt trace"))
         goto error;
     glCreateVertexArrays(1, &a->vao);
     gl_label(GL_VERTEX_ARRAY, a->vao, "dirt build vao");
@@ -105,6 +91,10 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_program_destroy(&a->prog_depth);
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
+    gl_program_destroy(&a->prog_trace);
+    gl_buffer_destroy(&a->rays);
+    gl_buffer_destroy(&a->hits);
+    gl_timer_release(&a->trace_timer);
     if (a->vao)
         glDeleteVertexArrays(1, &a->vao);
     if (a->fbo)
@@ -236,7 +226,7 @@ static bool ensure_targets(dirt_ads *a)
     return true;
 }
 
-static void bind_all(dirt_ads *a)
+void ads_bind_all(dirt_ads *a)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, a->views);
@@ -312,7 +302,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         goto done;
     upload_views(a);
     upload_params(a);
-    bind_all(a);
+    ads_bind_all(a);
 
     pass_begin(a, DIRT_ADS_PASS_CLEAR);
     static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
@@ -364,7 +354,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (!ensure_nodes(a, grown))
             goto done;
         upload_params(a);
-        bind_all(a);
+        ads_bind_all(a);
         clear_lists(a);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

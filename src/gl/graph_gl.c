@@ -233,6 +233,8 @@ static bool gl_begin_pass(void *self, const fg_pass_info *p)
     pass_state *s = state_of(b, p->index);
     if (!s)
         return false;
+    while (glGetError() != GL_NO_ERROR) {
+    } /* errors of earlier code were logged by the debug output already */
     gl_group_push(p->name);
     if (p->kind == FG_RASTER) {
         uint32_t key[MAX_ATTACH * 3 + 3];
@@ -274,7 +276,7 @@ static bool gl_begin_pass(void *self, const fg_pass_info *p)
     return true;
 }
 
-static void gl_end_pass(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms)
+static bool gl_end_pass(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms)
 {
     graph_gl *b = self;
     pass_state *s = state_of(b, p->index);
@@ -292,7 +294,11 @@ static void gl_end_pass(void *self, const fg_pass_info *p, double *gpu_ms, doubl
         glBindVertexArray(0);
     }
     gl_group_pop();
-    gl_check("frame graph pass");
+    if (!gl_check("frame graph pass")) {
+        DIRT_ERROR("frame graph: pass '%s' left a GL error", p->name);
+        return false;
+    }
+    return true;
 }
 
 static void gl_release(void *self)

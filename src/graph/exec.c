@@ -274,7 +274,7 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
         }
         uint32_t bits = p->barrier;
         if (bits && o.debug_drop_barrier && strcmp(o.debug_drop_barrier, p->name) == 0) {
-            char s[160];
+            char s[256];
             DIRT_WARN("frame graph: test hook drops the barrier %s before pass '%s'",
                       fg_barrier_string(bits, s, sizeof(s)), p->name);
             bits = 0;
@@ -299,7 +299,8 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
         fg_ctx ctx = {.g = g, .pass = p, .bindings = g->scratch, .num_bindings = nb};
         bool pass_ok = p->fn ? p->fn(&ctx, p->user) : true;
         double gpu_ms = -1, cpu_ms = -1;
-        g->backend.ops->end_pass(g->backend.self, &info, &gpu_ms, &cpu_ms);
+        if (!g->backend.ops->end_pass(g->backend.self, &info, &gpu_ms, &cpu_ms))
+            pass_ok = false;
         note_accesses(g, p, g->scratch, nb);
         p->gpu_ms = gpu_ms;
         p->cpu_ms = cpu_ms;

@@ -113,8 +113,10 @@ char *fg_barrier_string(uint32_t bits, char *buf, size_t size)
         if (!(bits & barrier_names[i].bit))
             continue;
         int n = snprintf(buf + len, size - len, "%s%s", len ? "|" : "", barrier_names[i].name);
-        if (n < 0 || (size_t)n >= size - len)
+        if (n < 0 || (size_t)n >= size - len) {
+            buf[len] = '\0'; /* no partial names */
             break;
+        }
         len += (size_t)n;
     }
     return buf;

@@ -119,8 +119,9 @@ uint32_t fg_barrier_bit(fg_access later, bool texture);
 uint32_t fg_barrier_bits(fg_access earlier, fg_access later, bool texture);
 /* "GL_SHADER_STORAGE_BARRIER_BIT" for one bit; NULL for unknown bits. */
 const char *fg_barrier_name(uint32_t bit);
-/* "SHADER_STORAGE|TEXTURE_FETCH" (short names, low bit first), "-" for 0.
- * Returns `buf`. */
+/* "TEXTURE_FETCH|SHADER_STORAGE" (short names, low bit first), "-" for 0;
+ * names that do not fit are left out (256 bytes always suffice). Returns
+ * `buf`. */
 char *fg_barrier_string(uint32_t bits, char *buf, size_t size);
 
 /* ---- resources ----------------------------------------------------------- */
@@ -342,8 +343,8 @@ typedef struct fg_stats {
     uint64_t validation_errors;     /* since creation */
 } fg_stats;
 
-/* Fills `s`; its arrays stay valid until the next fg_compile/fg_destroy.
- * False when the graph is not compiled. */
+/* Fills `s`; its arrays stay valid until the graph changes (declarations,
+ * fg_compile, fg_destroy). False when the graph is not compiled. */
 bool fg_get_stats(const fg_graph *g, fg_stats *s);
 /* Human-readable table of the stats. */
 void fg_print_stats(const fg_graph *g, FILE *f);
@@ -405,8 +406,9 @@ typedef struct fg_backend_ops {
     void (*barrier)(void *self, uint32_t bits);
     /* Debug group, framebuffer, bindings, timer start. False after logging. */
     bool (*begin_pass)(void *self, const fg_pass_info *p);
-    /* Timer stop; writes -1 for what was not measured. */
-    void (*end_pass)(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms);
+    /* Timer stop, state reset; writes -1 for what was not measured. False
+     * (after logging) when the pass left a GL error. */
+    bool (*end_pass)(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms);
     /* Frees `self`. */
     void (*release)(void *self);
 } fg_backend_ops;

@@ -67,7 +67,7 @@ void fg_print_stats(const fg_graph *g, FILE *f)
             "gpu ms", "cpu ms");
     for (int pos = 0; pos < g->num_order; pos++) {
         const fg_pass_stats *p = &s.passes[g->order[pos]];
-        char bits[200];
+        char bits[256];
         fprintf(f, "  %-4d %-24s %-8s %-36s %10.3f %10.3f\n", pos, p->name,
                 p->kind == FG_RASTER ? "raster" : "compute",
                 fg_barrier_string(p->barrier, bits, sizeof(bits)), p->gpu_ms, p->cpu_ms);
@@ -172,7 +172,7 @@ char *fg_dot(const fg_graph *g)
         if (!p->live)
             sb_printf(&b, "\\nculled");
         else if (p->barrier) {
-            char bits[200];
+            char bits[256];
             sb_printf(&b, "\\nbarrier %s", fg_barrier_string(p->barrier, bits, sizeof(bits)));
         }
         sb_printf(&b, "\"];\n");

@@ -122,6 +122,8 @@ void dirt_camera_ray(const dirt_camera *cam, int width, int height, float px,
                      dirt_vec3 *dir)
 {
     float aspect = cam->aspect > 0.0f ? cam->aspect : (float)width / (float)height;
+    if (!(aspect > 0.0f) || !isfinite(aspect))
+        aspect = 1.0f;
     float nx = 2.0f * px / (float)width - 1.0f;
     float ny = 1.0f - 2.0f * py / (float)height;
     dirt_vec3 eye = v3_load(cam->eye), fwd = v3_load(cam->forward);
@@ -133,7 +135,8 @@ void dirt_camera_ray(const dirt_camera *cam, int width, int height, float px,
         *dir = v3_normalize(fwd);
         return;
     }
-    float th = tanf(0.5f * cam->yfov);
+    float yfov = cam->yfov > 0.0f ? cam->yfov : 0.785398163f; /* as dirt_camera_projection */
+    float th = tanf(0.5f * yfov);
     /* d . forward = 1: the point at parameter f along d lies on the plane
      * perpendicular to forward at distance f. */
     dirt_vec3 d = v3_mad(v3_mad(fwd, right, nx * th * aspect), up, ny * th);

@@ -172,7 +172,7 @@ size_t dirt_ref_accel_num_prims(const dirt_ref_accel *accel)
     return accel->prims;
 }
 
-static void fill_ray(RTCRay *r, const dirt_ref_ray *ray)
+static void fill_ray(struct RTCRay *r, const dirt_ref_ray *ray)
 {
     r->org_x = ray->org[0];
     r->org_y = ray->org[1];
@@ -196,7 +196,7 @@ bool dirt_ref_intersect1(const dirt_ref_accel *accel, const dirt_ref_ray *ray,
         return false;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    RTCRayHit rh;
+    struct RTCRayHit rh;
     fill_ray(&rh.ray, ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
@@ -231,7 +231,7 @@ bool dirt_ref_occluded1(const dirt_ref_accel *accel, const dirt_ref_ray *ray)
         return false;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    RTCRay r;
+    struct RTCRay r;
     fill_ray(&r, ray);
     rtcOccluded1(accel->scene, &ctx, &r);
     return r.tfar == -INFINITY;

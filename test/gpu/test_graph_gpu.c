@@ -1,7 +1,9 @@
 /* Frame graph on a real GL context (llvmpipe in CI): two chains of
  * compute -> compute -> raster -> readback give the pixels the CPU computes;
  * the second chain reuses the first one's memory (aliasing); the graph's own
- * validation passes, and reports a barrier the test hook drops. */
+ * validation passes, and reports a barrier the test hook drops. A second
+ * graph runs attachment-less raster passes doing image atomics at half
+ * resolution (the shape of DIRT's build passes). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,7 +16,7 @@
 enum { W = 37, H = 23 };
 
 static struct {
-    GLuint fill, to_image, draw;
+    GLuint fill, to_image, draw, splat;
 } prog;
 
 typedef struct chain {
@@ -103,6 +105,87 @@ static void add_chain(fg_graph *g, chain *c, const char *suffix)
     fg_keep(rb);
 }
 
+typedef struct splat {
+    fg_res counts;
+    uint32_t add;
+    uint32_t *out;
+    int width, height;
+} splat;
+
+static bool exec_clear(fg_ctx *ctx, void *user)
+{
+    splat *sp = user;
+    return fg_gl_clear(ctx, sp->counts);
+}
+
+static bool exec_splat(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    splat *sp = user;
+    glUseProgram(prog.splat);
+    glUniform1ui(0, sp->add);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    return true;
+}
+
+static bool exec_read_counts(fg_ctx *ctx, void *user)
+{
+    splat *sp = user;
+    fg_texture_size(ctx, sp->counts, &sp->width, &sp->height, NULL, NULL);
+    return fg_gl_read_texture(ctx, sp->counts, 0, sp->out, (size_t)W * H * sizeof(uint32_t));
+}
+
+/* clear -> splat(+1) -> splat(+2) -> readback on a W/2 x H/2 r32ui image. */
+static void test_attachmentless(dirt_gpu *gpu)
+{
+    uint32_t *out = calloc((size_t)W * H, sizeof(uint32_t));
+    splat s1 = {.add = 1, .out = out}, s2 = {.add = 2, .out = out};
+    fg_graph *g = fg_create(gpu);
+    CHECK(g && out);
+    if (!g || !out)
+        goto done;
+    fg_set_resolution(g, W, H);
+    fg_res counts = fg_texture(g, "counts", &(fg_tex_desc){.format = FG_R32UI, .div = 2});
+    s1.counts = s2.counts = counts;
+    fg_pass *clear = fg_add_pass(g, "clear", FG_COMPUTE, exec_clear, &s1);
+    fg_write(clear, counts, FG_TRANSFER_WRITE);
+    const fg_tex_desc half = {.div = 2};
+    fg_pass *p1 = fg_add_pass(g, "splat1", FG_RASTER, exec_splat, &s1);
+    fg_use(p1, counts, FG_IMAGE_ATOMIC, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_set_raster_size(p1, &half);
+    fg_pass *p2 = fg_add_pass(g, "splat2", FG_RASTER, exec_splat, &s2);
+    fg_use(p2, counts, FG_IMAGE_ATOMIC, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_set_raster_size(p2, &half);
+    fg_pass *rb = fg_add_pass(g, "read_counts", FG_COMPUTE, exec_read_counts, &s1);
+    fg_read(rb, counts, FG_TRANSFER_READ);
+    fg_keep(rb);
+    CHECK(fg_compile(g));
+    CHECK(fg_pass_barrier(g, "splat1") == GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    CHECK(fg_pass_barrier(g, "splat2") == GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    CHECK(fg_pass_barrier(g, "read_counts") == GL_TEXTURE_UPDATE_BARRIER_BIT);
+    /* the readback's TEXTURE_UPDATE already ordered the atomics before the
+     * next execute's clear */
+    CHECK(fg_pass_barrier(g, "clear") == 0);
+    for (int run = 0; run < 2; run++) {
+        memset(out, 0xff, (size_t)W * H * sizeof(uint32_t));
+        CHECK(fg_execute(g, &(fg_exec_opts){.validate = true}));
+        CHECK(s1.width == (W + 1) / 2 && s1.height == (H + 1) / 2);
+        int bad = 0;
+        for (int i = 0; i < s1.width * s1.height; i++)
+            bad += out[i] != 3;
+        CHECK_MSG(bad == 0, "%d of %d pixels are not 3 (first %u)", bad,
+                  s1.width * s1.height, out[0]);
+    }
+    log_text[0] = '\0';
+    CHECK(!fg_execute(g, &(fg_exec_opts){.validate = true, .debug_drop_barrier = "splat2"}));
+    CHECK(strstr(log_text, "pass 'splat2' accesses 'counts' (image atomic) after pass "
+                           "'splat1' wrote 'counts' (image atomic) with no "
+                           "GL_SHADER_IMAGE_ACCESS_BARRIER_BIT in between") != NULL);
+done:
+    fg_destroy(g);
+    free(out);
+}
+
 /* Counts pixels that differ from the CPU's result for `seed`. */
 static int check_pixels(const chain *c)
 {
@@ -136,7 +219,9 @@ int main(void)
     prog.fill = gl_program_compute("graph_test/fill.comp", NULL, 0);
     prog.to_image = gl_program_compute("graph_test/to_image.comp", NULL, 0);
     prog.draw = gl_program_create("graph test draw", draw_paths, NULL, 0);
-    CHECK(prog.fill && prog.to_image && prog.draw);
+    const char *splat_paths[] = {"graph_test/draw.vert", "graph_test/splat.frag", NULL};
+    prog.splat = gl_program_create("graph test splat", splat_paths, NULL, 0);
+    CHECK(prog.fill && prog.to_image && prog.draw && prog.splat);
 
     float *pix_a = calloc((size_t)W * H * 4, sizeof(float));
     float *pix_b = calloc((size_t)W * H * 4, sizeof(float));
@@ -227,11 +312,16 @@ int main(void)
     CHECK(check_pixels(&a) == 0 && check_pixels(&b) == 0);
     CHECK(dirt_gpu_error_count(gpu) == 0);
 
+    if (prog.splat)
+        test_attachmentless(gpu);
+    CHECK(dirt_gpu_error_count(gpu) == 0);
+
 done:
     fg_destroy(g);
     gl_program_destroy(&prog.fill);
     gl_program_destroy(&prog.to_image);
     gl_program_destroy(&prog.draw);
+    gl_program_destroy(&prog.splat);
     free(pix_a);
     free(pix_b);
     dirt_log_set_callback(NULL, NULL);

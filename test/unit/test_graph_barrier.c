@@ -318,7 +318,7 @@ static void fake_destroy(void *self, const fg_phys_desc *d, uint32_t name)
 
 static void fake_barrier(void *self, uint32_t bits)
 {
-    char s[128];
+    char s[256];
     ev(self, "barrier %s;", fg_barrier_string(bits, s, sizeof(s)), 0);
 }
 
@@ -334,13 +334,14 @@ static bool fake_begin(void *self, const fg_pass_info *p)
     return true;
 }
 
-static void fake_end(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms)
+static bool fake_end(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms)
 {
     fake *f = self;
     (void)p;
     f->ends++;
     *gpu_ms = 0.5;
     *cpu_ms = -1;
+    return true;
 }
 
 static void fake_release(void *self)

@@ -88,6 +88,44 @@ typedef struct dirt_ads_data {
 bool dirt_ads_read(dirt_ads *ads, dirt_ads_data *out);
 void dirt_ads_data_free(dirt_ads_data *data);
 
+/* ---- Trace ---- */
+
+/* A ray: points org + t dir for t in (tmin, tmax). Same layout as the GPU's
+ * dirt_gpu_ray (glsl/common/layout.h). */
+typedef struct dirt_ray {
+    float org[3];
+    float tmin;
+    float dir[3];
+    float tmax;
+} dirt_ray;
+
+#define DIRT_HIT_NONE 0xFFFFFFFFu
+
+/* The closest hit of a ray (layout of dirt_gpu_hit): prim = DIRT_HIT_NONE
+ * when nothing was hit; the hit point is org + t dir
+ * = (1 - u - v) p0 + u p1 + v p2; view = the view it was found in. */
+typedef struct dirt_hit {
+    uint32_t prim, view, owner, next;
+    float u, v, t, reserved;
+} dirt_hit;
+
+/* Zero-initialised = full Hi-Z, closest hit. */
+typedef struct dirt_trace_opts {
+    int hiz_levels;   /* 0 = start at the pyramid's top; n > 0: at level n - 1 */
+    bool any_hit;     /* visibility rays: stop at the first hit found */
+} dirt_trace_opts;
+
+typedef struct dirt_trace_stats {
+    uint64_t rays;
+    uint64_t aborted; /* rays whose march ran out of steps (their hit may be wrong) */
+    double gpu_ms, cpu_ms; /* -1 when unavailable */
+} dirt_trace_stats;
+
+/* Traces `count` rays through the structure of the last dirt_ads_build
+ * (blocking: uploads, dispatches, reads back). `opts`/`stats` may be NULL. */
+bool dirt_ads_trace(dirt_ads *ads, const dirt_ray *rays, size_t count, dirt_hit *hits,
+                    const dirt_trace_opts *opts, dirt_trace_stats *stats);
+
 /* Writes per-view PNG pictures of the built structure into `dir` (which
  * must exist): <dir>/ads_v<i>_<name>_lists.png (heat map of list length per
  * tile: black 0, then blue, red, yellow, white at the longest list) and

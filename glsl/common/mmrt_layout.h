@@ -1,0 +1,68 @@
+/* MMRT (the fragment-based multiview, multilayer A-buffer baseline of
+ * Vardis, Vasilakis, Papaioannou, I3D 2016): data layouts shared by C
+ * (src/mmrt/) and GLSL (glsl/mmrt/). Same rules as common/layout.h: valid
+ * C11 and GLSL 4.50, structs of DIRT_V4/DIRT_IV4/DIRT_UV4 members and
+ * #defines only; C checks the sizes with _Static_assert (src/mmrt/mmrt.c).
+ *
+ * MMRT reuses from common/layout.h: dirt_gpu_vertex (DIRT_BIND_VERTICES),
+ * dirt_gpu_view (DIRT_BIND_VIEWS), the depth bounds + Hi-Z pyramid layout
+ * (DIRT_BIND_DEPTH, uvec2 float bits of (zmin, zmax) per pixel, cleared to
+ * DIRT_DEPTH_CLEAR_MIN/MAX), dirt_gpu_ray (DIRT_BIND_RAYS) and dirt_gpu_hit
+ * (DIRT_BIND_HITS). Its views are DIRT's with tile size 1: a "tile" is a
+ * pixel, and global pixel g of view v is v.tile_base + y * width + x. */
+#ifndef DIRT_COMMON_MMRT_LAYOUT_H
+#define DIRT_COMMON_MMRT_LAYOUT_H
+
+#include "common/layout.h"
+
+/* Storage buffer bindings of the MMRT passes (16 and up: 0..15 belong to
+ * common/layout.h). */
+#define DIRT_BIND_MMRT_PARAMS 16     /* dirt_mmrt_gpu_params */
+#define DIRT_BIND_MMRT_HEADS 17      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_TAILS 18      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_IDS 19        /* uint[3 * capacity]: id nodes (below) */
+#define DIRT_BIND_MMRT_DATA 20       /* dirt_mmrt_gpu_data[capacity] */
+#define DIRT_BIND_MMRT_COUNTERS 21   /* dirt_mmrt_gpu_counters */
+#define DIRT_BIND_MMRT_MATERIALS 22  /* uint[primitives]: material index per primitive */
+
+/* An id node is DIRT_MMRT_ID_UINTS consecutive uints (12 bytes, the MMRT
+ * paper's size): [0] float bits of the fragment's eye-space depth z (> 0),
+ * [1] next node (farther; DIRT_LIST_END ends the list), [2] prev node
+ * (nearer; set by the reorder pass). Node i's shading data is data node i. */
+#define DIRT_MMRT_ID_UINTS 3
+#define DIRT_MMRT_ID_Z 0
+#define DIRT_MMRT_ID_NEXT 1
+#define DIRT_MMRT_ID_PREV 2
+
+/* Lists of up to this many nodes are sorted in registers in one go; longer
+ * ones are sorted in chunks of this size merged into the sorted list (all
+ * nodes kept). */
+#define DIRT_MMRT_SORT_CHUNK 32
+
+/* Build parameters (32 bytes). */
+struct dirt_mmrt_gpu_params {
+    DIRT_IV4 config;     /* views, buckets B, pixels (all views), atlas width */
+    DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas height, 0 */
+};
+
+/* One data node (32 bytes): the shading attributes of a fragment, sampled
+ * at its pixel centre. The position is (1 - u - v) p0 + u p1 + v p2 of the
+ * primitive's vertices (vertex buffer). */
+struct dirt_mmrt_gpu_data {
+    DIRT_UV4 ids;        /* x primitive id, y material index, z shading normal
+                            (octahedral, packSnorm2x16), w global pixel */
+    DIRT_V4 attr;        /* x u, y v (perspective-correct barycentrics of
+                            vertices 1 and 2), zw texture uv */
+};
+
+/* Counters (32 bytes). `build` is cleared by every build; `trace` by every
+ * trace. */
+struct dirt_mmrt_gpu_counters {
+    DIRT_UV4 build;      /* x fragments requested (node counter), y most
+                            fragments in one pixel, z bucket lists longer than
+                            DIRT_MMRT_SORT_CHUNK, w pixels with a fragment */
+    DIRT_UV4 trace;      /* x rays that hit, y pixels tested, z id nodes
+                            visited, w rays that ran out of march steps */
+};
+
+#endif

@@ -1,0 +1,371 @@
+#version 450 core
+// DIRT Trace (paper section 4.2.1): the closest hit of every ray of a batch,
+// through the per-primitive image-space structure.
+//
+// Per view (camera view first when present, then the others by the ray
+// parameter at which the ray enters them), the ray is clipped to the view
+// frustum and marched cell by cell on the Hi-Z pyramid: a cell whose depth
+// bounds the ray's depth span misses is skipped (and the march climbs a
+// level), otherwise the march descends; at level 0 (a tile) the buckets the
+// ray's depth span overlaps are walked in the ray's depth direction with
+// exact watertight ray-triangle tests. A hit counts only if it lies in the
+// tile's frustum (planes moved out by DIRT_CLIP_EPS, as in the build) and is
+// the closest so far. Scanning stops after a bucket once the best hit lies
+// within the depth slabs scanned so far (a primitive stored in several
+// buckets can give a hit beyond the current slab; stopping there could skip
+// a nearer primitive of the next bucket). Cell exits are solved exactly in
+// clip space, where tile boundaries are planes linear in the ray parameter.
+#include "common/layout.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
+    dirt_gpu_vertex vertices[];
+};
+layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
+    dirt_gpu_view views[];
+};
+layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
+    dirt_gpu_ads_params params;
+};
+layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
+    uvec2 depth[];
+};
+layout(std430, binding = DIRT_BIND_HEADS) readonly buffer Heads {
+    uint heads[];
+};
+layout(std430, binding = DIRT_BIND_NODES) readonly buffer Nodes {
+    uvec2 nodes[];
+};
+layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
+    dirt_gpu_ads_counters counters;
+};
+layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
+    dirt_gpu_ray rays[];
+};
+layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
+    dirt_gpu_hit hits[];
+};
+
+layout(location = 0) uniform uint u_count;
+layout(location = 1) uniform int u_hiz_top;  // highest level to start from; < 0 = top
+layout(location = 2) uniform int u_any_hit;  // 1: stop at the first accepted hit
+
+#define MAX_STEPS 65536
+
+// Set when a loop ended without reaching its exit condition. Mesa's
+// llvmpipe caps the loop iterations of one invocation (all loops together,
+// 65535) and silently leaves loops past that; such rays are counted as
+// aborted instead of being reported as (possibly wrong) misses.
+bool g_cut = false;
+
+// ---- watertight ray-triangle test (Woop, Benthin, Wald, JCGT 2013) ----
+
+struct ray_setup {
+    vec3 org;
+    int kx, ky, kz;
+    vec3 shear;  // Sx, Sy, Sz
+};
+
+ray_setup setup_ray(vec3 org, vec3 dir)
+{
+    ray_setup r;
+    r.org = org;
+    vec3 a = abs(dir);
+    r.kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    r.kx = (r.kz + 1) % 3;
+    r.ky = (r.kx + 1) % 3;
+    if (dir[r.kz] < 0.0) {
+        int tmp = r.kx;
+        r.kx = r.ky;
+        r.ky = tmp;
+    }
+    r.shear = vec3(dir[r.kx] / dir[r.kz], dir[r.ky] / dir[r.kz], 1.0 / dir[r.kz]);
+    return r;
+}
+
+// True for a hit with t in (tmin, tmax); u, v weight vertices 1 and 2.
+bool intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
+               out float t, out float u, out float v)
+{
+    vec3 A = p0 - r.org, B = p1 - r.org, C = p2 - r.org;
+    float Ax = A[r.kx] - r.shear.x * A[r.kz], Ay = A[r.ky] - r.shear.y * A[r.kz];
+    float Bx = B[r.kx] - r.shear.x * B[r.kz], By = B[r.ky] - r.shear.y * B[r.kz];
+    float Cx = C[r.kx] - r.shear.x * C[r.kz], Cy = C[r.ky] - r.shear.y * C[r.kz];
+    float U = Cx * By - Cy * Bx;
+    float V = Ax * Cy - Ay * Cx;
+    float W = Bx * Ay - By * Ax;
+    if (U == 0.0 || V == 0.0 || W == 0.0) {
+        // Edge cases: redo the 2D edge tests in double precision.
+        U = float(double(Cx) * double(By) - double(Cy) * double(Bx));
+        V = float(double(Ax) * double(Cy) - double(Ay) * double(Cx));
+        W = float(double(Bx) * double(Ay) - double(By) * double(Ax));
+    }
+    t = 0.0;
+    u = 0.0;
+    v = 0.0;
+    if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0))
+        return false;
+    float det = U + V + W;
+    if (det == 0.0)
+        return false;
+    float Az = r.shear.z * A[r.kz], Bz = r.shear.z * B[r.kz], Cz = r.shear.z * C[r.kz];
+    float T = U * Az + V * Bz + W * Cz;
+    float inv = 1.0 / det;
+    t = T * inv;
+    if (!(t > tmin && t < tmax))
+        return false;
+    u = V * inv;
+    v = W * inv;
+    return true;
+}
+
+// ---- view helpers ----
+
+mat4 view_matrix(dirt_gpu_view v)
+{
+    return mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
+}
+
+int level_base(dirt_gpu_view v, int d)
+{
+    return v.level_base[d >> 2][d & 3];
+}
+
+ivec2 level_size(dirt_gpu_view v, int d)
+{
+    return (v.size.zw + (1 << d) - 1) >> d;
+}
+
+// Clips [t0, t1] to the view frustum; false when nothing is left.
+bool clip_to_view(vec4 co, vec4 cd, inout float t0, inout float t1)
+{
+    vec4 planes[6] = vec4[6](vec4(1, 0, 0, 1), vec4(-1, 0, 0, 1), vec4(0, 1, 0, 1),
+                             vec4(0, -1, 0, 1), vec4(0, 0, 1, 1), vec4(0, 0, -1, 1));
+    for (int i = 0; i < 6; i++) {
+        float a = dot(planes[i], co), b = dot(planes[i], cd);
+        if (b == 0.0) {
+            if (a < 0.0)
+                return false;
+        } else {
+            float t = -a / b;
+            if (b > 0.0)
+                t0 = max(t0, t);
+            else
+                t1 = min(t1, t);
+        }
+    }
+    return t0 <= t1;
+}
+
+// Parameter where the ray crosses the NDC line coordinate X (axis 0 = x,
+// 1 = y): c[axis](t) = X * c.w(t).
+float cross_t(vec4 co, vec4 cd, int axis, float X)
+{
+    float den = cd[axis] - X * cd.w;
+    return den == 0.0 ? 1e30 : -(co[axis] - X * co.w) / den;
+}
+
+// Parameter where the ray leaves the NDC slab [lo, hi] of one axis, moving
+// with NDC velocity sign `motion` at parameter t. When the crossing solves
+// to t or earlier, either the ray approaches its vanishing point inside the
+// slab and never leaves on this axis (1e30), or rounding put the crossing
+// just behind (leave now: t).
+float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float hi)
+{
+    if (motion == 0.0)
+        return 1e30;
+    float X = motion > 0.0 ? hi : lo;
+    float s = cross_t(co, cd, axis, X);
+    if (s > t)
+        return s;
+    bool never = cd.w > 0.0 && (motion > 0.0 ? cd[axis] / cd.w <= X : cd[axis] / cd.w >= X);
+    return never ? 1e30 : t;
+}
+
+struct best_hit {
+    float t, u, v;
+    uint prim;
+    int view;
+};
+
+// Walks the buckets of tile `tile` (global index `gt`) that the ray's depth
+// span [wa, wb] overlaps. Returns true when a hit inside the tile was found.
+bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 tile, uint gt,
+               float wa, float wb, float tmin, inout best_hit best)
+{
+    int B = params.config.z;
+    uint T = uint(params.config.w);
+    int S = params.config.y;
+    uvec2 e = depth[gt];
+    float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
+    float range = zhi - zlo;
+    int ba = 0, bb = 0;
+    if (range > 0.0) {
+        ba = clamp(int(floor(float(B) * (wa - zlo) / range)), 0, B - 1);
+        bb = clamp(int(floor(float(B) * (wb - zlo) / range)), 0, B - 1);
+    }
+    int step = bb >= ba ? 1 : -1;
+    // The tile's NDC rectangle, moved out like the build's clip.
+    ivec2 lo = tile * S, hi = min(lo + S, v.size.xy);
+    vec2 sz = vec2(v.size.xy);
+    vec2 e2 = float(DIRT_CLIP_EPS) * 2.0 * float(S) / sz;
+    vec2 rlo = -1.0 + 2.0 * vec2(lo) / sz - e2, rhi = -1.0 + 2.0 * vec2(hi) / sz + e2;
+    bool found = false;
+    for (int b = ba;; b += step) {
+        uint node = heads[uint(b) * T + gt];
+        while (node != DIRT_LIST_END) {
+            uvec2 n = nodes[node];
+            node = n.y;
+            uint p = n.x;
+            float t, u, w;
+            if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
+                           vertices[3u * p + 2u].position.xyz, tmin, best.t, t, u, w))
+                continue;
+            vec4 c = co + t * cd;
+            vec2 ndc = c.xy / c.w;
+            if (c.w <= 0.0 || any(lessThan(ndc, rlo)) || any(greaterThan(ndc, rhi)))
+                continue;
+            best.t = t;
+            best.u = u;
+            best.v = w;
+            best.prim = p;
+            best.view = view;
+            found = true;
+            if (u_any_hit != 0)
+                return true;
+        }
+        if (node != DIRT_LIST_END)
+            g_cut = true;
+        if (found) {
+            float wh = co.w + best.t * cd.w;
+            if (step > 0 && (b == B - 1 || wh <= zlo + float(b + 1) * range / float(B)))
+                break;
+            if (step < 0 && (b == 0 || wh >= zlo + float(b) * range / float(B)))
+                break;
+        }
+        if (b == bb)
+            break;
+    }
+    return found;
+}
+
+// Marches the ray through one view over [t0, t1]. Returns false when the
+// march ran out of steps (the ray is then reported as aborted).
+bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0, float t1,
+                inout best_hit best)
+{
+    dirt_gpu_view v = views[view];
+    mat4 vp = view_matrix(v);
+    vec4 co = vp * vec4(org, 1.0), cd = vp * vec4(dir, 0.0);
+    int S = params.config.y;
+    int top = v.placement.z - 1;
+    if (u_hiz_top >= 0)
+        top = min(top, u_hiz_top);
+    vec2 tiles = vec2(v.size.xy) / float(S);
+    // Step past a cell's exit by a millionth of the segment, and by at least
+    // 4 ulps of t so that t + eps_t > t in float (else the march stalls).
+    float eps_t = 1e-6 * (t1 - t0) + 4.8e-7 * max(abs(t0), abs(t1)) + 1e-30;
+    float t = t0;
+    int d = top;
+    for (int steps = 0; steps < MAX_STEPS; steps++) {
+        if (t > t1 || t >= best.t)
+            return true;
+        vec4 c = co + t * cd;
+        vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
+        ivec2 size = level_size(v, d);
+        ivec2 cell = clamp(ivec2(floor(tc)) >> d, ivec2(0), size - 1);
+        // The cell's NDC rectangle and the parameter where the ray leaves it.
+        ivec2 plo = (cell << d) * S, phi = min(((cell + 1) << d) * S, v.size.xy);
+        vec2 sz = vec2(v.size.xy);
+        vec2 nlo = -1.0 + 2.0 * vec2(plo) / sz, nhi = -1.0 + 2.0 * vec2(phi) / sz;
+        // Direction of motion in NDC (constant along the segment, w > 0).
+        vec2 motion = cd.xy * c.w - c.xy * cd.w;
+        float tx = exit_t(co, cd, 0, t, motion.x, nlo.x, nhi.x);
+        float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y);
+        float texit = max(min(min(tx, ty), t1), t);
+        float wa = co.w + t * cd.w, wb = co.w + texit * cd.w;
+        uvec2 e = depth[level_base(v, d) + cell.y * size.x + cell.x];
+        float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
+        if (max(wa, wb) < zlo || min(wa, wb) > zhi) {
+            t = texit + eps_t;
+            d = min(d + 1, top);
+            continue;
+        }
+        if (d > 0) {
+            d--;
+            continue;
+        }
+        uint gt = uint(v.placement.x + cell.y * v.size.z + cell.x);
+        if (walk_tile(rs, co, cd, v, view, cell, gt, wa, wb, tmin, best))
+            return true;
+        t = texit + eps_t;
+        d = min(d + 1, top);
+    }
+    return false;
+}
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_count)
+        return;
+    dirt_gpu_ray ray = rays[i];
+    vec3 org = ray.origin_tmin.xyz, dir = ray.dir_tmax.xyz;
+    float tmin = ray.origin_tmin.w;
+    best_hit best;
+    best.t = ray.dir_tmax.w;
+    best.u = 0.0;
+    best.v = 0.0;
+    best.prim = DIRT_NO_HIT;
+    best.view = -1;
+    ray_setup rs = setup_ray(org, dir);
+
+    // Views and their entry parameters; camera view (index 0 when present)
+    // first, the rest by entry parameter (insertion sort, at most 7).
+    int n = params.config.x;
+    int order[DIRT_GPU_MAX_VIEWS];
+    float enter[DIRT_GPU_MAX_VIEWS];
+    float leave[DIRT_GPU_MAX_VIEWS];
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        dirt_gpu_view v = views[k];
+        mat4 vp = view_matrix(v);
+        vec4 co = vp * vec4(org, 1.0), cd = vp * vec4(dir, 0.0);
+        float t0 = tmin, t1 = best.t;
+        if (!clip_to_view(co, cd, t0, t1))
+            continue;
+        bool first = v.placement.w < 0;
+        int j = m++;
+        while (j > 0 && !first && views[order[j - 1]].placement.w >= 0 && enter[j - 1] > t0) {
+            order[j] = order[j - 1];
+            enter[j] = enter[j - 1];
+            leave[j] = leave[j - 1];
+            j--;
+        }
+        order[j] = k;
+        enter[j] = t0;
+        leave[j] = t1;
+    }
+    bool aborted = false;
+    int visited = 0;
+    for (int j = 0; j < m; j++) {
+        visited++;
+        if (enter[j] >= best.t)
+            continue;
+        if (!trace_view(rs, org, dir, order[j], tmin, enter[j], min(leave[j], best.t), best))
+            aborted = true;
+        if (u_any_hit != 0 && best.prim != DIRT_NO_HIT) {
+            visited = m;
+            break;
+        }
+    }
+    if (visited != m || g_cut)
+        aborted = true;
+    if (aborted)
+        atomicAdd(counters.fill.z, 1u);
+    dirt_gpu_hit h;
+    h.ids = uvec4(best.prim, uint(best.view), i, DIRT_LIST_END);
+    h.bary_t = vec4(best.u, best.v, best.prim == DIRT_NO_HIT ? -1.0 : best.t, 0.0);
+    hits[i] = h;
+}

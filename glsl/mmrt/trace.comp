@@ -1,0 +1,289 @@
+#version 450 core
+// MMRT trace: one invocation per ray of a batch (dirt_gpu_ray ->
+// dirt_gpu_hit, closest hit). For every view in order (the camera view first
+// when there is one, then the cube faces), the ray's segment [tmin, best t]
+// is clipped to the view frustum and marched in image space:
+//  Hi-Z:   a walk over the min/max pyramid of the per-pixel depth bounds:
+//          the cell of the current point at level L is left in one step when
+//          the ray's depth span across it (widened by the thickness) misses
+//          the cell's bounds (then L goes up), else L goes down; at level 0
+//          the pixel's lists are tested with the exact depth span of the
+//          ray inside that pixel. With u_top_level = 0 this visits every
+//          pixel the projected segment crosses (linear conservative).
+//  linear: N samples along the projected segment, jittered by a hash of
+//          (seed, ray, view); sample i tests the pixel under it with the
+//          ray's depth span between the midpoints to its neighbours.
+// Pixel test (MMRT paper 3.4): early skip when the span misses the pixel's
+// bounds, bucket skipping (only the buckets the span overlaps), list walk in
+// the ray's depth direction (head -> next when depth grows along the ray,
+// tail -> prev when it shrinks); the first fragment whose depth is within
+// u_thickness of the span is the hit. The hit's t is where the ray's depth
+// equals the fragment's, clamped to the span.
+#include "common/layout.h"
+#include "common/mmrt_layout.h"
+#include "mmrt/abuffer.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
+    dirt_gpu_view views[];
+};
+layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
+    uvec2 depth[];
+};
+layout(std430, binding = DIRT_BIND_MMRT_PARAMS) readonly buffer Params {
+    dirt_mmrt_gpu_params params;
+};
+layout(std430, binding = DIRT_BIND_MMRT_HEADS) readonly buffer Heads {
+    uint heads[];
+};
+layout(std430, binding = DIRT_BIND_MMRT_TAILS) readonly buffer Tails {
+    uint tails[];
+};
+layout(std430, binding = DIRT_BIND_MMRT_IDS) readonly buffer Ids {
+    uint ids[];
+};
+layout(std430, binding = DIRT_BIND_MMRT_DATA) readonly buffer Data {
+    dirt_mmrt_gpu_data data[];
+};
+layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
+    dirt_mmrt_gpu_counters counters;
+};
+layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
+    dirt_gpu_ray rays[];
+};
+layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
+    dirt_gpu_hit hits[];
+};
+
+layout(location = 0) uniform uint u_count;
+layout(location = 1) uniform int u_march;      // 0 Hi-Z, 1 linear
+layout(location = 2) uniform int u_samples;    // linear: samples per view
+layout(location = 3) uniform int u_top_level;  // Hi-Z: highest level used
+layout(location = 4) uniform float u_thickness;
+layout(location = 5) uniform uint u_seed;
+layout(location = 6) uniform int u_stats;      // count pixels / nodes visited
+
+#define BIG 3.0e38
+
+struct hit_state {
+    uint node;    // id/data node, DIRT_LIST_END = none yet
+    int view;
+    float t;      // best t so far (the segment's end while none)
+    float z;
+};
+
+uint g_pixels_tested = 0u;
+uint g_nodes_visited = 0u;
+
+// Tests the fragments of global pixel g against the ray's depth span over
+// [ta, tb] (clip-space ray co + t cd of the current view). On a hit with
+// t < h.t, records it and returns true.
+bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hit_state h)
+{
+    g_pixels_tested++;
+    uvec2 bb = depth[g];
+    float zmin = uintBitsToFloat(bb.x), zmax = uintBitsToFloat(bb.y);
+    float za = co.w + ta * cd.w, zb = co.w + tb * cd.w;
+    float lo = min(za, zb) - u_thickness, hi = max(za, zb) + u_thickness;
+    if (!(zmin <= zmax) || hi < zmin || lo > zmax)
+        return false; // empty pixel or early skip
+    float range = zmax - zmin;
+    int B = params.config.y;
+    // A hair wider than [lo, hi] so a shader-to-shader difference in the
+    // rounding of the bucket formula can never skip the right bucket.
+    float m = range * 1e-5;
+    int b0 = mmrt_bucket(lo - m, zmin, range, B);
+    int b1 = mmrt_bucket(hi + m, zmin, range, B);
+    uint pixels = uint(params.config.z);
+    bool forward = cd.w >= 0.0; // depth grows along the ray
+    for (int k = 0; k <= b1 - b0; k++) {
+        int b = forward ? b0 + k : b1 - k;
+        uint slot = uint(b) * pixels + g;
+        uint n = forward ? heads[slot] : tails[slot];
+        while (n != DIRT_LIST_END) {
+            g_nodes_visited++;
+            uint base = n * uint(DIRT_MMRT_ID_UINTS);
+            float z = uintBitsToFloat(ids[base + uint(DIRT_MMRT_ID_Z)]);
+            if (forward ? z > hi : z < lo)
+                return false; // sorted: nothing further along can match
+            if (forward ? z >= lo : z <= hi) {
+                float t = 0.5 * (ta + tb);
+                if (cd.w != 0.0)
+                    t = clamp((z - co.w) / cd.w, min(ta, tb), max(ta, tb));
+                if (t >= h.t)
+                    return false;
+                h.node = n;
+                h.view = view;
+                h.t = t;
+                h.z = z;
+                return true;
+            }
+            n = ids[base + uint(forward ? DIRT_MMRT_ID_NEXT : DIRT_MMRT_ID_PREV)];
+        }
+    }
+    return false;
+}
+
+vec2 to_pixels(dirt_gpu_view v, vec4 c)
+{
+    return (c.xy / c.w * 0.5 + 0.5) * vec2(v.size.xy);
+}
+
+// t at which the ray's pixel coordinate along `axis` equals `X` (pixels).
+float cross_at(dirt_gpu_view v, vec4 co, vec4 cd, int axis, float X)
+{
+    float b = 2.0 * X / float(v.size[axis]) - 1.0;
+    float den = cd[axis] - b * cd.w;
+    return den != 0.0 ? (b * co.w - co[axis]) / den : BIG;
+}
+
+// Hi-Z march of view `vi` over [t0, t1]. Returns false when it ran out of
+// steps.
+bool march_hiz(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1, int top,
+               inout hit_state h)
+{
+    // Direction of the projected segment (constant: the projection of a
+    // line is a line, and w > 0 on the clipped segment).
+    vec2 dir = vec2(sign(cd.x * co.w - co.x * cd.w), sign(cd.y * co.w - co.y * cd.w));
+    int L = 0;
+    float t = t0;
+    int steps = 0, max_steps = 8 * (v.size.x + v.size.y) + 64;
+    float min_step = (t1 - t0) * 1e-6;
+    while (t < t1) {
+        if (++steps > max_steps)
+            return false;
+        vec2 p = to_pixels(v, co + t * cd) + dir * 1e-3;
+        int s = 1 << L;
+        ivec2 lsize = (v.size.xy + (s - 1)) >> L;
+        ivec2 cell = clamp(ivec2(floor(p / float(s))), ivec2(0), lsize - 1);
+        float tx = dir.x > 0.0 ? cross_at(v, co, cd, 0, float((cell.x + 1) * s))
+                 : dir.x < 0.0 ? cross_at(v, co, cd, 0, float(cell.x * s)) : BIG;
+        float ty = dir.y > 0.0 ? cross_at(v, co, cd, 1, float((cell.y + 1) * s))
+                 : dir.y < 0.0 ? cross_at(v, co, cd, 1, float(cell.y * s)) : BIG;
+        float te = min(t1, min(tx, ty));
+        if (!(te > t))
+            te = min(t1, t + min_step);
+        int lb = v.level_base[L >> 2][L & 3];
+        uvec2 bb = depth[uint(lb + cell.y * lsize.x + cell.x)];
+        float zmin = uintBitsToFloat(bb.x), zmax = uintBitsToFloat(bb.y);
+        float za = co.w + t * cd.w, zb = co.w + te * cd.w;
+        float lo = min(za, zb) - u_thickness, hi = max(za, zb) + u_thickness;
+        if (!(zmin <= zmax) || hi < zmin || lo > zmax) {
+            t = te;
+            L = min(L + 1, top);
+            continue;
+        }
+        if (L > 0) {
+            L--;
+            continue;
+        }
+        uint g = uint(v.placement.x + cell.y * v.size.x + cell.x);
+        if (test_pixel(g, t, te, co, cd, vi, h))
+            return true;
+        t = te;
+        L = min(1, top);
+    }
+    return true;
+}
+
+// Screen parameter s in [0, 1] along the projected segment -> ray t
+// (1/w is linear in screen space).
+float t_of_s(float s, float t0, float t1, float w0, float w1)
+{
+    float den = (1.0 - s) * w1 + s * w0;
+    float a = den > 0.0 ? s * w0 / den : s;
+    return t0 + a * (t1 - t0);
+}
+
+void march_linear(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1, uint ray,
+                  inout hit_state h)
+{
+    int N = max(u_samples, 1);
+    float w0 = co.w + t0 * cd.w, w1 = co.w + t1 * cd.w;
+    uint key = dirt_mmrt_hash(dirt_mmrt_hash(u_seed ^ 0x6d6d7274u) ^ ray) ^ uint(vi);
+    float j = float(dirt_mmrt_hash(key) >> 8) * (1.0 / 16777216.0);
+    for (int i = 0; i < N; i++) {
+        float sc = (float(i) + j) / float(N);
+        float sa = i == 0 ? 0.0 : (float(i) + j - 0.5) / float(N);
+        float sb = i == N - 1 ? 1.0 : (float(i) + j + 0.5) / float(N);
+        float tc = t_of_s(sc, t0, t1, w0, w1);
+        ivec2 px = clamp(ivec2(floor(to_pixels(v, co + tc * cd))), ivec2(0), v.size.xy - 1);
+        uint g = uint(v.placement.x + px.y * v.size.x + px.x);
+        if (test_pixel(g, t_of_s(sa, t0, t1, w0, w1), t_of_s(sb, t0, t1, w0, w1), co, cd, vi,
+                       h))
+            return;
+    }
+}
+
+// Clips [t0, t1] of the ray co + t cd to the view frustum (Liang-Barsky on
+// the six clip planes). False when nothing is left.
+bool clip_segment(vec4 co, vec4 cd, inout float t0, inout float t1)
+{
+    for (int k = 0; k < 6; k++) {
+        float sgn = (k & 1) == 0 ? 1.0 : -1.0;
+        int axis = k >> 1;
+        float a = co.w + sgn * co[axis];
+        float b = cd.w + sgn * cd[axis];
+        if (b == 0.0) {
+            if (a < 0.0)
+                return false;
+        } else if (b > 0.0) {
+            t0 = max(t0, -a / b);
+        } else {
+            t1 = min(t1, -a / b);
+        }
+    }
+    return t0 < t1;
+}
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_count)
+        return;
+    dirt_gpu_ray r = rays[i];
+    vec3 org = r.origin_tmin.xyz, dir = r.dir_tmax.xyz;
+    float tmin = max(r.origin_tmin.w, 0.0);
+    float tmax = min(r.dir_tmax.w, BIG);
+    hit_state h;
+    h.node = DIRT_LIST_END;
+    h.view = -1;
+    h.t = tmax;
+    h.z = 0.0;
+    bool aborted = false;
+    int nviews = params.config.x;
+    for (int vi = 0; vi < nviews; vi++) {
+        dirt_gpu_view v = views[vi];
+        mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
+        vec4 co = vp * vec4(org, 1.0), cd = vp * vec4(dir, 0.0);
+        float t0 = tmin, t1 = h.t;
+        if (!clip_segment(co, cd, t0, t1))
+            continue;
+        if (u_march == 0 || u_samples <= 0) {
+            int top = u_march == 0 ? min(u_top_level, v.placement.z - 1) : 0;
+            if (!march_hiz(vi, v, co, cd, t0, t1, max(top, 0), h))
+                aborted = true;
+        } else {
+            march_linear(vi, v, co, cd, t0, t1, i, h);
+        }
+    }
+    dirt_gpu_hit o;
+    if (h.node != DIRT_LIST_END) {
+        dirt_mmrt_gpu_data d = data[h.node];
+        o.ids = uvec4(d.ids.x, uint(h.view), i, h.node);
+        o.bary_t = vec4(d.attr.xy, h.t, h.z);
+    } else {
+        o.ids = uvec4(DIRT_NO_HIT, DIRT_NO_HIT, i, DIRT_LIST_END);
+        o.bary_t = vec4(0.0, 0.0, -1.0, 0.0);
+    }
+    hits[i] = o;
+    if (u_stats != 0) {
+        if (h.node != DIRT_LIST_END)
+            atomicAdd(counters.trace.x, 1u);
+        atomicAdd(counters.trace.y, g_pixels_tested);
+        atomicAdd(counters.trace.z, g_nodes_visited);
+    }
+    if (aborted)
+        atomicAdd(counters.trace.w, 1u);
+}

@@ -1,0 +1,38 @@
+/* Internal state of a DIRT structure, shared by the build (build.c) and the
+ * trace (trace.c). */
+#ifndef DIRT_DIRT_ADS_INTERNAL_H
+#define DIRT_DIRT_ADS_INTERNAL_H
+
+#include "common/layout.h"
+#include "dirt/ads.h"
+#include "gl/gl.h"
+
+struct dirt_ads {
+    dirt_gpu *gpu;
+    dirt_ads_opts opts;
+    int num_views;
+    bool use_nv;
+    GLuint prog_depth, prog_fill, prog_mip;
+    GLuint vao, fbo;
+    int fbo_width, fbo_height;
+    /* buffers and their capacities in bytes */
+    GLuint vertices, views, params, depth, heads, nodes, counters;
+    size_t vertices_size, depth_size, heads_size;
+    size_t node_capacity;     /* nodes */
+    gl_timer timers[DIRT_ADS_NUM_PASSES];
+    dirt_view_set set;
+    size_t num_primitives;
+    struct dirt_gpu_vertex *staging;
+    size_t staging_cap;
+    dirt_ads_stats stats;
+    /* trace */
+    GLuint prog_trace;
+    GLuint rays, hits;
+    size_t rays_size, hits_size;
+    gl_timer trace_timer;
+};
+
+/* Binds every buffer of the structure at its DIRT_BIND_* point. */
+void ads_bind_all(dirt_ads *a);
+
+#endif

@@ -1,0 +1,564 @@
+/* MMRT build: depth bounds, Hi-Z mip, store and reorder passes. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/program.h"
+#include "mmrt_internal.h"
+
+_Static_assert(sizeof(struct dirt_mmrt_gpu_params) == 32, "params layout");
+_Static_assert(sizeof(struct dirt_mmrt_gpu_data) == DIRT_MMRT_DATA_NODE_BYTES, "data layout");
+_Static_assert(sizeof(struct dirt_mmrt_gpu_counters) == 32, "counters layout");
+_Static_assert(sizeof(dirt_mmrt_data_node) == sizeof(struct dirt_mmrt_gpu_data),
+               "data node mirror");
+_Static_assert(sizeof(dirt_mmrt_id_node) == DIRT_MMRT_ID_NODE_BYTES &&
+               DIRT_MMRT_ID_UINTS * 4 == DIRT_MMRT_ID_NODE_BYTES, "id node layout");
+_Static_assert(sizeof(struct dirt_gpu_vertex) == 32, "vertex layout");
+_Static_assert(sizeof(struct dirt_gpu_view) == 192, "view layout");
+_Static_assert(DIRT_MMRT_END == DIRT_LIST_END, "list end");
+
+const char *const dirt_mmrt_pass_names[DIRT_MMRT_NUM_PASSES] = {
+    "mmrt clear", "mmrt depth bounds", "mmrt mip", "mmrt store", "mmrt reorder",
+};
+
+static int views_in_mode(enum dirt_view_mode m)
+{
+    return m == DIRT_VIEWS_SINGLE ? 1 : m == DIRT_VIEWS_CUBE ? 6 : 7;
+}
+
+dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
+{
+    dirt_mmrt *m = calloc(1, sizeof(*m));
+    if (!m) {
+        DIRT_ERROR("out of memory");
+        return NULL;
+    }
+    m->gpu = gpu;
+    if (opts)
+        m->opts = *opts;
+    m->opts.views.tile_size = 1;
+    if (m->opts.buckets <= 0)
+        m->opts.buckets = 4;
+    if (m->opts.views.mode < DIRT_VIEWS_SINGLE || m->opts.views.mode > DIRT_VIEWS_CUBE_CAMERA) {
+        DIRT_ERROR("unknown view mode %d", (int)m->opts.views.mode);
+        goto error;
+    }
+    m->num_views = views_in_mode(m->opts.views.mode);
+    GLint max_viewports = 0;
+    glGetIntegerv(GL_MAX_VIEWPORTS, &max_viewports);
+    if (max_viewports < m->num_views) {
+        DIRT_ERROR("MMRT draws all %d views at once with viewport arrays; this GPU has %d "
+                   "viewports", m->num_views, max_viewports);
+        goto error;
+    }
+    char nviews[8];
+    snprintf(nviews, sizeof(nviews), "%d", m->num_views);
+    glsl_define defs[2] = {{"MMRT_NUM_VIEWS", nviews}, {"MMRT_PASS_DEPTH", "1"}};
+    const char *paths[] = {"mmrt/raster.vert", "mmrt/raster.geom", "mmrt/raster.frag", NULL};
+    m->prog_depth = gl_program_create("mmrt depth bounds", paths, defs, 2);
+    defs[1].name = "MMRT_PASS_STORE";
+    m->prog_store = gl_program_create("mmrt store", paths, defs, 2);
+    /* The min/max pyramid is DIRT's, on a tile size of 1. */
+    m->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
+    m->prog_reorder = gl_program_compute("mmrt/reorder.comp", NULL, 0);
+    m->prog_trace = gl_program_compute("mmrt/trace.comp", NULL, 0);
+    if (!m->prog_depth || !m->prog_store || !m->prog_mip || !m->prog_reorder || !m->prog_trace)
+        goto error;
+    glCreateVertexArrays(1, &m->vao);
+    gl_label(GL_VERTEX_ARRAY, m->vao, "mmrt vao");
+    glCreateFramebuffers(1, &m->fbo);
+    gl_label(GL_FRAMEBUFFER, m->fbo, "mmrt raster atlas");
+    m->views = gl_buffer_create(gpu, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view), NULL,
+                                false, "mmrt views");
+    m->params = gl_buffer_create(gpu, sizeof(struct dirt_mmrt_gpu_params), NULL, false,
+                                 "mmrt params");
+    m->counters = gl_buffer_create(gpu, sizeof(struct dirt_mmrt_gpu_counters), NULL, true,
+                                   "mmrt counters");
+    if (!m->views || !m->params || !m->counters)
+        goto error;
+    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++) {
+        if (!gl_timer_init(&m->timers[i], m->opts.cpu_timing, dirt_mmrt_pass_names[i]))
+            goto error;
+    }
+    if (!gl_timer_init(&m->trace_timer, m->opts.cpu_timing, "mmrt trace"))
+        goto error;
+    m->node_capacity = m->opts.initial_nodes;
+    if (!gl_check("mmrt create"))
+        goto error;
+    return m;
+error:
+    dirt_mmrt_destroy(m);
+    return NULL;
+}
+
+void dirt_mmrt_destroy(dirt_mmrt *m)
+{
+    if (!m)
+        return;
+    gl_program_destroy(&m->prog_depth);
+    gl_program_destroy(&m->prog_store);
+    gl_program_destroy(&m->prog_mip);
+    gl_program_destroy(&m->prog_reorder);
+    gl_program_destroy(&m->prog_trace);
+    if (m->vao)
+        glDeleteVertexArrays(1, &m->vao);
+    if (m->fbo)
+        glDeleteFramebuffers(1, &m->fbo);
+    GLuint *bufs[] = {&m->vertices, &m->materials, &m->views, &m->params, &m->depth,
+                      &m->heads, &m->tails, &m->ids, &m->data, &m->counters,
+                      &m->rays, &m->hits};
+    for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
+        gl_buffer_destroy(bufs[i]);
+    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++)
+        gl_timer_release(&m->timers[i]);
+    gl_timer_release(&m->trace_timer);
+    free(m->staging);
+    free(m);
+}
+
+/* (Re)allocates `*buf` when it is smaller than `size` bytes. */
+static bool ensure_buffer(dirt_mmrt *m, GLuint *buf, size_t *cap, size_t size, bool readback,
+                          const char *label)
+{
+    if (*buf && *cap >= size)
+        return true;
+    gl_buffer_destroy(buf);
+    *buf = gl_buffer_create(m->gpu, size, NULL, readback, label);
+    *cap = *buf ? size : 0;
+    return *buf != 0;
+}
+
+static bool upload_frame(dirt_mmrt *m, const dirt_frame *f)
+{
+    size_t nv = f->num_triangles * 3;
+    if (f->num_triangles > (size_t)INT32_MAX / 3) {
+        DIRT_ERROR("%zu triangles: more than one draw can hold", f->num_triangles);
+        return false;
+    }
+    if (nv > m->staging_cap) {
+        struct dirt_gpu_vertex *s = realloc(m->staging, nv * sizeof(*s));
+        if (!s) {
+            DIRT_ERROR("out of memory for %zu vertices", nv);
+            return false;
+        }
+        m->staging = s;
+        m->staging_cap = nv;
+    }
+    for (size_t i = 0; i < nv; i++) {
+        m->staging[i].position = (dirt_f4){f->position[i][0], f->position[i][1],
+                                           f->position[i][2], f->uv[i][0]};
+        m->staging[i].normal = (dirt_f4){f->normal[i][0], f->normal[i][1], f->normal[i][2],
+                                         f->uv[i][1]};
+    }
+    size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
+    size_t mbytes = f->num_triangles * sizeof(uint32_t);
+    if (!ensure_buffer(m, &m->vertices, &m->vertices_size, bytes ? bytes : 16, false,
+                       "mmrt vertices") ||
+        !ensure_buffer(m, &m->materials, &m->materials_size, mbytes ? mbytes : 16, false,
+                       "mmrt materials"))
+        return false;
+    if (bytes) {
+        glNamedBufferSubData(m->vertices, 0, (GLsizeiptr)bytes, m->staging);
+        glNamedBufferSubData(m->materials, 0, (GLsizeiptr)mbytes, f->material);
+    }
+    m->num_primitives = f->num_triangles;
+    return true;
+}
+
+static void upload_views(dirt_mmrt *m)
+{
+    struct dirt_gpu_view gv[DIRT_MAX_VIEWS];
+    memset(gv, 0, sizeof(gv));
+    for (int i = 0; i < m->set.count; i++) {
+        const dirt_view *v = &m->set.views[i];
+        for (int c = 0; c < 4; c++) {
+            gv[i].view_proj[c] = (dirt_f4){v->view_proj[c * 4], v->view_proj[c * 4 + 1],
+                                           v->view_proj[c * 4 + 2], v->view_proj[c * 4 + 3]};
+        }
+        gv[i].eye_near = (dirt_f4){v->eye[0], v->eye[1], v->eye[2], v->znear};
+        gv[i].forward_far = (dirt_f4){v->forward[0], v->forward[1], v->forward[2], v->zfar};
+        gv[i].size = (dirt_i4){v->width, v->height, v->tiles_x, v->tiles_y};
+        gv[i].placement = (dirt_i4){v->tile_base, v->atlas_x, v->num_levels, v->face};
+        int lb[16] = {0};
+        for (int d = 0; d < DIRT_MAX_MIP_LEVELS; d++)
+            lb[d] = d < m->set.num_levels ? m->set.level_base[d][i] : 0;
+        for (int k = 0; k < 4; k++)
+            gv[i].level_base[k] = (dirt_i4){lb[4 * k], lb[4 * k + 1], lb[4 * k + 2], lb[4 * k + 3]};
+    }
+    glNamedBufferSubData(m->views, 0, (GLsizeiptr)sizeof(gv), gv);
+}
+
+static void upload_params(dirt_mmrt *m)
+{
+    struct dirt_mmrt_gpu_params p = {
+        .config = {m->set.count, m->opts.buckets, m->set.num_tiles, m->set.atlas_width},
+        .pool = {(unsigned)m->node_capacity, (unsigned)m->set.pyramid_size,
+                 (unsigned)m->set.atlas_height, 0},
+    };
+    glNamedBufferSubData(m->params, 0, sizeof(p), &p);
+}
+
+/* Most nodes the pools may hold: the data pool (32 B per node) is the larger
+ * buffer and must fit one storage block. */
+static size_t max_nodes(const dirt_mmrt *m)
+{
+    int64_t max = dirt_gpu_get_caps(m->gpu)->max_ssbo_size;
+    size_t lim = max > 0 ? (size_t)(max / DIRT_MMRT_DATA_NODE_BYTES) : (size_t)UINT32_MAX;
+    return lim < (size_t)UINT32_MAX - 1 ? lim : (size_t)UINT32_MAX - 1;
+}
+
+static bool ensure_nodes(dirt_mmrt *m, size_t nodes)
+{
+    if (nodes > max_nodes(m)) {
+        DIRT_ERROR("the A-buffer needs %zu fragment nodes (%.1f MB of data nodes), more than "
+                   "this GPU's largest storage buffer allows (%zu nodes): use smaller views "
+                   "or fewer views", nodes, nodes * (double)DIRT_MMRT_DATA_NODE_BYTES / 1e6,
+                   max_nodes(m));
+        return false;
+    }
+    if (m->ids && m->data && m->node_capacity >= nodes)
+        return true;
+    gl_buffer_destroy(&m->ids);
+    gl_buffer_destroy(&m->data);
+    m->ids = gl_buffer_create(m->gpu, nodes * DIRT_MMRT_ID_NODE_BYTES, NULL, true,
+                              "mmrt id nodes");
+    m->data = m->ids ? gl_buffer_create(m->gpu, nodes * DIRT_MMRT_DATA_NODE_BYTES, NULL, true,
+                                        "mmrt data nodes")
+                     : 0;
+    m->node_capacity = m->ids && m->data ? nodes : 0;
+    return m->node_capacity != 0;
+}
+
+static bool ensure_targets(dirt_mmrt *m)
+{
+    const dirt_view_set *s = &m->set;
+    size_t heads = (size_t)m->opts.buckets * (size_t)s->num_tiles * 4;
+    int64_t max = dirt_gpu_get_caps(m->gpu)->max_ssbo_size;
+    if (max > 0 && (int64_t)heads > max) {
+        DIRT_ERROR("the bucket heads need %.1f MB, more than this GPU's largest storage "
+                   "buffer (%.1f MB): use fewer buckets or smaller views", heads / 1e6,
+                   max / 1e6);
+        return false;
+    }
+    if (!ensure_buffer(m, &m->depth, &m->depth_size, (size_t)s->pyramid_size * 8, true,
+                       "mmrt depth bounds") ||
+        !ensure_buffer(m, &m->heads, &m->heads_size, heads, true, "mmrt bucket heads") ||
+        !ensure_buffer(m, &m->tails, &m->tails_size, heads, true, "mmrt bucket tails"))
+        return false;
+    if (!m->node_capacity) {
+        size_t automatic = (size_t)s->num_tiles * 2 + 1024;
+        m->node_capacity = automatic < max_nodes(m) ? automatic : max_nodes(m);
+    }
+    if (!ensure_nodes(m, m->node_capacity))
+        return false;
+    if (m->fbo_width != s->atlas_width || m->fbo_height != s->atlas_height) {
+        glNamedFramebufferParameteri(m->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, s->atlas_width);
+        glNamedFramebufferParameteri(m->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, s->atlas_height);
+        m->fbo_width = s->atlas_width;
+        m->fbo_height = s->atlas_height;
+    }
+    return true;
+}
+
+void dirt_mmrt_bind(const dirt_mmrt *m)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, m->vertices);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, m->views);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_DEPTH, m->depth);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_PARAMS, m->params);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_HEADS, m->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_TAILS, m->tails);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_IDS, m->ids);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_DATA, m->data);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_COUNTERS, m->counters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_MATERIALS, m->materials);
+}
+
+void dirt_mmrt_gl_buffers(const dirt_mmrt *m, dirt_mmrt_gl *out)
+{
+    *out = (dirt_mmrt_gl){m->vertices, m->materials, m->views, m->params, m->depth,
+                          m->heads, m->tails, m->ids, m->data, m->counters};
+}
+
+static void clear_lists(dirt_mmrt *m)
+{
+    static const uint32_t end = DIRT_LIST_END, zero = 0;
+    glClearNamedBufferData(m->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    glClearNamedBufferSubData(m->counters, GL_R32UI, 0, 16, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                              &zero);
+}
+
+/* Draws every triangle into every view with `program`: viewport and scissor
+ * i are view i's rectangle in the raster atlas; the geometry shader picks
+ * the viewport. */
+static void raster_views(dirt_mmrt *m, GLuint program)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
+    for (int i = 0; i < m->set.count; i++) {
+        const dirt_view *v = &m->set.views[i];
+        glViewportIndexedf((GLuint)i, (float)v->atlas_x, 0.0f, (float)v->width,
+                           (float)v->height);
+        glScissorIndexed((GLuint)i, v->atlas_x, 0, v->width, v->height);
+    }
+    glEnable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(program);
+    glBindVertexArray(m->vao);
+    if (m->num_primitives)
+        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(m->num_primitives * 3));
+    glBindVertexArray(0);
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+static void pass_begin(dirt_mmrt *m, int pass)
+{
+    gl_group_push(dirt_mmrt_pass_names[pass]);
+    gl_timer_begin(&m->timers[pass]);
+}
+
+static void pass_end(dirt_mmrt *m, int pass, double *gpu_acc, double *cpu_acc)
+{
+    gl_timer_end(&m->timers[pass]);
+    gl_group_pop();
+    gpu_acc[pass] = m->timers[pass].gpu_ms < 0 || gpu_acc[pass] < 0
+                        ? -1 : gpu_acc[pass] + m->timers[pass].gpu_ms;
+    if (m->timers[pass].cpu_ms >= 0)
+        cpu_acc[pass] += m->timers[pass].cpu_ms;
+}
+
+static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int runs,
+                       const double *gpu_ms, const double *cpu_ms)
+{
+    dirt_mmrt_stats *st = &m->stats;
+    const uint64_t B = (uint64_t)m->opts.buckets, P = (uint64_t)m->set.num_tiles;
+    st->primitives = m->num_primitives;
+    st->pixels = P;
+    st->fragments = c->build.x;
+    st->max_layers = c->build.y;
+    st->long_lists = c->build.z;
+    st->covered_pixels = c->build.w;
+    st->avg_layers = st->covered_pixels ? (double)st->fragments / (double)st->covered_pixels : 0;
+    st->store_runs = runs;
+    st->bytes_vertices = m->num_primitives * (3 * sizeof(struct dirt_gpu_vertex) + 4);
+    st->bytes_depth = (uint64_t)m->set.pyramid_size * 8;
+    st->bytes_heads = 2 * 4 * B * P;
+    st->bytes_id_nodes_allocated = (uint64_t)m->node_capacity * DIRT_MMRT_ID_NODE_BYTES;
+    st->bytes_id_nodes_used = st->fragments * DIRT_MMRT_ID_NODE_BYTES;
+    st->bytes_data_nodes_allocated = (uint64_t)m->node_capacity * DIRT_MMRT_DATA_NODE_BYTES;
+    st->bytes_data_nodes_used = st->fragments * DIRT_MMRT_DATA_NODE_BYTES;
+    uint64_t fixed = st->bytes_vertices + st->bytes_depth + st->bytes_heads;
+    st->bytes_total_allocated = fixed + st->bytes_id_nodes_allocated +
+                                st->bytes_data_nodes_allocated;
+    st->bytes_total_used = fixed + st->bytes_id_nodes_used + st->bytes_data_nodes_used;
+    st->bytes_paper = (double)P * (8.0 + 8.0 * (double)B) +
+                      (double)st->fragments * (DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES);
+    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++) {
+        st->gpu_ms[i] = gpu_ms[i];
+        st->cpu_ms[i] = m->opts.cpu_timing ? cpu_ms[i] : -1;
+    }
+}
+
+bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
+{
+    double gpu_ms[DIRT_MMRT_NUM_PASSES] = {0}, cpu_ms[DIRT_MMRT_NUM_PASSES] = {0};
+    m->built = false;
+    int max_fb_w = 0, max_fb_h = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_fb_w);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_fb_h);
+    dirt_view_opts vo = m->opts.views;
+    vo.tile_size = 1;
+    if (!dirt_views_setup(&m->set, cam, f->bounds_min, f->bounds_max, &vo, max_fb_w))
+        return false;
+    if (m->set.atlas_height > max_fb_h) {
+        DIRT_ERROR("views need a raster %d pixels high, more than this GPU's %d",
+                   m->set.atlas_height, max_fb_h);
+        return false;
+    }
+    float d2 = 0;
+    for (int k = 0; k < 3; k++)
+        d2 += (f->bounds_max[k] - f->bounds_min[k]) * (f->bounds_max[k] - f->bounds_min[k]);
+    m->scene_diagonal = d2 > 0 && isfinite(d2) ? sqrtf(d2) : 1.0f;
+
+    gl_group_push("mmrt build");
+    bool ok = false;
+    if (!upload_frame(m, f) || !ensure_targets(m))
+        goto done;
+    upload_views(m);
+    upload_params(m);
+    dirt_mmrt_bind(m);
+
+    pass_begin(m, DIRT_MMRT_PASS_CLEAR);
+    static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
+    glClearNamedBufferData(m->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
+    clear_lists(m);
+    pass_end(m, DIRT_MMRT_PASS_CLEAR, gpu_ms, cpu_ms);
+
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    pass_begin(m, DIRT_MMRT_PASS_DEPTH);
+    raster_views(m, m->prog_depth);
+    pass_end(m, DIRT_MMRT_PASS_DEPTH, gpu_ms, cpu_ms);
+
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    pass_begin(m, DIRT_MMRT_PASS_MIP);
+    glUseProgram(m->prog_mip);
+    for (int d = 1; d < m->set.num_levels; d++) {
+        int w = 0, h = 0;
+        for (int i = 0; i < m->set.count; i++) {
+            const dirt_view *v = &m->set.views[i];
+            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
+            w = lw > w ? lw : w;
+            h = lh > h ? lh : h;
+        }
+        glUniform1i(0, d);
+        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)m->set.count);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    pass_end(m, DIRT_MMRT_PASS_MIP, gpu_ms, cpu_ms);
+
+    int runs = 0;
+    struct dirt_mmrt_gpu_counters counters;
+    for (;;) {
+        runs++;
+        pass_begin(m, DIRT_MMRT_PASS_STORE);
+        raster_views(m, m->prog_store);
+        pass_end(m, DIRT_MMRT_PASS_STORE, gpu_ms, cpu_ms);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        if (!gl_buffer_read(m->counters, 0, sizeof(counters), &counters))
+            goto done;
+        size_t need = counters.build.x;
+        if (need <= m->node_capacity)
+            break;
+        size_t grown = need + need / 4;
+        if (grown > max_nodes(m))
+            grown = need;
+        DIRT_INFO("mmrt node pools grew from %zu to %zu nodes (%.1f MB); store pass rerun",
+                  m->node_capacity, grown,
+                  grown * (double)(DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES) / 1e6);
+        if (!ensure_nodes(m, grown))
+            goto done;
+        upload_params(m);
+        dirt_mmrt_bind(m);
+        clear_lists(m);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+
+    pass_begin(m, DIRT_MMRT_PASS_REORDER);
+    glUseProgram(m->prog_reorder);
+    glDispatchCompute((GLuint)((m->set.num_tiles + 63) / 64), 1, 1);
+    pass_end(m, DIRT_MMRT_PASS_REORDER, gpu_ms, cpu_ms);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    if (!gl_buffer_read(m->counters, 0, sizeof(counters), &counters))
+        goto done;
+    fill_stats(m, &counters, runs, gpu_ms, cpu_ms);
+    ok = gl_check("mmrt build");
+    m->built = ok;
+done:
+    glUseProgram(0);
+    gl_group_pop();
+    return ok;
+}
+
+const dirt_mmrt_stats *dirt_mmrt_get_stats(const dirt_mmrt *m)
+{
+    return &m->stats;
+}
+
+const dirt_view_set *dirt_mmrt_views(const dirt_mmrt *m)
+{
+    return &m->set;
+}
+
+int dirt_mmrt_buckets(const dirt_mmrt *m)
+{
+    return m->opts.buckets;
+}
+
+bool dirt_mmrt_read(dirt_mmrt *m, dirt_mmrt_data *out)
+{
+    memset(out, 0, sizeof(*out));
+    if (!m->built) {
+        DIRT_ERROR("no MMRT build to read");
+        return false;
+    }
+    out->num_pixels = m->set.num_tiles;
+    out->buckets = m->opts.buckets;
+    out->pyramid_size = m->set.pyramid_size;
+    out->num_nodes = (uint32_t)(m->stats.fragments < m->node_capacity ? m->stats.fragments
+                                                                       : m->node_capacity);
+    size_t heads = (size_t)out->buckets * (size_t)out->num_pixels;
+    out->depth = malloc((size_t)out->pyramid_size * sizeof(*out->depth) + 8);
+    out->heads = malloc(heads * 4 + 4);
+    out->tails = malloc(heads * 4 + 4);
+    out->ids = malloc((size_t)out->num_nodes * sizeof(*out->ids) + 16);
+    out->data = malloc((size_t)out->num_nodes * sizeof(*out->data) + 32);
+    if (!out->depth || !out->heads || !out->tails || !out->ids || !out->data) {
+        DIRT_ERROR("out of memory reading the A-buffer back");
+        dirt_mmrt_data_free(out);
+        return false;
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    size_t n = out->num_nodes;
+    if (!gl_buffer_read(m->depth, 0, (size_t)out->pyramid_size * 8, out->depth) ||
+        !gl_buffer_read(m->heads, 0, heads * 4, out->heads) ||
+        !gl_buffer_read(m->tails, 0, heads * 4, out->tails) ||
+        (n && !gl_buffer_read(m->ids, 0, n * DIRT_MMRT_ID_NODE_BYTES, out->ids)) ||
+        (n && !gl_buffer_read(m->data, 0, n * DIRT_MMRT_DATA_NODE_BYTES, out->data))) {
+        dirt_mmrt_data_free(out);
+        return false;
+    }
+    return true;
+}
+
+void dirt_mmrt_data_free(dirt_mmrt_data *d)
+{
+    if (!d)
+        return;
+    free(d->depth);
+    free(d->heads);
+    free(d->tails);
+    free(d->ids);
+    free(d->data);
+    memset(d, 0, sizeof(*d));
+}
+
+void dirt_mmrt_unpack_normal(uint32_t p, float out[3])
+{
+    /* unpackSnorm2x16: clamp(s / 32767, -1, 1), x in the low half. */
+    float ex = fmaxf((float)(int16_t)(p & 0xFFFFu) / 32767.0f, -1.0f);
+    float ey = fmaxf((float)(int16_t)(p >> 16) / 32767.0f, -1.0f);
+    float n[3] = {ex, ey, 1.0f - fabsf(ex) - fabsf(ey)};
+    if (n[2] < 0) {
+        n[0] = (1.0f - fabsf(ey)) * (ex >= 0 ? 1.0f : -1.0f);
+        n[1] = (1.0f - fabsf(ex)) * (ey >= 0 ? 1.0f : -1.0f);
+    }
+    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++)
+        out[k] = l > 0 ? n[k] / l : 0.0f;
+}
+
+void dirt_mmrt_print_stats(const dirt_mmrt *m, void *out)
+{
+    FILE *f = out;
+    const dirt_mmrt_stats *s = &m->stats;
+    fprintf(f, "MMRT A-buffer: %d view(s), %llu pixels, B = %d, %llu primitives\n",
+            m->set.count, (unsigned long long)s->pixels, m->opts.buckets,
+            (unsigned long long)s->primitives);
+    fprintf(f, "  fragments %llu (%.2f M), covered pixels %llu, layers avg %.2f max %u, "
+            "long lists %llu, store runs %d\n", (unsigned long long)s->fragments,
+            s->fragments / 1e6, (unsigned long long)s->covered_pixels, s->avg_layers,
+            s->max_layers, (unsigned long long)s->long_lists, s->store_runs);
+    fprintf(f, "  MB: vertices %.2f, depth+pyramid %.2f, heads+tails %.2f, id nodes %.2f/%.2f, "
+            "data nodes %.2f/%.2f (used/allocated), total %.2f/%.2f, paper formula %.2f\n",
+            s->bytes_vertices / 1e6, s->bytes_depth / 1e6, s->bytes_heads / 1e6,
+            s->bytes_id_nodes_used / 1e6, s->bytes_id_nodes_allocated / 1e6,
+            s->bytes_data_nodes_used / 1e6, s->bytes_data_nodes_allocated / 1e6,
+            s->bytes_total_used / 1e6, s->bytes_total_allocated / 1e6, s->bytes_paper / 1e6);
+    fprintf(f, "  ms (gpu / cpu):");
+    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++)
+        fprintf(f, " %s %.2f / %.2f%s", dirt_mmrt_pass_names[i] + 5, s->gpu_ms[i], s->cpu_ms[i],
+                i + 1 < DIRT_MMRT_NUM_PASSES ? "," : "\n");
+}

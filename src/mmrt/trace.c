@@ -1,0 +1,126 @@
+/* MMRT trace pass host side: batches of rays through the built A-buffer. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mmrt_internal.h"
+
+_Static_assert(sizeof(dirt_ray) == sizeof(struct dirt_gpu_ray), "ray layout");
+_Static_assert(sizeof(dirt_hit) == sizeof(struct dirt_gpu_hit), "hit layout");
+
+/* Default thickness: this fraction of the scene's bounding-box diagonal. */
+#define MMRT_DEFAULT_THICKNESS 0.002f
+/* Linear marching: the demo's default samples per view. */
+#define MMRT_DEFAULT_SAMPLES 30
+
+static float thickness_of(const dirt_mmrt *m, const dirt_mmrt_trace_opts *o)
+{
+    if (o->thickness > 0)
+        return o->thickness;
+    if (o->thickness < 0)
+        return 0.0f;
+    return MMRT_DEFAULT_THICKNESS * m->scene_diagonal;
+}
+
+bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
+                     const dirt_mmrt_trace_opts *opts_in, dirt_mmrt_trace_stats *stats)
+{
+    dirt_mmrt_trace_opts o = opts_in ? *opts_in : (dirt_mmrt_trace_opts){0};
+    float thickness = thickness_of(m, &o);
+    if (stats)
+        *stats = (dirt_mmrt_trace_stats){.rays = count, .thickness = thickness,
+                                         .gpu_ms = -1, .cpu_ms = -1};
+    if (!m->built) {
+        DIRT_ERROR("mmrt trace before a successful build");
+        return false;
+    }
+    if (o.march != DIRT_MMRT_MARCH_HIZ && o.march != DIRT_MMRT_MARCH_LINEAR) {
+        DIRT_ERROR("unknown march mode %d", (int)o.march);
+        return false;
+    }
+    if (!count)
+        return true;
+    int samples = o.samples == 0 ? MMRT_DEFAULT_SAMPLES : o.samples;
+    int top = o.hiz_levels > 0 ? o.hiz_levels - 1 : DIRT_MAX_MIP_LEVELS;
+
+    gl_group_push("mmrt trace");
+    static const uint32_t zero = 0;
+    glClearNamedBufferSubData(m->counters, GL_R32UI, 16, 16, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                              &zero);
+    dirt_mmrt_bind(m);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
+    glUseProgram(m->prog_trace);
+    glUniform1ui(0, count);
+    glUniform1i(1, o.march == DIRT_MMRT_MARCH_HIZ ? 0 : 1);
+    glUniform1i(2, samples);
+    glUniform1i(3, top);
+    glUniform1f(4, thickness);
+    glUniform1ui(5, o.seed);
+    glUniform1i(6, o.count ? 1 : 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    m->trace_timer.cpu_finish = m->opts.cpu_timing;
+    gl_timer_begin(&m->trace_timer);
+    glDispatchCompute((count + 63) / 64, 1, 1);
+    gl_timer_end(&m->trace_timer);
+    glUseProgram(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    bool ok = true;
+    if (stats) {
+        struct dirt_mmrt_gpu_counters c;
+        ok = gl_buffer_read(m->counters, 0, sizeof(c), &c);
+        if (ok) {
+            stats->hits = o.count ? c.trace.x : 0;
+            stats->pixels_tested = c.trace.y;
+            stats->nodes_visited = c.trace.z;
+            stats->aborted = c.trace.w;
+            stats->gpu_ms = m->trace_timer.gpu_ms;
+            stats->cpu_ms = m->trace_timer.cpu_ms;
+            if (c.trace.w)
+                DIRT_WARN("mmrt trace: %u of %u rays ran out of march steps", c.trace.w, count);
+        }
+    }
+    gl_group_pop();
+    return ok && gl_check("mmrt trace");
+}
+
+static bool ensure(dirt_mmrt *m, GLuint *buf, size_t *cap, size_t size, bool readback,
+                   const char *label)
+{
+    if (*buf && *cap >= size)
+        return true;
+    gl_buffer_destroy(buf);
+    *buf = gl_buffer_create(m->gpu, size, NULL, readback, label);
+    *cap = *buf ? size : 0;
+    return *buf != 0;
+}
+
+bool dirt_mmrt_trace_cpu(dirt_mmrt *m, const dirt_ray *rays, size_t count, dirt_hit *hits,
+                         const dirt_mmrt_trace_opts *opts, dirt_mmrt_trace_stats *stats)
+{
+    dirt_mmrt_trace_stats local;
+    dirt_mmrt_trace_stats *st = stats ? stats : &local;
+    if (count > UINT32_MAX / 2) {
+        DIRT_ERROR("too many rays in one batch (%zu)", count);
+        return false;
+    }
+    if (!count) {
+        *st = (dirt_mmrt_trace_stats){.gpu_ms = -1, .cpu_ms = -1};
+        return true;
+    }
+    size_t bytes = count * sizeof(dirt_ray);
+    if (!ensure(m, &m->rays, &m->rays_size, bytes, false, "mmrt rays") ||
+        !ensure(m, &m->hits, &m->hits_size, bytes, true, "mmrt hits"))
+        return false;
+    glNamedBufferSubData(m->rays, 0, (GLsizeiptr)bytes, rays);
+    if (!dirt_mmrt_trace(m, m->rays, m->hits, (uint32_t)count, opts, st))
+        return false;
+    if (!gl_buffer_read(m->hits, 0, bytes, hits))
+        return false;
+    if (!(opts && opts->count)) {
+        st->hits = 0;
+        for (size_t i = 0; i < count; i++)
+            st->hits += hits[i].prim != DIRT_HIT_NONE;
+    }
+    return true;
+}

@@ -1,0 +1,322 @@
+/* Path tracer furnace tests (src/ref/render.c) with closed-form answers.
+ *
+ * 1. White furnace: inside a closed box whose walls all have Lambert albedo
+ *    0.5 (metallic 0, dielectric specular weight 0: exactly Lambert, see
+ *    doc/light-transport.md) and emit radiance 1, every path vertex sees
+ *    L = 1 + 0.5 L, so L = 2; with K bounces the estimator must return the
+ *    truncated series sum_{i=0}^{K} 0.5^i. Tolerance: 5 standard errors of
+ *    the image mean, the standard error estimated from the spread of the
+ *    pixel values (pixels are independent: the RNG keys differ), reported in
+ *    the log. The area lights are sampled (NEE) and hit (BSDF) at every
+ *    vertex, so a wrong MIS weight, light pdf, BSDF weight or Russian
+ *    roulette compensation shifts the mean by far more than that.
+ * 2. Mirror furnace: walls of white smooth metal (F = 1, a delta lobe)
+ *    emitting 1: every path sees exactly K + 1 (no noise at all).
+ * 3. Punctual lights: a Lambert floor lit by a point, a spot and a
+ *    directional light; the centre pixel of a narrow camera looking straight
+ *    down must equal rho / pi * E within 1e-3 relative.
+ * 4. Background: rays that leave an open scene return the background. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "dirt/ref.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct mesh {
+    dirt_frame f;
+    float (*pos)[3];
+    float (*nrm)[3];
+    float (*uv)[2];
+    uint32_t *mat;
+    size_t cap, n;
+} mesh;
+
+static bool mesh_init(mesh *m, size_t cap)
+{
+    memset(m, 0, sizeof(*m));
+    m->pos = calloc(3 * cap, sizeof(float[3]));
+    m->nrm = calloc(3 * cap, sizeof(float[3]));
+    m->uv = calloc(3 * cap, sizeof(float[2]));
+    m->mat = calloc(cap, sizeof(uint32_t));
+    m->cap = cap;
+    return m->pos && m->nrm && m->uv && m->mat;
+}
+
+static void mesh_free(mesh *m)
+{
+    free(m->pos);
+    free(m->nrm);
+    free(m->uv);
+    free(m->mat);
+}
+
+/* Triangle a, b, c (front = counter-clockwise), flat normal. */
+static void tri(mesh *m, const float a[3], const float b[3], const float c[3], uint32_t mat)
+{
+    if (m->n >= m->cap)
+        return;
+    const float *v[3] = {a, b, c};
+    float e1[3], e2[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = b[k] - a[k];
+        e2[k] = c[k] - a[k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++) {
+            m->pos[3 * m->n + j][k] = v[j][k];
+            m->nrm[3 * m->n + j][k] = n[k] / l;
+        }
+    m->mat[m->n] = mat;
+    m->n++;
+    m->f.num_triangles = m->n;
+    m->f.position = m->pos;
+    m->f.normal = m->nrm;
+    m->f.uv = m->uv;
+    m->f.material = m->mat;
+}
+
+/* Closed box [-1,1]^3 with its front faces inside (two triangles a face). */
+static void box_inward(mesh *m, uint32_t mat)
+{
+    float p[8][3];
+    for (int i = 0; i < 8; i++) {
+        p[i][0] = (i & 1) ? 1.0f : -1.0f;
+        p[i][1] = (i & 2) ? 1.0f : -1.0f;
+        p[i][2] = (i & 4) ? 1.0f : -1.0f;
+    }
+    /* Each quad counter-clockwise seen from inside. */
+    static const int q[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+    for (int f = 0; f < 6; f++) {
+        tri(m, p[q[f][0]], p[q[f][1]], p[q[f][2]], mat);
+        tri(m, p[q[f][0]], p[q[f][2]], p[q[f][3]], mat);
+    }
+}
+
+static dirt_material mat_make(float albedo, float metallic, float roughness, float emission)
+{
+    dirt_material m;
+    memset(&m, 0, sizeof(m));
+    m.base_color[0] = m.base_color[1] = m.base_color[2] = albedo;
+    m.base_color[3] = 1.0f;
+    m.base_color_tex = m.metallic_roughness_tex = m.emissive_tex = DIRT_NO_TEXTURE;
+    m.metallic = metallic;
+    m.roughness = roughness;
+    m.emissive[0] = m.emissive[1] = m.emissive[2] = emission;
+    m.emissive_strength = 1.0f;
+    return m;
+}
+
+static void look(dirt_camera *c, float ex, float ey, float ez, float tx, float ty, float tz,
+                 float yfov)
+{
+    float eye[3] = {ex, ey, ez}, target[3] = {tx, ty, tz}, up[3] = {0, 1, 0};
+    if (fabsf(tx - ex) < 1e-6f && fabsf(tz - ez) < 1e-6f)
+        up[1] = 0.0f, up[2] = -1.0f; /* looking straight down */
+    memset(c, 0, sizeof(*c));
+    dirt_camera_look_at(c, eye, target, up);
+    c->type = DIRT_CAMERA_PERSPECTIVE;
+    c->yfov = yfov;
+}
+
+/* Image mean of the red channel and its standard error. */
+static void image_mean(const dirt_image *img, double *mean, double *se)
+{
+    size_t n = (size_t)img->width * (size_t)img->height;
+    double s = 0.0, s2 = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double v = img->rgba[4 * i];
+        s += v;
+        s2 += v * v;
+    }
+    *mean = s / (double)n;
+    double var = (s2 / (double)n - *mean * *mean) * (double)n / (double)(n - 1);
+    *se = sqrt(fmax(var, 0.0) / (double)n);
+}
+
+static void furnace(int bounces, int spp)
+{
+    mesh m;
+    CHECK(mesh_init(&m, 12));
+    box_inward(&m, 0);
+    dirt_material mat = mat_make(0.5f, 0.0f, 1.0f, 1.0f);
+    float spec = 0.0f;
+    dirt_ref_materials mats = {&mat, 1, NULL, 0, &spec};
+    dirt_camera cam;
+    look(&cam, 0.2f, -0.1f, 0.3f, -0.4f, 0.5f, -1.0f, 1.6f);
+    dirt_ref_opts o = {0};
+    o.width = 32;
+    o.height = 32;
+    o.spp = spp;
+    o.bounces = bounces;
+    o.seed = 17u + (uint32_t)bounces; /* independent runs */
+    dirt_ref_stats st;
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, &st);
+    CHECK(img != NULL);
+    if (img) {
+        double expect = 0.0, mean, se;
+        for (int i = 0; i <= bounces; i++)
+            expect += pow(0.5, i);
+        image_mean(img, &mean, &se);
+        fprintf(stderr, "furnace K=%2d: mean %.5f expected %.5f, s.e. %.5f (%.1f s.e.), "
+                "%.2f Mrays/s, %llu rays\n", bounces, mean, expect, se, (mean - expect) / se,
+                st.mrays_per_s, (unsigned long long)st.rays);
+        CHECK(st.invalid == 0);
+        CHECK(se > 0.0 && se < 0.01);
+        CHECK_MSG(fabs(mean - expect) < 5.0 * se, "K=%d: mean %.5f, expected %.5f, s.e. %.5f",
+                  bounces, mean, expect, se);
+        /* Every pixel sees the walls: albedo AOV = 0.5, Z finite. */
+        float *alb = dirt_image_find_channel(img, "albedo.G");
+        float *z = dirt_image_find_channel(img, "Z");
+        CHECK(alb && z);
+        if (alb && z) {
+            CHECK_NEAR(alb[100], 0.5, 1e-6);
+            CHECK(isfinite(z[100]) && z[100] > 0.0f);
+        }
+    }
+    dirt_image_destroy(img);
+    mesh_free(&m);
+}
+
+static void mirror_furnace(int bounces)
+{
+    mesh m;
+    CHECK(mesh_init(&m, 12));
+    box_inward(&m, 0);
+    dirt_material mat = mat_make(1.0f, 1.0f, 0.0f, 1.0f);
+    dirt_ref_materials mats = {&mat, 1, NULL, 0, NULL};
+    dirt_camera cam;
+    look(&cam, 0.1f, 0.2f, -0.3f, 0.7f, -0.2f, 1.0f, 1.2f);
+    dirt_ref_opts o = {0};
+    o.width = 16;
+    o.height = 16;
+    o.spp = 4;
+    o.bounces = bounces;
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, NULL);
+    CHECK(img != NULL);
+    if (img) {
+        double worst = 0.0;
+        for (int i = 0; i < 16 * 16; i++)
+            worst = fmax(worst, fabs(img->rgba[4 * i] - (bounces + 1.0)));
+        fprintf(stderr, "mirror furnace K=%d: max |L - %d| = %.2e\n", bounces, bounces + 1, worst);
+        /* Float accumulation only; a path that ends early loses >= 1. */
+        CHECK_MSG(worst < 1e-4, "K=%d: max deviation %g", bounces, worst);
+    }
+    dirt_image_destroy(img);
+    mesh_free(&m);
+}
+
+/* Lambert floor y = 0 (albedo rho, no specular) lit by one punctual light;
+ * camera 1 unit above the origin looking down with a tiny field of view. */
+static void punctual(const char *name, const dirt_light *light, double irradiance)
+{
+    mesh m;
+    CHECK(mesh_init(&m, 2));
+    float a[3] = {-50, 0, -50}, b[3] = {-50, 0, 50}, c[3] = {50, 0, 50}, d[3] = {50, 0, -50};
+    tri(&m, a, b, c, 0);
+    tri(&m, a, c, d, 0);
+    m.f.num_lights = 1;
+    m.f.lights = (dirt_light *)light;
+    const float rho = 0.6f;
+    dirt_material mat = mat_make(rho, 0.0f, 1.0f, 0.0f);
+    float spec = 0.0f;
+    dirt_ref_materials mats = {&mat, 1, NULL, 0, &spec};
+    dirt_camera cam;
+    look(&cam, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1e-4f);
+    dirt_ref_opts o = {0};
+    o.width = 1;
+    o.height = 1;
+    o.spp = 4;
+    o.bounces = 3;
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, NULL);
+    CHECK(img != NULL);
+    if (img) {
+        double expect = rho / PI * irradiance;
+        fprintf(stderr, "%-12s L %.6f expected %.6f\n", name, img->rgba[0], expect);
+        CHECK_NEAR(img->rgba[0], expect, 1e-3 * expect);
+    }
+    dirt_image_destroy(img);
+    mesh_free(&m);
+}
+
+static void lights(void)
+{
+    dirt_light l;
+    memset(&l, 0, sizeof(l));
+    l.type = DIRT_LIGHT_POINT;
+    l.position[0] = 0.6f;
+    l.position[1] = 0.8f; /* distance 1, cos 0.8 */
+    l.color[0] = l.color[1] = l.color[2] = 5.0f;
+    punctual("point", &l, 5.0 * 0.8);
+    l.type = DIRT_LIGHT_SPOT; /* aimed at the origin: full intensity */
+    l.direction[0] = -0.6f;
+    l.direction[1] = -0.8f;
+    l.inner_cone = 0.1f;
+    l.outer_cone = 0.3f;
+    punctual("spot", &l, 5.0 * 0.8);
+    l.direction[0] = 0.0f; /* axis straight down: angle to the origin 36.9 deg */
+    l.direction[1] = -1.0f;
+    l.outer_cone = 0.5f;
+    l.inner_cone = 0.0f;
+    double s = (0.8 - cos(0.5)) / (1.0 - cos(0.5));
+    punctual("spot cone", &l, s > 0 ? 5.0 * 0.8 * s * s : 0.0);
+    l.outer_cone = 0.7f;
+    s = (0.8 - cos(0.7)) / (1.0 - cos(0.7));
+    punctual("spot cone 2", &l, 5.0 * 0.8 * s * s);
+    l.type = DIRT_LIGHT_DIRECTIONAL;
+    l.direction[0] = 0.0f;
+    l.direction[1] = -0.5f;
+    l.direction[2] = -0.866025f; /* cos 0.5 */
+    punctual("directional", &l, 5.0 * 0.5);
+}
+
+static void background(void)
+{
+    mesh m;
+    CHECK(mesh_init(&m, 1));
+    float a[3] = {0, 0, -5}, b[3] = {1, 0, -5}, c[3] = {0, 1, -5};
+    tri(&m, a, b, c, 0);
+    dirt_material mat = mat_make(0.5f, 0.0f, 1.0f, 0.0f);
+    dirt_ref_materials mats = {&mat, 1, NULL, 0, NULL};
+    dirt_camera cam;
+    look(&cam, 0, 0, 0, 0, 0, 1, 0.5f); /* looking away from the triangle */
+    dirt_ref_opts o = {0};
+    o.width = 8;
+    o.height = 8;
+    o.spp = 2;
+    o.background[0] = 0.25f;
+    o.background[1] = 0.5f;
+    o.background[2] = 2.0f;
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, NULL);
+    CHECK(img != NULL);
+    if (img) {
+        CHECK(img->rgba[0] == 0.25f && img->rgba[1] == 0.5f && img->rgba[2] == 2.0f &&
+              img->rgba[3] == 1.0f);
+        float *z = dirt_image_find_channel(img, "Z");
+        CHECK(z && isinf(z[0]));
+    }
+    dirt_image_destroy(img);
+    mesh_free(&m);
+}
+
+int main(void)
+{
+    furnace(1, 128);
+    furnace(2, 128);
+    furnace(3, 128);
+    furnace(6, 128);   /* Russian roulette active from the 4th ray on */
+    furnace(40, 128);  /* ~ the infinite series: 2 - 2^-40 */
+    mirror_furnace(1);
+    mirror_furnace(5);
+    lights();
+    background();
+    return check_finish();
+}
