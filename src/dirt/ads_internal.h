@@ -6,6 +6,7 @@
 #include "common/layout.h"
 #include "dirt/ads.h"
 #include "gl/gl.h"
+#include "graph/graph.h"
 
 struct dirt_ads {
     dirt_gpu *gpu;
@@ -13,13 +14,16 @@ struct dirt_ads {
     int num_views;
     bool use_nv;
     GLuint prog_depth, prog_fill, prog_mip;
-    GLuint vao, fbo;
-    int fbo_width, fbo_height;
+    /* frame graphs: build (clear, depth bounds, mip, fill, read counters)
+     * and refill (clear lists, fill, read counters) after pool growth */
+    fg_graph *graph, *refill;
+    fg_res r_vertices, r_views, r_params, r_depth, r_heads, r_nodes, r_counters;
+    int graph_atlas_w, graph_atlas_h;
+    struct dirt_gpu_ads_counters counters_cpu; /* read back by the graph */
     /* buffers and their capacities in bytes */
     GLuint vertices, views, params, depth, heads, nodes, counters;
     size_t vertices_size, depth_size, heads_size;
     size_t node_capacity;     /* nodes */
-    gl_timer timers[DIRT_ADS_NUM_PASSES];
     dirt_view_set set;
     size_t num_primitives;
     struct dirt_gpu_vertex *staging;

@@ -10,6 +10,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "dirt/ads_internal.h"
+#include "graph/graph.h"
 
 _Static_assert(sizeof(struct dirt_gpu_vertex) == 32, "vertex layout");
 _Static_assert(sizeof(struct dirt_gpu_view) == 192, "view layout");
@@ -61,10 +62,6 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         goto error;
     if (!gl_timer_init(&a->trace_timer, a->opts.cpu_timing, "dirt trace"))
         goto error;
-    glCreateVertexArrays(1, &a->vao);
-    gl_label(GL_VERTEX_ARRAY, a->vao, "dirt build vao");
-    glCreateFramebuffers(1, &a->fbo);
-    gl_label(GL_FRAMEBUFFER, a->fbo, "dirt build atlas");
     a->views = gl_buffer_create(gpu, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view), NULL,
                                 false, "dirt views");
     a->params = gl_buffer_create(gpu, sizeof(struct dirt_gpu_ads_params), NULL, false,
@@ -73,10 +70,6 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
                                    "dirt counters");
     if (!a->views || !a->params || !a->counters)
         goto error;
-    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
-        if (!gl_timer_init(&a->timers[i], a->opts.cpu_timing, dirt_ads_pass_names[i]))
-            goto error;
-    }
     a->node_capacity = a->opts.initial_nodes;
     return a;
 error:
@@ -95,16 +88,12 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_buffer_destroy(&a->rays);
     gl_buffer_destroy(&a->hits);
     gl_timer_release(&a->trace_timer);
-    if (a->vao)
-        glDeleteVertexArrays(1, &a->vao);
-    if (a->fbo)
-        glDeleteFramebuffers(1, &a->fbo);
+    fg_destroy(a->graph);
+    fg_destroy(a->refill);
     GLuint *bufs[] = {&a->vertices, &a->views, &a->params, &a->depth,
                       &a->heads, &a->nodes, &a->counters};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         gl_buffer_destroy(bufs[i]);
-    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++)
-        gl_timer_release(&a->timers[i]);
     free(a->staging);
     free(a);
 }
@@ -217,12 +206,6 @@ static bool ensure_targets(dirt_ads *a)
         a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
     if (!ensure_nodes(a, a->node_capacity))
         return false;
-    if (a->fbo_width != s->atlas_width || a->fbo_height != s->atlas_height) {
-        glNamedFramebufferParameteri(a->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, s->atlas_width);
-        glNamedFramebufferParameteri(a->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, s->atlas_height);
-        a->fbo_width = s->atlas_width;
-        a->fbo_height = s->atlas_height;
-    }
     return true;
 }
 
@@ -237,18 +220,37 @@ void ads_bind_all(dirt_ads *a)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_COUNTERS, a->counters);
 }
 
-static void clear_lists(dirt_ads *a)
+/* ---- passes (bodies run by the frame graph) ---- */
+
+static bool exec_clear(fg_ctx *ctx, void *user)
 {
+    dirt_ads *a = user;
+    static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
     static const uint32_t end = DIRT_LIST_END, zero = 0;
-    glClearNamedBufferData(a->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
-    glClearNamedBufferData(a->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(fg_name(ctx, a->r_depth), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT,
+                           depth_clear);
+    glClearNamedBufferData(fg_name(ctx, a->r_heads), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                           &end);
+    glClearNamedBufferData(fg_name(ctx, a->r_counters), GL_R32UI, GL_RED_INTEGER,
+                           GL_UNSIGNED_INT, &zero);
+    return true;
 }
 
-/* Draws every triangle into every view with `program`. */
-static void raster_views(dirt_ads *a, GLuint program)
+static bool exec_clear_lists(fg_ctx *ctx, void *user)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, a->fbo);
-    glViewport(0, 0, a->set.atlas_width, a->set.atlas_height);
+    dirt_ads *a = user;
+    static const uint32_t end = DIRT_LIST_END, zero = 0;
+    glClearNamedBufferData(fg_name(ctx, a->r_heads), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                           &end);
+    glClearNamedBufferData(fg_name(ctx, a->r_counters), GL_R32UI, GL_RED_INTEGER,
+                           GL_UNSIGNED_INT, &zero);
+    return true;
+}
+
+/* Draws every triangle into every view (the graph bound the attachment-less
+ * atlas framebuffer, its viewport and an empty vertex array). */
+static void draw_views(dirt_ads *a, GLuint program)
+{
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
@@ -256,41 +258,174 @@ static void raster_views(dirt_ads *a, GLuint program)
     if (a->use_nv)
         glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
     glUseProgram(program);
-    glBindVertexArray(a->vao);
     if (a->num_primitives)
         glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
-    glBindVertexArray(0);
+    glUseProgram(0);
     if (a->use_nv)
         glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-static void pass_begin(dirt_ads *a, int pass)
+static bool exec_depth(fg_ctx *ctx, void *user)
 {
-    gl_group_push(dirt_ads_pass_names[pass]);
-    gl_timer_begin(&a->timers[pass]);
+    (void)ctx;
+    draw_views(user, ((dirt_ads *)user)->prog_depth);
+    return true;
 }
 
-static void pass_end(dirt_ads *a, int pass, double *gpu_acc, double *cpu_acc)
+static bool exec_fill(fg_ctx *ctx, void *user)
 {
-    gl_timer_end(&a->timers[pass]);
-    gl_group_pop();
-    gpu_acc[pass] = a->timers[pass].gpu_ms < 0 || gpu_acc[pass] < 0
-                        ? -1 : gpu_acc[pass] + a->timers[pass].gpu_ms;
-    if (a->timers[pass].cpu_ms >= 0)
-        cpu_acc[pass] += a->timers[pass].cpu_ms;
+    (void)ctx;
+    draw_views(user, ((dirt_ads *)user)->prog_fill);
+    return true;
+}
+
+static bool exec_mip(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_ads *a = user;
+    glUseProgram(a->prog_mip);
+    for (int d = 1; d < a->set.num_levels; d++) {
+        int w = 0, h = 0;
+        for (int i = 0; i < a->set.count; i++) {
+            const dirt_view *v = &a->set.views[i];
+            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
+            w = lw > w ? lw : w;
+            h = lh > h ? lh : h;
+        }
+        /* Level d reads level d - 1 written by the previous dispatch. */
+        if (d > 1)
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glUniform1i(0, d);
+        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)a->set.count);
+    }
+    glUseProgram(0);
+    return true;
+}
+
+static bool exec_read_counters(fg_ctx *ctx, void *user)
+{
+    dirt_ads *a = user;
+    return fg_gl_read_buffer(ctx, a->r_counters, 0, sizeof(a->counters_cpu), &a->counters_cpu);
+}
+
+static void use(fg_pass *p, fg_res r, fg_access acc, unsigned binding)
+{
+    fg_use(p, r, acc, &(fg_use_opts){.bind = true, .binding = binding});
+}
+
+/* The fill pass and the counter readback, shared by both graphs. */
+static void add_fill(dirt_ads *a, fg_graph *g)
+{
+    fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_FILL], FG_RASTER, exec_fill, a);
+    fg_set_raster_size(p, &(fg_tex_desc){.width = a->set.atlas_width,
+                                         .height = a->set.atlas_height});
+    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
+    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
+    use(p, a->r_heads, FG_SSBO_READ, DIRT_BIND_HEADS);
+    use(p, a->r_heads, FG_SSBO_WRITE, DIRT_BIND_HEADS);
+    use(p, a->r_nodes, FG_SSBO_WRITE, DIRT_BIND_NODES);
+    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, a);
+    fg_read(p, a->r_counters, FG_TRANSFER_READ);
+    fg_keep(p);
+}
+
+/* Builds both graphs over the structure's (imported) buffers. */
+static bool make_graphs(dirt_ads *a)
+{
+    fg_destroy(a->graph);
+    fg_destroy(a->refill);
+    a->graph = fg_create(a->gpu);
+    a->refill = fg_create(a->gpu);
+    if (!a->graph || !a->refill)
+        return false;
+    fg_graph *graphs[2] = {a->graph, a->refill};
+    for (int i = 0; i < 2; i++) {
+        fg_graph *g = graphs[i];
+        a->r_vertices = fg_import_buffer(g, "vertices", a->vertices, a->vertices_size);
+        a->r_views = fg_import_buffer(g, "views", a->views, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view));
+        a->r_params = fg_import_buffer(g, "params", a->params, sizeof(struct dirt_gpu_ads_params));
+        a->r_depth = fg_import_buffer(g, "depth bounds", a->depth, a->depth_size);
+        a->r_heads = fg_import_buffer(g, "list heads", a->heads, a->heads_size);
+        a->r_nodes = fg_import_buffer(g, "id nodes", a->nodes, a->node_capacity * 8);
+        a->r_counters = fg_import_buffer(g, "counters", a->counters,
+                                         sizeof(struct dirt_gpu_ads_counters));
+    }
+    /* build: clear, depth bounds, mip, fill, read counters */
+    fg_graph *g = a->graph;
+    fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear, a);
+    fg_write(p, a->r_depth, FG_TRANSFER_WRITE);
+    fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
+    fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_RASTER, exec_depth, a);
+    fg_set_raster_size(p, &(fg_tex_desc){.width = a->set.atlas_width,
+                                         .height = a->set.atlas_height});
+    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
+    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
+    use(p, a->r_depth, FG_SSBO_WRITE, DIRT_BIND_DEPTH);
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_MIP], FG_COMPUTE, exec_mip, a);
+    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
+    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
+    use(p, a->r_depth, FG_SSBO_WRITE, DIRT_BIND_DEPTH);
+    add_fill(a, g);
+    /* refill after the node pool grew: clear lists, fill, read counters */
+    g = a->refill;
+    p = fg_add_pass(g, "clear lists", FG_COMPUTE, exec_clear_lists, a);
+    fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
+    fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
+    add_fill(a, g);
+    if (!fg_compile(a->graph) || !fg_compile(a->refill))
+        return false;
+    a->graph_atlas_w = a->set.atlas_width;
+    a->graph_atlas_h = a->set.atlas_height;
+    return true;
+}
+
+/* Points both graphs at the current buffers (after growth). */
+static void update_imports(dirt_ads *a)
+{
+    fg_graph *graphs[2] = {a->graph, a->refill};
+    for (int i = 0; i < 2; i++) {
+        fg_set_import(graphs[i], a->r_vertices, a->vertices, a->vertices_size);
+        fg_set_import(graphs[i], a->r_depth, a->depth, a->depth_size);
+        fg_set_import(graphs[i], a->r_heads, a->heads, a->heads_size);
+        fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * 8);
+    }
+}
+
+static void collect_times(dirt_ads *a, fg_graph *g, double *gpu_ms, double *cpu_ms)
+{
+    fg_stats s;
+    if (!fg_get_stats(g, &s))
+        return;
+    for (int i = 0; i < s.num_passes; i++) {
+        for (int k = 0; k < DIRT_ADS_NUM_PASSES; k++) {
+            if (strcmp(s.passes[i].name, dirt_ads_pass_names[k]) != 0 &&
+                !(k == DIRT_ADS_PASS_CLEAR && strcmp(s.passes[i].name, "clear lists") == 0))
+                continue;
+            double g_ms = s.passes[i].gpu_ms, c_ms = s.passes[i].cpu_ms;
+            gpu_ms[k] = g_ms < 0 || gpu_ms[k] < 0 ? -1 : gpu_ms[k] + g_ms;
+            if (c_ms >= 0)
+                cpu_ms[k] += c_ms;
+        }
+    }
+    (void)a;
 }
 
 bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
 {
     dirt_ads_stats *st = &a->stats;
     double gpu_ms[DIRT_ADS_NUM_PASSES] = {0}, cpu_ms[DIRT_ADS_NUM_PASSES] = {0};
-    int max_fb = 0;
+    int max_fb = 0, max_fb_h = 0;
     glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_fb);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_fb_h);
     if (!dirt_views_setup(&a->set, cam, f->bounds_min, f->bounds_max, &a->opts.views, max_fb))
         return false;
-    int max_fb_h = 0;
-    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_fb_h);
     if (a->set.atlas_height > max_fb_h) {
         DIRT_ERROR("views need a raster %d tiles high, more than this GPU's %d",
                    a->set.atlas_height, max_fb_h);
@@ -302,49 +437,21 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         goto done;
     upload_views(a);
     upload_params(a);
-    ads_bind_all(a);
-
-    pass_begin(a, DIRT_ADS_PASS_CLEAR);
-    static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
-    glClearNamedBufferData(a->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
-    clear_lists(a);
-    pass_end(a, DIRT_ADS_PASS_CLEAR, gpu_ms, cpu_ms);
-
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    pass_begin(a, DIRT_ADS_PASS_DEPTH);
-    raster_views(a, a->prog_depth);
-    pass_end(a, DIRT_ADS_PASS_DEPTH, gpu_ms, cpu_ms);
-
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    pass_begin(a, DIRT_ADS_PASS_MIP);
-    glUseProgram(a->prog_mip);
-    for (int d = 1; d < a->set.num_levels; d++) {
-        int w = 0, h = 0;
-        for (int i = 0; i < a->set.count; i++) {
-            const dirt_view *v = &a->set.views[i];
-            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
-            w = lw > w ? lw : w;
-            h = lh > h ? lh : h;
-        }
-        glUniform1i(0, d);
-        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)a->set.count);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    pass_end(a, DIRT_ADS_PASS_MIP, gpu_ms, cpu_ms);
-
-    st->fill_runs = 0;
-    struct dirt_gpu_ads_counters counters;
-    for (;;) {
-        st->fill_runs++;
-        pass_begin(a, DIRT_ADS_PASS_FILL);
-        raster_views(a, a->prog_fill);
-        pass_end(a, DIRT_ADS_PASS_FILL, gpu_ms, cpu_ms);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        if (!gl_buffer_read(a->counters, 0, sizeof(counters), &counters))
+    if (!a->graph || a->graph_atlas_w != a->set.atlas_width ||
+        a->graph_atlas_h != a->set.atlas_height) {
+        if (!make_graphs(a))
             goto done;
-        size_t need = counters.fill.x;
-        if (need <= a->node_capacity)
-            break;
+    }
+    update_imports(a);
+    fg_exec_opts eo = {.cpu_timing = a->opts.cpu_timing, .validate = true};
+    /* Buffers were written by glBufferSubData (ordered by GL itself); the
+     * previous frame's trace read them with shaders: no barrier needed. */
+    if (!fg_execute(a->graph, &eo))
+        goto done;
+    collect_times(a, a->graph, gpu_ms, cpu_ms);
+    st->fill_runs = 1;
+    while (a->counters_cpu.fill.x > a->node_capacity) {
+        size_t need = a->counters_cpu.fill.x;
         size_t grown = need + need / 4;
         int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
         if (max > 0 && (int64_t)(grown * 8) > max)
@@ -354,11 +461,16 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (!ensure_nodes(a, grown))
             goto done;
         upload_params(a);
-        ads_bind_all(a);
-        clear_lists(a);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        update_imports(a);
+        /* The other graph's shader writes (heads, counters) must be visible
+         * to this one's clears and fill. */
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        if (!fg_execute(a->refill, &eo))
+            goto done;
+        collect_times(a, a->refill, gpu_ms, cpu_ms);
+        st->fill_runs++;
     }
-
+    struct dirt_gpu_ads_counters counters = a->counters_cpu;
     st->primitives = a->num_primitives;
     st->samples = counters.fill.y;
     st->nodes = counters.fill.x;

@@ -7,6 +7,8 @@
 #include "common/layout.h"
 #include "dirt/ads.h"
 #include "dirt/image.h"
+#include "dirt/ads_internal.h"
+#include "dirt/file.h"
 #include "dirt/log.h"
 
 static const char *view_name(const dirt_view *v)
@@ -87,6 +89,15 @@ bool dirt_ads_write_debug(dirt_ads *ads, const char *dir, bool quiet)
             ok = save(img, dir, vi, view_name(v), names[what], quiet);
         }
         dirt_image_destroy(img);
+    }
+    if (ok && ads->graph) {
+        char path[4096];
+        snprintf(path, sizeof(path), "%s/ads_graph.dot", dir);
+        char *dot = fg_dot(ads->graph);
+        ok = dot && dirt_write_file_atomic(path, dot, strlen(dot));
+        free(dot);
+        if (ok && !quiet)
+            printf("wrote %s\n", path);
     }
     if (!quiet && ok)
         printf("longest tile list: %u nodes\n", longest);

@@ -130,7 +130,8 @@ bool dirt_ads_trace(dirt_ads *ads, const dirt_ray *rays, size_t count, dirt_hit 
  * must exist): <dir>/ads_v<i>_<name>_lists.png (heat map of list length per
  * tile: black 0, then blue, red, yellow, white at the longest list) and
  * _zmin.png / _zmax.png (depth bounds, near = white, far = black, empty
- * tiles dark red). Prints the file names on stdout unless `quiet`. */
+ * tiles dark red), and <dir>/ads_graph.dot (the build's frame graph).
+ * Prints the file names on stdout unless `quiet`. */
 bool dirt_ads_write_debug(dirt_ads *ads, const char *dir, bool quiet);
 
 /* Prints a summary of the last build's stats (counts, bytes vs the DIRT
