@@ -117,4 +117,27 @@ struct dirt_gpu_hit {
     DIRT_V4 bary_t;       /* x, y barycentrics of vertices 1 and 2, z t, w unused */
 };
 
+/* ---- Fetch and the three-point shading buffer ---- */
+
+#define DIRT_BIND_PRIM_MATERIAL 9  /* uint[primitives]: material of each primitive */
+#define DIRT_BIND_GPOINTS 10       /* dirt_gpu_gpoint[3 * pixels]: the shading ring */
+#define DIRT_BIND_HIT_HEADS 11     /* uint[tiles]: first hit record of each ADS tile */
+#define DIRT_BIND_FETCH_PARAMS 12  /* dirt_gpu_fetch_params */
+
+/* A shading point G_k of a pixel (64 bytes). The ring holds three per pixel:
+ * slot (k mod 3) of pixel p is entry 3 p + (k mod 3). prim = DIRT_NO_HIT
+ * marks a miss (the ray left the scene). */
+struct dirt_gpu_gpoint {
+    DIRT_V4 pos_prim;     /* xyz position, w primitive id (uint bits) */
+    DIRT_V4 n_mat;        /* xyz unit shading normal, w material (uint bits) */
+    DIRT_V4 ng_u;         /* xyz unit geometric normal (winding order), w texture u */
+    DIRT_V4 wo_v;         /* xyz unit direction back along the arriving ray, w texture v */
+};
+
+/* Parameters of a Fetch (32 bytes). */
+struct dirt_gpu_fetch_params {
+    DIRT_UV4 config;      /* x hit count, y ring slot written (k+1 mod 3), z pixels, w 0 */
+    DIRT_UV4 reserved;
+};
+
 #endif

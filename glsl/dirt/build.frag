@@ -9,6 +9,11 @@
 //                   pushed on the list of (bucket, tile). Nodes past the
 //                   pool's capacity are counted, not written, so the host
 //                   can grow the pool and run the pass again.
+//  DIRT_PASS_FETCH: the paper's raster Fetch: tiles with no hit record are
+//                   masked out; otherwise every record of the tile's hit list
+//                   whose primitive is this one is fetched into G_{k+1} of
+//                   its owner (no clip needed: the record's tile is one this
+//                   primitive's conservative raster covers).
 #include "common/layout.h"
 #include "dirt/clip.glsl"
 
@@ -18,9 +23,34 @@ layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
 layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
+#ifdef DIRT_PASS_FETCH
+layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
+    dirt_gpu_vertex vertices[];
+};
+layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
+    uint prim_material[];
+};
+layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
+    dirt_gpu_ray rays[];
+};
+layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
+    dirt_gpu_hit hits[];
+};
+layout(std430, binding = DIRT_BIND_GPOINTS) writeonly buffer GPoints {
+    dirt_gpu_gpoint gpoints[];
+};
+layout(std430, binding = DIRT_BIND_FETCH_PARAMS) readonly buffer FetchParams {
+    dirt_gpu_fetch_params fetch;
+};
+layout(std430, binding = DIRT_BIND_HIT_HEADS) readonly buffer HitHeads {
+    uint hit_heads[];
+};
+#include "dirt/fetch_common.glsl"
+#else
 layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
     uvec2 depth[];
 };
+#endif
 #ifdef DIRT_PASS_FILL
 layout(std430, binding = DIRT_BIND_HEADS) buffer Heads {
     uint heads[];
@@ -45,6 +75,13 @@ void main()
     ivec2 tile = ivec2(gl_FragCoord.xy) - ivec2(v.placement.y, 0);
     if (any(lessThan(tile, ivec2(0))) || any(greaterThanEqual(tile, v.size.zw)))
         return;
+#ifdef DIRT_PASS_FETCH
+    uint gt = uint(v.placement.x + tile.y * v.size.z + tile.x);
+    for (uint r = hit_heads[gt]; r != DIRT_LIST_END; r = hits[r].ids.w) {
+        if (hits[r].ids.x == g_prim && hits[r].ids.y == uint(g_view))
+            dirt_fetch_record(r);
+    }
+#else
     int S = params.config.y;
     float zmin, zmax;
     if (!dirt_clip_tile(v, S, tile, g_c0, g_c1, g_c2, float(DIRT_CLIP_EPS), zmin, zmax))
@@ -73,5 +110,6 @@ void main()
             nodes[node] = uvec2(g_prim, prev);
         }
     }
+#endif
 #endif
 }

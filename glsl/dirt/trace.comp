@@ -46,10 +46,14 @@ layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
 layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
     dirt_gpu_hit hits[];
 };
+layout(std430, binding = DIRT_BIND_HIT_HEADS) buffer HitHeads {
+    uint hit_heads[];
+};
 
 layout(location = 0) uniform uint u_count;
 layout(location = 1) uniform int u_hiz_top;  // highest level to start from; < 0 = top
 layout(location = 2) uniform int u_any_hit;  // 1: stop at the first accepted hit
+layout(location = 3) uniform int u_link;     // 1: link hits per ADS tile (raster Fetch)
 
 #define MAX_STEPS 65536
 
@@ -170,8 +174,11 @@ float cross_t(vec4 co, vec4 cd, int axis, float X)
 // with NDC velocity sign `motion` at parameter t. When the crossing solves
 // to t or earlier, either the ray approaches its vanishing point inside the
 // slab and never leaves on this axis (1e30), or rounding put the crossing
-// just behind (leave now: t).
-float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float hi)
+// just behind: leave now (t) — unless `allow_now` is false because leaving
+// now already failed to move the ray out of this cell (a ray running along
+// a cell boundary), then the axis is treated as never left.
+float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float hi,
+             bool allow_now)
 {
     if (motion == 0.0)
         return 1e30;
@@ -180,7 +187,7 @@ float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float 
     if (s > t)
         return s;
     bool never = cd.w > 0.0 && (motion > 0.0 ? cd[axis] / cd.w <= X : cd[axis] / cd.w >= X);
-    return never ? 1e30 : t;
+    return never || !allow_now ? 1e30 : t;
 }
 
 struct best_hit {
@@ -268,22 +275,31 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
     float eps_t = 1e-6 * (t1 - t0) + 4.8e-7 * max(abs(t0), abs(t1)) + 1e-30;
     float t = t0;
     int d = top;
+    ivec2 last_tile = ivec2(-1);
+    bool last_now = false;
     for (int steps = 0; steps < MAX_STEPS; steps++) {
         if (t > t1 || t >= best.t)
             return true;
         vec4 c = co + t * cd;
         vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
         ivec2 size = level_size(v, d);
-        ivec2 cell = clamp(ivec2(floor(tc)) >> d, ivec2(0), size - 1);
+        // Direction of motion in NDC (constant along the segment, w > 0). A
+        // point on a cell boundary belongs to the cell it moves into.
+        vec2 motion = cd.xy * c.w - c.xy * cd.w;
+        ivec2 tile = ivec2(mix(floor(tc), ceil(tc) - 1.0, lessThan(motion, vec2(0.0))));
+        ivec2 cell = clamp(tile >> d, ivec2(0), size - 1);
+        // "Leave now" that did not move the ray to another tile is not
+        // repeated (at any level).
+        bool allow_now = !(last_now && last_tile == tile);
         // The cell's NDC rectangle and the parameter where the ray leaves it.
         ivec2 plo = (cell << d) * S, phi = min(((cell + 1) << d) * S, v.size.xy);
         vec2 sz = vec2(v.size.xy);
         vec2 nlo = -1.0 + 2.0 * vec2(plo) / sz, nhi = -1.0 + 2.0 * vec2(phi) / sz;
-        // Direction of motion in NDC (constant along the segment, w > 0).
-        vec2 motion = cd.xy * c.w - c.xy * cd.w;
-        float tx = exit_t(co, cd, 0, t, motion.x, nlo.x, nhi.x);
-        float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y);
+        float tx = exit_t(co, cd, 0, t, motion.x, nlo.x, nhi.x, allow_now);
+        float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y, allow_now);
         float texit = max(min(min(tx, ty), t1), t);
+        last_tile = tile;
+        last_now = texit == t;
         float wa = co.w + t * cd.w, wb = co.w + texit * cd.w;
         uvec2 e = depth[level_base(v, d) + cell.y * size.x + cell.x];
         float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
@@ -364,8 +380,18 @@ void main()
         aborted = true;
     if (aborted)
         atomicAdd(counters.fill.z, 1u);
+    uint next = DIRT_LIST_END;
+    if (u_link != 0 && best.prim != DIRT_NO_HIT) {
+        // The hit's tile in the view it was found in: its hit list is what
+        // the raster Fetch walks.
+        dirt_gpu_view v = views[best.view];
+        vec4 c = view_matrix(v) * vec4(org + best.t * dir, 1.0);
+        vec2 tc = (c.xy / c.w * 0.5 + 0.5) * vec2(v.size.xy) / float(params.config.y);
+        ivec2 tile = clamp(ivec2(floor(tc)), ivec2(0), v.size.zw - 1);
+        next = atomicExchange(hit_heads[uint(v.placement.x + tile.y * v.size.z + tile.x)], i);
+    }
     dirt_gpu_hit h;
-    h.ids = uvec4(best.prim, uint(best.view), i, DIRT_LIST_END);
+    h.ids = uvec4(best.prim, uint(best.view), i, next);
     h.bary_t = vec4(best.u, best.v, best.prim == DIRT_NO_HIT ? -1.0 : best.t, 0.0);
     hits[i] = h;
 }

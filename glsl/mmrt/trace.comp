@@ -161,6 +161,10 @@ bool march_hiz(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1, in
                  : dir.x < 0.0 ? cross_at(v, co, cd, 0, float(cell.x * s)) : BIG;
         float ty = dir.y > 0.0 ? cross_at(v, co, cd, 1, float((cell.y + 1) * s))
                  : dir.y < 0.0 ? cross_at(v, co, cd, 1, float(cell.y * s)) : BIG;
+        // A boundary the projected line only reaches "behind" the eye (the
+        // line tends to its vanishing point first) is never crossed.
+        tx = tx > t ? tx : BIG;
+        ty = ty > t ? ty : BIG;
         float te = min(t1, min(tx, ty));
         if (!(te > t))
             te = min(t1, t + min_step);

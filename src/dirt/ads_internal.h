@@ -34,7 +34,31 @@ struct dirt_ads {
     GLuint rays, hits;
     size_t rays_size, hits_size;
     gl_timer trace_timer;
+    /* fetch */
+    GLuint prim_material;     /* uint per primitive */
+    size_t prim_material_size;
+    GLuint hit_heads;         /* uint per tile */
+    size_t hit_heads_size;
+    GLuint fetch_params;
+    GLuint prog_fetch, prog_fetch_miss, prog_fetch_raster;
+    GLuint fetch_vao, fetch_fbo;
+    int fetch_fbo_w, fetch_fbo_h;
+    uint32_t *material_staging;
 };
+
+/* Traces `count` rays from buffer `rays` into `hits` (GL names, each at
+ * least count records). With `link`, hits are also linked into per-tile
+ * hit lists (hit_heads is cleared first) for the raster Fetch. Issues the
+ * barriers it needs before and after. */
+bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
+                  const dirt_trace_opts *opts, bool link, dirt_trace_stats *stats);
+
+/* Fetches the hit records into ring slot `slot` of `gpoints` (owner pixel =
+ * record's ids.z). raster: the paper's geometry-pass Fetch over the hit
+ * lists of the last linked trace (plus a compute pass for the misses);
+ * else the compute Fetch. */
+bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t count,
+                  GLuint gpoints, uint32_t slot);
 
 /* Binds every buffer of the structure at its DIRT_BIND_* point. */
 void ads_bind_all(dirt_ads *a);

@@ -58,7 +58,20 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     a->prog_fill = gl_program_create("dirt fill primitives", paths, defs, ndefs);
     a->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
     a->prog_trace = gl_program_compute("dirt/trace.comp", NULL, 0);
-    if (!a->prog_depth || !a->prog_fill || !a->prog_mip || !a->prog_trace)
+    a->prog_fetch = gl_program_compute("dirt/fetch.comp", NULL, 0);
+    a->prog_fetch_miss = gl_program_compute("dirt/fetch_miss.comp", NULL, 0);
+    defs[1].name = "DIRT_PASS_FETCH";
+    a->prog_fetch_raster = gl_program_create("dirt fetch (raster)", paths, defs, ndefs);
+    if (!a->prog_depth || !a->prog_fill || !a->prog_mip || !a->prog_trace || !a->prog_fetch ||
+        !a->prog_fetch_miss || !a->prog_fetch_raster)
+        goto error;
+    glCreateVertexArrays(1, &a->fetch_vao);
+    gl_label(GL_VERTEX_ARRAY, a->fetch_vao, "dirt fetch vao");
+    glCreateFramebuffers(1, &a->fetch_fbo);
+    gl_label(GL_FRAMEBUFFER, a->fetch_fbo, "dirt fetch atlas");
+    a->fetch_params = gl_buffer_create(gpu, sizeof(struct dirt_gpu_fetch_params), NULL, false,
+                                       "dirt fetch params");
+    if (!a->fetch_params)
         goto error;
     if (!gl_timer_init(&a->trace_timer, a->opts.cpu_timing, "dirt trace"))
         goto error;
@@ -85,6 +98,17 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
     gl_program_destroy(&a->prog_trace);
+    gl_program_destroy(&a->prog_fetch);
+    gl_program_destroy(&a->prog_fetch_miss);
+    gl_program_destroy(&a->prog_fetch_raster);
+    if (a->fetch_vao)
+        glDeleteVertexArrays(1, &a->fetch_vao);
+    if (a->fetch_fbo)
+        glDeleteFramebuffers(1, &a->fetch_fbo);
+    gl_buffer_destroy(&a->prim_material);
+    gl_buffer_destroy(&a->hit_heads);
+    gl_buffer_destroy(&a->fetch_params);
+    free(a->material_staging);
     gl_buffer_destroy(&a->rays);
     gl_buffer_destroy(&a->hits);
     gl_timer_release(&a->trace_timer);
@@ -128,6 +152,18 @@ static bool upload_frame(dirt_ads *a, const dirt_frame *f)
         a->staging[i].normal = (dirt_f4){f->normal[i][0], f->normal[i][1], f->normal[i][2],
                                          f->uv[i][1]};
     }
+    uint32_t *ms = realloc(a->material_staging, (f->num_triangles + 1) * sizeof(uint32_t));
+    if (!ms) {
+        DIRT_ERROR("out of memory");
+        return false;
+    }
+    a->material_staging = ms;
+    memcpy(ms, f->material, f->num_triangles * sizeof(uint32_t));
+    if (!ensure_buffer(a, &a->prim_material, &a->prim_material_size,
+                       (f->num_triangles + 1) * sizeof(uint32_t), false, "dirt prim materials"))
+        return false;
+    glNamedBufferSubData(a->prim_material, 0, (GLsizeiptr)(f->num_triangles * sizeof(uint32_t)),
+                         ms);
     size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
     if (!ensure_buffer(a, &a->vertices, &a->vertices_size, bytes ? bytes : 16, false,
                        "dirt vertices"))

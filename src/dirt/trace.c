@@ -1,4 +1,4 @@
-/* DIRT Trace pass host side: batches of rays through the built structure. */
+/* DIRT Trace and Fetch, host side. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -6,6 +6,8 @@
 
 _Static_assert(sizeof(dirt_ray) == sizeof(struct dirt_gpu_ray), "ray layout");
 _Static_assert(sizeof(dirt_hit) == sizeof(struct dirt_gpu_hit), "hit layout");
+_Static_assert(sizeof(dirt_gpoint) == sizeof(struct dirt_gpu_gpoint), "gpoint layout");
+_Static_assert(sizeof(struct dirt_gpu_fetch_params) == 32, "fetch params layout");
 
 static bool ensure(dirt_ads *a, GLuint *buf, size_t *cap, size_t size, bool readback,
                    const char *label)
@@ -18,14 +20,96 @@ static bool ensure(dirt_ads *a, GLuint *buf, size_t *cap, size_t size, bool read
     return *buf != 0;
 }
 
-bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *hits,
-                    const dirt_trace_opts *opts_in, dirt_trace_stats *stats)
+bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
+                  const dirt_trace_opts *opts_in, bool link, dirt_trace_stats *stats)
 {
     dirt_trace_opts opts = opts_in ? *opts_in : (dirt_trace_opts){0};
-    if (stats)
-        *stats = (dirt_trace_stats){.rays = count, .gpu_ms = -1, .cpu_ms = -1};
-    if (!count)
-        return true;
+    if (!ensure(a, &a->hit_heads, &a->hit_heads_size, (size_t)a->set.num_tiles * 4 + 4, false,
+                "dirt hit heads"))
+        return false;
+    gl_group_push("dirt trace");
+    static const uint32_t zero = 0, end = DIRT_LIST_END;
+    glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                              &zero);
+    if (link)
+        glClearNamedBufferData(a->hit_heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    ads_bind_all(a);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
+    glUseProgram(a->prog_trace);
+    glUniform1ui(0, count);
+    glUniform1i(1, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
+    glUniform1i(2, opts.any_hit ? 1 : 0);
+    glUniform1i(3, link ? 1 : 0);
+    /* Rays may come from a shader (the integrator's ray generation). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    a->trace_timer.cpu_finish = a->opts.cpu_timing;
+    gl_timer_begin(&a->trace_timer);
+    glDispatchCompute((count + 63) / 64, 1, 1);
+    gl_timer_end(&a->trace_timer);
+    glUseProgram(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_group_pop();
+    if (stats) {
+        *stats = (dirt_trace_stats){.rays = count, .gpu_ms = a->trace_timer.gpu_ms,
+                                    .cpu_ms = a->trace_timer.cpu_ms};
+        struct dirt_gpu_ads_counters c;
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (!gl_buffer_read(a->counters, 0, sizeof(c), &c))
+            return false;
+        stats->aborted = c.fill.z;
+        if (c.fill.z)
+            DIRT_WARN("%u of %u rays ran out of march steps", c.fill.z, count);
+    }
+    return gl_check("dirt trace");
+}
+
+bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t count,
+                  GLuint gpoints, uint32_t slot)
+{
+    struct dirt_gpu_fetch_params fp = {.config = {count, slot, 0, 0}};
+    glNamedBufferSubData(a->fetch_params, 0, sizeof(fp), &fp);
+    gl_group_push(raster ? "dirt fetch (raster)" : "dirt fetch (compute)");
+    ads_bind_all(a);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_FETCH_PARAMS, a->fetch_params);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(raster ? a->prog_fetch_miss : a->prog_fetch);
+    glDispatchCompute((count + 63) / 64, 1, 1);
+    if (raster) {
+        if (a->fetch_fbo_w != a->set.atlas_width || a->fetch_fbo_h != a->set.atlas_height) {
+            glNamedFramebufferParameteri(a->fetch_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
+                                         a->set.atlas_width);
+            glNamedFramebufferParameteri(a->fetch_fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT,
+                                         a->set.atlas_height);
+            a->fetch_fbo_w = a->set.atlas_width;
+            a->fetch_fbo_h = a->set.atlas_height;
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, a->fetch_fbo);
+        glViewport(0, 0, a->set.atlas_width, a->set.atlas_height);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_SCISSOR_TEST);
+        glUseProgram(a->prog_fetch_raster);
+        glBindVertexArray(a->fetch_vao);
+        if (a->num_primitives)
+            glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
+        glBindVertexArray(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+    glUseProgram(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_group_pop();
+    return gl_check("dirt fetch");
+}
+
+static bool upload_rays(dirt_ads *a, const dirt_ray *rays, size_t count)
+{
     if (count > UINT32_MAX / 2) {
         DIRT_ERROR("too many rays in one batch (%zu)", count);
         return false;
@@ -34,35 +118,50 @@ bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *h
     if (!ensure(a, &a->rays, &a->rays_size, bytes, false, "dirt rays") ||
         !ensure(a, &a->hits, &a->hits_size, bytes, true, "dirt hits"))
         return false;
-    gl_group_push("dirt trace");
     glNamedBufferSubData(a->rays, 0, (GLsizeiptr)bytes, rays);
-    static const uint32_t zero = 0;
-    glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                              &zero);
-    ads_bind_all(a);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, a->rays);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, a->hits);
-    glUseProgram(a->prog_trace);
-    glUniform1ui(0, (GLuint)count);
-    glUniform1i(1, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
-    glUniform1i(2, opts.any_hit ? 1 : 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    a->trace_timer.cpu_finish = a->opts.cpu_timing;
-    gl_timer_begin(&a->trace_timer);
-    glDispatchCompute((GLuint)((count + 63) / 64), 1, 1);
-    gl_timer_end(&a->trace_timer);
-    glUseProgram(0);
+    return true;
+}
+
+bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *hits,
+                    const dirt_trace_opts *opts, dirt_trace_stats *stats)
+{
+    dirt_trace_stats local;
+    if (!stats)
+        stats = &local;
+    *stats = (dirt_trace_stats){.gpu_ms = -1, .cpu_ms = -1};
+    if (!count)
+        return true;
+    if (!upload_rays(a, rays, count) ||
+        !ads_trace_gl(a, a->rays, a->hits, (uint32_t)count, opts, false, stats))
+        return false;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    struct dirt_gpu_ads_counters c;
-    bool ok = gl_buffer_read(a->hits, 0, bytes, hits) &&
-              gl_buffer_read(a->counters, 0, sizeof(c), &c);
-    gl_group_pop();
-    if (ok && stats) {
-        stats->aborted = c.fill.z;
-        stats->gpu_ms = a->trace_timer.gpu_ms;
-        stats->cpu_ms = a->trace_timer.cpu_ms;
+    return gl_buffer_read(a->hits, 0, count * sizeof(dirt_hit), hits);
+}
+
+bool dirt_ads_trace_fetch(dirt_ads *a, const dirt_ray *rays, size_t count,
+                          enum dirt_fetch_mode mode, dirt_gpoint *out)
+{
+    if (!count)
+        return true;
+    GLuint gp = gl_buffer_create(a->gpu, count * 3 * sizeof(dirt_gpoint), NULL, true,
+                                 "dirt test gpoints");
+    /* All ones: a record that Fetch never writes reads as NaNs. */
+    static const uint32_t ones = 0xFFFFFFFFu;
+    if (gp)
+        glClearNamedBufferData(gp, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+    bool ok = gp && upload_rays(a, rays, count) &&
+              ads_trace_gl(a, a->rays, a->hits, (uint32_t)count, NULL,
+                           mode == DIRT_FETCH_RASTER, NULL) &&
+              ads_fetch_gl(a, mode == DIRT_FETCH_RASTER, a->rays, a->hits, (uint32_t)count, gp, 1);
+    if (ok) {
+        /* Slot 1 of each owner: entries 3 i + 1. */
+        dirt_gpoint *all = malloc(count * 3 * sizeof(*all));
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        ok = all && gl_buffer_read(gp, 0, count * 3 * sizeof(*all), all);
+        for (size_t i = 0; ok && i < count; i++)
+            out[i] = all[3 * i + 1];
+        free(all);
     }
-    if (ok && c.fill.z)
-        DIRT_WARN("%u of %zu rays ran out of march steps", c.fill.z, count);
-    return ok && gl_check("dirt trace");
+    gl_buffer_destroy(&gp);
+    return ok;
 }

@@ -1,17 +1,39 @@
-/* Raster preview pass: draws the evaluated frame with simple direct lighting
- * into a float colour target and reads it back. */
+/* Raster preview: draws the evaluated frame with simple direct lighting into
+ * a float colour target and reads it back, as a two-pass frame graph
+ * (doc/frame-graph.md section 7):
+ *
+ *   "preview draw" (raster)    FG_VERTEX "preview vertices" (import),
+ *                              FG_SSBO_READ "preview materials", "preview lights"
+ *                              (imports, bound by the graph),
+ *                              FG_SAMPLED scene textures + "white" (imports,
+ *                              bound per material by the body),
+ *                              FG_COLOR "preview color" (transient rgba32f),
+ *                              FG_DEPTH "preview depth" (transient depth32f)
+ *   "preview readback"         FG_TRANSFER_READ "preview color" into the
+ *                              caller's buffer (fg_keep)
+ *
+ * The CPU uploads of vertices and lights (glNamedBufferSubData) happen before
+ * fg_execute, outside the graph: GL orders API updates before later draws, so
+ * they need no barrier. The graph is declared once at create, recompiled when
+ * the image size changes, and its imports are repointed (fg_set_import) when
+ * the vertex or light buffer grows. */
 #include "dirt/raster.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "common/layout.h"
 #include "gl/gl.h"
 #include "gl/program.h"
+#include "graph/graph.h"
 
 _Static_assert(sizeof(struct dirt_gpu_material) == 64, "material layout");
 _Static_assert(sizeof(struct dirt_gpu_light) == 64, "light layout");
+
+#define PASS_DRAW "preview draw"
+#define PASS_READBACK "preview readback"
 
 /* Vertex of the preview's vertex buffer. */
 typedef struct preview_vertex {
@@ -34,14 +56,26 @@ struct dirt_raster {
     GLuint vbo;
     size_t vbo_capacity;  /* vertices */
     GLuint materials;
+    size_t materials_bytes;
     GLuint lights;
     size_t lights_capacity;
     GLuint *textures;     /* one per scene texture (0 when it failed) */
     size_t num_textures;
     GLuint white;         /* 1x1 white texture for materials without one */
-    GLuint fbo, color, depth;
-    int fb_width, fb_height;
-    gl_timer timer;
+    /* frame graph: declared at create, compiled for graph_width x graph_height
+     * (0 x 0 = not compiled yet, or the last compile failed) */
+    fg_graph *graph;
+    fg_res res_vertices, res_materials, res_lights, res_color, res_depth;
+    int graph_width, graph_height;
+    /* what the pass bodies of the current render need */
+    struct {
+        float view_proj[16];
+        const float *eye;
+        int num_lights;
+        float ambient;
+        float *rgba;      /* caller's width*height*4 floats */
+        int width, height;
+    } frame;
     /* CPU staging, reused between frames */
     preview_vertex *staging;
     uint32_t *order;
@@ -104,10 +138,183 @@ static bool upload_materials(dirt_raster *r)
         gm[i].textures = (dirt_i4){m->base_color_tex, m->metallic_roughness_tex,
                                    m->emissive_tex, m->double_sided ? 1 : 0};
     }
-    r->materials = gl_buffer_create(r->gpu, (n ? n : 1) * sizeof(*gm), gm, false,
+    r->materials_bytes = (n ? n : 1) * sizeof(*gm);
+    r->materials = gl_buffer_create(r->gpu, r->materials_bytes, gm, false,
                                     "preview materials");
     free(gm);
     return r->materials != 0;
+}
+
+/* Pass body of "preview draw": the graph has bound the framebuffer of the
+ * colour/depth targets (viewport = image size), the material and light SSBOs
+ * and an empty VAO; this clears the targets and draws each material range
+ * with its textures. Leaves depth testing off and no program bound. */
+static bool exec_draw(fg_ctx *ctx, void *user)
+{
+    dirt_raster *r = user;
+    GLuint vbo = fg_name(ctx, r->res_vertices);
+    if (!vbo)
+        return false;
+    glVertexArrayVertexBuffer(r->vao, 0, vbo, 0, sizeof(preview_vertex));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);
+    static const float clear_color[4] = {0, 0, 0, 1};
+    static const float clear_depth = 1.0f;
+    glClearBufferfv(GL_COLOR, 0, clear_color);
+    glClearBufferfv(GL_DEPTH, 0, &clear_depth);
+    glUseProgram(r->program);
+    glUniformMatrix4fv(0, 1, GL_FALSE, r->frame.view_proj);
+    glUniform3fv(1, 1, r->frame.eye);
+    glUniform1i(3, r->frame.num_lights);
+    glUniform1f(4, r->frame.ambient);
+    glBindVertexArray(r->vao);
+    const dirt_material *mat = dirt_scene_materials(r->scene);
+    for (size_t i = 0; i < r->num_ranges; i++) {
+        const material_range *mr = &r->ranges[i];
+        const dirt_material *m = &mat[mr->material];
+        GLuint base = m->base_color_tex >= 0 && (size_t)m->base_color_tex < r->num_textures
+                          ? r->textures[m->base_color_tex] : 0;
+        GLuint emis = m->emissive_tex >= 0 && (size_t)m->emissive_tex < r->num_textures
+                          ? r->textures[m->emissive_tex] : 0;
+        glBindTextureUnit(0, base ? base : r->white);
+        glBindTextureUnit(1, emis ? emis : r->white);
+        glUniform1i(2, (GLint)mr->material);
+        glDrawArrays(GL_TRIANGLES, (GLint)mr->first_vertex, (GLsizei)mr->num_vertices);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+    return true;
+}
+
+/* Pass body of "preview readback": copies the colour target (bottom-up) into
+ * the caller's buffer, then flips the rows so row 0 is the top. */
+static bool exec_readback(fg_ctx *ctx, void *user)
+{
+    dirt_raster *r = user;
+    int w = 0, h = 0;
+    fg_texture_size(ctx, r->res_color, &w, &h, NULL, NULL);
+    if (w != r->frame.width || h != r->frame.height) {
+        DIRT_ERROR("raster preview: colour target is %dx%d, the image %dx%d", w, h,
+                   r->frame.width, r->frame.height);
+        return false;
+    }
+    size_t row = (size_t)w * 4;
+    float *rgba = r->frame.rgba;
+    if (!fg_gl_read_texture(ctx, r->res_color, 0, rgba, row * (size_t)h * sizeof(float)))
+        return false;
+    for (int y = 0; y < h / 2; y++) {
+        float *a = rgba + (size_t)y * row, *b = rgba + (size_t)(h - 1 - y) * row;
+        for (size_t i = 0; i < row; i++) {
+            float tmp = a[i];
+            a[i] = b[i];
+            b[i] = tmp;
+        }
+    }
+    return true;
+}
+
+/* Scene textures a material samples (base colour or emissive), imported so
+ * that the graph's DOT and stats show them; the draw body binds them. */
+static bool declare_textures(dirt_raster *r, fg_pass *draw)
+{
+    const dirt_texture *tex = dirt_scene_textures(r->scene);
+    const dirt_material *mat = dirt_scene_materials(r->scene);
+    size_t nmat = dirt_scene_num_materials(r->scene);
+    bool *sampled = calloc(r->num_textures ? r->num_textures : 1, sizeof(bool));
+    if (!sampled) {
+        DIRT_ERROR("out of memory");
+        return false;
+    }
+    for (size_t m = 0; m < nmat; m++) {
+        int ids[2] = {mat[m].base_color_tex, mat[m].emissive_tex};
+        for (int k = 0; k < 2; k++) {
+            if (ids[k] >= 0 && (size_t)ids[k] < r->num_textures)
+                sampled[ids[k]] = true;
+        }
+    }
+    bool ok = true;
+    for (size_t i = 0; i < r->num_textures && ok; i++) {
+        if (!sampled[i] || !r->textures[i])
+            continue;
+        char name[96];
+        snprintf(name, sizeof(name), "texture %zu%s%.40s", i, tex[i].name[0] ? " " : "",
+                 tex[i].name);
+        fg_res t = fg_import_texture(r->graph, name, r->textures[i],
+                                     &(fg_tex_desc){.format = FG_RGBA8, .width = tex[i].width,
+                                                    .height = tex[i].height,
+                                                    .levels = FG_MIPS_FULL});
+        ok = t.id != 0;
+        if (ok)
+            fg_read(draw, t, FG_SAMPLED);
+    }
+    free(sampled);
+    if (!ok)
+        return false;
+    fg_res white = fg_import_texture(r->graph, "white", r->white,
+                                     &(fg_tex_desc){.format = FG_RGBA8, .width = 1,
+                                                    .height = 1});
+    if (!white.id)
+        return false;
+    fg_read(draw, white, FG_SAMPLED);
+    return true;
+}
+
+/* Declares the preview's graph (see the top of the file). The vertex and light
+ * buffers must exist (their imports are repointed when they grow). Compiled
+ * later, by ensure_graph, once the image size is known. */
+static bool build_graph(dirt_raster *r)
+{
+    r->graph = fg_create(r->gpu);
+    if (!r->graph)
+        return false;
+    fg_graph *g = r->graph;
+    r->res_vertices = fg_import_buffer(g, "preview vertices", r->vbo,
+                                       r->vbo_capacity * sizeof(preview_vertex));
+    r->res_materials = fg_import_buffer(g, "preview materials", r->materials,
+                                        r->materials_bytes);
+    r->res_lights = fg_import_buffer(g, "preview lights", r->lights,
+                                     r->lights_capacity * sizeof(struct dirt_gpu_light));
+    r->res_color = fg_texture(g, "preview color", &(fg_tex_desc){.format = FG_RGBA32F});
+    r->res_depth = fg_texture(g, "preview depth", &(fg_tex_desc){.format = FG_DEPTH32F});
+
+    fg_pass *draw = fg_add_pass(g, PASS_DRAW, FG_RASTER, exec_draw, r);
+    fg_pass *rb = fg_add_pass(g, PASS_READBACK, FG_COMPUTE, exec_readback, r);
+    if (!r->res_vertices.id || !r->res_materials.id || !r->res_lights.id ||
+        !r->res_color.id || !r->res_depth.id || !draw || !rb)
+        return false;
+    fg_read(draw, r->res_vertices, FG_VERTEX);
+    fg_use(draw, r->res_materials, FG_SSBO_READ,
+           &(fg_use_opts){.bind = true, .binding = DIRT_BIND_PREVIEW_MATERIALS});
+    fg_use(draw, r->res_lights, FG_SSBO_READ,
+           &(fg_use_opts){.bind = true, .binding = DIRT_BIND_PREVIEW_LIGHTS});
+    if (!declare_textures(r, draw))
+        return false;
+    fg_use(draw, r->res_color, FG_COLOR, &(fg_use_opts){.binding = 0});
+    fg_write(draw, r->res_depth, FG_DEPTH);
+
+    fg_read(rb, r->res_color, FG_TRANSFER_READ);
+    fg_keep(rb);
+    return true;
+}
+
+/* (Re)compiles the graph for a width x height image; a no-op when it already
+ * is. The transient targets are reallocated at the next execute. */
+static bool ensure_graph(dirt_raster *r, int width, int height)
+{
+    if (r->graph_width == width && r->graph_height == height)
+        return true;
+    r->graph_width = r->graph_height = 0;
+    fg_set_resolution(r->graph, width, height);
+    if (!fg_compile(r->graph)) {
+        DIRT_ERROR("raster preview: frame graph does not compile at %dx%d: %s", width,
+                   height, fg_last_error(r->graph));
+        return false;
+    }
+    r->graph_width = width;
+    r->graph_height = height;
+    return true;
 }
 
 dirt_raster *dirt_raster_create(dirt_gpu *gpu, const dirt_scene *scene)
@@ -138,29 +345,31 @@ dirt_raster *dirt_raster_create(dirt_gpu *gpu, const dirt_scene *scene)
     }
     if (!upload_textures(r) || !upload_materials(r))
         goto error;
-    if (!gl_timer_init(&r->timer, false, "preview timer"))
+    /* Minimal vertex and light buffers, so the graph has something to import;
+     * dirt_raster_render grows them. */
+    r->vbo_capacity = 3;
+    r->vbo = gl_buffer_create(r->gpu, r->vbo_capacity * sizeof(preview_vertex), NULL, false,
+                              "preview vertices");
+    r->lights_capacity = 1;
+    r->lights = gl_buffer_create(r->gpu, r->lights_capacity * sizeof(struct dirt_gpu_light),
+                                 NULL, false, "preview lights");
+    if (!r->vbo || !r->lights)
         goto error;
+    if (!build_graph(r)) {
+        DIRT_ERROR("raster preview: could not declare the frame graph");
+        goto error;
+    }
     return r;
 error:
     dirt_raster_destroy(r);
     return NULL;
 }
 
-static void release_framebuffer(dirt_raster *r)
-{
-    if (r->fbo)
-        glDeleteFramebuffers(1, &r->fbo);
-    r->fbo = 0;
-    gl_texture_destroy(&r->color);
-    gl_texture_destroy(&r->depth);
-    r->fb_width = r->fb_height = 0;
-}
-
 void dirt_raster_destroy(dirt_raster *r)
 {
     if (!r)
         return;
-    release_framebuffer(r);
+    fg_destroy(r->graph);
     gl_program_destroy(&r->program);
     if (r->vao)
         glDeleteVertexArrays(1, &r->vao);
@@ -170,7 +379,6 @@ void dirt_raster_destroy(dirt_raster *r)
     for (size_t i = 0; r->textures && i < r->num_textures; i++)
         gl_texture_destroy(&r->textures[i]);
     gl_texture_destroy(&r->white);
-    gl_timer_release(&r->timer);
     free(r->textures);
     free(r->staging);
     free(r->order);
@@ -178,27 +386,27 @@ void dirt_raster_destroy(dirt_raster *r)
     free(r);
 }
 
-static bool ensure_framebuffer(dirt_raster *r, int w, int h)
+bool dirt_raster_write_dot(const dirt_raster *r, const char *path)
 {
-    if (r->fbo && r->fb_width == w && r->fb_height == h)
-        return true;
-    release_framebuffer(r);
-    r->color = gl_texture_2d(GL_RGBA32F, w, h, 1, "preview color");
-    r->depth = gl_texture_2d(GL_DEPTH_COMPONENT32F, w, h, 1, "preview depth");
-    if (!r->color || !r->depth)
-        return false;
-    glCreateFramebuffers(1, &r->fbo);
-    glNamedFramebufferTexture(r->fbo, GL_COLOR_ATTACHMENT0, r->color, 0);
-    glNamedFramebufferTexture(r->fbo, GL_DEPTH_ATTACHMENT, r->depth, 0);
-    gl_label(GL_FRAMEBUFFER, r->fbo, "preview fbo");
-    GLenum status = glCheckNamedFramebufferStatus(r->fbo, GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-        DIRT_ERROR("preview framebuffer incomplete (0x%x) at %dx%d", status, w, h);
+    if (!r || !path) {
+        DIRT_ERROR("raster preview: dirt_raster_write_dot needs a renderer and a path");
         return false;
     }
-    r->fb_width = w;
-    r->fb_height = h;
-    return true;
+    if (!r->graph_width) {
+        DIRT_ERROR("raster preview: no compiled frame graph yet (render a frame first)");
+        return false;
+    }
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        DIRT_ERROR("raster preview: cannot open '%s' for writing", path);
+        return false;
+    }
+    bool ok = fg_write_dot(r->graph, f);
+    if (fclose(f) != 0)
+        ok = false;
+    if (!ok)
+        DIRT_ERROR("raster preview: writing the frame graph DOT to '%s' failed", path);
+    return ok;
 }
 
 /* Counting sort of triangles by material (stable), filling the staging
@@ -346,6 +554,56 @@ static int gather_lights(dirt_raster *r, const dirt_frame *f, struct dirt_gpu_li
     return (int)n;
 }
 
+/* Grows the imported buffer `*buf` (capacity in elements of `elem` bytes) to
+ * hold `need` elements and repoints its import; keeps it when large enough. */
+static bool ensure_import(dirt_raster *r, GLuint *buf, size_t *capacity, size_t need,
+                          size_t elem, fg_res res, const char *label)
+{
+    if (need <= *capacity && *buf)
+        return true;
+    gl_buffer_destroy(buf);
+    *capacity = need ? need : 1;
+    *buf = gl_buffer_create(r->gpu, *capacity * elem, NULL, false, label);
+    if (!*buf) {
+        *capacity = 0;
+        return false;
+    }
+    return fg_set_import(r->graph, res, *buf, *capacity * elem);
+}
+
+/* Copies the graph's per-pass figures of the last execute into `stats`. */
+static void fill_stats(const dirt_raster *r, int num_lights, dirt_raster_stats *stats)
+{
+    *stats = (dirt_raster_stats){.gpu_ms = -1, .cpu_ms = -1, .num_lights = num_lights};
+    fg_stats gs;
+    if (!fg_get_stats(r->graph, &gs))
+        return;
+    double gpu = 0, cpu = 0;
+    bool gpu_ok = true, cpu_ok = true;
+    for (int pos = 0; pos < fg_num_ordered(r->graph); pos++) {
+        int index = fg_order(r->graph, pos);
+        if (index < 0 || index >= gs.num_passes)
+            continue;
+        const fg_pass_stats *p = &gs.passes[index];
+        gpu_ok = gpu_ok && p->gpu_ms >= 0;
+        cpu_ok = cpu_ok && p->cpu_ms >= 0;
+        gpu += p->gpu_ms;
+        cpu += p->cpu_ms;
+        if (stats->num_passes < DIRT_RASTER_MAX_PASSES) {
+            dirt_raster_pass_stats *o = &stats->passes[stats->num_passes++];
+            snprintf(o->name, sizeof(o->name), "%s", p->name);
+            o->gpu_ms = p->gpu_ms;
+            o->cpu_ms = p->cpu_ms;
+            o->barrier = p->barrier;
+        }
+    }
+    stats->gpu_ms = gpu_ok && stats->num_passes ? gpu : -1;
+    stats->cpu_ms = cpu_ok && stats->num_passes ? cpu : -1;
+    stats->transient_bytes = gs.allocated_bytes;
+    stats->imported_bytes = gs.imported_bytes;
+    stats->validation_errors = gs.validation_errors;
+}
+
 bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *cam,
                         int width, int height, const dirt_raster_opts *opts_in,
                         float *rgba, dirt_raster_stats *stats)
@@ -359,18 +617,14 @@ bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *
         return false;
     }
     gl_group_push("raster preview");
-    if (!ensure_framebuffer(r, width, height) || !stage_vertices(r, f))
+    if (!ensure_graph(r, width, height) || !stage_vertices(r, f))
         goto done;
+
+    /* Uploads, outside the graph (API updates: no barrier needed). */
     size_t nv = f->num_triangles * 3;
-    if (nv > r->vbo_capacity || !r->vbo) {
-        gl_buffer_destroy(&r->vbo);
-        r->vbo_capacity = nv ? nv : 3;
-        r->vbo = gl_buffer_create(r->gpu, r->vbo_capacity * sizeof(preview_vertex), NULL,
-                                  false, "preview vertices");
-        if (!r->vbo)
-            goto done;
-        glVertexArrayVertexBuffer(r->vao, 0, r->vbo, 0, sizeof(preview_vertex));
-    }
+    if (!ensure_import(r, &r->vbo, &r->vbo_capacity, nv, sizeof(preview_vertex),
+                       r->res_vertices, "preview vertices"))
+        goto done;
     if (nv)
         glNamedBufferSubData(r->vbo, 0, (GLsizeiptr)(nv * sizeof(preview_vertex)), r->staging);
 
@@ -379,84 +633,43 @@ bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *
         DIRT_ERROR("out of memory gathering lights");
         goto done;
     }
-    if ((size_t)num_lights > r->lights_capacity || !r->lights) {
-        gl_buffer_destroy(&r->lights);
-        r->lights_capacity = num_lights > 0 ? (size_t)num_lights : 1;
-        r->lights = gl_buffer_create(r->gpu, r->lights_capacity * sizeof(*lights), NULL,
-                                     false, "preview lights");
-        if (!r->lights)
-            goto done;
-    }
+    if (!ensure_import(r, &r->lights, &r->lights_capacity, (size_t)num_lights, sizeof(*lights),
+                       r->res_lights, "preview lights"))
+        goto done;
     if (num_lights)
         glNamedBufferSubData(r->lights, 0, num_lights * (GLsizeiptr)sizeof(*lights), lights);
+    if (!gl_check("raster preview uploads"))
+        goto done;
 
-    float proj[16], view_proj[16];
+    float proj[16];
     dirt_camera_projection(cam, (float)width / (float)height, proj);
     for (int c = 0; c < 4; c++) {
         for (int rr = 0; rr < 4; rr++) {
             float s = 0;
             for (int k = 0; k < 4; k++)
                 s += proj[k * 4 + rr] * cam->view[c * 4 + k];
-            view_proj[c * 4 + rr] = s;
+            r->frame.view_proj[c * 4 + rr] = s;
         }
     }
+    r->frame.eye = cam->eye;
+    r->frame.num_lights = num_lights;
+    r->frame.ambient = ambient;
+    r->frame.rgba = rgba;
+    r->frame.width = width;
+    r->frame.height = height;
 
-    if (opts.cpu_timing != r->timer.cpu_finish)
-        r->timer.cpu_finish = opts.cpu_timing;
-    gl_timer_begin(&r->timer);
-    glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    glViewport(0, 0, width, height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    static const float clear_color[4] = {0, 0, 0, 1};
-    static const float clear_depth = 1.0f;
-    glClearNamedFramebufferfv(r->fbo, GL_COLOR, 0, clear_color);
-    glClearNamedFramebufferfv(r->fbo, GL_DEPTH, 0, &clear_depth);
-    glUseProgram(r->program);
-    glUniformMatrix4fv(0, 1, GL_FALSE, view_proj);
-    glUniform3fv(1, 1, cam->eye);
-    glUniform1i(3, num_lights);
-    glUniform1f(4, ambient);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PREVIEW_MATERIALS, r->materials);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PREVIEW_LIGHTS, r->lights);
-    glBindVertexArray(r->vao);
-    const dirt_material *mat = dirt_scene_materials(r->scene);
-    for (size_t i = 0; i < r->num_ranges; i++) {
-        const material_range *mr = &r->ranges[i];
-        const dirt_material *m = &mat[mr->material];
-        GLuint base = m->base_color_tex >= 0 && (size_t)m->base_color_tex < r->num_textures
-                          ? r->textures[m->base_color_tex] : 0;
-        GLuint emis = m->emissive_tex >= 0 && (size_t)m->emissive_tex < r->num_textures
-                          ? r->textures[m->emissive_tex] : 0;
-        glBindTextureUnit(0, base ? base : r->white);
-        glBindTextureUnit(1, emis ? emis : r->white);
-        glUniform1i(2, (GLint)mr->material);
-        glDrawArrays(GL_TRIANGLES, (GLint)mr->first_vertex, (GLsizei)mr->num_vertices);
-    }
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl_timer_end(&r->timer);
-
-    /* Read back bottom-up, then flip rows so row 0 is the top. */
-    size_t row = (size_t)width * 4;
-    glGetTextureImage(r->color, 0, GL_RGBA, GL_FLOAT,
-                      (GLsizei)(row * (size_t)height * sizeof(float)), rgba);
-    for (int y = 0; y < height / 2; y++) {
-        float *a = rgba + (size_t)y * row, *b = rgba + (size_t)(height - 1 - y) * row;
-        for (size_t i = 0; i < row; i++) {
-            float tmp = a[i];
-            a[i] = b[i];
-            b[i] = tmp;
-        }
+    /* Validation is always on: it only compares bookkeeping (no GL queries). */
+    ok = fg_execute(r->graph, &(fg_exec_opts){.cpu_timing = opts.cpu_timing,
+                                             .validate = true});
+    r->frame.rgba = NULL;
+    r->frame.eye = NULL;
+    if (!ok) {
+        DIRT_ERROR("raster preview: executing the frame graph failed");
+        goto done;
     }
     ok = gl_check("raster preview");
-    if (stats) {
-        stats->gpu_ms = r->timer.gpu_ms;
-        stats->cpu_ms = r->timer.cpu_ms;
-        stats->num_lights = num_lights;
-    }
+    if (ok && stats)
+        fill_stats(r, num_lights, stats);
 done:
     gl_group_pop();
     free(lights);

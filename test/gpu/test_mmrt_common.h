@@ -14,7 +14,7 @@
 #include "dirt/views.h"
 
 /* A frame with room for `cap` triangles; num_triangles counts those added. */
-static dirt_frame *mt_frame_new(size_t cap)
+static inline dirt_frame *mt_frame_new(size_t cap)
 {
     dirt_frame *f = calloc(1, sizeof(*f));
     f->position = calloc(3 * cap, sizeof(*f->position));
@@ -25,7 +25,7 @@ static dirt_frame *mt_frame_new(size_t cap)
     return f;
 }
 
-static void mt_frame_free(dirt_frame *f)
+static inline void mt_frame_free(dirt_frame *f)
 {
     if (!f)
         return;
@@ -37,7 +37,7 @@ static void mt_frame_free(dirt_frame *f)
     free(f);
 }
 
-static void mt_frame_bounds(dirt_frame *f)
+static inline void mt_frame_bounds(dirt_frame *f)
 {
     for (int k = 0; k < 3; k++) {
         f->bounds_min[k] = INFINITY;
@@ -62,7 +62,7 @@ typedef struct mt_quad {
     float facing; /* +1 or -1: normal direction along the axis */
 } mt_quad;
 
-static void mt_add_quad(dirt_frame *f, const mt_quad *q)
+static inline void mt_add_quad(dirt_frame *f, const mt_quad *q)
 {
     int ia = (q->axis + 1) % 3, ib = (q->axis + 2) % 3;
     float c[4][3];
@@ -91,7 +91,7 @@ static void mt_add_quad(dirt_frame *f, const mt_quad *q)
 /* World-space ray through the centre of pixel (x, y) of view v: org = the
  * view's centre of projection; dir scaled so that the parameter along it is
  * the eye-space depth. */
-static void mt_pixel_ray(const dirt_view *v, int x, int y, double org[3], double dir[3])
+static inline void mt_pixel_ray(const dirt_view *v, int x, int y, double org[3], double dir[3])
 {
     double xn = (x + 0.5) / v->width * 2.0 - 1.0, yn = (y + 0.5) / v->height * 2.0 - 1.0;
     double e[3] = {xn / v->proj[0], yn / v->proj[5], -1.0};
@@ -106,7 +106,7 @@ static void mt_pixel_ray(const dirt_view *v, int x, int y, double org[3], double
  * of vertices 1 and 2 of the intersection with the triangle's plane. False
  * when the ray is parallel to the plane. The point is inside the triangle
  * when u, v, 1 - u - v >= 0. */
-static bool mt_ray_plane(const double o[3], const double d[3], const float p[3][3], double *t,
+static inline bool mt_ray_plane(const double o[3], const double d[3], const float p[3][3], double *t,
                          double *u, double *v)
 {
     double e1[3], e2[3], s[3];
@@ -129,13 +129,13 @@ static bool mt_ray_plane(const double o[3], const double d[3], const float p[3][
 }
 
 /* Vertices of primitive `prim` of frame f. */
-static void mt_tri(const dirt_frame *f, size_t prim, float p[3][3])
+static inline void mt_tri(const dirt_frame *f, size_t prim, float p[3][3])
 {
     memcpy(p, f->position[3 * prim], 9 * sizeof(float));
 }
 
 /* Clip-space coordinates of world point p in view v (double). */
-static void mt_clip(const dirt_view *v, const double p[3], double c[4])
+static inline void mt_clip(const dirt_view *v, const double p[3], double c[4])
 {
     const float *m = v->view_proj;
     for (int r = 0; r < 4; r++)
@@ -143,59 +143,63 @@ static void mt_clip(const dirt_view *v, const double p[3], double c[4])
 }
 
 /* How triangle p covers the centre of pixel (x, y) of view v under normal
- * rasterization: 1 covered, 0 not, -1 ambiguous (the centre is within `tol`
- * pixels of an edge, where snapping and the tie rule decide, or at the
- * near/far plane). *depth gets the eye-space depth of the sample. */
-static int mt_coverage(const dirt_view *v, const float p[3][3], int x, int y, double tol,
-                       double *depth)
+ * rasterization: 1 covered, 0 not, -1 ambiguous: the centre is within `tol`
+ * pixels of the projection of an edge's part in front of the view (vertex
+ * snapping and the tie rule decide there), or the sample is at the near or
+ * far plane. *depth gets the eye-space depth of the sample. */
+static inline int mt_coverage(const dirt_view *v, const float p[3][3], int x, int y, double tol,
+                              double *depth)
 {
     double o[3], d[3], t, u, w;
     mt_pixel_ray(v, x, y, o, d);
     if (!mt_ray_plane(o, d, p, &t, &u, &w))
         return 0; /* edge-on: rasterizes to nothing */
     *depth = t;
+    int inside = u >= 0 && w >= 0 && u + w <= 1;
+    double dz = 1e-6 * t;
+    if (fabs(t - v->znear) < dz + 1e-9 || fabs(t - v->zfar) < dz)
+        return inside ? -1 : 0;
+    bool in_depth = t >= v->znear && t <= v->zfar;
     double c[3][4];
-    bool front = true;
     for (int i = 0; i < 3; i++) {
         double q[3] = {p[i][0], p[i][1], p[i][2]};
         mt_clip(v, q, c[i]);
-        front &= c[i][3] > 0.5 * v->znear;
     }
-    int inside = u >= 0 && w >= 0 && u + w <= 1;
-    double dz = 1e-6 * t;
-    bool in_depth = t >= v->znear && t <= v->zfar;
-    if (fabs(t - v->znear) < dz + 1e-9 || fabs(t - v->zfar) < dz)
-        return inside ? -1 : 0;
-    if (!front) /* crosses the near plane: barycentric margin */
-        return fmin(fmin(fabs(u), fabs(w)), fabs(1 - u - w)) < 1e-3 ? -1 : inside && in_depth;
-    /* Distance (pixels) of the pixel centre to the projected edges. */
-    double s[3][2];
+    /* Distance (pixels) of the pixel centre to each edge's projected part
+     * with w >= near / 2. */
+    double px = x + 0.5, py = y + 0.5, wmin = 0.5 * v->znear;
     for (int i = 0; i < 3; i++) {
-        s[i][0] = (c[i][0] / c[i][3] * 0.5 + 0.5) * v->width;
-        s[i][1] = (c[i][1] / c[i][3] * 0.5 + 0.5) * v->height;
-    }
-    double px = x + 0.5, py = y + 0.5;
-    for (int i = 0; i < 3; i++) {
-        const double *a = s[i], *b = s[(i + 1) % 3];
-        double ex = b[0] - a[0], ey = b[1] - a[1], len = sqrt(ex * ex + ey * ey);
-        if (len < 1e-12)
+        double a[4], b[4];
+        memcpy(a, c[i], sizeof(a));
+        memcpy(b, c[(i + 1) % 3], sizeof(b));
+        if (a[3] < wmin && b[3] < wmin)
             continue;
-        double dist = fabs(ex * (py - a[1]) - ey * (px - a[0])) / len;
-        double along = ((px - a[0]) * ex + (py - a[1]) * ey) / (len * len);
-        if (dist < tol && along > -0.01 && along < 1.01)
+        if (a[3] < wmin || b[3] < wmin) {
+            double *lo = a[3] < wmin ? a : b, *hi = a[3] < wmin ? b : a;
+            double s = (wmin - lo[3]) / (hi[3] - lo[3]);
+            for (int k = 0; k < 4; k++)
+                lo[k] += s * (hi[k] - lo[k]);
+        }
+        double ax = (a[0] / a[3] * 0.5 + 0.5) * v->width, ay = (a[1] / a[3] * 0.5 + 0.5) * v->height;
+        double bx = (b[0] / b[3] * 0.5 + 0.5) * v->width, by = (b[1] / b[3] * 0.5 + 0.5) * v->height;
+        double ex = bx - ax, ey = by - ay, l2 = ex * ex + ey * ey;
+        double s = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0;
+        s = s < 0 ? 0 : s > 1 ? 1 : s;
+        double dx = ax + s * ex - px, dy = ay + s * ey - py;
+        if (dx * dx + dy * dy < tol * tol)
             return -1;
     }
     return inside && in_depth;
 }
 
 /* Name of a view mode. */
-static const char *mt_mode_name(enum dirt_view_mode m)
+static inline const char *mt_mode_name(enum dirt_view_mode m)
 {
     return m == DIRT_VIEWS_SINGLE ? "single" : m == DIRT_VIEWS_CUBE ? "cube" : "cube+camera";
 }
 
 /* The view and pixel (x, y) of global pixel g. */
-static int mt_view_of(const dirt_view_set *set, uint32_t g, int *x, int *y)
+static inline int mt_view_of(const dirt_view_set *set, uint32_t g, int *x, int *y)
 {
     for (int i = 0; i < set->count; i++) {
         const dirt_view *v = &set->views[i];

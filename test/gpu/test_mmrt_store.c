@@ -1,7 +1,7 @@
 /* MMRT store completeness (issue 7). The CPU oracle is the exact coverage of
  * normal rasterization: triangle T stores a fragment in pixel p of view v
  * iff the ray through p's centre hits T between the view's near and far
- * planes (pixel centres within 0.02 px of an edge are left to the
+ * planes (pixel centres within 0.01 px of an edge are left to the
  * rasterizer's snapping and tie rule and accepted either way). Checked:
  *  - every required (primitive, pixel) fragment stored, nothing else, no
  *    duplicate; its depth, barycentrics, uv, normal and material right;
@@ -18,8 +18,13 @@
  * views, B in {1, 3, 8}; the default scene in cube+camera views. */
 #include <stdio.h>
 
+#include "common/mmrt_layout.h"
 #include "gpu.h"
 #include "test_mmrt_common.h"
+
+/* Pixel centres this close to an edge (pixels) are left to the rasterizer:
+ * vertex snapping (1/256 px on llvmpipe) and the tie rule. */
+#define TOL_PX 0.01
 
 typedef struct report {
     uint64_t pixels, fragments, required, ambiguous, found;
@@ -54,13 +59,6 @@ static void group_by_pixel(const dirt_mmrt_data *d, by_pixel *bp)
             bp->nodes[bp->offsets[g] + fill[g]++] = n;
     }
     free(fill);
-}
-
-static float bits_float(uint32_t u)
-{
-    float f;
-    memcpy(&f, &u, 4);
-    return f;
 }
 
 /* The linked structure against its own invariants. */
@@ -182,7 +180,7 @@ static void check_coverage(const dirt_view_set *set, const dirt_frame *f, const 
                     float tri[3][3];
                     mt_tri(f, p, tri);
                     double depth = 0;
-                    int cov = mt_coverage(v, tri, x, y, 0.02, &depth);
+                    int cov = mt_coverage(v, tri, x, y, TOL_PX, &depth);
                     if (cov < 0) {
                         r->ambiguous++;
                         continue;
@@ -262,8 +260,8 @@ static void check_coverage(const dirt_view_set *set, const dirt_frame *f, const 
                     if (!inside || mt_coverage(v, t0, x, y, 0, &depth) < 0)
                         continue;
                     r->quad_pixels++;
-                    int c0 = mt_coverage(v, t0, x, y, 0.02, &depth);
-                    int c1 = mt_coverage(v, t1, x, y, 0.02, &depth);
+                    int c0 = mt_coverage(v, t0, x, y, TOL_PX, &depth);
+                    int c1 = mt_coverage(v, t1, x, y, TOL_PX, &depth);
                     if (c0 < 0 && c1 < 0)
                         r->diagonal_pixels++;
                     if (hit[2 * q] + hit[2 * q + 1] != 1)
@@ -290,7 +288,8 @@ static void print_report(const char *label, const dirt_mmrt_opts *o, const dirt_
             (unsigned long long)st->fragments, st->avg_layers, st->max_layers,
             (unsigned long long)st->long_lists, st->store_runs,
             (unsigned long long)r->required, (unsigned long long)r->found,
-            (unsigned long long)r->ambiguous, (unsigned long long)r->missing,
+            (unsigned long long)r->ambiguous,
+            (unsigned long long)r->missing,
             (unsigned long long)r->extra, (unsigned long long)r->duplicates,
             (unsigned long long)r->bad_depth, (unsigned long long)r->bad_attr,
             (unsigned long long)r->quad_pixels, (unsigned long long)r->diagonal_pixels,
@@ -338,7 +337,7 @@ static dirt_mmrt *build_and_check(dirt_gpu *gpu, const char *label, const dirt_f
     CHECK(r.bad_tail == 0);
     CHECK(r.lost == 0);
     CHECK(r.bad_pyramid == 0);
-    CHECK(r.ambiguous * 50 < r.required); /* the oracle decides nearly everything */
+    CHECK(r.ambiguous * 10 < r.required); /* the oracle decides nearly everything */
     CHECK(st->covered_pixels > 0 && st->max_layers >= 1);
     CHECK(st->bytes_id_nodes_used == st->fragments * 12);
     CHECK(st->bytes_data_nodes_used == st->fragments * 32);

@@ -10,6 +10,9 @@
  *    the log. The area lights are sampled (NEE) and hit (BSDF) at every
  *    vertex, so a wrong MIS weight, light pdf, BSDF weight or Russian
  *    roulette compensation shifts the mean by far more than that.
+ *    Variants: a zero-power punctual light added (NEE chooses among two
+ *    sources, L stays 2); walls facing outwards with one-sided emission (the
+ *    inside sees only back sides: L < 1e-6) and double-sided (L = 2).
  * 2. Mirror furnace: walls of white smooth metal (F = 1, a delta lobe)
  *    emitting 1: every path sees exactly K + 1 (no noise at all).
  * 3. Punctual lights: a Lambert floor lit by a point, a spot and a
@@ -142,12 +145,41 @@ static void image_mean(const dirt_image *img, double *mean, double *se)
     *se = sqrt(fmax(var, 0.0) / (double)n);
 }
 
-static void furnace(int bounces, int spp)
+/* Variants of the white furnace. */
+enum variant {
+    PLAIN,
+    BLACK_LIGHT,  /* plus a punctual light of zero power: NEE picks it half of
+                     the time, so the area light's 1/2 selection probability
+                     must enter its weight and its MIS pdf; still L = 2 */
+    OUTWARD,      /* walls facing outwards, one-sided emission: the inside
+                     sees only their back sides, which do not emit: L = 0
+                     (up to float noise) */
+    OUTWARD_TWO_SIDED, /* the same walls double-sided: L = 2 again */
+};
+
+static void furnace_variant(int bounces, int spp, enum variant var)
 {
     mesh m;
     CHECK(mesh_init(&m, 12));
     box_inward(&m, 0);
+    if (var == OUTWARD || var == OUTWARD_TWO_SIDED) { /* swap two vertices */
+        for (size_t t = 0; t < m.n; t++)
+            for (int k = 0; k < 3; k++) {
+                float tmp = m.pos[3 * t + 1][k];
+                m.pos[3 * t + 1][k] = m.pos[3 * t + 2][k];
+                m.pos[3 * t + 2][k] = tmp;
+                m.nrm[3 * t][k] = m.nrm[3 * t + 1][k] = m.nrm[3 * t + 2][k] = -m.nrm[3 * t][k];
+            }
+    }
+    dirt_light black;
+    memset(&black, 0, sizeof(black));
+    black.type = DIRT_LIGHT_POINT;
+    if (var == BLACK_LIGHT) {
+        m.f.num_lights = 1;
+        m.f.lights = &black;
+    }
     dirt_material mat = mat_make(0.5f, 0.0f, 1.0f, 1.0f);
+    mat.double_sided = var == OUTWARD_TWO_SIDED;
     float spec = 0.0f;
     dirt_ref_materials mats = {&mat, 1, NULL, 0, &spec};
     dirt_camera cam;
@@ -162,14 +194,22 @@ static void furnace(int bounces, int spp)
     dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, &st);
     CHECK(img != NULL);
     if (img) {
+        static const char *const names[] = {"", " +black light", " outward", " two-sided"};
         double expect = 0.0, mean, se;
         for (int i = 0; i <= bounces; i++)
             expect += pow(0.5, i);
         image_mean(img, &mean, &se);
-        fprintf(stderr, "furnace K=%2d: mean %.5f expected %.5f, s.e. %.5f (%.1f s.e.), "
-                "%.2f Mrays/s, %llu rays\n", bounces, mean, expect, se, (mean - expect) / se,
+        fprintf(stderr, "furnace K=%2d%s: mean %.5f expected %.5f, s.e. %.5f (%.1f s.e.), "
+                "%.2f Mrays/s, %llu rays\n", bounces, names[var], mean,
+                var == OUTWARD ? 0.0 : expect, se, var != OUTWARD && se > 0 ? (mean - expect) / se : 0.0,
                 st.mrays_per_s, (unsigned long long)st.rays);
         CHECK(st.invalid == 0);
+        if (var == OUTWARD) {
+            /* 0 up to float noise: a light sample coplanar with the shading
+             * point (same wall) has cosines of +-1e-8 instead of 0. */
+            CHECK_MSG(mean < 1e-6, "back sides emit: mean %g", mean);
+            goto out;
+        }
         CHECK(se > 0.0 && se < 0.01);
         CHECK_MSG(fabs(mean - expect) < 5.0 * se, "K=%d: mean %.5f, expected %.5f, s.e. %.5f",
                   bounces, mean, expect, se);
@@ -182,8 +222,14 @@ static void furnace(int bounces, int spp)
             CHECK(isfinite(z[100]) && z[100] > 0.0f);
         }
     }
+out:
     dirt_image_destroy(img);
     mesh_free(&m);
+}
+
+static void furnace(int bounces, int spp)
+{
+    furnace_variant(bounces, spp, PLAIN);
 }
 
 static void mirror_furnace(int bounces)
@@ -314,6 +360,9 @@ int main(void)
     furnace(3, 128);
     furnace(6, 128);   /* Russian roulette active from the 4th ray on */
     furnace(40, 128);  /* ~ the infinite series: 2 - 2^-40 */
+    furnace_variant(3, 128, BLACK_LIGHT);
+    furnace_variant(3, 16, OUTWARD);
+    furnace_variant(3, 128, OUTWARD_TWO_SIDED);
     mirror_furnace(1);
     mirror_furnace(5);
     lights();

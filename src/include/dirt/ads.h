@@ -126,6 +126,31 @@ typedef struct dirt_trace_stats {
 bool dirt_ads_trace(dirt_ads *ads, const dirt_ray *rays, size_t count, dirt_hit *hits,
                     const dirt_trace_opts *opts, dirt_trace_stats *stats);
 
+/* ---- Fetch ---- */
+
+enum dirt_fetch_mode {
+    DIRT_FETCH_COMPUTE = 0, /* reads the primitive's vertices (compute pass) */
+    DIRT_FETCH_RASTER = 1,  /* the paper's geometry pass over the hit lists */
+};
+
+/* A shading point G (layout of dirt_gpu_gpoint, glsl/common/layout.h):
+ * prim = DIRT_HIT_NONE for a miss. */
+typedef struct dirt_gpoint {
+    float position[3];
+    uint32_t prim;
+    float normal[3];      /* unit shading normal */
+    uint32_t material;
+    float ng[3];          /* unit geometric normal (winding order) */
+    float u;
+    float wo[3];          /* unit direction back along the arriving ray */
+    float v;
+} dirt_gpoint;
+
+/* Traces the rays and fetches every hit into out[i] (owner = ray i) with the
+ * given Fetch. For tests and tools (blocking). */
+bool dirt_ads_trace_fetch(dirt_ads *ads, const dirt_ray *rays, size_t count,
+                          enum dirt_fetch_mode mode, dirt_gpoint *out);
+
 /* Writes per-view PNG pictures of the built structure into `dir` (which
  * must exist): <dir>/ads_v<i>_<name>_lists.png (heat map of list length per
  * tile: black 0, then blue, red, yellow, white at the longest list) and

@@ -5,6 +5,7 @@
 #define DIRT_RASTER_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
@@ -21,10 +22,31 @@ typedef struct dirt_raster_opts {
     bool cpu_timing;      /* time with glFinish + CPU clock as well */
 } dirt_raster_opts;
 
+/* Most passes the preview's frame graph runs (dirt_raster_stats.passes). */
+#define DIRT_RASTER_MAX_PASSES 4
+
+/* One pass of the preview's frame graph, from the graph's own stats. */
+typedef struct dirt_raster_pass_stats {
+    char name[32];        /* "preview draw", "preview readback" */
+    double gpu_ms;        /* GL_TIME_ELAPSED of the pass (-1 unavailable, e.g. llvmpipe) */
+    double cpu_ms;        /* glFinish wall time of the pass (-1 unless cpu_timing) */
+    unsigned barrier;     /* glMemoryBarrier bits issued before it (GL values; 0 = none) */
+} dirt_raster_pass_stats;
+
 typedef struct dirt_raster_stats {
-    double gpu_ms;        /* GL_TIME_ELAPSED of the draw (-1 unavailable) */
-    double cpu_ms;        /* glFinish wall time (-1 unless cpu_timing) */
+    double gpu_ms;        /* sum of the passes' GL_TIME_ELAPSED (draw + readback;
+                             -1 when any is unavailable) */
+    double cpu_ms;        /* sum of the passes' glFinish wall times (-1 unless
+                             cpu_timing) */
     int num_lights;       /* punctual + lumped emitters */
+    /* Frame graph (src/graph/), filled by a successful render: */
+    int num_passes;       /* passes executed, at most DIRT_RASTER_MAX_PASSES */
+    dirt_raster_pass_stats passes[DIRT_RASTER_MAX_PASSES]; /* in execution order */
+    size_t transient_bytes;   /* graph-owned targets: colour RGBA32F + depth32f */
+    size_t imported_bytes;    /* vertex/material/light buffers and sampled textures */
+    unsigned long long validation_errors; /* missing barriers found by the graph's
+                                             validation since create (always 0 in a
+                                             render that succeeded) */
 } dirt_raster_stats;
 
 /* Compiles the preview shaders and uploads the scene's materials and
@@ -33,10 +55,17 @@ dirt_raster *dirt_raster_create(dirt_gpu *gpu, const dirt_scene *scene);
 void dirt_raster_destroy(dirt_raster *r);
 
 /* Renders `frame` (of the scene given at create) from `cam` into `rgba`,
- * width*height*4 linear floats, row 0 = top. `opts`/`stats` may be NULL. */
+ * width*height*4 linear floats, row 0 = top. `opts`/`stats` may be NULL.
+ * Runs on a frame graph (doc/frame-graph.md section 7) executed with barrier
+ * validation on; a change of size recompiles it. */
 bool dirt_raster_render(dirt_raster *r, const dirt_frame *frame, const dirt_camera *cam,
                         int width, int height, const dirt_raster_opts *opts,
                         float *rgba, dirt_raster_stats *stats);
+
+/* Writes the GraphViz DOT of the preview's frame graph, as compiled for the
+ * latest render's size, to `path` (render with `dot -Tsvg`). False after
+ * logging when nothing was rendered yet or the file cannot be written. */
+bool dirt_raster_write_dot(const dirt_raster *r, const char *path);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,89 @@
+/* Data layouts of the GPU light-transport model (glsl/integrator/model.glsl),
+ * shared by C (src/integrator/gpu_tables.c packs them) and GLSL. Same rules
+ * as common/layout.h, which this file includes: only structs of
+ * DIRT_V4/DIRT_IV4/DIRT_UV4 members and #defines, valid C11 and GLSL 4.50;
+ * C checks the sizes with _Static_assert (gpu_tables.c).
+ *
+ * These records are the integrator's, not the raster preview's
+ * (dirt_gpu_material / dirt_gpu_light of layout.h). Every value a record
+ * holds is either copied from the scene or computed on the CPU with the same
+ * float operation the C model uses (e.g. cos of the spot cone angles, tan of
+ * half the field of view), so the GLSL and the C model start from the same
+ * bits. Specification: doc/light-transport-gpu.md. */
+#ifndef DIRT_COMMON_INTEGRATOR_LAYOUT_H
+#define DIRT_COMMON_INTEGRATOR_LAYOUT_H
+
+#include "common/layout.h"
+
+/* Storage buffer bindings of the model's tables (declared by model.glsl
+ * when DIRT_MODEL_BUFFERS is defined). */
+#define DIRT_BIND_MODEL_MATERIALS 20   /* dirt_gpu_model_material[materials] */
+#define DIRT_BIND_MODEL_AREA_CDF 21    /* dirt_gpu_model_lights header, float cdf[count] */
+#define DIRT_BIND_MODEL_AREA_PRIMS 22  /* uint prim[count] (at least one entry) */
+#define DIRT_BIND_MODEL_PUNCTUAL 23    /* dirt_gpu_model_light[punctual] (at least one) */
+#define DIRT_BIND_MODEL_CAMERA 24      /* one dirt_gpu_model_camera */
+
+/* Texture units of the scene's texture array: the same RGBA8 storage seen
+ * twice, through a GL_RGBA8 view (linear data: metallic-roughness) and a
+ * GL_SRGB8_ALPHA8 view (base colour, emissive: decoded before filtering). */
+#define DIRT_UNIT_MODEL_TEX_LINEAR 20
+#define DIRT_UNIT_MODEL_TEX_SRGB 21
+
+/* Punctual light kinds (= enum dirt_light_type). */
+#define DIRT_MODEL_LIGHT_DIRECTIONAL 0
+#define DIRT_MODEL_LIGHT_POINT 1
+#define DIRT_MODEL_LIGHT_SPOT 2
+
+/* Camera kinds (= enum dirt_camera_type). */
+#define DIRT_MODEL_CAMERA_PERSPECTIVE 0
+#define DIRT_MODEL_CAMERA_ORTHOGRAPHIC 1
+
+/* dirt_gpu_model_material.textures.w bits. */
+#define DIRT_MODEL_MAT_DOUBLE_SIDED 1
+#define DIRT_MODEL_MAT_EMISSIVE 2      /* dirt_material_is_emissive */
+
+/* One material of the integrator (64 bytes). */
+struct dirt_gpu_model_material {
+    DIRT_V4 base_color;  /* rgb linear base colour factor, w alpha factor (unused) */
+    DIRT_V4 emission;    /* rgb emissive * emissive_strength (float product as
+                            in C), (0,0,0) when not emissive; w unused */
+    DIRT_V4 params;      /* x metallic, y roughness (factors, unclamped),
+                            z dielectric specular weight clamped to [0,1], w 0 */
+    DIRT_IV4 textures;   /* x base colour layer, y metallic-roughness layer,
+                            z emissive layer (-1: none / out of range),
+                            w DIRT_MODEL_MAT_* flags */
+};
+
+/* One punctual light (64 bytes), from a dirt_light. */
+struct dirt_gpu_model_light {
+    DIRT_V4 position;    /* xyz world position, w kind (DIRT_MODEL_LIGHT_*, exact) */
+    DIRT_V4 direction;   /* xyz direction the light shines, as in dirt_light
+                            (not normalised: the model normalises), w range
+                            (0 = none) */
+    DIRT_V4 color;       /* rgb color * intensity, w unused */
+    DIRT_V4 cone;        /* x cosf(outer_cone), y cosf(inner_cone) (spot), zw 0 */
+};
+
+/* Header of the area-light table (32 bytes), first in the
+ * DIRT_BIND_MODEL_AREA_CDF buffer, followed by float cdf[count] (the
+ * dirt_area_lights cdf). The primitive of entry i is prim[i] of
+ * DIRT_BIND_MODEL_AREA_PRIMS. */
+struct dirt_gpu_model_lights {
+    DIRT_UV4 counts;     /* x emissive triangles (area count), y punctual
+                            lights, z light sources for NEE
+                            (dirt_light_source_count), w 0 */
+    DIRT_V4 area;        /* x total area, yzw 0 */
+};
+
+/* A camera (80 bytes), from a dirt_camera. */
+struct dirt_gpu_model_camera {
+    DIRT_V4 eye;         /* xyz eye, w kind (DIRT_MODEL_CAMERA_*, exact) */
+    DIRT_V4 forward;     /* xyz forward, w tanf(0.5 yfov) (yfov <= 0: of the
+                            default 0.785398163 as in dirt_camera_ray) */
+    DIRT_V4 right;       /* xyz right, w aspect (0: width / height of the image) */
+    DIRT_V4 up;          /* xyz up, w 0 */
+    DIRT_V4 lens;        /* x aperture radius, y focus distance (thin lens when
+                            both > 0), z xmag, w ymag (orthographic, raw) */
+};
+
+#endif

@@ -1,0 +1,34 @@
+#version 450 core
+// Raster Fetch companion: the raster pass only sees hits; this pass writes
+// the misses (records without a primitive) into G_{k+1}.
+#include "common/layout.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
+    dirt_gpu_vertex vertices[];
+};
+layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
+    uint prim_material[];
+};
+layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
+    dirt_gpu_ray rays[];
+};
+layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
+    dirt_gpu_hit hits[];
+};
+layout(std430, binding = DIRT_BIND_GPOINTS) writeonly buffer GPoints {
+    dirt_gpu_gpoint gpoints[];
+};
+layout(std430, binding = DIRT_BIND_FETCH_PARAMS) readonly buffer FetchParams {
+    dirt_gpu_fetch_params fetch;
+};
+
+#include "dirt/fetch_common.glsl"
+
+void main()
+{
+    uint r = gl_GlobalInvocationID.x;
+    if (r < fetch.config.x && hits[r].ids.x == DIRT_NO_HIT)
+        dirt_fetch_record(r);
+}

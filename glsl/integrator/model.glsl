@@ -1,0 +1,463 @@
+// DIRT engine: the light-transport model in GLSL, the twin of
+// src/include/dirt/integrator.h (src/integrator/bsdf.c, lights.c,
+// texture.c). Function for function and formula for formula: every
+// dirt_X_g here computes what dirt_X computes in C, with the same operations
+// in the same order, so the two differ only by float rounding (GLSL's
+// division, sqrt and sin/cos are not correctly rounded) -- and, for
+// textures, by the hardware's bilinear filter and the resize of textures to
+// a common size (doc/light-transport-gpu.md). test/gpu/test_glsl_model.c
+// checks GLSL == C. Change both together.
+//
+// Conventions as in C: BSDF directions are in the local shading frame
+// (normal +z, wo and wi point away from the surface, unit length); f is the
+// BSDF without the cosine, "weight" is f cos / pdf, pdfs are per solid angle;
+// colours linear RGB.
+//
+// Include file (no #version). Define DIRT_MODEL_BUFFERS before including it
+// to get the scene tables (materials, textures, area and punctual lights,
+// camera; bindings in common/integrator_layout.h) and the functions that read
+// them: dirt_material_surface_g, dirt_texture_sample_g,
+// dirt_area_lights_select_g.
+#ifndef DIRT_MODEL_GLSL
+#define DIRT_MODEL_GLSL
+
+#include "common/integrator_layout.h"
+
+#define DIRT_PI_G 3.14159265358979323846
+#define DIRT_INV_PI_G 0.31830988618379067154
+#define DIRT_ALPHA_DELTA_G 1e-3
+#define DIRT_DIELECTRIC_F0_G 0.04
+#define DIRT_RR_START_VERTEX_G 3
+#define DIRT_INFINITY_G uintBitsToFloat(0x7F800000u)
+
+// BSDF parameters at one surface point (= dirt_bsdf).
+struct dirt_bsdf_g {
+    vec3 base_color; // linear, each in [0,1]
+    float metallic;  // [0,1]
+    float alpha;     // GGX alpha = roughness^2; < DIRT_ALPHA_DELTA_G: mirror
+    float specular;  // dielectric specular weight in [0,1]
+};
+
+// Surface description at a hit (= dirt_surface).
+struct dirt_surface_g {
+    dirt_bsdf_g bsdf;
+    vec3 emission;     // emitted radiance (front side, or both when double_sided)
+    bool double_sided;
+};
+
+// ---- vector helpers (the operations of src/integrator/vec3.h) ----------
+
+float dirt_clamp01_g(float x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+
+// Unit vector along a; (0,0,0) stays (0,0,0) (v3_normalize: scale by 1/l).
+vec3 dirt_normalize_g(vec3 a)
+{
+    float l = sqrt(dot(a, a));
+    return l > 0.0 ? a * (1.0 / l) : a;
+}
+
+float dirt_luminance_g(vec3 a) { return 0.2126 * a.x + 0.7152 * a.y + 0.0722 * a.z; }
+bool dirt_is_zero_g(vec3 a) { return a.x == 0.0 && a.y == 0.0 && a.z == 0.0; }
+bool dirt_is_finite_g(vec3 a) { return !any(isnan(a)) && !any(isinf(a)); }
+
+// ---- BSDF (bsdf.c) ------------------------------------------------------
+
+bool dirt_bsdf_is_delta_g(dirt_bsdf_g b) { return b.alpha < DIRT_ALPHA_DELTA_G; }
+
+// (1 - c)^5 with c clamped to [0,1].
+float dirt_schlick_weight_g(float c)
+{
+    float m = 1.0 - dirt_clamp01_g(c);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+// Dielectric Fresnel F_d(c) = specular (0.04 + 0.96 (1 - c)^5).
+float dirt_bsdf_fresnel_dielectric_g(dirt_bsdf_g b, float c)
+{
+    return b.specular * (DIRT_DIELECTRIC_F0_G + (1.0 - DIRT_DIELECTRIC_F0_G) * dirt_schlick_weight_g(c));
+}
+
+// Fresnel of the whole specular lobe (RGB):
+// (1 - m) F_d(c) + m (base + (1 - base)(1 - c)^5).
+vec3 dirt_bsdf_fresnel_g(dirt_bsdf_g b, float c)
+{
+    float x = dirt_schlick_weight_g(c);
+    float fd = b.specular * (DIRT_DIELECTRIC_F0_G + (1.0 - DIRT_DIELECTRIC_F0_G) * x);
+    float m = b.metallic;
+    vec3 base = b.base_color;
+    return vec3((1.0 - m) * fd + m * (base.x + (1.0 - base.x) * x),
+                (1.0 - m) * fd + m * (base.y + (1.0 - base.y) * x),
+                (1.0 - m) * fd + m * (base.z + (1.0 - base.z) * x));
+}
+
+// GGX normal distribution D(h), h a unit local half vector.
+float dirt_ggx_d_g(float alpha, vec3 h)
+{
+    if (h.z <= 0.0)
+        return 0.0;
+    float a2 = alpha * alpha;
+    float d = h.z * h.z * (a2 - 1.0) + 1.0;
+    return a2 / (DIRT_PI_G * d * d);
+}
+
+// Smith Lambda of w (G1 = 1 / (1 + Lambda)); +inf when w.z == 0.
+float dirt_ggx_lambda_g(float alpha, vec3 w)
+{
+    float z2 = w.z * w.z;
+    if (z2 <= 0.0)
+        return DIRT_INFINITY_G;
+    float a2t2 = alpha * alpha * (w.x * w.x + w.y * w.y) / z2;
+    return 0.5 * (sqrt(1.0 + a2t2) - 1.0);
+}
+
+// Height-correlated Smith G2 = 1 / (1 + L(wo) + L(wi)).
+float dirt_ggx_g2_g(float alpha, vec3 wo, vec3 wi)
+{
+    return 1.0 / (1.0 + dirt_ggx_lambda_g(alpha, wo) + dirt_ggx_lambda_g(alpha, wi));
+}
+
+// Probability of choosing the specular lobe when sampling from wo.
+float dirt_bsdf_spec_probability_g(dirt_bsdf_g b, vec3 wo)
+{
+    float ws = dirt_luminance_g(dirt_bsdf_fresnel_g(b, wo.z));
+    float wd = (1.0 - b.metallic) * dirt_luminance_g(b.base_color) *
+               (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wo.z));
+    float sum = ws + wd;
+    return sum > 0.0 ? ws / sum : 0.5;
+}
+
+// (1 - m) (1 - F_d(wi.z)) (1 - F_d(wo.z)) / pi.
+float dirt_bsdf_diffuse_factor_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
+{
+    return (1.0 - b.metallic) * (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wi.z)) *
+           (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wo.z)) * DIRT_INV_PI_G;
+}
+
+// f(wo, wi) of the non-delta part (diffuse + GGX; diffuse only for a mirror).
+// Zero when wo.z <= 0 or wi.z <= 0.
+vec3 dirt_bsdf_eval_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
+{
+    if (wo.z <= 0.0 || wi.z <= 0.0)
+        return vec3(0.0);
+    vec3 f = b.base_color * dirt_bsdf_diffuse_factor_g(b, wo, wi);
+    if (!dirt_bsdf_is_delta_g(b)) {
+        vec3 h = dirt_normalize_g(wo + wi);
+        float d = dirt_ggx_d_g(b.alpha, h);
+        float g = dirt_ggx_g2_g(b.alpha, wo, wi);
+        vec3 fr = dirt_bsdf_fresnel_g(b, dot(wo, h));
+        f = f + fr * (d * g / (4.0 * wo.z * wi.z));
+    }
+    return f;
+}
+
+// Solid-angle pdf of wi for visible-normal sampling: D(h) G1(wo) / (4 wo.z).
+float dirt_bsdf_pdf_vndf_g(float alpha, vec3 wo, vec3 wi)
+{
+    vec3 h = dirt_normalize_g(wo + wi);
+    float g1 = 1.0 / (1.0 + dirt_ggx_lambda_g(alpha, wo));
+    return dirt_ggx_d_g(alpha, h) * g1 / (4.0 * wo.z);
+}
+
+// Solid-angle pdf of dirt_bsdf_sample_dir_g for the non-delta part:
+// p_spec pdf_vndf + (1 - p_spec) wi.z / pi. Zero when wo.z <= 0 or wi.z <= 0.
+float dirt_bsdf_pdf_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
+{
+    if (wo.z <= 0.0 || wi.z <= 0.0)
+        return 0.0;
+    float p = dirt_bsdf_spec_probability_g(b, wo);
+    float pdf = (1.0 - p) * wi.z * DIRT_INV_PI_G;
+    if (!dirt_bsdf_is_delta_g(b))
+        pdf += p * dirt_bsdf_pdf_vndf_g(b.alpha, wo, wi);
+    return pdf;
+}
+
+// ---- warps and frames (bsdf.c) -----------------------------------------
+
+// Cosine-weighted hemisphere about +z; pdf = z / pi.
+vec3 dirt_sample_cosine_g(float u1, float u2)
+{
+    float r = sqrt(u1);
+    float phi = 2.0 * DIRT_PI_G * u2;
+    return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u1)));
+}
+
+// GGX visible normal from wo (wo.z > 0), spherical-cap method.
+vec3 dirt_sample_ggx_vndf_g(float alpha, vec3 wo, float u1, float u2)
+{
+    vec3 ws = dirt_normalize_g(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+    float phi = 2.0 * DIRT_PI_G * u1;
+    float z = (1.0 - u2) * (1.0 + ws.z) - ws.z;
+    float sin_t = sqrt(dirt_clamp01_g(1.0 - z * z));
+    vec3 c = vec3(sin_t * cos(phi), sin_t * sin(phi), z);
+    vec3 hs = c + ws;
+    return dirt_normalize_g(vec3(alpha * hs.x, alpha * hs.y, max(hs.z, 0.0)));
+}
+
+// Uniform point on the unit disk.
+void dirt_sample_disk_g(float u1, float u2, out float x, out float y)
+{
+    float r = sqrt(u1);
+    float phi = 2.0 * DIRT_PI_G * u2;
+    x = r * cos(phi);
+    y = r * sin(phi);
+}
+
+// Uniform barycentrics on a triangle: point = (1-b1-b2) p0 + b1 p1 + b2 p2.
+void dirt_sample_triangle_g(float u1, float u2, out float b1, out float b2)
+{
+    float s = sqrt(u1);
+    b1 = 1.0 - s;
+    b2 = u2 * s;
+}
+
+// Orthonormal basis (t, b, n) about the unit vector n (Duff et al. 2017).
+void dirt_onb_g(vec3 n, out vec3 t, out vec3 b)
+{
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// Samples wi from wo: u_lobe < p_spec picks the specular lobe, (u1, u2) the
+// direction. False when wo.z <= 0, the sample is below the surface or its
+// weight is zero; the outs are then unspecified. For the mirror lobe: wi the
+// reflection, weight F(wo.z) / p_spec, pdf 0, delta true.
+bool dirt_bsdf_sample_dir_g(dirt_bsdf_g b, vec3 wo, float u_lobe, float u1, float u2,
+                            out vec3 wi, out vec3 weight, out float pdf, out bool delta)
+{
+    wi = vec3(0.0);
+    weight = vec3(0.0);
+    pdf = 0.0;
+    delta = false;
+    if (wo.z <= 0.0)
+        return false;
+    float p = dirt_bsdf_spec_probability_g(b, wo);
+    if (u_lobe < p) {
+        if (dirt_bsdf_is_delta_g(b)) {
+            wi = vec3(-wo.x, -wo.y, wo.z);
+            weight = dirt_bsdf_fresnel_g(b, wo.z) * (1.0 / p);
+            delta = true;
+            return !dirt_is_zero_g(weight);
+        }
+        vec3 h = dirt_sample_ggx_vndf_g(b.alpha, wo, u1, u2);
+        wi = h * (2.0 * dot(wo, h)) - wo;
+    } else {
+        wi = dirt_sample_cosine_g(u1, u2);
+    }
+    if (wi.z <= 0.0)
+        return false;
+    pdf = dirt_bsdf_pdf_g(b, wo, wi);
+    if (!(pdf > 0.0))
+        return false;
+    vec3 f = dirt_bsdf_eval_g(b, wo, wi);
+    weight = f * (wi.z / pdf);
+    return !dirt_is_zero_g(weight) && dirt_is_finite_g(weight);
+}
+
+// Power heuristic (exponent 2): a^2 / (a^2 + b^2), 0 when both are 0.
+float dirt_mis_power_g(float a, float b)
+{
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
+}
+
+// Russian-roulette survival probability min(1, max component of beta).
+float dirt_rr_survival_g(vec3 beta)
+{
+    return min(1.0, max(beta.x, max(beta.y, beta.z)));
+}
+
+// ---- textures and materials (texture.c) -------------------------------
+
+// sRGB decode, exact piecewise formula (the hardware decodes the sRGB view
+// of the texture array itself; this is for other uses).
+float dirt_srgb_to_linear_g(float c)
+{
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+// ---- lights (lights.c) --------------------------------------------------
+
+// Incident light at p from a punctual light: wi unit towards the light, dist
+// (+inf for directional), li = intensity x attenuation (glTF range window,
+// smooth spot cone s^2). False when li is zero.
+bool dirt_punctual_light_g(dirt_gpu_model_light light, vec3 p, out vec3 wi, out float dist,
+                           out vec3 li)
+{
+    wi = vec3(0.0);
+    dist = 0.0;
+    li = vec3(0.0);
+    vec3 color = light.color.xyz;
+    int kind = int(light.position.w);
+    if (kind == DIRT_MODEL_LIGHT_DIRECTIONAL) {
+        vec3 d = dirt_normalize_g(light.direction.xyz);
+        if (dirt_is_zero_g(d))
+            return false;
+        wi = -d;
+        dist = DIRT_INFINITY_G;
+        li = color;
+        return !dirt_is_zero_g(color);
+    }
+    vec3 to = light.position.xyz - p;
+    float d2 = dot(to, to);
+    if (!(d2 > 0.0) || isinf(d2) || isnan(d2))
+        return false;
+    float d = sqrt(d2);
+    wi = to * (1.0 / d);
+    dist = d;
+    float att = 1.0 / d2;
+    float range = light.direction.w;
+    if (range > 0.0) {
+        float r = d / range;
+        float r2 = r * r;
+        att *= dirt_clamp01_g(1.0 - r2 * r2);
+    }
+    if (kind == DIRT_MODEL_LIGHT_SPOT) {
+        vec3 sd = dirt_normalize_g(light.direction.xyz);
+        float cd = -dot(sd, wi); // cosine between spot axis and light -> p
+        float co = light.cone.x, ci = light.cone.y;
+        float s = dirt_clamp01_g((cd - co) / max(1e-3, ci - co));
+        att *= s * s;
+    }
+    li = color * att;
+    return att > 0.0 && !dirt_is_zero_g(color);
+}
+
+// ---- camera (lights.c) --------------------------------------------------
+
+// Primary ray through the continuous pixel position (px, py) of a width x
+// height image (py = 0 the top edge): pinhole, thin lens (aperture and focus
+// distance > 0; lens_u, lens_v mapped by dirt_sample_disk_g) or orthographic.
+// dir is unit length.
+void dirt_camera_ray_g(dirt_gpu_model_camera cam, int width, int height, float px, float py,
+                       float lens_u, float lens_v, out vec3 org, out vec3 dir)
+{
+    float aspect = cam.right.w > 0.0 ? cam.right.w : float(width) / float(height);
+    if (!(aspect > 0.0) || isinf(aspect) || isnan(aspect))
+        aspect = 1.0;
+    float nx = 2.0 * px / float(width) - 1.0;
+    float ny = 1.0 - 2.0 * py / float(height);
+    vec3 eye = cam.eye.xyz, fwd = cam.forward.xyz;
+    vec3 right = cam.right.xyz, up = cam.up.xyz;
+    if (int(cam.eye.w) == DIRT_MODEL_CAMERA_ORTHOGRAPHIC) {
+        float ymag = cam.lens.w > 0.0 ? cam.lens.w : 1.0;
+        float xmag = cam.lens.z > 0.0 ? cam.lens.z : ymag * aspect;
+        org = (eye + right * (nx * xmag)) + up * (ny * ymag);
+        dir = dirt_normalize_g(fwd);
+        return;
+    }
+    float th = cam.forward.w; // tanf(0.5 yfov), computed on the CPU
+    // d . forward = 1: the point at parameter f along d lies on the plane
+    // perpendicular to forward at distance f.
+    vec3 d = (fwd + right * (nx * th * aspect)) + up * (ny * th);
+    float aperture = cam.lens.x, focus = cam.lens.y;
+    if (aperture > 0.0 && focus > 0.0) {
+        float lx, ly;
+        dirt_sample_disk_g(lens_u, lens_v, lx, ly);
+        vec3 focus_p = eye + d * focus;
+        vec3 lens = (eye + right * (lx * aperture)) + up * (ly * aperture);
+        org = lens;
+        dir = dirt_normalize_g(focus_p - lens);
+    } else {
+        org = eye;
+        dir = dirt_normalize_g(d);
+    }
+}
+
+#ifdef DIRT_MODEL_BUFFERS
+// ---- scene tables -------------------------------------------------------
+
+layout(std430, binding = DIRT_BIND_MODEL_MATERIALS) readonly buffer DirtModelMaterials {
+    dirt_gpu_model_material dirt_model_materials[];
+};
+layout(std430, binding = DIRT_BIND_MODEL_AREA_CDF) readonly buffer DirtModelAreaCdf {
+    dirt_gpu_model_lights dirt_model_lights;
+    float dirt_model_area_cdf[];
+};
+layout(std430, binding = DIRT_BIND_MODEL_AREA_PRIMS) readonly buffer DirtModelAreaPrims {
+    uint dirt_model_area_prim[];
+};
+layout(std430, binding = DIRT_BIND_MODEL_PUNCTUAL) readonly buffer DirtModelPunctual {
+    dirt_gpu_model_light dirt_model_punctual[];
+};
+layout(std430, binding = DIRT_BIND_MODEL_CAMERA) readonly buffer DirtModelCamera {
+    dirt_gpu_model_camera dirt_model_camera;
+};
+// The scene's textures, one layer each (all resized to one size), through
+// a linear and an sRGB view of the same RGBA8 storage; bilinear, repeat.
+layout(binding = DIRT_UNIT_MODEL_TEX_LINEAR) uniform sampler2DArray dirt_model_tex_linear;
+layout(binding = DIRT_UNIT_MODEL_TEX_SRGB) uniform sampler2DArray dirt_model_tex_srgb;
+
+// Bilinear, repeating lookup of texture layer `layer` at uv (level 0), RGB
+// sRGB-decoded before filtering when `srgb` (alpha never decoded). Texel
+// (i, j) has its centre at ((i + 0.5) / w, (j + 0.5) / h), row 0 = the first
+// image row, as in dirt_texture_sample. A negative layer reads (1,1,1,1);
+// non-finite u or v read as 0.
+vec4 dirt_texture_sample_g(int layer, bool srgb, vec2 uv)
+{
+    if (layer < 0)
+        return vec4(1.0);
+    if (isnan(uv.x) || isinf(uv.x))
+        uv.x = 0.0;
+    if (isnan(uv.y) || isinf(uv.y))
+        uv.y = 0.0;
+    uv -= floor(uv);
+    vec3 c = vec3(uv, float(layer));
+    return srgb ? textureLod(dirt_model_tex_srgb, c, 0.0) : textureLod(dirt_model_tex_linear, c, 0.0);
+}
+
+// Textured surface of material `material` at uv (= dirt_material_surface):
+//   base = clamp(base_color * sRGB(base tex)), roughness = clamp(roughness *
+//   mr.g), metallic = clamp(metallic * mr.b), alpha = roughness^2,
+//   emission = (emissive * strength) * sRGB(emissive tex) when emissive.
+dirt_surface_g dirt_material_surface_g(uint material, vec2 uv)
+{
+    dirt_gpu_model_material m = dirt_model_materials[material];
+    vec4 bc = dirt_texture_sample_g(m.textures.x, true, uv);
+    vec4 mr = dirt_texture_sample_g(m.textures.y, false, uv);
+    dirt_surface_g s;
+    s.bsdf.base_color = vec3(dirt_clamp01_g(m.base_color.x * bc.x),
+                             dirt_clamp01_g(m.base_color.y * bc.y),
+                             dirt_clamp01_g(m.base_color.z * bc.z));
+    float roughness = dirt_clamp01_g(m.params.y * mr.y);
+    s.bsdf.metallic = dirt_clamp01_g(m.params.x * mr.z);
+    s.bsdf.alpha = roughness * roughness;
+    s.bsdf.specular = m.params.z;
+    s.double_sided = (m.textures.w & DIRT_MODEL_MAT_DOUBLE_SIDED) != 0;
+    if ((m.textures.w & DIRT_MODEL_MAT_EMISSIVE) != 0) {
+        vec4 em = dirt_texture_sample_g(m.textures.z, true, uv);
+        s.emission = m.emission.xyz * em.xyz;
+    } else {
+        s.emission = vec3(0.0);
+    }
+    return s;
+}
+
+// True when the material emits (its triangles are area lights).
+bool dirt_material_is_emissive_g(uint material)
+{
+    return (dirt_model_materials[material].textures.w & DIRT_MODEL_MAT_EMISSIVE) != 0;
+}
+
+// Index (into the cdf/prim tables) of the emissive triangle selected by u in
+// [0,1): the first i with cdf[i] > u * total_area, the last one if none
+// (binary search). The table must not be empty (counts.x > 0).
+uint dirt_area_lights_select_g(float u)
+{
+    float x = u * dirt_model_lights.area.x;
+    uint lo = 0u, hi = dirt_model_lights.counts.x - 1u;
+    while (lo < hi) {
+        uint mid = lo + (hi - lo) / 2u;
+        if (dirt_model_area_cdf[mid] > x)
+            hi = mid;
+        else
+            lo = mid + 1u;
+    }
+    return lo;
+}
+#endif // DIRT_MODEL_BUFFERS
+
+#endif
