@@ -96,7 +96,9 @@ struct dirt_gpu_ads_params {
 
 /* Counters written by the fill pass (16 bytes). */
 struct dirt_gpu_ads_counters {
-    DIRT_UV4 fill;       /* x nodes requested, y (primitive, tile) pairs, zw 0 */
+    DIRT_UV4 fill;       /* x nodes requested, y (primitive, tile) pairs (fill pass);
+                            z rays aborted by the last trace, w active rays traced
+                            since the host last reset it */
 };
 
 /* ---- Rays and hits shared by every technique's trace ---- */
@@ -138,6 +140,33 @@ struct dirt_gpu_gpoint {
 struct dirt_gpu_fetch_params {
     DIRT_UV4 config;      /* x hit count, y ring slot written (k+1 mod 3), z pixels, w 0 */
     DIRT_UV4 reserved;
+};
+
+/* ---- GPU path tracer (glsl/integrator/) ---- */
+
+#define DIRT_BIND_PATHS 13        /* dirt_gpu_path[pixels] */
+#define DIRT_BIND_ACCUM 14        /* dirt_gpu_accum[pixels] */
+#define DIRT_BIND_SHADOW_RAYS 15  /* dirt_gpu_ray[pixels]: next-event shadow rays */
+
+#define DIRT_PATH_ALIVE 1u        /* dirt_gpu_path.radiance.w flag bits */
+#define DIRT_PATH_PREV_DELTA 2u
+#define DIRT_PATH_FIRST_HIT 4u
+
+/* State of one pixel's path between passes (80 bytes). */
+struct dirt_gpu_path {
+    DIRT_V4 beta_pdf;     /* xyz throughput, w solid-angle pdf of the last BSDF sample */
+    DIRT_V4 radiance;     /* xyz radiance gathered, w DIRT_PATH_* flags (uint bits) */
+    DIRT_V4 pending;      /* xyz next-event contribution awaiting its shadow ray,
+                             w 1 when a shadow ray is out */
+    DIRT_V4 first_albedo; /* xyz albedo of the first hit, w unused */
+    DIRT_V4 first_normal; /* xyz shading normal of the first hit, w unused */
+};
+
+/* Running sums of one pixel over the samples (48 bytes). */
+struct dirt_gpu_accum {
+    DIRT_V4 color;        /* xyz radiance sum, w samples */
+    DIRT_V4 albedo;       /* xyz first-hit albedo sum, w non-finite samples dropped */
+    DIRT_V4 normal;       /* xyz first-hit normal sum */
 };
 
 #endif

@@ -36,8 +36,9 @@
 
 /* Lists of up to this many nodes are sorted in registers in one go; longer
  * ones are sorted in chunks of this size merged into the sorted list (all
- * nodes kept). */
-#define DIRT_MMRT_SORT_CHUNK 32
+ * nodes kept). 8 keeps the arrays in registers (llvmpipe lowers indexed
+ * local arrays to select chains: 32 was 7x slower there). */
+#define DIRT_MMRT_SORT_CHUNK 8
 
 /* Build parameters (32 bytes). */
 struct dirt_mmrt_gpu_params {
@@ -55,14 +56,16 @@ struct dirt_mmrt_gpu_data {
                             vertices 1 and 2), zw texture uv */
 };
 
-/* Counters (32 bytes). `build` is cleared by every build; `trace` by every
- * trace. */
+/* Counters (48 bytes). `build` is cleared by every build; `trace` and
+ * `trace2` by every trace. */
 struct dirt_mmrt_gpu_counters {
     DIRT_UV4 build;      /* x fragments requested (node counter), y most
                             fragments in one pixel, z bucket lists longer than
                             DIRT_MMRT_SORT_CHUNK, w pixels with a fragment */
-    DIRT_UV4 trace;      /* x rays that hit, y pixels tested, z id nodes
-                            visited, w rays that ran out of march steps */
+    DIRT_UV4 trace;      /* x rays that hit, y march steps (Hi-Z cells at any
+                            level, linear samples), z id nodes visited, w rays
+                            that ran out of march steps */
+    DIRT_UV4 trace2;     /* x pixel tests (incl. early skips), yzw 0 */
 };
 
 #endif

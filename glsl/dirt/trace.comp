@@ -329,6 +329,9 @@ void main()
     dirt_gpu_ray ray = rays[i];
     vec3 org = ray.origin_tmin.xyz, dir = ray.dir_tmax.xyz;
     float tmin = ray.origin_tmin.w;
+    // Active rays (tmax >= tmin) are counted; the host resets the count.
+    if (ray.dir_tmax.w >= tmin)
+        atomicAdd(counters.fill.w, 1u);
     best_hit best;
     best.t = ray.dir_tmax.w;
     best.u = 0.0;

@@ -3,8 +3,10 @@
 // pixel's B bucket lists by depth, nearest first, ties broken by primitive
 // id (a total order: a primitive has at most one fragment per pixel), then
 // sets the next/prev pointers, the head (nearest) and tail (farthest) of
-// every bucket. Lists of up to DIRT_MMRT_SORT_CHUNK nodes are sorted in
-// registers (insertion sort); longer lists are consumed in chunks of that
+// every non-empty bucket (the build clears the tails, so empty buckets cost
+// one read). Lists of up to DIRT_MMRT_SORT_CHUNK nodes are sorted in
+// registers (a fixed sorting network, constant indices); longer lists are
+// consumed in chunks of that
 // size, each sorted in registers and merged into the sorted list, so nothing
 // is ever dropped (cost O(n * n / chunk) for a list of n).
 #include "common/layout.h"
@@ -31,7 +33,11 @@ layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
     dirt_mmrt_gpu_counters counters;
 };
 
-#define CHUNK DIRT_MMRT_SORT_CHUNK
+// The register sort below is a fixed sorting network on 8 entries.
+#if DIRT_MMRT_SORT_CHUNK != 8
+#error "reorder.comp sorts chunks of 8"
+#endif
+#define CHUNK 8
 
 float node_z(uint n)
 {
@@ -53,13 +59,53 @@ void set_prev(uint n, uint prev)
     ids[n * uint(DIRT_MMRT_ID_UINTS) + uint(DIRT_MMRT_ID_PREV)] = prev;
 }
 
-// Strict order of fragments (a, za) < (b, zb).
+// Strict order of fragments (a, za) < (b, zb): depth, then primitive id,
+// then node index. Padding entries (DIRT_LIST_END, +inf) sort last.
 bool before(uint a, float za, uint b, float zb)
 {
     if (za != zb)
         return za < zb;
+    if (a == DIRT_LIST_END || b == DIRT_LIST_END)
+        return a < b;
     uint pa = data[a].ids.x, pb = data[b].ids.x;
     return pa != pb ? pa < pb : a < b;
+}
+
+// Every array index below is a compile-time constant (unrolled loops, a
+// fixed network), so the chunk stays in registers.
+uint idx[CHUNK];
+float key[CHUNK];
+
+#define CX(a, b)                                                  \
+    if (before(idx[b], key[b], idx[a], key[a])) {                 \
+        uint ti = idx[a];                                         \
+        idx[a] = idx[b];                                          \
+        idx[b] = ti;                                              \
+        float tk = key[a];                                        \
+        key[a] = key[b];                                          \
+        key[b] = tk;                                              \
+    }
+
+// Batcher's odd-even merge sort network for 8 entries (19 comparators).
+void sort_chunk()
+{
+    CX(0, 1) CX(2, 3) CX(4, 5) CX(6, 7)
+    CX(0, 2) CX(1, 3) CX(4, 6) CX(5, 7)
+    CX(1, 2) CX(5, 6)
+    CX(0, 4) CX(1, 5) CX(2, 6) CX(3, 7)
+    CX(2, 4) CX(3, 5)
+    CX(1, 2) CX(3, 4) CX(5, 6)
+}
+
+// Drops the chunk's first entry.
+void shift_chunk()
+{
+    for (int k = 0; k < CHUNK - 1; k++) {
+        idx[k] = idx[k + 1];
+        key[k] = key[k + 1];
+    }
+    idx[CHUNK - 1] = DIRT_LIST_END;
+    key[CHUNK - 1] = uintBitsToFloat(0x7F800000u);
 }
 
 void main()
@@ -70,48 +116,43 @@ void main()
         return;
     int B = params.config.y;
     uint layers = 0u;
+    const float inf = uintBitsToFloat(0x7F800000u);
     for (int b = 0; b < B; b++) {
         uint slot = uint(b) * pixels + g;
-        uint rest = heads[slot];    // nodes not sorted yet (original order)
+        uint rest = heads[slot];     // nodes not sorted yet (original order)
+        if (rest == DIRT_LIST_END)
+            continue;                // tails are cleared to DIRT_LIST_END by the build
         uint sorted = DIRT_LIST_END; // sorted list built so far
         uint count = 0u;
         uint chunks = 0u;
         while (rest != DIRT_LIST_END) {
-            uint idx[CHUNK];
-            float key[CHUNK];
-            int n = 0;
-            while (rest != DIRT_LIST_END && n < CHUNK) {
-                idx[n] = rest;
-                key[n] = node_z(rest);
-                rest = node_next(rest);
-                n++;
-            }
-            // Insertion sort of the chunk in registers.
-            for (int i = 1; i < n; i++) {
-                uint ni = idx[i];
-                float ki = key[i];
-                int j = i - 1;
-                while (j >= 0 && before(ni, ki, idx[j], key[j])) {
-                    idx[j + 1] = idx[j];
-                    key[j + 1] = key[j];
-                    j--;
+            // Up to CHUNK nodes into registers, padded with (END, +inf).
+            for (int k = 0; k < CHUNK; k++) {
+                if (rest != DIRT_LIST_END) {
+                    idx[k] = rest;
+                    key[k] = node_z(rest);
+                    rest = node_next(rest);
+                    count++;
+                } else {
+                    idx[k] = DIRT_LIST_END;
+                    key[k] = inf;
                 }
-                idx[j + 1] = ni;
-                key[j + 1] = ki;
             }
+            sort_chunk();
             // Merge the chunk with the sorted list (next pointers only).
             uint s = sorted;
-            float zs = s != DIRT_LIST_END ? node_z(s) : 0.0;
+            float zs = s != DIRT_LIST_END ? node_z(s) : inf;
             uint first = DIRT_LIST_END, last = DIRT_LIST_END;
-            int i = 0;
-            while (i < n || s != DIRT_LIST_END) {
+            while (idx[0] != DIRT_LIST_END || s != DIRT_LIST_END) {
                 uint pick;
-                if (i < n && (s == DIRT_LIST_END || before(idx[i], key[i], s, zs))) {
-                    pick = idx[i++];
+                if (idx[0] != DIRT_LIST_END &&
+                    (s == DIRT_LIST_END || before(idx[0], key[0], s, zs))) {
+                    pick = idx[0];
+                    shift_chunk();
                 } else {
                     pick = s;
                     s = node_next(s);
-                    zs = s != DIRT_LIST_END ? node_z(s) : 0.0;
+                    zs = s != DIRT_LIST_END ? node_z(s) : inf;
                 }
                 if (last == DIRT_LIST_END)
                     first = pick;
@@ -121,7 +162,6 @@ void main()
             }
             set_next(last, DIRT_LIST_END);
             sorted = first;
-            count += uint(n);
             chunks++;
         }
         // prev pointers, head and tail.

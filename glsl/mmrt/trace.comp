@@ -73,6 +73,7 @@ struct hit_state {
     float z;
 };
 
+uint g_steps = 0u;
 uint g_pixels_tested = 0u;
 uint g_nodes_visited = 0u;
 
@@ -111,8 +112,8 @@ bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hi
                 float t = 0.5 * (ta + tb);
                 if (cd.w != 0.0)
                     t = clamp((z - co.w) / cd.w, min(ta, tb), max(ta, tb));
-                if (t >= h.t)
-                    return false;
+                if (h.node != DIRT_LIST_END && t >= h.t)
+                    return false; // not closer than the hit of an earlier view
                 h.node = n;
                 h.view = view;
                 h.t = t;
@@ -153,6 +154,7 @@ bool march_hiz(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1, in
     while (t < t1) {
         if (++steps > max_steps)
             return false;
+        g_steps++;
         vec2 p = to_pixels(v, co + t * cd) + dir * 1e-3;
         int s = 1 << L;
         ivec2 lsize = (v.size.xy + (s - 1)) >> L;
@@ -208,6 +210,7 @@ void march_linear(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1,
     uint key = dirt_mmrt_hash(dirt_mmrt_hash(u_seed ^ 0x6d6d7274u) ^ ray) ^ uint(vi);
     float j = float(dirt_mmrt_hash(key) >> 8) * (1.0 / 16777216.0);
     for (int i = 0; i < N; i++) {
+        g_steps++;
         float sc = (float(i) + j) / float(N);
         float sa = i == 0 ? 0.0 : (float(i) + j - 0.5) / float(N);
         float sb = i == N - 1 ? 1.0 : (float(i) + j + 0.5) / float(N);
@@ -285,8 +288,9 @@ void main()
     if (u_stats != 0) {
         if (h.node != DIRT_LIST_END)
             atomicAdd(counters.trace.x, 1u);
-        atomicAdd(counters.trace.y, g_pixels_tested);
+        atomicAdd(counters.trace.y, g_steps);
         atomicAdd(counters.trace.z, g_nodes_visited);
+        atomicAdd(counters.trace2.x, g_pixels_tested);
     }
     if (aborted)
         atomicAdd(counters.trace.w, 1u);

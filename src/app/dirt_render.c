@@ -5,6 +5,9 @@
 
 #include "app/cli.h"
 #include "dirt/ads.h"
+#include "dirt/file.h"
+#include "dirt/pathtrace.h"
+#include "dirt/ref.h"
 #include "dirt/clock.h"
 #include "dirt/gpu.h"
 #include "dirt/image.h"
@@ -14,7 +17,7 @@
 
 #define PROG "dirt-render"
 
-enum engine { ENGINE_RASTER };
+enum engine { ENGINE_DIRT, ENGINE_RASTER, ENGINE_EMBREE };
 
 typedef struct options {
     const char *scene_path;   /* NULL = embedded default scene */
@@ -38,6 +41,15 @@ typedef struct options {
     enum dirt_view_mode views;
     long tile_size, buckets, face_size;
     bool force_emulation;
+    /* path tracing */
+    long spp, bounces, hiz_levels;
+    unsigned long seed;
+    bool ao;
+    double ao_distance;
+    float background[3];
+    enum dirt_fetch_mode fetch;
+    const char *stats_path;
+    long threads;
 } options;
 
 static void usage(FILE *out)
@@ -68,19 +80,33 @@ static void usage(FILE *out)
 "      --auto-camera     ignore the scene's cameras; frame the scene bounds\n"
 "\n"
 "Technique:\n"
-"      --engine NAME     raster: rasterized preview with direct lighting (default)\n"
-"      --cpu-timing      time passes with glFinish and the CPU clock too\n"
+"      --engine NAME     dirt: path tracing through the DIRT structure on the GPU\n"
+"                        (default); embree: the CPU ground truth (Embree 3);\n"
+"                        raster: rasterized preview with direct lighting\n"
+"      --mode MODE       pt (path tracing, default) or ao (ambient occlusion)\n"
+"      --spp N           samples per pixel (default 16)\n"
+"      --bounces K       scattering events per path, 1 = direct light (default 4)\n"
+"      --seed N          random seed (default 0); the same seed gives the same\n"
+"                        paths in every engine\n"
+"      --ao-distance D   AO ray length (default: infinite)\n"
+"      --background R,G,B  radiance of rays that leave the scene (default 0,0,0)\n"
+"      --stats FILE.json write timings, ray counts and memory as JSON\n"
+"      --threads N       embree: CPU threads (default: all)\n"
+"      --cpu-timing      time passes with glFinish and the CPU clock too (always\n"
+"                        on with a software renderer such as llvmpipe)\n"
 "\n"
-"DIRT acceleration structure:\n"
+"DIRT acceleration structure (--engine dirt, --debug-ads):\n"
 "      --debug-ads DIR   build the structure for the frame, print its stats and\n"
 "                        write heat maps of list lengths and depth bounds per\n"
 "                        view into DIR (single frame only)\n"
-"      --views MODE      single | cube | cube+camera (default single)\n"
+"      --views MODE      single | cube | cube+camera (default cube+camera)\n"
 "  -S, --tile-size S     tile size 1, 2, 4 or 8 (default 2)\n"
 "  -B, --buckets B       depth buckets per tile, >= 1 (default 16)\n"
 "      --face-size N     cube face size in pixels (default max(W,H)/2)\n"
 "      --no-conservative-raster  emulate conservative rasterization even when\n"
 "                        GL_NV_conservative_raster is present\n"
+"      --hiz-levels N    Hi-Z levels the march may use (default: all)\n"
+"      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
 "\n"
 "Other:\n"
 "  -q, --quiet           print only errors\n"
@@ -140,7 +166,7 @@ static bool parse_frames(const char *text, options *o)
 static int parse_args(int argc, char **argv, options *o)
 {
     *o = (options){.width = 640, .height = 480, .camera = -1, .fps = 24, .tile_size = 2,
-                   .buckets = 16};
+                   .buckets = 16, .spp = 16, .bounces = 4, .views = DIRT_VIEWS_CUBE_CAMERA};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -195,8 +221,72 @@ static int parse_args(int argc, char **argv, options *o)
             NEED_VALUE();
             if (!strcmp(val, "raster")) {
                 o->engine = ENGINE_RASTER;
+            } else if (!strcmp(val, "dirt")) {
+                o->engine = ENGINE_DIRT;
+            } else if (!strcmp(val, "embree")) {
+                o->engine = ENGINE_EMBREE;
             } else {
-                cli_error(PROG, "unknown engine '%s' (available: raster)", val);
+                cli_error(PROG, "unknown engine '%s' (available: dirt, embree, raster)", val);
+                return DIRT_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--mode")) {
+            NEED_VALUE();
+            if (strcmp(val, "pt") && strcmp(val, "ao")) {
+                cli_error(PROG, "--mode expects pt or ao, got '%s'", val);
+                return DIRT_EXIT_USAGE;
+            }
+            o->ao = !strcmp(val, "ao");
+        } else if (!strcmp(a, "--spp")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 1 << 20, &o->spp))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--bounces")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 64, &o->bounces))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--seed")) {
+            NEED_VALUE();
+            long v;
+            if (!cli_int(PROG, a, val, 0, 4294967295L, &v))
+                return DIRT_EXIT_USAGE;
+            o->seed = (unsigned long)v;
+        } else if (!strcmp(a, "--ao-distance")) {
+            NEED_VALUE();
+            if (!cli_float(PROG, a, val, 0, 1e30, &o->ao_distance))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--background")) {
+            NEED_VALUE();
+            char extra;
+            if (sscanf(val, "%f,%f,%f%c", &o->background[0], &o->background[1],
+                       &o->background[2], &extra) != 3 || !(o->background[0] >= 0) ||
+                !(o->background[1] >= 0) || !(o->background[2] >= 0) ||
+                o->background[0] > 1e30f || o->background[1] > 1e30f || o->background[2] > 1e30f) {
+                cli_error(PROG, "--background expects R,G,B (non-negative), got '%s'", val);
+                return DIRT_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--stats")) {
+            NEED_VALUE();
+            if (!cli_has_ext(val, ".json")) {
+                cli_error(PROG, "--stats file '%s' must end in .json", val);
+                return DIRT_EXIT_USAGE;
+            }
+            o->stats_path = val;
+        } else if (!strcmp(a, "--threads")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 4096, &o->threads))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--hiz-levels")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 16, &o->hiz_levels))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--fetch")) {
+            NEED_VALUE();
+            if (!strcmp(val, "compute")) {
+                o->fetch = DIRT_FETCH_COMPUTE;
+            } else if (!strcmp(val, "raster")) {
+                o->fetch = DIRT_FETCH_RASTER;
+            } else {
+                cli_error(PROG, "--fetch expects compute or raster, got '%s'", val);
                 return DIRT_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--png")) {
@@ -315,6 +405,102 @@ static bool write_outputs(const options *o, const dirt_image *img, const char *p
     return true;
 }
 
+/* Statistics of one frame, for --stats and the summary line. */
+typedef struct frame_stats {
+    double build_ms, trace_ms, fetch_ms, shade_ms, total_ms, mrays_per_s;
+    uint64_t rays, aborted, bytes_total;
+    dirt_ads_stats ads;
+    bool has_ads;
+} frame_stats;
+
+typedef struct progress_state {
+    double start, last;
+    long frame;
+    bool quiet;
+} progress_state;
+
+static void on_progress(void *user, int done, int total)
+{
+    progress_state *p = user;
+    double now = dirt_clock_ms();
+    if (p->quiet || (now - p->last < 1000.0 && done < total))
+        return;
+    p->last = now;
+    double el = (now - p->start) / 1000.0;
+    fprintf(stderr, "%s: frame %ld: sample %d/%d, %.1fs elapsed, ETA %.1fs\n", PROG, p->frame,
+            done, total, el, done ? el / done * (total - done) : 0.0);
+}
+
+static void on_ref_progress(void *user, uint64_t done, uint64_t total)
+{
+    on_progress(user, (int)done, (int)total);
+}
+
+static void json_stats(FILE *f, const frame_stats *s, const char *indent)
+{
+    fprintf(f, "%s\"build_ms\": %.6f,\n%s\"trace_ms\": %.6f,\n%s\"fetch_ms\": %.6f,\n"
+               "%s\"shade_ms\": %.6f,\n%s\"total_ms\": %.6f,\n%s\"rays\": %llu,\n"
+               "%s\"mrays_per_s\": %.6f,\n%s\"aborted_rays\": %llu,\n%s\"bytes_total\": %llu",
+            indent, s->build_ms, indent, s->trace_ms, indent, s->fetch_ms, indent, s->shade_ms,
+            indent, s->total_ms, indent, (unsigned long long)s->rays, indent, s->mrays_per_s,
+            indent, (unsigned long long)s->aborted, indent, (unsigned long long)s->bytes_total);
+    if (s->has_ads) {
+        const dirt_ads_stats *a = &s->ads;
+        fprintf(f, ",\n%s\"bytes\": {\"vertices\": %llu, \"depth bounds\": %llu, "
+                   "\"list heads\": %llu, \"id nodes\": %llu, \"id nodes allocated\": %llu},\n"
+                   "%s\"samples_np\": %llu,\n%s\"buckets_per_sample\": %.6f",
+                indent, (unsigned long long)a->bytes_vertices, (unsigned long long)a->bytes_depth,
+                (unsigned long long)a->bytes_heads, (unsigned long long)a->bytes_nodes_used,
+                (unsigned long long)a->bytes_nodes_allocated, indent,
+                (unsigned long long)a->samples, indent, a->buckets_per_sample);
+    }
+}
+
+static bool write_stats(const options *o, const char *engine, const frame_stats *frames,
+                        long count, const char *gpu_desc)
+{
+    dirt_atomic_file *af = dirt_atomic_open(o->stats_path);
+    if (!af)
+        return false;
+    FILE *f = dirt_atomic_stream(af);
+    frame_stats mean = {0};
+    for (long i = 0; i < count; i++) {
+        mean.build_ms += frames[i].build_ms / count;
+        mean.trace_ms += frames[i].trace_ms / count;
+        mean.fetch_ms += frames[i].fetch_ms / count;
+        mean.shade_ms += frames[i].shade_ms / count;
+        mean.total_ms += frames[i].total_ms / count;
+        mean.rays += frames[i].rays;
+        mean.aborted += frames[i].aborted;
+        mean.bytes_total = frames[i].bytes_total > mean.bytes_total ? frames[i].bytes_total
+                                                                    : mean.bytes_total;
+    }
+    mean.rays /= (uint64_t)count;
+    mean.mrays_per_s = frames[count - 1].mrays_per_s;
+    mean.ads = frames[count - 1].ads;
+    mean.has_ads = frames[count - 1].has_ads;
+    fprintf(f, "{\n  \"engine\": \"%s\",\n  \"device\": \"", engine);
+    for (const char *c = gpu_desc; *c; c++)
+        fputc(*c == '"' || *c == '\\' ? '\'' : *c, f);
+    fprintf(f, "\",\n  \"width\": %ld,\n  \"height\": %ld,\n  \"spp\": %ld,\n  \"bounces\": %ld,\n"
+               "  \"mode\": \"%s\",\n  \"frames_rendered\": %ld,\n",
+            o->width, o->height, o->spp, o->bounces, o->ao ? "ao" : "pt", count);
+    json_stats(f, &mean, "  ");
+    fprintf(f, ",\n  \"frames\": [\n");
+    for (long i = 0; i < count; i++) {
+        fprintf(f, "    {\n");
+        json_stats(f, &frames[i], "      ");
+        fprintf(f, "\n    }%s\n", i + 1 < count ? "," : "");
+    }
+    fprintf(f, "  ]\n}\n");
+    return dirt_atomic_commit(af);
+}
+
+static const char *engine_name(enum engine e)
+{
+    return e == ENGINE_DIRT ? "dirt" : e == ENGINE_EMBREE ? "embree" : "raster";
+}
+
 int main(int argc, char **argv)
 {
     options o;
@@ -331,7 +517,10 @@ int main(int argc, char **argv)
     dirt_gpu *gpu = NULL;
     dirt_raster *raster = NULL;
     dirt_ads *ads = NULL;
+    dirt_pt *pt = NULL;
     dirt_image *img = NULL;
+    frame_stats *fstats = NULL;
+    char desc[512] = "CPU";
     rc = DIRT_EXIT_USAGE;
 
     /* Check every output location before any expensive work. */
@@ -340,6 +529,8 @@ int main(int argc, char **argv)
     char path[4096];
     output_path(&o, first, path, sizeof(path));
     if (!cli_output_dir_ok(PROG, path))
+        goto done;
+    if (o.stats_path && !cli_output_dir_ok(PROG, o.stats_path))
         goto done;
     if (o.debug_ads) {
         char probe[4200];
@@ -373,19 +564,38 @@ int main(int argc, char **argv)
         if (o.height < 1)
             o.height = 1;
     }
-
-    rc = DIRT_EXIT_NO_GPU;
-    gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
-    if (!gpu) {
-        cli_error(PROG, "no OpenGL 4.5 context could be made (see the error above)");
+    fstats = calloc((size_t)(last - first + 1), sizeof(*fstats));
+    img = dirt_image_create((int)o.width, (int)o.height);
+    if (!fstats || !img)
         goto done;
+    if (o.engine != ENGINE_RASTER) {
+        static const char *extra[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"};
+        for (int i = 0; i < 6; i++) {
+            if (!dirt_image_add_channel(img, extra[i]))
+                goto done;
+        }
+    }
+
+    bool need_gpu = o.engine != ENGINE_EMBREE || o.debug_ads;
+    if (need_gpu) {
+        rc = DIRT_EXIT_NO_GPU;
+        gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
+        if (!gpu) {
+            cli_error(PROG, "no OpenGL 4.5 context could be made (see the error above)");
+            goto done;
+        }
+        dirt_gpu_describe(gpu, desc, sizeof(desc));
+        /* llvmpipe's timer queries don't time rasterization: clock it. */
+        if (dirt_gpu_get_caps(gpu)->software)
+            o.cpu_timing = true;
     }
     rc = DIRT_EXIT_FAILURE;
-    raster = dirt_raster_create(gpu, scene);
-    img = dirt_image_create((int)o.width, (int)o.height);
-    if (!raster || !img)
-        goto done;
-    if (o.debug_ads) {
+    if (o.engine == ENGINE_RASTER) {
+        raster = dirt_raster_create(gpu, scene);
+        if (!raster)
+            goto done;
+    }
+    if (o.engine == ENGINE_DIRT || o.debug_ads) {
         dirt_ads_opts ao = {
             .views = {.mode = o.views, .width = (int)o.width, .height = (int)o.height,
                       .face_size = (int)o.face_size, .tile_size = (int)o.tile_size},
@@ -397,18 +607,21 @@ int main(int argc, char **argv)
         if (!ads)
             goto done;
     }
-    if (!o.quiet) {
-        char desc[512];
-        dirt_gpu_describe(gpu, desc, sizeof(desc));
-        fprintf(stderr, "%s: %s, %zu triangles; %s\n", PROG,
-                o.scene_path ? o.scene_path : "default scene", dirt_scene_num_triangles(scene),
-                desc);
+    if (o.engine == ENGINE_DIRT) {
+        pt = dirt_pt_create(gpu, scene);
+        if (!pt)
+            goto done;
     }
+    if (!o.quiet)
+        fprintf(stderr, "%s: %s, %zu triangles, engine %s; %s\n", PROG,
+                o.scene_path ? o.scene_path : "default scene", dirt_scene_num_triangles(scene),
+                engine_name(o.engine), desc);
 
     dirt_eval_opts eo = {.clip = (int)o.clip, .loop = o.loop};
     double t0 = dirt_clock_ms();
-    for (long f = first; f <= last; f++) {
-        float t = o.frames_set ? (float)(f / o.fps) : (float)o.time;
+    for (long fi = first; fi <= last; fi++) {
+        frame_stats *fs = &fstats[fi - first];
+        float t = o.frames_set ? (float)(fi / o.fps) : (float)o.time;
         if (!frame)
             frame = dirt_scene_evaluate(scene, t, &eo);
         else if (!dirt_scene_evaluate_into(scene, t, &eo, frame))
@@ -420,36 +633,105 @@ int main(int argc, char **argv)
             cam = frame->cameras[cam_index];
         else
             dirt_camera_auto(frame, &cam);
-        dirt_raster_stats st;
-        dirt_raster_opts ro = {.cpu_timing = o.cpu_timing};
-        if (!dirt_raster_render(raster, frame, &cam, (int)o.width, (int)o.height, &ro,
-                                img->rgba, &st))
-            goto done;
+        double f0 = dirt_clock_ms();
+        progress_state prog = {.start = f0, .last = f0, .frame = fi, .quiet = o.quiet};
         if (ads) {
             if (!dirt_ads_build(ads, frame, &cam))
                 goto done;
-            if (!o.quiet)
-                dirt_ads_print_stats(ads, stderr);
-            if (!dirt_ads_write_debug(ads, o.debug_ads, o.quiet)) {
-                rc = DIRT_EXIT_USAGE;
-                goto done;
+            fs->ads = *dirt_ads_get_stats(ads);
+            fs->has_ads = true;
+            if (o.debug_ads) {
+                if (!o.quiet)
+                    dirt_ads_print_stats(ads, stderr);
+                if (!dirt_ads_write_debug(ads, o.debug_ads, o.quiet)) {
+                    rc = DIRT_EXIT_USAGE;
+                    goto done;
+                }
             }
         }
-        output_path(&o, f, path, sizeof(path));
+        if (o.engine == ENGINE_RASTER) {
+            dirt_raster_stats st;
+            dirt_raster_opts ro = {.cpu_timing = o.cpu_timing};
+            if (!dirt_raster_render(raster, frame, &cam, (int)o.width, (int)o.height, &ro,
+                                    img->rgba, &st))
+                goto done;
+            fs->shade_ms = st.gpu_ms >= 0 ? st.gpu_ms : st.cpu_ms;
+        } else if (o.engine == ENGINE_DIRT) {
+            dirt_pt_opts po = {
+                .mode = o.ao ? DIRT_PT_AO : DIRT_PT_PATH,
+                .spp = (int)o.spp,
+                .bounces = (int)o.bounces,
+                .seed = (uint32_t)o.seed,
+                .background = {o.background[0], o.background[1], o.background[2]},
+                .ao_distance = (float)o.ao_distance,
+                .fetch = o.fetch,
+                .trace = {.hiz_levels = (int)o.hiz_levels},
+                .cpu_timing = o.cpu_timing,
+                .progress = on_progress,
+                .progress_user = &prog,
+            };
+            dirt_pt_stats st;
+            if (!dirt_pt_render(pt, ads, frame, &cam, &po, img, &st))
+                goto done;
+            fs->build_ms = st.build_ms;
+            fs->trace_ms = st.trace_ms;
+            fs->fetch_ms = st.fetch_ms;
+            fs->shade_ms = st.shade_ms;
+            fs->rays = st.rays;
+            fs->aborted = st.aborted;
+            fs->mrays_per_s = st.mrays_per_s;
+            fs->bytes_total = fs->ads.bytes_total_used + st.bytes_integrator;
+        } else {
+            dirt_ref_opts ro = {
+                .width = (int)o.width, .height = (int)o.height, .spp = (int)o.spp,
+                .bounces = (int)o.bounces, .mode = o.ao ? DIRT_REF_MODE_AO : DIRT_REF_MODE_PT,
+                .ao_distance = (float)o.ao_distance, .seed = (uint32_t)o.seed,
+                .background = {o.background[0], o.background[1], o.background[2]},
+                .threads = (int)o.threads, .progress = on_ref_progress, .progress_user = &prog,
+            };
+            dirt_ref_stats st;
+            dirt_image *ref = dirt_ref_render(scene, frame, &cam, &ro, &st);
+            if (!ref)
+                goto done;
+            dirt_image_destroy(img);
+            img = ref;
+            fs->build_ms = st.build_ms;
+            fs->trace_ms = st.seconds * 1e3;
+            fs->rays = st.rays;
+            fs->mrays_per_s = st.mrays_per_s;
+        }
+        fs->total_ms = dirt_clock_ms() - f0;
+        output_path(&o, fi, path, sizeof(path));
         if (!write_outputs(&o, img, path)) {
             rc = DIRT_EXIT_USAGE; /* unwritable output */
             goto done;
         }
+        if (!o.quiet && o.engine != ENGINE_RASTER)
+            fprintf(stderr, "%s: frame %ld: build %.1f ms, trace %.1f ms, fetch %.1f ms, shade "
+                    "%.1f ms, %llu rays (%.2f Mrays/s)%s\n", PROG, fi, fs->build_ms, fs->trace_ms,
+                    fs->fetch_ms, fs->shade_ms, (unsigned long long)fs->rays, fs->mrays_per_s,
+                    fs->aborted ? ", SOME RAYS ABORTED" : "");
         if (!o.quiet && last > first) {
             double el = (dirt_clock_ms() - t0) / 1000.0;
-            long done_n = f - first + 1, total = last - first + 1;
+            long done_n = fi - first + 1, total = last - first + 1;
             fprintf(stderr, "%s: frame %ld/%ld (t=%.3fs) elapsed %.1fs, ETA %.1fs\n", PROG,
                     done_n, total, t, el, el / done_n * (total - done_n));
         }
     }
+    if (o.stats_path) {
+        if (!write_stats(&o, engine_name(o.engine), fstats, last - first + 1, desc)) {
+            cli_error(PROG, "could not write '%s'", o.stats_path);
+            rc = DIRT_EXIT_USAGE;
+            goto done;
+        }
+        if (!o.quiet)
+            printf("wrote %s\n", o.stats_path);
+    }
     rc = DIRT_EXIT_OK;
 done:
+    free(fstats);
     dirt_image_destroy(img);
+    dirt_pt_destroy(pt);
     dirt_raster_destroy(raster);
     dirt_ads_destroy(ads);
     dirt_frame_destroy(frame);

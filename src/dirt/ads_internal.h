@@ -53,6 +53,13 @@ struct dirt_ads {
 bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                   const dirt_trace_opts *opts, bool link, dirt_trace_stats *stats);
 
+/* Resets / reads the count of active rays traced (counters.fill.w). */
+void ads_reset_ray_count(dirt_ads *a);
+bool ads_read_counts(dirt_ads *a, uint64_t *rays, uint64_t *aborted);
+
+/* Binds the vertex buffer and the per-primitive materials (for shading). */
+void ads_bind_geometry(dirt_ads *a);
+
 /* Fetches the hit records into ring slot `slot` of `gpoints` (owner pixel =
  * record's ids.z). raster: the paper's geometry-pass Fetch over the hit
  * lists of the last linked trace (plus a compute pass for the misses);

@@ -29,8 +29,9 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         return false;
     gl_group_push("dirt trace");
     static const uint32_t zero = 0, end = DIRT_LIST_END;
-    glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                              &zero);
+    if (stats) /* per-call abort count; else it accumulates until reset */
+        glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  &zero);
     if (link)
         glClearNamedBufferData(a->hit_heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     ads_bind_all(a);
@@ -44,10 +45,15 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glUniform1i(3, link ? 1 : 0);
     /* Rays may come from a shader (the integrator's ray generation). */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    a->trace_timer.cpu_finish = a->opts.cpu_timing;
-    gl_timer_begin(&a->trace_timer);
+    /* Timed here only when called on its own (stats requested); inside a
+     * frame graph the graph times the pass (GL timer queries don't nest). */
+    if (stats) {
+        a->trace_timer.cpu_finish = a->opts.cpu_timing;
+        gl_timer_begin(&a->trace_timer);
+    }
     glDispatchCompute((count + 63) / 64, 1, 1);
-    gl_timer_end(&a->trace_timer);
+    if (stats)
+        gl_timer_end(&a->trace_timer);
     glUseProgram(0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
@@ -164,4 +170,28 @@ bool dirt_ads_trace_fetch(dirt_ads *a, const dirt_ray *rays, size_t count,
     }
     gl_buffer_destroy(&gp);
     return ok;
+}
+
+void ads_reset_ray_count(dirt_ads *a)
+{
+    static const uint32_t zero[2] = {0, 0};
+    glClearNamedBufferSubData(a->counters, GL_RG32UI, 8, 8, GL_RG_INTEGER, GL_UNSIGNED_INT,
+                              zero);
+}
+
+bool ads_read_counts(dirt_ads *a, uint64_t *rays, uint64_t *aborted)
+{
+    struct dirt_gpu_ads_counters c;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (!gl_buffer_read(a->counters, 0, sizeof(c), &c))
+        return false;
+    *rays = c.fill.w;
+    *aborted = c.fill.z;
+    return true;
+}
+
+void ads_bind_geometry(dirt_ads *a)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
 }

@@ -9,7 +9,7 @@
 
 _Static_assert(sizeof(struct dirt_mmrt_gpu_params) == 32, "params layout");
 _Static_assert(sizeof(struct dirt_mmrt_gpu_data) == DIRT_MMRT_DATA_NODE_BYTES, "data layout");
-_Static_assert(sizeof(struct dirt_mmrt_gpu_counters) == 32, "counters layout");
+_Static_assert(sizeof(struct dirt_mmrt_gpu_counters) == 48, "counters layout");
 _Static_assert(sizeof(dirt_mmrt_data_node) == sizeof(struct dirt_mmrt_gpu_data),
                "data node mirror");
 _Static_assert(sizeof(dirt_mmrt_id_node) == DIRT_MMRT_ID_NODE_BYTES &&
@@ -394,6 +394,8 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
     pass_begin(m, DIRT_MMRT_PASS_CLEAR);
     static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
     glClearNamedBufferData(m->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
+    static const uint32_t end = DIRT_LIST_END;
+    glClearNamedBufferData(m->tails, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     clear_lists(m);
     pass_end(m, DIRT_MMRT_PASS_CLEAR, gpu_ms, cpu_ms);
 

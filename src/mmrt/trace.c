@@ -45,7 +45,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
 
     gl_group_push("mmrt trace");
     static const uint32_t zero = 0;
-    glClearNamedBufferSubData(m->counters, GL_R32UI, 16, 16, GL_RED_INTEGER, GL_UNSIGNED_INT,
+    glClearNamedBufferSubData(m->counters, GL_R32UI, 16, 32, GL_RED_INTEGER, GL_UNSIGNED_INT,
                               &zero);
     dirt_mmrt_bind(m);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
@@ -71,8 +71,9 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
         ok = gl_buffer_read(m->counters, 0, sizeof(c), &c);
         if (ok) {
             stats->hits = o.count ? c.trace.x : 0;
-            stats->pixels_tested = c.trace.y;
+            stats->steps = c.trace.y;
             stats->nodes_visited = c.trace.z;
+            stats->pixels_tested = c.trace2.x;
             stats->aborted = c.trace.w;
             stats->gpu_ms = m->trace_timer.gpu_ms;
             stats->cpu_ms = m->trace_timer.cpu_ms;

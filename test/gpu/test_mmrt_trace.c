@@ -9,6 +9,8 @@
  *    primitive) must hit exactly that primitive with
  *    the Hi-Z walk and the conservative linear march; the jittered linear
  *    march (30 samples per view) is reported and held to >= 90 %;
+ *  - thickness semantics: rays stopped half a thickness before a surface hit
+ *    it (at their end) with the thickness and miss it without;
  *  - every hit of every mode (targeted rays, random rays through the quads
  *    scene and the default scene, single and cube+camera views) is a real
  *    surface within the thickness: the ray through the centre of the hit
@@ -208,12 +210,13 @@ static void print_hits(const char *label, const char *mode, const char *march,
     fprintf(stderr,
             "%-9s %-11s %-11s: %5llu rays, %5llu hits, %5llu checked | surface %llu depth %llu "
             "t %llu record %llu no-fragment %llu | worst depth error %.2f thickness | "
-            "pixels %llu nodes %llu aborted %llu\n",
+            "steps %llu pixels %llu nodes %llu aborted %llu\n",
             label, mode, march, (unsigned long long)r->rays, (unsigned long long)r->hits,
             (unsigned long long)r->checked, (unsigned long long)r->bad_surface,
             (unsigned long long)r->bad_depth, (unsigned long long)r->bad_t,
             (unsigned long long)r->bad_record, (unsigned long long)r->no_fragment,
-            r->worst_depth_error, (unsigned long long)st->pixels_tested,
+            r->worst_depth_error, (unsigned long long)st->steps,
+            (unsigned long long)st->pixels_tested,
             (unsigned long long)st->nodes_visited, (unsigned long long)st->aborted);
     CHECK(r->checked > 0 && r->hits > 0);
     CHECK(r->bad_surface == 0);
@@ -419,6 +422,69 @@ static void run(dirt_gpu *gpu, const char *label, const dirt_frame *f, const dir
     dirt_mmrt_destroy(m);
 }
 
+/* Thickness semantics: rays from the camera's eye towards interior points
+ * of the quads facing it, stopped half a thickness (in depth) before the
+ * surface, must hit it with the thickness (at t = tmax, the end of their
+ * span) in every march mode, and hit nothing with thickness 0. */
+static void short_rays(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam,
+                       const mt_quad *quads, int nquads)
+{
+    static const float frac[6][2] = {{0.23f, 0.61f}, {0.71f, 0.37f}, {0.62f, 0.88f},
+                                     {0.38f, 0.09f}, {0.15f, 0.45f}, {0.81f, 0.52f}};
+    dirt_ray rays[64 * 6];
+    uint32_t expect[64 * 6];
+    const double cam_px = 1.0 / tan(0.5 * cam->yfov); /* proj[5] of the camera view */
+    size_t n = 0;
+    for (int q = 0; q < nquads && q < 64; q++) {
+        if (quads[q].axis != 2 || quads[q].facing < 0)
+            continue;
+        const float *c0 = f->position[6 * q], *c1 = f->position[6 * q + 1];
+        const float *c3 = f->position[6 * q + 5];
+        for (int k = 0; k < 6; k++) {
+            double tg[3], o[3] = {0, 0, 0}, d[3], t;
+            for (int a = 0; a < 3; a++)
+                tg[a] = c0[a] + frac[k][0] * (c1[a] - c0[a]) + frac[k][1] * (c3[a] - c0[a]);
+            for (int a = 0; a < 3; a++)
+                d[a] = tg[a] / -tg[2]; /* t = depth along the camera axis */
+            uint32_t p = cpu_closest(f, o, d, 0, 1e30, -1, &t);
+            if (p == DIRT_HIT_NONE || quads[p / 2].axis != 2 ||
+                !robust(f, o, d, 1e30, 2.0 * t * 2.0 / (cam_px * 72), p, -1))
+                continue;
+            dirt_ray *r = &rays[n];
+            for (int a = 0; a < 3; a++) {
+                r->org[a] = 0;
+                r->dir[a] = (float)d[a];
+            }
+            r->tmin = 0;
+            r->tmax = (float)(t - 0.5 * THICKNESS);
+            expect[n++] = p;
+        }
+    }
+    dirt_mmrt_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = 96, .height = 72},
+                        .buckets = 4};
+    dirt_mmrt *m = dirt_mmrt_create(gpu, &o);
+    CHECK(m && dirt_mmrt_build(m, f, cam));
+    if (!m)
+        return;
+    dirt_hit hits[64 * 6];
+    for (int k = 0; k < 3; k++) {
+        size_t good = 0, none = 0;
+        dirt_mmrt_trace_opts to = marches[k];
+        CHECK(dirt_mmrt_trace_cpu(m, rays, n, hits, &to, NULL));
+        for (size_t i = 0; i < n; i++)
+            good += hits[i].prim == expect[i] && fabsf(hits[i].t - rays[i].tmax) < 1e-4f;
+        to.thickness = -1;
+        CHECK(dirt_mmrt_trace_cpu(m, rays, n, hits, &to, NULL));
+        for (size_t i = 0; i < n; i++)
+            none += hits[i].prim == DIRT_HIT_NONE;
+        fprintf(stderr, "short     single      %-11s: %zu rays stopped 0.5 thickness before a "
+                "surface: %zu hit it at tmax, %zu miss with thickness 0\n",
+                march_name(&marches[k]), n, good, none);
+        CHECK(n > 15 && good == n && none == n);
+    }
+    dirt_mmrt_destroy(m);
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -452,6 +518,7 @@ int main(void)
     enum { NT = 12 * 6 * 4, NB = 600, NR = 1500 };
     dirt_ray *rays = calloc(NR, sizeof(*rays));
     size_t nt = targeted_rays(f, nq, rays, NT);
+    short_rays(gpu, f, &cam, quads, nq);
     run(gpu, "targeted", f, &cam, DIRT_VIEWS_SINGLE, 96, rays, nt, true, NULL);
     run(gpu, "targeted", f, &cam, DIRT_VIEWS_CUBE_CAMERA, 96, rays, nt, true, NULL);
     int from[NB];

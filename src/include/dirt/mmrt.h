@@ -156,8 +156,10 @@ typedef struct dirt_mmrt_trace_opts {
 
 typedef struct dirt_mmrt_trace_stats {
     uint64_t rays, hits;
-    uint64_t pixels_tested;   /* pixel list tests (when opts.count) */
-    uint64_t nodes_visited;   /* id nodes read (when opts.count) */
+    /* When opts.count (32-bit GPU counters: keep batches modest): */
+    uint64_t steps;           /* march steps: Hi-Z cells at any level, linear samples */
+    uint64_t pixels_tested;   /* per-pixel tests (bounds, then buckets and lists) */
+    uint64_t nodes_visited;   /* id nodes read */
     uint64_t aborted;         /* rays whose Hi-Z walk ran out of steps */
     float thickness;          /* the thickness used */
     double gpu_ms, cpu_ms;    /* -1 when unavailable */

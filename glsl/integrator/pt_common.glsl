@@ -1,0 +1,136 @@
+// GPU path tracer: buffers and helpers shared by its passes. Mirrors the
+// CPU reference (src/ref/render.c): same vertex construction, same random
+// dimensions, same next-event estimation and MIS, so both follow the same
+// paths for a given (seed, pixel, sample). Needs common/layout.h and
+// integrator/model.glsl (with DIRT_MODEL_BUFFERS).
+
+layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
+    dirt_gpu_vertex vertices[];
+};
+layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
+    uint prim_material[];
+};
+layout(std430, binding = DIRT_BIND_PATHS) buffer Paths {
+    dirt_gpu_path paths[];
+};
+
+layout(location = 0) uniform uint u_pixels;
+layout(location = 1) uniform int u_width;
+layout(location = 2) uniform int u_height;
+layout(location = 3) uniform uint u_seed;
+layout(location = 4) uniform uint u_sample;
+layout(location = 5) uniform uint u_bounce;    // k: the path event being shaded
+layout(location = 6) uniform uint u_bounces;   // K: scattering events allowed
+layout(location = 7) uniform uint u_slot;      // ring slot of G_k
+layout(location = 8) uniform vec3 u_background;
+layout(location = 9) uniform float u_ao_distance;
+
+#define SHADOW_SHORTEN 1e-4
+
+float ray_epsilon(vec3 p)
+{
+    float m = max(abs(p.x), max(abs(p.y), abs(p.z)));
+    return 1e-4 * max(1.0, m);
+}
+
+vec3 tri_vertex(uint prim, uint k)
+{
+    return vertices[3u * prim + k].position.xyz;
+}
+
+vec3 tri_point(uint prim, float b1, float b2)
+{
+    vec3 r = tri_vertex(prim, 0u) * (1.0 - b1 - b2);
+    r = r + tri_vertex(prim, 1u) * b1;
+    return r + tri_vertex(prim, 2u) * b2;
+}
+
+vec2 tri_uv(uint prim, float b1, float b2)
+{
+    float b0 = 1.0 - b1 - b2;
+    vec2 t0 = vec2(vertices[3u * prim].position.w, vertices[3u * prim].normal.w);
+    vec2 t1 = vec2(vertices[3u * prim + 1u].position.w, vertices[3u * prim + 1u].normal.w);
+    vec2 t2 = vec2(vertices[3u * prim + 2u].position.w, vertices[3u * prim + 2u].normal.w);
+    return b0 * t0 + b1 * t1 + b2 * t2;
+}
+
+vec3 tri_normal_ng(uint prim)
+{
+    vec3 p0 = tri_vertex(prim, 0u);
+    return dirt_normalize_g(cross(tri_vertex(prim, 1u) - p0, tri_vertex(prim, 2u) - p0));
+}
+
+// Solid-angle pdf with which next-event estimation picks direction `dir`
+// towards a point of emissive triangle `prim` at distance `dist`.
+float light_pdf(uint prim, vec3 dir, float dist)
+{
+    if (dirt_model_lights.counts.x == 0u)
+        return 0.0;
+    float cos_l = abs(dot(tri_normal_ng(prim), dir));
+    if (!(cos_l > 0.0))
+        return 0.0;
+    return dist * dist /
+           (cos_l * dirt_model_lights.area.x * float(dirt_model_lights.counts.z));
+}
+
+// A path vertex (= make_vertex of the reference).
+struct pt_vertex {
+    uint prim;
+    vec3 p, ng, t, b, n, wo;
+    bool front;
+    dirt_surface_g surf;
+    vec3 le, origin;
+};
+
+vec3 to_local(vec3 w, vec3 t, vec3 b, vec3 n)
+{
+    return vec3(dot(w, t), dot(w, b), dot(w, n));
+}
+
+vec3 from_local(vec3 w, vec3 t, vec3 b, vec3 n)
+{
+    return w.x * t + w.y * b + w.z * n;
+}
+
+// Builds the vertex from a fetched shading point; `dir` is the unit
+// direction of the arriving ray.
+pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir)
+{
+    pt_vertex v;
+    v.prim = floatBitsToUint(g.pos_prim.w);
+    v.p = g.pos_prim.xyz;
+    vec3 ng = g.ng_u.xyz;
+    v.front = dot(ng, dir) < 0.0;
+    if (!v.front)
+        ng = -ng;
+    v.ng = ng;
+    vec3 ns = ng;
+    vec3 n = g.n_mat.xyz;
+    if (!v.front)
+        n = -n;
+    if (dirt_is_finite_g(n) && dot(n, n) > 0.0 && dot(n, ng) > 0.0)
+        ns = n;
+    vec3 wo_world = -dir;
+    dirt_onb_g(ns, v.t, v.b);
+    v.n = ns;
+    v.wo = to_local(wo_world, v.t, v.b, v.n);
+    if (v.wo.z <= 0.0) {
+        v.n = ng;
+        dirt_onb_g(ng, v.t, v.b);
+        v.wo = to_local(wo_world, v.t, v.b, v.n);
+    }
+    v.surf = dirt_material_surface_g(floatBitsToUint(g.n_mat.w), vec2(g.ng_u.w, g.wo_v.w));
+    v.le = (v.front || v.surf.double_sided) ? v.surf.emission : vec3(0.0);
+    v.origin = v.p + ng * ray_epsilon(v.p);
+    return v;
+}
+
+uint path_flags(dirt_gpu_path s)
+{
+    return floatBitsToUint(s.radiance.w);
+}
+
+void set_flags(inout dirt_gpu_path s, uint f)
+{
+    s.radiance.w = uintBitsToFloat(f);
+}

@@ -1,0 +1,38 @@
+#version 450 core
+// Path tracer, event 0: a camera ray per pixel (jittered in the pixel, thin
+// lens when the camera has an aperture) and a fresh path state.
+#include "common/layout.h"
+#define DIRT_MODEL_BUFFERS 1
+#include "common/rng.glsl"
+#include "integrator/model.glsl"
+#include "integrator/pt_common.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = DIRT_BIND_RAYS) writeonly buffer Rays {
+    dirt_gpu_ray rays[];
+};
+
+void main()
+{
+    uint p = gl_GlobalInvocationID.x;
+    if (p >= u_pixels)
+        return;
+    uint x = p % uint(u_width), y = p / uint(u_width);
+    uint key = dirt_rng_key(u_seed, p, u_sample, 0u);
+    float px = float(x) + dirt_rng_next_float(key, DIRT_RNG_DIM_PIXEL_X);
+    float py = float(y) + dirt_rng_next_float(key, DIRT_RNG_DIM_PIXEL_Y);
+    vec3 org, dir;
+    dirt_camera_ray_g(dirt_model_camera, u_width, u_height, px, py,
+                      dirt_rng_next_float(key, DIRT_RNG_DIM_LENS_U),
+                      dirt_rng_next_float(key, DIRT_RNG_DIM_LENS_V), org, dir);
+    rays[p].origin_tmin = vec4(org, 0.0);
+    rays[p].dir_tmax = vec4(dir, DIRT_INFINITY_G);
+    dirt_gpu_path s;
+    s.beta_pdf = vec4(1.0, 1.0, 1.0, 0.0);
+    s.radiance = vec4(0.0, 0.0, 0.0, uintBitsToFloat(DIRT_PATH_ALIVE | DIRT_PATH_PREV_DELTA));
+    s.pending = vec4(0.0);
+    s.first_albedo = vec4(0.0);
+    s.first_normal = vec4(0.0);
+    paths[p] = s;
+}

@@ -1,0 +1,26 @@
+#version 450 core
+// Path tracer: adds each pending next-event (or AO) contribution whose
+// shadow ray reached its target unblocked (DIRT_BIND_HITS holds the shadow
+// rays' any-hit results).
+#include "common/layout.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = DIRT_BIND_PATHS) buffer Paths {
+    dirt_gpu_path paths[];
+};
+layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
+    dirt_gpu_hit hits[];
+};
+
+layout(location = 0) uniform uint u_pixels;
+
+void main()
+{
+    uint p = gl_GlobalInvocationID.x;
+    if (p >= u_pixels || paths[p].pending.w == 0.0)
+        return;
+    if (hits[p].ids.x == DIRT_NO_HIT)
+        paths[p].radiance.xyz += paths[p].pending.xyz;
+    paths[p].pending = vec4(0.0);
+}
