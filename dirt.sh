@@ -69,8 +69,10 @@ case "${1:-}" in
   run)
     build build
     mkdir -p out
-    ./build/src/app/dirt-render -o out/default.exr --png -W 640 -H 480
-    say "images: $(pwd)/out/default.exr (float RGBA) and $(pwd)/out/default.png (preview)"
+    # Path traced through the DIRT structure (GPU, or Mesa llvmpipe on the CPU:
+    # a modest size and sample count keep that to about a minute).
+    ./build/src/app/dirt-render -o out/default.exr --png -W 320 -H 240 --spp 8
+    say "images: $(pwd)/out/default.exr (float RGBA + albedo/normal) and $(pwd)/out/default.png (preview)"
     ;;
   test)
     build build

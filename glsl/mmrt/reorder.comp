@@ -4,11 +4,15 @@
 // id (a total order: a primitive has at most one fragment per pixel), then
 // sets the next/prev pointers, the head (nearest) and tail (farthest) of
 // every non-empty bucket (the build clears the tails, so empty buckets cost
-// one read). Lists of up to DIRT_MMRT_SORT_CHUNK nodes are sorted in
-// registers (a fixed sorting network, constant indices); longer lists are
-// consumed in chunks of that
-// size, each sorted in registers and merged into the sorted list, so nothing
-// is ever dropped (cost O(n * n / chunk) for a list of n).
+// one read). Lists of one or two nodes are linked directly. Longer ones:
+//  default:         chunks of DIRT_MMRT_SORT_CHUNK nodes are sorted in
+//                   registers (a fixed sorting network, constant indices) and
+//                   merged into the sorted list: one chunk for short lists,
+//                   O(n * n / chunk) for a list of n;
+//  MMRT_SORT_LIST:  insertion sort in the list itself (O(n^2) reads; no
+//                   arrays: 2-4x faster on llvmpipe, whose SIMD lanes pay for
+//                   the network's masked comparators).
+// Both keep every node and give the same order.
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
 
@@ -122,9 +126,51 @@ void main()
         uint rest = heads[slot];     // nodes not sorted yet (original order)
         if (rest == DIRT_LIST_END)
             continue;                // tails are cleared to DIRT_LIST_END by the build
+        uint second = node_next(rest);
+        if (second == DIRT_LIST_END || node_next(second) == DIRT_LIST_END) {
+            // One or two nodes (the common case): no sort needed beyond a swap.
+            uint a = rest, c = second;
+            if (c != DIRT_LIST_END && before(c, node_z(c), a, node_z(a))) {
+                a = second;
+                c = rest;
+            }
+            set_prev(a, DIRT_LIST_END);
+            set_next(a, c);
+            if (c != DIRT_LIST_END) {
+                set_prev(c, a);
+                set_next(c, DIRT_LIST_END);
+            }
+            heads[slot] = a;
+            tails[slot] = c != DIRT_LIST_END ? c : a;
+            layers += c != DIRT_LIST_END ? 2u : 1u;
+            continue;
+        }
         uint sorted = DIRT_LIST_END; // sorted list built so far
         uint count = 0u;
         uint chunks = 0u;
+#ifdef MMRT_SORT_LIST
+        // Insertion sort in the list itself: each node is linked into the
+        // sorted list, walking it from its head.
+        while (rest != DIRT_LIST_END) {
+            uint node = rest;
+            float z = node_z(node);
+            rest = node_next(node);
+            count++;
+            if (sorted == DIRT_LIST_END || before(node, z, sorted, node_z(sorted))) {
+                set_next(node, sorted);
+                sorted = node;
+            } else {
+                uint p = sorted, q = node_next(sorted);
+                while (q != DIRT_LIST_END && !before(node, z, q, node_z(q))) {
+                    p = q;
+                    q = node_next(q);
+                }
+                set_next(node, q);
+                set_next(p, node);
+            }
+        }
+        chunks = (count + uint(CHUNK) - 1u) / uint(CHUNK);
+#else
         while (rest != DIRT_LIST_END) {
             // Up to CHUNK nodes into registers, padded with (END, +inf).
             for (int k = 0; k < CHUNK; k++) {
@@ -164,6 +210,7 @@ void main()
             sorted = first;
             chunks++;
         }
+#endif
         // prev pointers, head and tail.
         uint prev = DIRT_LIST_END;
         for (uint n = sorted; n != DIRT_LIST_END; n = node_next(n)) {

@@ -50,6 +50,7 @@ typedef struct options {
     enum dirt_fetch_mode fetch;
     const char *stats_path;
     long threads;
+    double aperture, focus;
 } options;
 
 static void usage(FILE *out)
@@ -78,6 +79,9 @@ static void usage(FILE *out)
 "      --camera I        use the scene's camera I (default: camera 0, or an\n"
 "                        automatic camera framing the scene when it has none)\n"
 "      --auto-camera     ignore the scene's cameras; frame the scene bounds\n"
+"      --aperture R      thin-lens aperture radius (default 0: pinhole)\n"
+"      --focus D         focus distance with --aperture (default: distance to the\n"
+"                        scene centre)\n"
 "\n"
 "Technique:\n"
 "      --engine NAME     dirt: path tracing through the DIRT structure on the GPU\n"
@@ -100,12 +104,13 @@ static void usage(FILE *out)
 "                        write heat maps of list lengths and depth bounds per\n"
 "                        view into DIR (single frame only)\n"
 "      --views MODE      single | cube | cube+camera (default cube+camera)\n"
-"  -S, --tile-size S     tile size 1, 2, 4 or 8 (default 2)\n"
+"  -S, --tile S          tile size 1, 2, 4 or 8 (default 2; also --tile-size)\n"
 "  -B, --buckets B       depth buckets per tile, >= 1 (default 16)\n"
 "      --face-size N     cube face size in pixels (default max(W,H)/2)\n"
 "      --no-conservative-raster  emulate conservative rasterization even when\n"
 "                        GL_NV_conservative_raster is present\n"
-"      --hiz-levels N    Hi-Z levels the march may use (default: all)\n"
+"      --hiz-top L       highest Hi-Z level the march starts from; 0 = tiles\n"
+"                        only, no Hi-Z (default: the pyramid's top)\n"
 "      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
 "\n"
 "Other:\n"
@@ -275,9 +280,19 @@ static int parse_args(int argc, char **argv, options *o)
             NEED_VALUE();
             if (!cli_int(PROG, a, val, 1, 4096, &o->threads))
                 return DIRT_EXIT_USAGE;
-        } else if (!strcmp(a, "--hiz-levels")) {
+        } else if (!strcmp(a, "--hiz-top")) {
             NEED_VALUE();
-            if (!cli_int(PROG, a, val, 1, 16, &o->hiz_levels))
+            long top;
+            if (!cli_int(PROG, a, val, 0, 15, &top))
+                return DIRT_EXIT_USAGE;
+            o->hiz_levels = top + 1;
+        } else if (!strcmp(a, "--aperture")) {
+            NEED_VALUE();
+            if (!cli_float(PROG, a, val, 0, 1e6, &o->aperture))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--focus")) {
+            NEED_VALUE();
+            if (!cli_float(PROG, a, val, 1e-6, 1e9, &o->focus))
                 return DIRT_EXIT_USAGE;
         } else if (!strcmp(a, "--fetch")) {
             NEED_VALUE();
@@ -310,7 +325,7 @@ static int parse_args(int argc, char **argv, options *o)
                 cli_error(PROG, "--views expects single, cube or cube+camera, got '%s'", val);
                 return DIRT_EXIT_USAGE;
             }
-        } else if (!strcmp(a, "-S") || !strcmp(a, "--tile-size")) {
+        } else if (!strcmp(a, "-S") || !strcmp(a, "--tile-size") || !strcmp(a, "--tile")) {
             NEED_VALUE();
             if (!cli_int(PROG, a, val, 1, 8, &o->tile_size))
                 return DIRT_EXIT_USAGE;
@@ -633,6 +648,15 @@ int main(int argc, char **argv)
             cam = frame->cameras[cam_index];
         else
             dirt_camera_auto(frame, &cam);
+        if (o.aperture > 0) {
+            cam.aperture_radius = (float)o.aperture;
+            float c[3], d = 0;
+            for (int k = 0; k < 3; k++) {
+                c[k] = 0.5f * (frame->bounds_min[k] + frame->bounds_max[k]) - cam.eye[k];
+                d += c[k] * cam.forward[k];
+            }
+            cam.focus_distance = o.focus > 0 ? (float)o.focus : (d > 0 ? d : 1.0f);
+        }
         double f0 = dirt_clock_ms();
         progress_state prog = {.start = f0, .last = f0, .frame = fi, .quiet = o.quiet};
         if (ads) {

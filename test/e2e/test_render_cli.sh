@@ -75,6 +75,13 @@ expect_rc 2 "unknown engine" -- -o "$out/a.png" --engine optix
 expect_rc 2 "frames without pattern" -- -o "$out/a.png" --frames 0:3
 expect_rc 2 "frames reversed" -- -o "$out/a_%d.png" --frames 3:1
 expect_rc 2 "two scenes" -- "$tmp/good.gltf" "$tmp/good.gltf" -o "$out/a.png"
+expect_rc 2 "bad mode" -- -o "$out/a.png" --mode xyz
+expect_rc 2 "zero spp" -- -o "$out/a.png" --spp 0
+expect_rc 2 "stats not json" -- -o "$out/a.png" --stats "$out/s.txt"
+expect_rc 2 "short background" -- -o "$out/a.png" --background 1,2
+expect_rc 2 "bad fetch" -- -o "$out/a.png" --fetch magic
+expect_rc 2 "bad tile size" -- -o "$out/a.png" --tile 3
+expect_rc 2 "stats dir missing" -- -o "$out/a.png" --stats "$tmp/no/dir/s.json"
 no_leftovers "$out"
 
 # bad files
@@ -92,8 +99,17 @@ expect_rc 2 "output is a directory" -- -o "$tmp/isdir.png"
 expect_rc 2 "camera out of range" -- -o "$out/a.png" --camera 99
 no_leftovers "$out"
 
+# The Embree engine needs no GPU: EXR with AOVs and the stats JSON.
+expect_rc 0 "embree engine" -- --engine embree -o "$out/e.exr" -W 16 -H 12 --spp 2 --stats "$out/e.json"
+head -c 4 "$out/e.exr" | od -An -tx1 | grep -q '76 2f 31 01' && ok || fail "e.exr is not an EXR"
+grep -aq 'albedo.R' "$out/e.exr" && grep -aq 'N.X' "$out/e.exr" && ok || fail "e.exr lacks the AOV channels"
+for key in build_ms rays mrays_per_s; do
+  grep -q "\"$key\": [0-9]" "$out/e.json" && ok || fail "e.json lacks $key"
+done
+rm -f "$out"/e.*
+
 # Good inputs need a GL context; without one the program says so with exit 3.
-"$render" -o "$out/default.png" -W 64 -H 48 >"$tmp/stdout" 2>"$tmp/stderr"
+"$render" -o "$out/default.png" -W 64 -H 48 --spp 2 >"$tmp/stdout" 2>"$tmp/stderr"
 rc=$?
 if [ $rc -eq 3 ]; then
   echo "no OpenGL context: skipping the rendering half" >&2
@@ -104,15 +120,21 @@ fi
 head -c 8 "$out/default.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' && ok || fail "default.png is not a PNG"
 grep -q "wrote $out/default.png" "$tmp/stdout" && ok || fail "output path not printed"
 
-expect_rc 0 "exr + png preview" -- -o "$out/d.exr" --png -W 32 -H 24
+expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --spp 2 --stats "$out/d.json"
+for key in build_ms trace_ms fetch_ms shade_ms bytes_total rays mrays_per_s; do
+  grep -q "\"$key\": [0-9]" "$out/d.json" && ok || fail "d.json lacks $key"
+done
+grep -q '"bytes": {' "$out/d.json" && ok || fail "d.json lacks the bytes object"
+expect_rc 0 "raster engine" -- --engine raster -o "$out/r.png" -W 32 -H 24
+expect_rc 0 "ao, raster fetch, single view" -- -o "$out/ao.png" -W 32 -H 24 --spp 2 --mode ao --ao-distance 0.5 --fetch raster --views single
 head -c 4 "$out/d.exr" | od -An -tx1 | grep -q '76 2f 31 01' && ok || fail "d.exr is not an EXR"
 [ -s "$out/d.png" ] && ok || fail "no PNG preview beside the EXR"
 
-expect_rc 0 "frame range" -- "$tmp/good.gltf" -o "$out/f_%03d.png" --frames 2:4 -W 16 -H 16
+expect_rc 0 "frame range" -- "$tmp/good.gltf" -o "$out/f_%03d.png" --frames 2:4 -W 16 -H 16 --spp 1
 for i in 002 003 004; do [ -s "$out/f_$i.png" ] && ok || fail "frame $i missing"; done
 [ ! -e "$out/f_001.png" ] && [ ! -e "$out/f_005.png" ] && ok || fail "frames outside the range written"
 
-expect_rc 0 "missing texture only warns" -- "$tmp/notex.gltf" -o "$out/notex.png" -W 16 -H 16
+expect_rc 0 "missing texture only warns" -- "$tmp/notex.gltf" -o "$out/notex.png" -W 16 -H 16 --spp 1
 grep -qi "missing.png" "$tmp/stderr" && ok || fail "no warning naming the missing texture"
 
 ls "$out" | grep -q '\.tmp' && fail "temporary files left: $(ls "$out")" || ok
