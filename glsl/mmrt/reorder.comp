@@ -75,11 +75,9 @@ bool before(uint a, float za, uint b, float zb)
     return pa != pb ? pa < pb : a < b;
 }
 
-// Every array index below is a compile-time constant (unrolled loops, a
-// fixed network), so the chunk stays in registers.
-uint idx[CHUNK];
-float key[CHUNK];
-
+#ifndef MMRT_SORT_LIST
+// Compare-exchange of entries a, b (compile-time constants, so the chunk
+// arrays idx/key of main() stay in registers).
 #define CX(a, b)                                                  \
     if (before(idx[b], key[b], idx[a], key[a])) {                 \
         uint ti = idx[a];                                         \
@@ -91,26 +89,14 @@ float key[CHUNK];
     }
 
 // Batcher's odd-even merge sort network for 8 entries (19 comparators).
-void sort_chunk()
-{
-    CX(0, 1) CX(2, 3) CX(4, 5) CX(6, 7)
-    CX(0, 2) CX(1, 3) CX(4, 6) CX(5, 7)
-    CX(1, 2) CX(5, 6)
-    CX(0, 4) CX(1, 5) CX(2, 6) CX(3, 7)
-    CX(2, 4) CX(3, 5)
+#define SORT_CHUNK()                                              \
+    CX(0, 1) CX(2, 3) CX(4, 5) CX(6, 7)                           \
+    CX(0, 2) CX(1, 3) CX(4, 6) CX(5, 7)                           \
+    CX(1, 2) CX(5, 6)                                             \
+    CX(0, 4) CX(1, 5) CX(2, 6) CX(3, 7)                           \
+    CX(2, 4) CX(3, 5)                                             \
     CX(1, 2) CX(3, 4) CX(5, 6)
-}
-
-// Drops the chunk's first entry.
-void shift_chunk()
-{
-    for (int k = 0; k < CHUNK - 1; k++) {
-        idx[k] = idx[k + 1];
-        key[k] = key[k + 1];
-    }
-    idx[CHUNK - 1] = DIRT_LIST_END;
-    key[CHUNK - 1] = uintBitsToFloat(0x7F800000u);
-}
+#endif
 
 void main()
 {
@@ -121,11 +107,22 @@ void main()
     int B = params.config.y;
     uint layers = 0u;
     const float inf = uintBitsToFloat(0x7F800000u);
-    for (int b = 0; b < B; b++) {
+    // Non-empty buckets first, 32 at a time, as a bit mask: the sort loop then
+    // runs once per non-empty bucket (SIMD lanes diverge far less than when
+    // looping over all B). Tails of empty buckets stay as the build cleared
+    // them (DIRT_LIST_END).
+    for (int base = 0; base < B; base += 32) {
+    uint mask = 0u;
+    int nb = min(32, B - base);
+    for (int k = 0; k < nb; k++) {
+        if (heads[uint(base + k) * pixels + g] != DIRT_LIST_END)
+            mask |= 1u << uint(k);
+    }
+    while (mask != 0u) {
+        int b = base + findLSB(mask);
+        mask &= mask - 1u;
         uint slot = uint(b) * pixels + g;
         uint rest = heads[slot];     // nodes not sorted yet (original order)
-        if (rest == DIRT_LIST_END)
-            continue;                // tails are cleared to DIRT_LIST_END by the build
         uint second = node_next(rest);
         if (second == DIRT_LIST_END || node_next(second) == DIRT_LIST_END) {
             // One or two nodes (the common case): no sort needed beyond a swap.
@@ -171,6 +168,8 @@ void main()
         }
         chunks = (count + uint(CHUNK) - 1u) / uint(CHUNK);
 #else
+        uint idx[CHUNK];
+        float key[CHUNK];
         while (rest != DIRT_LIST_END) {
             // Up to CHUNK nodes into registers, padded with (END, +inf).
             for (int k = 0; k < CHUNK; k++) {
@@ -184,7 +183,7 @@ void main()
                     key[k] = inf;
                 }
             }
-            sort_chunk();
+            SORT_CHUNK()
             // Merge the chunk with the sorted list (next pointers only).
             uint s = sorted;
             float zs = s != DIRT_LIST_END ? node_z(s) : inf;
@@ -194,7 +193,12 @@ void main()
                 if (idx[0] != DIRT_LIST_END &&
                     (s == DIRT_LIST_END || before(idx[0], key[0], s, zs))) {
                     pick = idx[0];
-                    shift_chunk();
+                    for (int k = 0; k < CHUNK - 1; k++) {
+                        idx[k] = idx[k + 1];
+                        key[k] = key[k + 1];
+                    }
+                    idx[CHUNK - 1] = DIRT_LIST_END;
+                    key[CHUNK - 1] = inf;
                 } else {
                     pick = s;
                     s = node_next(s);
@@ -222,6 +226,7 @@ void main()
         layers += count;
         if (chunks > 1u)
             atomicAdd(counters.build.z, 1u);
+    }
     }
     if (layers > 0u) {
         atomicMax(counters.build.y, layers);

@@ -180,16 +180,17 @@ static void float_sample(const float *img, int w, int h, float u, float v, float
     }
 }
 
-/* dst (dw x dh linear float RGBA) = mean of k x k bilinear samples per texel
- * of either the original texture `tex` (decoded by dirt_texture_sample) or
- * the float image `src` (sw x sh). */
+/* Rows [j0, j1) of a dw x dh linear float RGBA image into dst (row j0
+ * first): each texel the mean of k x k bilinear samples of either the
+ * original texture `tex` (decoded by dirt_texture_sample) or the float image
+ * `src` (sw x sh), at the centres of a k x k grid over its footprint. */
 static void resample(const dirt_texture *tex, const float *src, int sw, int sh, float *dst,
-                     int dw, int dh)
+                     int dw, int dh, int j0, int j1)
 {
     int kx = sw > dw ? (sw + dw - 1) / dw : 1;
     int ky = sh > dh ? (sh + dh - 1) / dh : 1;
     float inv = 1.0f / (float)(kx * ky);
-    for (int j = 0; j < dh; j++) {
+    for (int j = j0; j < j1; j++) {
         for (int i = 0; i < dw; i++) {
             float sum[4] = {0.0f, 0.0f, 0.0f, 0.0f}, s[4];
             for (int sy = 0; sy < ky; sy++) {
@@ -204,7 +205,7 @@ static void resample(const dirt_texture *tex, const float *src, int sw, int sh, 
                         sum[c] += s[c];
                 }
             }
-            float *o = dst + ((size_t)j * (size_t)dw + (size_t)i) * 4;
+            float *o = dst + ((size_t)(j - j0) * (size_t)dw + (size_t)i) * 4;
             for (int c = 0; c < 4; c++)
                 o[c] = sum[c] * inv;
         }
@@ -221,10 +222,15 @@ static void encode(const float *img, size_t texels, bool srgb, uint8_t *out)
     }
 }
 
+static int level_dim(int size, int level)
+{
+    int d = size >> level;
+    return d > 0 ? d : 1;
+}
+
 static size_t level_bytes(const dirt_gpu_texture_array *a, int level)
 {
-    int w = a->width >> level, h = a->height >> level;
-    return (size_t)(w > 0 ? w : 1) * (size_t)(h > 0 ? h : 1) * 4;
+    return (size_t)level_dim(a->width, level) * (size_t)level_dim(a->height, level) * 4;
 }
 
 /* Level `level` of layer `layer` of `a`. */
@@ -234,7 +240,10 @@ static uint8_t *layer_level(dirt_gpu_texture_array *a, int layer, int level)
 }
 
 /* Fills every level of layer `layer` from texture t (NULL or empty: white).
- * `work` holds two float images of level 0's size. */
+ * Level 0 is t's bytes when t has the array's size, else resampled from t
+ * row by row; level 1 is resampled from t, level l >= 2 from level l - 1
+ * (in float). `work` holds float images of levels 1 and 2 (>= one row of
+ * level 0). */
 static void pack_layer(dirt_gpu_texture_array *a, int layer, const dirt_texture *t,
                        float *work)
 {
@@ -244,28 +253,25 @@ static void pack_layer(dirt_gpu_texture_array *a, int layer, const dirt_texture 
             memset(layer_level(a, layer, l), 255, level_bytes(a, l));
         return;
     }
-    size_t n0 = (size_t)a->width * (size_t)a->height * 4;
-    float *cur = work, *next = work + n0;
-    int cw = a->width, ch = a->height;
     if (t->width == a->width && t->height == a->height) {
-        memcpy(layer_level(a, layer, 0), t->rgba, n0);
-        /* Decoded copy of the original for the mip chain. */
-        for (size_t p = 0; p < n0 / 4; p++) {
-            const uint8_t *s = t->rgba + 4 * p;
-            for (int c = 0; c < 3; c++)
-                cur[4 * p + (size_t)c] = t->srgb ? dirt_srgb_to_linear((float)s[c] / 255.0f)
-                                                 : (float)s[c] / 255.0f;
-            cur[4 * p + 3] = (float)s[3] / 255.0f;
-        }
+        memcpy(layer_level(a, layer, 0), t->rgba, level_bytes(a, 0));
     } else {
-        resample(t, NULL, t->width, t->height, cur, cw, ch);
-        encode(cur, n0 / 4, t->srgb, layer_level(a, layer, 0));
+        size_t row = (size_t)a->width * 4;
+        for (int j = 0; j < a->height; j++) {
+            resample(t, NULL, t->width, t->height, work, a->width, a->height, j, j + 1);
+            encode(work, (size_t)a->width, t->srgb, layer_level(a, layer, 0) + (size_t)j * row);
+        }
     }
-    for (int l = 1; l < a->levels; l++) {
-        int nw = a->width >> l, nh = a->height >> l;
-        nw = nw > 0 ? nw : 1;
-        nh = nh > 0 ? nh : 1;
-        resample(NULL, cur, cw, ch, next, nw, nh);
+    if (a->levels < 2)
+        return;
+    size_t n1 = (size_t)level_dim(a->width, 1) * (size_t)level_dim(a->height, 1) * 4;
+    float *cur = work, *next = work + n1;
+    int cw = level_dim(a->width, 1), ch = level_dim(a->height, 1);
+    resample(t, NULL, t->width, t->height, cur, cw, ch, 0, ch);
+    encode(cur, (size_t)cw * (size_t)ch, t->srgb, layer_level(a, layer, 1));
+    for (int l = 2; l < a->levels; l++) {
+        int nw = level_dim(a->width, l), nh = level_dim(a->height, l);
+        resample(NULL, cur, cw, ch, next, nw, nh, 0, nh);
         encode(next, (size_t)nw * (size_t)nh, t->srgb, layer_level(a, layer, l));
         float *tmp = cur;
         cur = next;
@@ -304,7 +310,11 @@ bool dirt_gpu_textures_pack(const dirt_texture *textures, size_t count, int max_
     }
     out->size = total;
     out->pixels = malloc(total);
-    float *work = malloc((size_t)w * (size_t)h * 4 * 2 * sizeof(float));
+    /* levels 1 and 2 (each the larger of the two alternates), and a row of 0 */
+    size_t n1 = (size_t)level_dim(w, 1) * (size_t)level_dim(h, 1) * 4;
+    size_t n2 = (size_t)level_dim(w, 2) * (size_t)level_dim(h, 2) * 4;
+    size_t nw = n1 + n2 > (size_t)w * 4 ? n1 + n2 : (size_t)w * 4;
+    float *work = malloc(nw * sizeof(float));
     if (!out->pixels || !work) {
         DIRT_ERROR("gpu tables: out of memory for a %dx%dx%d texture array", w, h, out->layers);
         free(work);

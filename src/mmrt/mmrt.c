@@ -61,7 +61,16 @@ dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
     m->prog_store = gl_program_create("mmrt store", paths, defs, 2);
     /* The min/max pyramid is DIRT's, on a tile size of 1. */
     m->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
-    m->prog_reorder = gl_program_compute("mmrt/reorder.comp", NULL, 0);
+    if (m->opts.sort == DIRT_MMRT_SORT_AUTO)
+        m->opts.sort = dirt_gpu_get_caps(gpu)->software ? DIRT_MMRT_SORT_LIST
+                                                        : DIRT_MMRT_SORT_REGISTERS;
+    if (m->opts.sort != DIRT_MMRT_SORT_REGISTERS && m->opts.sort != DIRT_MMRT_SORT_LIST) {
+        DIRT_ERROR("unknown sort %d", (int)m->opts.sort);
+        goto error;
+    }
+    glsl_define sort_def = {"MMRT_SORT_LIST", "1"};
+    m->prog_reorder = gl_program_compute("mmrt/reorder.comp", &sort_def,
+                                         m->opts.sort == DIRT_MMRT_SORT_LIST ? 1 : 0);
     m->prog_trace = gl_program_compute("mmrt/trace.comp", NULL, 0);
     if (!m->prog_depth || !m->prog_store || !m->prog_mip || !m->prog_reorder || !m->prog_trace)
         goto error;
@@ -343,6 +352,7 @@ static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int
     st->covered_pixels = c->build.w;
     st->avg_layers = st->covered_pixels ? (double)st->fragments / (double)st->covered_pixels : 0;
     st->store_runs = runs;
+    st->sort = m->opts.sort;
     st->bytes_vertices = m->num_primitives * (3 * sizeof(struct dirt_gpu_vertex) + 4);
     st->bytes_depth = (uint64_t)m->set.pyramid_size * 8;
     st->bytes_heads = 2 * 4 * B * P;
@@ -437,11 +447,12 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
         size_t grown = need + need / 4;
         if (grown > max_nodes(m))
             grown = need;
-        DIRT_INFO("mmrt node pools grew from %zu to %zu nodes (%.1f MB); store pass rerun",
-                  m->node_capacity, grown,
-                  grown * (double)(DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES) / 1e6);
+        size_t before = m->node_capacity;
         if (!ensure_nodes(m, grown))
             goto done;
+        DIRT_INFO("mmrt node pools grew from %zu to %zu nodes (%.1f MB); store pass rerun",
+                  before, grown,
+                  grown * (double)(DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES) / 1e6);
         upload_params(m);
         dirt_mmrt_bind(m);
         clear_lists(m);
@@ -550,9 +561,10 @@ void dirt_mmrt_print_stats(const dirt_mmrt *m, void *out)
             m->set.count, (unsigned long long)s->pixels, m->opts.buckets,
             (unsigned long long)s->primitives);
     fprintf(f, "  fragments %llu (%.2f M), covered pixels %llu, layers avg %.2f max %u, "
-            "long lists %llu, store runs %d\n", (unsigned long long)s->fragments,
+            "long lists %llu, store runs %d, sort %s\n", (unsigned long long)s->fragments,
             s->fragments / 1e6, (unsigned long long)s->covered_pixels, s->avg_layers,
-            s->max_layers, (unsigned long long)s->long_lists, s->store_runs);
+            s->max_layers, (unsigned long long)s->long_lists, s->store_runs,
+            s->sort == DIRT_MMRT_SORT_LIST ? "list" : "registers");
     fprintf(f, "  MB: vertices %.2f, depth+pyramid %.2f, heads+tails %.2f, id nodes %.2f/%.2f, "
             "data nodes %.2f/%.2f (used/allocated), total %.2f/%.2f, paper formula %.2f\n",
             s->bytes_vertices / 1e6, s->bytes_depth / 1e6, s->bytes_heads / 1e6,

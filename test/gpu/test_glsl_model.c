@@ -502,7 +502,8 @@ static bool reported_only(int mode, const float *in)
 typedef struct field {
     const char *name;
     int off, n;
-    char kind; /* 'v' value, 'b' boolean, 'i' index */
+    char kind;      /* 'v' value, 'b' boolean, 'i' index */
+    double max_ill; /* allowed fraction of ill-conditioned cases (0: 2%) */
 } field;
 
 typedef struct mode_desc {
@@ -522,7 +523,7 @@ static const mode_desc modes[] = {
       {"ggx G2", 7, 1, 'v'}, {"fresnel rgb", 8, 3, 'v'}, {"fresnel dielectric", 11, 1, 'v'},
       {"delta", 14, 1, 'b'}}},
     {"bsdf sample", MODE_SAMPLE, 0,
-     {{"ok", 0, 1, 'b'}, {"delta", 1, 1, 'b'}, {"lobe", 2, 1, 'b'}, {"pdf", 3, 1, 'v'},
+     {{"ok", 0, 1, 'b'}, {"delta", 1, 1, 'b'}, {"lobe", 2, 1, 'b'}, {"pdf", 3, 1, 'v', 0.25},
       {"wi", 4, 3, 'v'}, {"weight", 8, 3, 'v'}}},
     {"misc", MODE_MISC, -1,
      {{"mis power", 0, 1, 'v'}, {"rr survival", 1, 1, 'v'}, {"srgb decode", 2, 1, 'v'}}},
@@ -546,12 +547,12 @@ static const mode_desc *mode_of(int mode)
 }
 
 typedef struct field_stats {
-    double max_err, max_rel;
+    double max_err, max_rel, max_rel_tight;
     int worst, fails, ill, compared;
 } field_stats;
 
 typedef struct compare_result {
-    int cases, bool_fail, near, value_fail, ill;
+    int cases, bool_fail, near, value_fail, ill, ill_excess;
     double reported_max; /* largest error of reported-only records */
 } compare_result;
 
@@ -568,7 +569,7 @@ static bool any_nonfinite(const float *c, int n)
 static compare_result compare(int mode, const float *in, const float *gpu, int n, bool quiet)
 {
     const mode_desc *d = mode_of(mode);
-    compare_result r = {n, 0, 0, 0, 0, 0.0};
+    compare_result r = {n, 0, 0, 0, 0, 0, 0.0};
     field_stats st[8];
     memset(st, 0, sizeof(st));
     int printed = 0;
@@ -633,8 +634,8 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
             const field *fd = &d->fields[f];
             if (fd->kind != 'v' || !field_applies(mode, c, fd->off))
                 continue;
-            double err = 0.0, scale = 0.0;
-            bool bad = false;
+            double err = 0.0, scale = 0.0, cond = 0.0;
+            bool bad = false, ill_field = false;
             if (any_nonfinite(c + fd->off, fd->n)) {
                 /* inf (directional distance, Lambda at z = 0): exact */
                 for (int k = 0; k < fd->n; k++) {
@@ -649,9 +650,10 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
                     err = isfinite(b) ? fmax(err, fabs(a - b)) : INFINITY;
                     scale = fmax(scale, fabs(a));
                 }
-                double cond = ggx_cond(mode, ci, g, fd->off) * scale;
+                cond = ggx_cond(mode, ci, g, fd->off) * scale;
                 double tol = REL * scale + ABS + tex_tol(mode, ci, fd->off) + cond + 2.0 * spread[f];
-                if (cond + 2.0 * spread[f] > 10.0 * REL * scale + ILL_FLOOR) {
+                ill_field = cond + 2.0 * spread[f] > 10.0 * REL * scale + ILL_FLOOR;
+                if (ill_field && !report_only) {
                     st[f].ill++;
                     ill_case = true;
                     if (getenv("DBG_ILL") && st[f].ill < 4) {
@@ -675,6 +677,8 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
                 st[f].max_rel = rel;
                 st[f].worst = i;
             }
+            if (cond + 2.0 * spread[f] <= REL * scale && rel > st[f].max_rel_tight)
+                st[f].max_rel_tight = rel; /* checked at <= 2 REL */
             if (bad) {
                 st[f].fails++;
                 r.value_fail++;
@@ -689,15 +693,20 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
         }
         r.ill += ill_case;
     }
+    for (int f = 0; f < 8 && d->fields[f].name; f++) {
+        double allowed = d->fields[f].max_ill > 0.0 ? d->fields[f].max_ill : 0.02;
+        if (st[f].ill > allowed * n)
+            r.ill_excess++;
+    }
     if (!quiet) {
         for (int f = 0; f < 8 && d->fields[f].name; f++) {
             const field *fd = &d->fields[f];
             if (fd->kind == 'v')
                 fprintf(stderr,
-                        "  %-14s %-18s compared %5d  max abs err %.3g  max rel err %.3g (#%d)  "
-                        "ill-conditioned %d  failed %d\n",
+                        "  %-14s %-18s compared %5d  max abs err %.3g  max rel err %.3g (#%d), "
+                        "%.3g where tol <= 2 REL  ill-conditioned %d  failed %d\n",
                         d->name, fd->name, st[f].compared, st[f].max_err, st[f].max_rel,
-                        st[f].worst, st[f].ill, st[f].fails);
+                        st[f].worst, st[f].max_rel_tight, st[f].ill, st[f].fails);
             else
                 fprintf(stderr, "  %-14s %-18s mismatches away from a threshold: %d\n", d->name,
                         fd->name, st[f].fails);
@@ -951,7 +960,7 @@ static dirt_area_lights make_area(float *cdf, uint32_t *prim, size_t n)
 static bool pass(const compare_result *r)
 {
     return r->bool_fail == 0 && r->value_fail == 0 && (double)r->near <= 1e-3 * r->cases &&
-           (double)r->ill <= 0.02 * r->cases;
+           r->ill_excess == 0;
 }
 
 static void check_mode(dirt_gpu *gpu, GLuint prog, GLuint fault_prog, int mode, float *in,
@@ -964,9 +973,23 @@ static void check_mode(dirt_gpu *gpu, GLuint prog, GLuint fault_prog, int mode, 
     if (mode == MODE_TEXTURE || mode == MODE_MATERIAL)
         fprintf(stderr, "  %-14s resized texture (reported only): max abs err %.3g\n", d->name,
                 r.reported_max);
+    if (mode == MODE_TEXTURE) { /* filter error of sRGB and linear lookups */
+        double e[2] = {0.0, 0.0};
+        float c[STRIDE];
+        for (int i = 0; i < n; i++) {
+            const float *ci = in + (size_t)i * STRIDE, *g = out + (size_t)i * STRIDE;
+            if ((int)ci[0] == g_resized_layer)
+                continue;
+            c_eval(mode, ci, i, false, NULL, c);
+            for (int k = 0; k < 4; k++)
+                e[ci[1] != 0.0f] = fmax(e[ci[1] != 0.0f], fabs((double)g[k] - c[k]));
+        }
+        fprintf(stderr, "  %-14s max abs err: linear view %.3g, sRGB view %.3g (TEX_TOL %.3g)\n",
+                d->name, e[0], e[1], TEX_TOL);
+    }
     CHECK_MSG(pass(&r), "%s: %d decision mismatches, %d value mismatches, %d near-threshold, "
-              "%d ill-conditioned of %d", d->name, r.bool_fail, r.value_fail, r.near, r.ill,
-              r.cases);
+              "%d ill-conditioned of %d (%d fields over their bound)", d->name, r.bool_fail,
+              r.value_fail, r.near, r.ill, r.cases, r.ill_excess);
     if (fault_prog) {
         CHECK(run_mode(gpu, fault_prog, mode, in, n, out));
         compare_result f = compare(mode, in, out, n, true);

@@ -12,11 +12,16 @@
  *    by (depth, primitive), prev/next consistent, tails the last nodes,
  *    pixel bounds exactly the min/max of the stored depths, Hi-Z pyramid
  *    equal to the CPU min/max pyramid;
- *  - overflow: a start from capacity 1 gives the same lists as an ample run.
+ *  - overflow: a start from capacity 1 gives the same lists as an ample run;
+ *  - both reorder sorts (registers, in-list) give the same lists;
+ *  - beyond the GPU's storage block limit the build fails with a clear
+ *    error and the object stays usable.
  * Scenes: layered axis-aligned quads (sizes not multiples of anything, a
  * 37-deep stack that forces the chunked sort) in single and cube+camera
  * views, B in {1, 3, 8}; the default scene in cube+camera views. */
 #include <stdio.h>
+
+#include "dirt/log.h"
 
 #include "common/mmrt_layout.h"
 #include "gpu.h"
@@ -279,12 +284,13 @@ static void print_report(const char *label, const dirt_mmrt_opts *o, const dirt_
                          const report *r)
 {
     fprintf(stderr,
-            "%-8s %-11s B=%d: %6llu pixels, %6llu fragments (layers avg %.2f max %u, long "
+            "%-8s %-11s B=%d %s: %6llu pixels, %6llu fragments (layers avg %.2f max %u, long "
             "lists %llu, runs %d) | required %llu found %llu ambiguous %llu | missing %llu "
             "extra %llu dup %llu depth %llu attr %llu | quad px %llu (diagonal %llu) "
             "watertight %llu | links %llu prev %llu pixel %llu unsorted %llu bucket %llu "
             "bounds %llu tails %llu lost %llu pyramid %llu\n",
-            label, mt_mode_name(o->views.mode), o->buckets, (unsigned long long)r->pixels,
+            label, mt_mode_name(o->views.mode), o->buckets,
+            st->sort == DIRT_MMRT_SORT_LIST ? "list" : "regs", (unsigned long long)r->pixels,
             (unsigned long long)st->fragments, st->avg_layers, st->max_layers,
             (unsigned long long)st->long_lists, st->store_runs,
             (unsigned long long)r->required, (unsigned long long)r->found,
@@ -400,6 +406,58 @@ static int quad_scene(dirt_frame *f, mt_quad *quads, int max)
     return n;
 }
 
+static int limit_errors;
+
+static void count_limit_errors(void *user, enum dirt_log_level level, const char *file, int line,
+                               const char *msg)
+{
+    (void)user, (void)file, (void)line;
+    if (level == DIRT_LOG_ERROR && strstr(msg, "largest storage buffer"))
+        limit_errors++;
+    fprintf(stderr, "[log] %s\n", msg);
+}
+
+/* Beyond the GPU's limits: 40 full-view layers at 640x480 need 12.3 M
+ * fragments; when 32 B per fragment pass the largest storage block the
+ * build fails with a clear error (and the object still builds a small
+ * frame afterwards), else it succeeds with every fragment. */
+static void test_limits(dirt_gpu *gpu, const dirt_camera *cam, dirt_frame *small)
+{
+    dirt_frame *f = mt_frame_new(80);
+    for (int k = 0; k < 40; k++) {
+        mt_quad q = {2, -1.0f - 0.01f * k, -5, 5, -5, 5, 1};
+        mt_add_quad(f, &q);
+    }
+    mt_frame_bounds(f);
+    dirt_mmrt_opts o = {.views = {.width = 640, .height = 480}, .buckets = 2};
+    dirt_mmrt *m = dirt_mmrt_create(gpu, &o);
+    CHECK(m != NULL);
+    if (m) {
+        const uint64_t frags = 40ull * 640 * 480;
+        int64_t max = dirt_gpu_get_caps(gpu)->max_ssbo_size;
+        bool over = max > 0 && (int64_t)(frags * 32) > max;
+        dirt_log_set_callback(count_limit_errors, NULL);
+        bool ok = dirt_mmrt_build(m, f, cam);
+        dirt_log_set_callback(NULL, NULL);
+        fprintf(stderr, "limits: %llu fragments, max storage block %lld B: build %s, %d "
+                "limit error(s) logged\n", (unsigned long long)frags, (long long)max,
+                ok ? "succeeded" : "failed", limit_errors);
+        if (over) {
+            CHECK(!ok);
+            CHECK(limit_errors == 1);
+            dirt_mmrt_data d;
+            CHECK(!dirt_mmrt_read(m, &d));
+        } else {
+            CHECK(ok && dirt_mmrt_get_stats(m)->fragments == frags);
+        }
+        /* Still usable for a frame that fits. */
+        CHECK(dirt_mmrt_build(m, small, cam));
+        CHECK(dirt_mmrt_get_stats(m)->fragments > 0);
+        dirt_mmrt_destroy(m);
+    }
+    mt_frame_free(f);
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -427,6 +485,25 @@ int main(void)
             const dirt_mmrt_stats *st = dirt_mmrt_get_stats(m);
             if (buckets[bi] == 1)
                 CHECK(st->long_lists > 0 && st->max_layers > DIRT_MMRT_SORT_CHUNK);
+            if (bi < 2) {
+                /* The other sort gives the same lists. */
+                dirt_mmrt_opts other = o;
+                other.sort = st->sort == DIRT_MMRT_SORT_LIST ? DIRT_MMRT_SORT_REGISTERS
+                                                             : DIRT_MMRT_SORT_LIST;
+                dirt_mmrt_data dr;
+                dirt_mmrt *mr = build_and_check(gpu, "quads/s", f, &cam, &other, nq, &dr);
+                if (mr) {
+                    uint64_t diff = compare_lists(&d, &dr);
+                    fprintf(stderr, "sorts %s and %s: %llu list differences\n",
+                            st->sort == DIRT_MMRT_SORT_LIST ? "list" : "registers",
+                            other.sort == DIRT_MMRT_SORT_LIST ? "list" : "registers",
+                            (unsigned long long)diff);
+                    CHECK(diff == 0);
+                    CHECK(dirt_mmrt_get_stats(mr)->long_lists == st->long_lists);
+                    dirt_mmrt_data_free(&dr);
+                    dirt_mmrt_destroy(mr);
+                }
+            }
             if (bi == 1) {
                 /* Overflow: capacity 1 -> grown pools, same lists. */
                 dirt_mmrt_opts small = o;
@@ -452,6 +529,7 @@ int main(void)
             dirt_mmrt_destroy(m);
         }
     }
+    test_limits(gpu, &cam, f);
     mt_frame_free(f);
 
     /* The default scene (closed room, boxes, spheres): general triangles,

@@ -36,13 +36,22 @@ extern "C" {
 
 typedef struct dirt_mmrt dirt_mmrt;
 
+/* How the reorder pass sorts bucket lists of three or more nodes (same
+ * result either way). */
+enum dirt_mmrt_sort {
+    DIRT_MMRT_SORT_AUTO = 0,      /* list on software renderers, else registers */
+    DIRT_MMRT_SORT_REGISTERS = 1, /* chunks of 8 in registers, merged */
+    DIRT_MMRT_SORT_LIST = 2,      /* insertion sort in the linked list itself */
+};
+
 /* Zero-initialised = single camera view 640x480, B = 4 (the MMRT paper's
- * setting), automatic initial node capacity. views.tile_size is ignored:
- * MMRT is per pixel (tile size 1). */
+ * setting), automatic initial node capacity and sort. views.tile_size is
+ * ignored: MMRT is per pixel (tile size 1). */
 typedef struct dirt_mmrt_opts {
     dirt_view_opts views;
     int buckets;              /* B >= 1 (default 4) */
     size_t initial_nodes;     /* first node capacity (0 = automatic: 2 per pixel) */
+    enum dirt_mmrt_sort sort;
     bool cpu_timing;          /* time passes with glFinish + CPU clock too */
 } dirt_mmrt_opts;
 
@@ -66,6 +75,7 @@ typedef struct dirt_mmrt_stats {
     uint64_t long_lists;      /* bucket lists longer than the register sort
                                  (sorted in merged chunks) */
     int store_runs;           /* 1, or more when the node pools grew */
+    enum dirt_mmrt_sort sort; /* the reorder's sort (never AUTO) */
     /* Bytes. */
     uint64_t bytes_vertices;  /* vertex buffer + per-primitive materials */
     uint64_t bytes_depth;     /* depth bounds incl. Hi-Z pyramid: 8 B per entry */
