@@ -43,6 +43,8 @@ layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
 #endif
 #define CHUNK 8
 
+#define inf uintBitsToFloat(0x7F800000u)
+
 float node_z(uint n)
 {
     return uintBitsToFloat(ids[n * uint(DIRT_MMRT_ID_UINTS) + uint(DIRT_MMRT_ID_Z)]);
@@ -98,6 +100,115 @@ bool before(uint a, float za, uint b, float zb)
     CX(1, 2) CX(3, 4) CX(5, 6)
 #endif
 
+// Sorts the non-empty list of `slot` (= bucket * pixels + pixel), sets its
+// head, tail, next and prev pointers; returns its length.
+uint sort_bucket(uint slot)
+{
+    uint rest = heads[slot];     // nodes not sorted yet (original order)
+    uint second = node_next(rest);
+    if (second == DIRT_LIST_END || node_next(second) == DIRT_LIST_END) {
+        // One or two nodes (the common case): no sort needed beyond a swap.
+        uint a = rest, c = second;
+        if (c != DIRT_LIST_END && before(c, node_z(c), a, node_z(a))) {
+            a = second;
+            c = rest;
+        }
+        set_prev(a, DIRT_LIST_END);
+        set_next(a, c);
+        if (c != DIRT_LIST_END) {
+            set_prev(c, a);
+            set_next(c, DIRT_LIST_END);
+        }
+        heads[slot] = a;
+        tails[slot] = c != DIRT_LIST_END ? c : a;
+        return c != DIRT_LIST_END ? 2u : 1u;
+    }
+    uint sorted = DIRT_LIST_END; // sorted list built so far
+    uint count = 0u;
+    uint chunks = 0u;
+#ifdef MMRT_SORT_LIST
+    // Insertion sort in the list itself: each node is linked into the
+    // sorted list, walking it from its head.
+    while (rest != DIRT_LIST_END) {
+        uint node = rest;
+        float z = node_z(node);
+        rest = node_next(node);
+        count++;
+        if (sorted == DIRT_LIST_END || before(node, z, sorted, node_z(sorted))) {
+            set_next(node, sorted);
+            sorted = node;
+        } else {
+            uint p = sorted, q = node_next(sorted);
+            while (q != DIRT_LIST_END && !before(node, z, q, node_z(q))) {
+                p = q;
+                q = node_next(q);
+            }
+            set_next(node, q);
+            set_next(p, node);
+        }
+    }
+    chunks = (count + uint(CHUNK) - 1u) / uint(CHUNK);
+#else
+    uint idx[CHUNK];
+    float key[CHUNK];
+    while (rest != DIRT_LIST_END) {
+        // Up to CHUNK nodes into registers, padded with (END, +inf).
+        for (int k = 0; k < CHUNK; k++) {
+            if (rest != DIRT_LIST_END) {
+                idx[k] = rest;
+                key[k] = node_z(rest);
+                rest = node_next(rest);
+                count++;
+            } else {
+                idx[k] = DIRT_LIST_END;
+                key[k] = inf;
+            }
+        }
+        SORT_CHUNK()
+        // Merge the chunk with the sorted list (next pointers only).
+        uint s = sorted;
+        float zs = s != DIRT_LIST_END ? node_z(s) : inf;
+        uint first = DIRT_LIST_END, last = DIRT_LIST_END;
+        while (idx[0] != DIRT_LIST_END || s != DIRT_LIST_END) {
+            uint pick;
+            if (idx[0] != DIRT_LIST_END &&
+                (s == DIRT_LIST_END || before(idx[0], key[0], s, zs))) {
+                pick = idx[0];
+                for (int k = 0; k < CHUNK - 1; k++) {
+                    idx[k] = idx[k + 1];
+                    key[k] = key[k + 1];
+                }
+                idx[CHUNK - 1] = DIRT_LIST_END;
+                key[CHUNK - 1] = inf;
+            } else {
+                pick = s;
+                s = node_next(s);
+                zs = s != DIRT_LIST_END ? node_z(s) : inf;
+            }
+            if (last == DIRT_LIST_END)
+                first = pick;
+            else
+                set_next(last, pick);
+            last = pick;
+        }
+        set_next(last, DIRT_LIST_END);
+        sorted = first;
+        chunks++;
+    }
+#endif
+    // prev pointers, head and tail.
+    uint prev = DIRT_LIST_END;
+    for (uint n = sorted; n != DIRT_LIST_END; n = node_next(n)) {
+        set_prev(n, prev);
+        prev = n;
+    }
+    heads[slot] = sorted;
+    tails[slot] = prev;
+    if (chunks > 1u)
+        atomicAdd(counters.build.z, 1u);
+    return count;
+}
+
 void main()
 {
     uint g = gl_GlobalInvocationID.x;
@@ -106,127 +217,22 @@ void main()
         return;
     int B = params.config.y;
     uint layers = 0u;
-    const float inf = uintBitsToFloat(0x7F800000u);
-    // Non-empty buckets first, 32 at a time, as a bit mask: the sort loop then
+    // Non-empty buckets first, 32 at a time, as a bit mask: the sort then
     // runs once per non-empty bucket (SIMD lanes diverge far less than when
     // looping over all B). Tails of empty buckets stay as the build cleared
     // them (DIRT_LIST_END).
     for (int base = 0; base < B; base += 32) {
-    uint mask = 0u;
-    int nb = min(32, B - base);
-    for (int k = 0; k < nb; k++) {
-        if (heads[uint(base + k) * pixels + g] != DIRT_LIST_END)
-            mask |= 1u << uint(k);
-    }
-    while (mask != 0u) {
-        int b = base + findLSB(mask);
-        mask &= mask - 1u;
-        uint slot = uint(b) * pixels + g;
-        uint rest = heads[slot];     // nodes not sorted yet (original order)
-        uint second = node_next(rest);
-        if (second == DIRT_LIST_END || node_next(second) == DIRT_LIST_END) {
-            // One or two nodes (the common case): no sort needed beyond a swap.
-            uint a = rest, c = second;
-            if (c != DIRT_LIST_END && before(c, node_z(c), a, node_z(a))) {
-                a = second;
-                c = rest;
-            }
-            set_prev(a, DIRT_LIST_END);
-            set_next(a, c);
-            if (c != DIRT_LIST_END) {
-                set_prev(c, a);
-                set_next(c, DIRT_LIST_END);
-            }
-            heads[slot] = a;
-            tails[slot] = c != DIRT_LIST_END ? c : a;
-            layers += c != DIRT_LIST_END ? 2u : 1u;
-            continue;
+        uint mask = 0u;
+        int nb = min(32, B - base);
+        for (int k = 0; k < nb; k++) {
+            if (heads[uint(base + k) * pixels + g] != DIRT_LIST_END)
+                mask |= 1u << uint(k);
         }
-        uint sorted = DIRT_LIST_END; // sorted list built so far
-        uint count = 0u;
-        uint chunks = 0u;
-#ifdef MMRT_SORT_LIST
-        // Insertion sort in the list itself: each node is linked into the
-        // sorted list, walking it from its head.
-        while (rest != DIRT_LIST_END) {
-            uint node = rest;
-            float z = node_z(node);
-            rest = node_next(node);
-            count++;
-            if (sorted == DIRT_LIST_END || before(node, z, sorted, node_z(sorted))) {
-                set_next(node, sorted);
-                sorted = node;
-            } else {
-                uint p = sorted, q = node_next(sorted);
-                while (q != DIRT_LIST_END && !before(node, z, q, node_z(q))) {
-                    p = q;
-                    q = node_next(q);
-                }
-                set_next(node, q);
-                set_next(p, node);
-            }
+        while (mask != 0u) {
+            int b = base + findLSB(mask);
+            mask &= mask - 1u;
+            layers += sort_bucket(uint(b) * pixels + g);
         }
-        chunks = (count + uint(CHUNK) - 1u) / uint(CHUNK);
-#else
-        uint idx[CHUNK];
-        float key[CHUNK];
-        while (rest != DIRT_LIST_END) {
-            // Up to CHUNK nodes into registers, padded with (END, +inf).
-            for (int k = 0; k < CHUNK; k++) {
-                if (rest != DIRT_LIST_END) {
-                    idx[k] = rest;
-                    key[k] = node_z(rest);
-                    rest = node_next(rest);
-                    count++;
-                } else {
-                    idx[k] = DIRT_LIST_END;
-                    key[k] = inf;
-                }
-            }
-            SORT_CHUNK()
-            // Merge the chunk with the sorted list (next pointers only).
-            uint s = sorted;
-            float zs = s != DIRT_LIST_END ? node_z(s) : inf;
-            uint first = DIRT_LIST_END, last = DIRT_LIST_END;
-            while (idx[0] != DIRT_LIST_END || s != DIRT_LIST_END) {
-                uint pick;
-                if (idx[0] != DIRT_LIST_END &&
-                    (s == DIRT_LIST_END || before(idx[0], key[0], s, zs))) {
-                    pick = idx[0];
-                    for (int k = 0; k < CHUNK - 1; k++) {
-                        idx[k] = idx[k + 1];
-                        key[k] = key[k + 1];
-                    }
-                    idx[CHUNK - 1] = DIRT_LIST_END;
-                    key[CHUNK - 1] = inf;
-                } else {
-                    pick = s;
-                    s = node_next(s);
-                    zs = s != DIRT_LIST_END ? node_z(s) : inf;
-                }
-                if (last == DIRT_LIST_END)
-                    first = pick;
-                else
-                    set_next(last, pick);
-                last = pick;
-            }
-            set_next(last, DIRT_LIST_END);
-            sorted = first;
-            chunks++;
-        }
-#endif
-        // prev pointers, head and tail.
-        uint prev = DIRT_LIST_END;
-        for (uint n = sorted; n != DIRT_LIST_END; n = node_next(n)) {
-            set_prev(n, prev);
-            prev = n;
-        }
-        heads[slot] = sorted;
-        tails[slot] = prev;
-        layers += count;
-        if (chunks > 1u)
-            atomicAdd(counters.build.z, 1u);
-    }
     }
     if (layers > 0u) {
         atomicMax(counters.build.y, layers);

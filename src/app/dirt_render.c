@@ -51,6 +51,7 @@ typedef struct options {
     const char *stats_path;
     long threads;
     double aperture, focus;
+    bool direct_visibility;
 } options;
 
 static void usage(FILE *out)
@@ -112,6 +113,8 @@ static void usage(FILE *out)
 "      --hiz-top L       highest Hi-Z level the march starts from; 0 = tiles\n"
 "                        only, no Hi-Z (default: the pyramid's top)\n"
 "      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
+"      --direct-visibility  first hits from a visibility buffer of the camera view\n"
+"                        (pixel centres: no anti-aliasing or depth of field)\n"
 "\n"
 "Other:\n"
 "  -q, --quiet           print only errors\n"
@@ -341,6 +344,8 @@ static int parse_args(int argc, char **argv, options *o)
             NEED_VALUE();
             if (!cli_int(PROG, a, val, 1, 16384, &o->face_size))
                 return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--direct-visibility")) {
+            o->direct_visibility = true;
         } else if (!strcmp(a, "--no-conservative-raster")) {
             o->force_emulation = true;
         } else if (!strcmp(a, "--cpu-timing")) {
@@ -689,6 +694,7 @@ int main(int argc, char **argv)
                 .background = {o.background[0], o.background[1], o.background[2]},
                 .ao_distance = (float)o.ao_distance,
                 .fetch = o.fetch,
+                .direct_visibility = o.direct_visibility,
                 .trace = {.hiz_levels = (int)o.hiz_levels},
                 .cpu_timing = o.cpu_timing,
                 .progress = on_progress,

@@ -44,7 +44,17 @@ struct dirt_ads {
     GLuint fetch_vao, fetch_fbo;
     int fetch_fbo_w, fetch_fbo_h;
     uint32_t *material_staging;
+    /* direct visibility */
+    GLuint prog_vis, prog_vis_resolve;
+    GLuint vis_fbo, vis_color, vis_depth, vis_vao;
+    int vis_w, vis_h;
 };
+
+/* Direct visibility of the camera view: rasterizes a visibility buffer and
+ * resolves it into one ray and hit record per image pixel (row 0 = top),
+ * hits linked per tile like a linked trace. False (logged) when there is no
+ * camera view. */
+bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits);
 
 /* Traces `count` rays from buffer `rays` into `hits` (GL names, each at
  * least count records). With `link`, hits are also linked into per-tile

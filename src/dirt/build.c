@@ -65,6 +65,12 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     if (!a->prog_depth || !a->prog_fill || !a->prog_mip || !a->prog_trace || !a->prog_fetch ||
         !a->prog_fetch_miss || !a->prog_fetch_raster)
         goto error;
+    const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
+    a->prog_vis = gl_program_create("dirt direct visibility", vis, NULL, 0);
+    a->prog_vis_resolve = gl_program_compute("dirt/visibility_resolve.comp", NULL, 0);
+    if (!a->prog_vis || !a->prog_vis_resolve)
+        goto error;
+    glCreateVertexArrays(1, &a->vis_vao);
     glCreateVertexArrays(1, &a->fetch_vao);
     gl_label(GL_VERTEX_ARRAY, a->fetch_vao, "dirt fetch vao");
     glCreateFramebuffers(1, &a->fetch_fbo);
@@ -101,6 +107,14 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_program_destroy(&a->prog_fetch);
     gl_program_destroy(&a->prog_fetch_miss);
     gl_program_destroy(&a->prog_fetch_raster);
+    gl_program_destroy(&a->prog_vis);
+    gl_program_destroy(&a->prog_vis_resolve);
+    if (a->vis_vao)
+        glDeleteVertexArrays(1, &a->vis_vao);
+    if (a->vis_fbo)
+        glDeleteFramebuffers(1, &a->vis_fbo);
+    gl_texture_destroy(&a->vis_color);
+    gl_texture_destroy(&a->vis_depth);
     if (a->fetch_vao)
         glDeleteVertexArrays(1, &a->fetch_vao);
     if (a->fetch_fbo)

@@ -195,3 +195,88 @@ void ads_bind_geometry(dirt_ads *a)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
 }
+
+bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
+{
+    if (a->set.camera_view < 0) {
+        DIRT_ERROR("direct visibility needs a camera view (views single or cube+camera)");
+        return false;
+    }
+    const dirt_view *v = &a->set.views[a->set.camera_view];
+    if (a->vis_w != v->width || a->vis_h != v->height) {
+        if (a->vis_fbo)
+            glDeleteFramebuffers(1, &a->vis_fbo);
+        gl_texture_destroy(&a->vis_color);
+        gl_texture_destroy(&a->vis_depth);
+        a->vis_color = gl_texture_2d(GL_RGBA32UI, v->width, v->height, 1, "dirt visibility");
+        a->vis_depth = gl_texture_2d(GL_DEPTH_COMPONENT32F, v->width, v->height, 1,
+                                     "dirt visibility depth");
+        if (!a->vis_color || !a->vis_depth)
+            return false;
+        /* Integer textures are incomplete with linear filtering. */
+        glTextureParameteri(a->vis_color, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(a->vis_color, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateFramebuffers(1, &a->vis_fbo);
+        glNamedFramebufferTexture(a->vis_fbo, GL_COLOR_ATTACHMENT0, a->vis_color, 0);
+        glNamedFramebufferTexture(a->vis_fbo, GL_DEPTH_ATTACHMENT, a->vis_depth, 0);
+        gl_label(GL_FRAMEBUFFER, a->vis_fbo, "dirt visibility");
+        if (glCheckNamedFramebufferStatus(a->vis_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            DIRT_ERROR("visibility framebuffer incomplete");
+            return false;
+        }
+        a->vis_w = v->width;
+        a->vis_h = v->height;
+    }
+    if (!ensure(a, &a->hit_heads, &a->hit_heads_size, (size_t)a->set.num_tiles * 4 + 4, false,
+                "dirt hit heads"))
+        return false;
+    gl_group_push("dirt direct visibility");
+    static const uint32_t end = DIRT_LIST_END, zero4[4] = {0, 0, 0, 0};
+    static const float one = 1.0f;
+    glClearNamedBufferData(a->hit_heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    glClearNamedFramebufferuiv(a->vis_fbo, GL_COLOR, 0, zero4);
+    glClearNamedFramebufferfv(a->vis_fbo, GL_DEPTH, 0, &one);
+    ads_bind_all(a);
+    glBindFramebuffer(GL_FRAMEBUFFER, a->vis_fbo);
+    glViewport(0, 0, v->width, v->height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(a->prog_vis);
+    glUniform1i(0, a->set.camera_view);
+    glBindVertexArray(a->vis_vao);
+    if (a->num_primitives)
+        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(a->prog_vis_resolve);
+    glUniform1i(0, a->set.camera_view);
+    glBindTextureUnit(0, a->vis_color);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
+    glDispatchCompute((GLuint)(((size_t)v->width * v->height + 63) / 64), 1, 1);
+    glUseProgram(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_group_pop();
+    return gl_check("dirt direct visibility");
+}
+
+bool dirt_ads_direct_visibility(dirt_ads *a, dirt_ray *rays, dirt_hit *hits)
+{
+    if (a->set.camera_view < 0) {
+        DIRT_ERROR("direct visibility needs a camera view");
+        return false;
+    }
+    const dirt_view *v = &a->set.views[a->set.camera_view];
+    size_t n = (size_t)v->width * v->height;
+    if (!ensure(a, &a->rays, &a->rays_size, n * sizeof(dirt_ray), true, "dirt rays") ||
+        !ensure(a, &a->hits, &a->hits_size, n * sizeof(dirt_hit), true, "dirt hits") ||
+        !ads_visibility_gl(a, a->rays, a->hits))
+        return false;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    return gl_buffer_read(a->rays, 0, n * sizeof(dirt_ray), rays) &&
+           gl_buffer_read(a->hits, 0, n * sizeof(dirt_hit), hits);
+}

@@ -43,6 +43,7 @@ struct dirt_pt {
     int g_events;
     enum dirt_pt_mode g_mode;
     enum dirt_fetch_mode g_fetch;
+    bool g_direct;
     pass_ctx ctx[MAX_PASSES];
     int num_ctx;
     /* render state read by the pass bodies */
@@ -185,6 +186,8 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         glDispatchCompute(groups(pt->pixels), 1, 1);
         break;
     case P_TRACE:
+        if (c->k == 1 && pt->g_direct)
+            return ads_visibility_gl(pt->ads, pt->rays, pt->hits);
         return ads_trace_gl(pt->ads, pt->rays, pt->hits, (uint32_t)pt->pixels, &pt->opts->trace,
                             pt->g_fetch == DIRT_FETCH_RASTER, NULL);
     case P_FETCH:
@@ -257,7 +260,10 @@ static bool make_graph(dirt_pt *pt, int events)
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
-        snprintf(name, sizeof(name), "trace %d", k);
+        if (k == 1 && pt->g_direct)
+            snprintf(name, sizeof(name), "direct visibility");
+        else
+            snprintf(name, sizeof(name), "trace %d", k);
         p = ADD(P_TRACE, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_write(p, hits, FG_SSBO_WRITE);
@@ -364,10 +370,21 @@ bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const d
     /* AO: one event (the first hit); path tracing: K + 1 (the last one only
      * gathers emission). */
     int events = opts.mode == DIRT_PT_AO ? 1 : opts.bounces + 1;
+    if (opts.direct_visibility) {
+        const dirt_view_set *vs = dirt_ads_views(ads);
+        if (vs->camera_view < 0 || vs->views[vs->camera_view].width != out->width ||
+            vs->views[vs->camera_view].height != out->height) {
+            DIRT_ERROR("direct visibility needs a camera view of the image's size (%dx%d)",
+                       out->width, out->height);
+            goto done;
+        }
+    }
     if (!pt->graph || pt->g_pixels != pixels || pt->g_events != events ||
-        pt->g_mode != opts.mode || pt->g_fetch != opts.fetch) {
+        pt->g_mode != opts.mode || pt->g_fetch != opts.fetch ||
+        pt->g_direct != opts.direct_visibility) {
         pt->g_mode = opts.mode;
         pt->g_fetch = opts.fetch;
+        pt->g_direct = opts.direct_visibility;
         if (!make_graph(pt, events))
             goto done;
     }

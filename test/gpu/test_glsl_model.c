@@ -5,23 +5,33 @@
  * random input records and writes the results; the test runs the C
  * functions on the same inputs (same float bits) and compares:
  *
- *  - values: |gpu - c| <= REL * scale + ABS + 2 * spread (+ the texture
- *    term below), where scale is the largest |c| of the field (a vector is
- *    compared as a whole: directions near a zero component have no useful
- *    component-wise relative error) and spread is the largest change of the
- *    C result when every float input is moved by up to 4 ulp (4 tries).
+ *  - values: |gpu - c| <= REL * scale + ABS + cond * scale + 2 * spread
+ *    (+ the texture term below). scale is the largest |c| of the field (a
+ *    vector is compared as a whole: directions near a zero component have no
+ *    useful component-wise relative error).
  *    REL = 1e-4: GLSL's +, -, * are correctly rounded, /, sqrt and
- *    inversesqrt are within 2.5-3 ulp, exp2/log2/pow within a few ulp, and
- *    sin/cos have an absolute error around 1e-6 on GPUs; the model's longest
- *    chain (bsdf_sample_dir: warp, reflection, eval, pdf) has ~100 such
- *    operations, i.e. <= ~3e-5 relative when nothing cancels. Where
- *    something does cancel (GGX D near its peak for small alpha, the spot
- *    cone edge), the rounding is amplified by the function's condition
- *    number; the spread measures exactly that amplification (a
- *    backward-stable float evaluation equals the exact one on inputs moved by
- *    a few ulp). Cases whose tolerance is dominated by the spread are
- *    counted ("ill-conditioned") and must stay rare, so the comparison stays
- *    tight for almost every input.
+ *    inversesqrt are within 2.5-3 ulp, pow within a few ulp, and sin/cos
+ *    have an absolute error around 1e-6 on GPUs; the model's longest chain
+ *    (bsdf_sample_dir: warp, reflection, eval, pdf) has ~100 such
+ *    operations, i.e. <= ~3e-5 relative when nothing cancels.
+ *    Where something cancels, the rounding is amplified by the function's
+ *    condition number, which two terms account for:
+ *    spread = the largest change of the C result when the geometric inputs
+ *    (directions, positions, u's, pixel coordinates) are moved by up to 4 ulp
+ *    (4 tries; material factors are not moved: they enter through exact
+ *    operations the GPU reproduces bit for bit), and
+ *    cond = the relative error of GGX D from a few-ulp rounding of h.z,
+ *    2 * 16 * 2^-24 / d with d = h.z^2 (a^2 - 1) + 1 (D near its peak for
+ *    small alpha: the input perturbation cannot show it, h.z is pinned by
+ *    the normalisation); for the sample weight scaled by how much D cancels
+ *    between f and the pdf.
+ *    Cases whose tolerance is more than 10 REL from these terms are counted
+ *    ("ill-conditioned") and must stay below 2% per field (25% for the pdf
+ *    of bsdf samples: a sample of the specular lobe lies near D's peak, and
+ *    for alpha below ~0.05 its float pdf is ill-conditioned in any
+ *    implementation, C included).
+ *    bsdf_sample's pdf and weight are compared with the C model's at the
+ *    GPU's sampled direction; the direction with the C sample's.
  *  - booleans (and the area-light index) must be equal, except where the C
  *    decision is within 1e-5 of its threshold (|u_lobe - p_spec|, |wi.z|,
  *    spot cone edge, range window, cdf boundary); those are counted and
@@ -656,11 +666,6 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
                 if (ill_field && !report_only) {
                     st[f].ill++;
                     ill_case = true;
-                    if (getenv("DBG_ILL") && st[f].ill < 4) {
-                        fprintf(stderr, "ILL %s %s #%d spread %g scale %g in:", d->name, fd->name, i, spread[f], scale);
-                        for (int k = 0; k < 16; k++) fprintf(stderr, " %.9g", ci[k]);
-                        fprintf(stderr, "\n");
-                    }
                 }
                 bad = !(err <= tol);
             }
@@ -677,7 +682,8 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
                 st[f].max_rel = rel;
                 st[f].worst = i;
             }
-            if (cond + 2.0 * spread[f] <= REL * scale && rel > st[f].max_rel_tight)
+            if (cond + 2.0 * spread[f] <= REL * scale && tex_tol(mode, ci, fd->off) == 0.0 &&
+                rel > st[f].max_rel_tight)
                 st[f].max_rel_tight = rel; /* checked at <= 2 REL */
             if (bad) {
                 st[f].fails++;
@@ -994,7 +1000,8 @@ static void check_mode(dirt_gpu *gpu, GLuint prog, GLuint fault_prog, int mode, 
         CHECK(run_mode(gpu, fault_prog, mode, in, n, out));
         compare_result f = compare(mode, in, out, n, true);
         int caught = f.bool_fail + f.value_fail;
-        fprintf(stderr, "  %-14s faulty shader: %d of %d cases flagged\n", d->name, caught, n);
+        fprintf(stderr, "  %-14s faulty shader: %d mismatches (fields) over %d cases\n", d->name,
+                caught, n);
         CHECK_MSG(caught >= n / 2, "%s: the comparison missed a faulty shader", d->name);
     }
 }

@@ -151,6 +151,13 @@ typedef struct dirt_gpoint {
 bool dirt_ads_trace_fetch(dirt_ads *ads, const dirt_ray *rays, size_t count,
                           enum dirt_fetch_mode mode, dirt_gpoint *out);
 
+/* Direct visibility (DIRT paper 4.1.3, without spin locks): a depth-tested
+ * visibility buffer of the camera view, resolved into the ray (from the
+ * view's centre of projection through the pixel's visible point) and hit
+ * record of every pixel (width x height of the camera view, row 0 = top,
+ * owner = pixel index). For tests and tools (blocking). */
+bool dirt_ads_direct_visibility(dirt_ads *ads, dirt_ray *rays, dirt_hit *hits);
+
 /* Writes per-view PNG pictures of the built structure into `dir` (which
  * must exist): <dir>/ads_v<i>_<name>_lists.png (heat map of list length per
  * tile: black 0, then blue, red, yellow, white at the longest list) and

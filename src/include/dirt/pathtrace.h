@@ -39,6 +39,9 @@ typedef struct dirt_pt_opts {
     float background[3];      /* radiance of rays that leave the scene */
     float ao_distance;        /* AO ray length; 0 = infinite */
     enum dirt_fetch_mode fetch;
+    /* G_1 from a visibility buffer of the camera view instead of traced
+     * camera rays (pixel centres: no pixel jitter, no depth of field). */
+    bool direct_visibility;
     dirt_trace_opts trace;
     bool cpu_timing;          /* glFinish + CPU clock per pass */
     /* Called after every sample (may be NULL). */
