@@ -7,9 +7,10 @@
  * driver times rasterization, else CPU wall time around glFinish (the only
  * meaningful figure on llvmpipe). Each configuration is built once to warm
  * up (pools grow), then N times; the mean of those N is reported. --trace N
- * traces N rays from the camera position in uniformly random directions
- * (seeded, the same for every configuration) with the Hi-Z walk and the
- * linear march (30 samples per view), default thickness. */
+ * traces N primary rays (from the camera's eye through uniformly random
+ * points of its image, seeded, the same for every configuration) with the
+ * Hi-Z walk and the linear march (30 samples per view), default thickness;
+ * times without the upload and read-back. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -108,11 +109,15 @@ int main(int argc, char **argv)
         else
             dirt_camera_auto(f, &cam);
         unsigned seed = 2016;
+        float ty = tanf(0.5f * (cam.yfov > 0 ? cam.yfov : 0.785398163f));
+        float tx = ty * (float)W / (float)H;
         for (int i = 0; i < trace; i++) {
-            float z = 2 * frand(&seed) - 1, phi = 6.2831853f * frand(&seed);
-            float s = sqrtf(fmaxf(0, 1 - z * z));
-            rays[i] = (dirt_ray){{cam.eye[0], cam.eye[1], cam.eye[2]}, 0,
-                                 {s * cosf(phi), s * sinf(phi), z}, INFINITY};
+            float sx = (2 * frand(&seed) - 1) * tx, sy = (2 * frand(&seed) - 1) * ty;
+            float d[3];
+            for (int k = 0; k < 3; k++)
+                d[k] = cam.forward[k] + sx * cam.right[k] + sy * cam.up[k];
+            rays[i] = (dirt_ray){{cam.eye[0], cam.eye[1], cam.eye[2]}, 0, {d[0], d[1], d[2]},
+                                 INFINITY};
         }
         const char *name = strrchr(scenes[si], '/') ? strrchr(scenes[si], '/') + 1 : scenes[si];
         for (int b = 0; b < nB; b++) {

@@ -87,21 +87,6 @@ static void release_buffers(dirt_pt *pt)
     pt->pixels = 0;
 }
 
-static void release_tables(dirt_gpu_model_tables *t)
-{
-    GLuint bufs[] = {t->materials, t->area_cdf, t->area_prims, t->punctual, t->camera};
-    for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++) {
-        if (bufs[i])
-            glDeleteBuffers(1, &bufs[i]);
-    }
-    GLuint tex[] = {t->tex_srgb, t->tex_linear};
-    for (size_t i = 0; i < 2; i++) {
-        if (tex[i])
-            glDeleteTextures(1, &tex[i]);
-    }
-    memset(t, 0, sizeof(*t));
-}
-
 void dirt_pt_destroy(dirt_pt *pt)
 {
     if (!pt)
@@ -111,7 +96,7 @@ void dirt_pt_destroy(dirt_pt *pt)
     for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++)
         gl_program_destroy(p[i]);
     release_buffers(pt);
-    release_tables(&pt->tables);
+    dirt_gpu_model_tables_destroy(&pt->tables);
     fg_destroy(pt->graph);
     free(pt);
 }
@@ -362,7 +347,7 @@ bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const d
     gl_group_push("dirt path tracer");
     if (!ensure_buffers(pt, pixels))
         goto done;
-    release_tables(&pt->tables);
+    dirt_gpu_model_tables_destroy(&pt->tables);
     if (!dirt_area_lights_build(&area, frame, dirt_scene_materials(pt->scene),
                                 dirt_scene_num_materials(pt->scene)) ||
         !dirt_gpu_model_tables_create(pt->gpu, pt->scene, frame, &area, cam, NULL, 0, &pt->tables))
