@@ -1,8 +1,13 @@
 #version 450 core
 // MMRT trace: one invocation per ray of a batch (dirt_gpu_ray ->
-// dirt_gpu_hit, closest hit). For every view in order (the camera view first
-// when there is one, then the cube faces), the ray's segment [tmin, best t]
-// is clipped to the view frustum and marched in image space:
+// dirt_gpu_hit, closest hit). View switching (MMRT paper 3.4): the ray's
+// [tmin, tmax] is split into pieces, each marched in one view only -- the
+// first in priority order (the camera view when there is one, then the cube
+// faces) whose frustum holds it -- in order of t, and the first hit ends the
+// ray. With u_all_views, every view is marched over the whole segment
+// [tmin, best t] instead, keeping the closest hit (more hits found, and more
+// false ones from views that see a surface obliquely). In a view the piece is
+// marched in image space:
 //  Hi-Z:   a walk over the min/max pyramid of the per-pixel depth bounds:
 //          the cell of the current point at level L is left in one step when
 //          the ray's depth span across it (widened by the thickness) misses
@@ -63,6 +68,7 @@ layout(location = 3) uniform int u_top_level;  // Hi-Z: highest level used
 layout(location = 4) uniform float u_thickness;
 layout(location = 5) uniform uint u_seed;
 layout(location = 6) uniform int u_stats;      // count pixels / nodes visited
+layout(location = 7) uniform int u_all_views;  // every view over the whole segment
 
 #define BIG 3.0e38
 
@@ -244,6 +250,23 @@ bool clip_segment(vec4 co, vec4 cd, inout float t0, inout float t1)
     return t0 < t1;
 }
 
+// Marches view vi over [t0, t1] of the ray (clipped to the view frustum
+// first). False when a Hi-Z walk ran out of steps.
+bool march_view(int vi, vec3 org, vec3 dir, float t0, float t1, uint ray, inout hit_state h)
+{
+    dirt_gpu_view v = views[vi];
+    mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
+    vec4 co = vp * vec4(org, 1.0), cd = vp * vec4(dir, 0.0);
+    if (!clip_segment(co, cd, t0, t1))
+        return true;
+    if (u_march == 0 || u_samples <= 0) {
+        int top = u_march == 0 ? min(u_top_level, v.placement.z - 1) : 0;
+        return march_hiz(vi, v, co, cd, t0, t1, max(top, 0), h);
+    }
+    march_linear(vi, v, co, cd, t0, t1, ray, h);
+    return true;
+}
+
 void main()
 {
     uint i = gl_GlobalInvocationID.x;
@@ -260,19 +283,51 @@ void main()
     h.z = 0.0;
     bool aborted = false;
     int nviews = params.config.x;
-    for (int vi = 0; vi < nviews; vi++) {
-        dirt_gpu_view v = views[vi];
-        mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
-        vec4 co = vp * vec4(org, 1.0), cd = vp * vec4(dir, 0.0);
-        float t0 = tmin, t1 = h.t;
-        if (!clip_segment(co, cd, t0, t1))
-            continue;
-        if (u_march == 0 || u_samples <= 0) {
-            int top = u_march == 0 ? min(u_top_level, v.placement.z - 1) : 0;
-            if (!march_hiz(vi, v, co, cd, t0, t1, max(top, 0), h))
+    if (u_all_views != 0) {
+        // Every view over the whole segment left, closest hit kept.
+        for (int vi = 0; vi < nviews; vi++) {
+            float t0 = tmin, t1 = h.t;
+            if (!march_view(vi, org, dir, t0, t1, i, h))
                 aborted = true;
-        } else {
-            march_linear(vi, v, co, cd, t0, t1, i, h);
+        }
+    } else {
+        // View switching: each part of the ray is marched in one view only,
+        // the first in priority order (camera, then faces) whose frustum
+        // holds it, in order of t; the first hit ends the ray.
+        float va[DIRT_GPU_MAX_VIEWS], vb[DIRT_GPU_MAX_VIEWS];
+        for (int vi = 0; vi < nviews; vi++) {
+            dirt_gpu_view v = views[vi];
+            mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
+            float a = tmin, b = tmax;
+            if (!clip_segment(vp * vec4(org, 1.0), vp * vec4(dir, 0.0), a, b))
+                a = b = BIG;
+            va[vi] = a;
+            vb[vi] = b;
+        }
+        float t = tmin;
+        for (int pieces = 0; t < tmax && pieces <= 2 * nviews + 1; pieces++) {
+            int cur = -1;
+            for (int vi = 0; vi < nviews && cur < 0; vi++) {
+                if (va[vi] <= t && t < vb[vi])
+                    cur = vi;
+            }
+            // The piece ends where `cur` ends or a view before it begins;
+            // outside every view, skip to the next view's start.
+            float end = cur >= 0 ? min(vb[cur], tmax) : BIG;
+            for (int vi = 0; vi < nviews; vi++) {
+                if ((cur < 0 || vi < cur) && va[vi] > t)
+                    end = min(end, va[vi]);
+            }
+            if (cur >= 0) {
+                float t0 = t, t1 = end;
+                if (!march_view(cur, org, dir, t0, t1, i, h))
+                    aborted = true;
+                if (h.node != DIRT_LIST_END)
+                    break;
+            }
+            if (!(end > t) || end >= BIG)
+                break;
+            t = end;
         }
     }
     dirt_gpu_hit o;

@@ -58,6 +58,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glUniform1f(4, thickness);
     glUniform1ui(5, o.seed);
     glUniform1i(6, o.count ? 1 : 0);
+    glUniform1i(7, o.all_views ? 1 : 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m->trace_timer.cpu_finish = m->opts.cpu_timing;
     gl_timer_begin(&m->trace_timer);
