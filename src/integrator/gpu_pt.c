@@ -15,6 +15,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "graph/graph.h"
+#include "integrator/pt_technique.h"
 
 _Static_assert(sizeof(struct dirt_gpu_gpoint) == 64, "gpoint layout");
 _Static_assert(sizeof(struct dirt_gpu_path) == 80, "path layout");
@@ -47,13 +48,24 @@ struct dirt_pt {
     pass_ctx ctx[MAX_PASSES];
     int num_ctx;
     /* render state read by the pass bodies */
-    dirt_ads *ads;
+    pt_technique *tech;
     dirt_gpu_model_tables tables;
     const dirt_pt_opts *opts;
     int width, height, bounces;
     uint32_t sample;
     float ao_distance;
+    pt_tech_state tech_state; /* a technique's persistent state (MMRT's) */
 };
+
+pt_tech_state *dirt_pt_tech_state(dirt_pt *pt)
+{
+    return &pt->tech_state;
+}
+
+dirt_gpu *dirt_pt_gpu(const dirt_pt *pt)
+{
+    return pt->gpu;
+}
 
 dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
 {
@@ -98,6 +110,8 @@ void dirt_pt_destroy(dirt_pt *pt)
     release_buffers(pt);
     dirt_gpu_model_tables_destroy(&pt->tables);
     fg_destroy(pt->graph);
+    if (pt->tech_state.release)
+        pt->tech_state.release(pt->tech_state.state);
     free(pt);
 }
 
@@ -145,7 +159,7 @@ static void set_common(dirt_pt *pt, GLuint prog, int k)
     glUniform3fv(8, 1, pt->opts->background);
     glUniform1f(9, pt->ao_distance);
     dirt_gpu_model_tables_bind(&pt->tables);
-    ads_bind_geometry(pt->ads);
+    pt->tech->bind_geometry(pt->tech->self);
 }
 
 static void bind(GLuint binding, GLuint buf)
@@ -172,12 +186,12 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         break;
     case P_TRACE:
         if (c->k == 1 && pt->g_direct)
-            return ads_visibility_gl(pt->ads, pt->rays, pt->hits);
-        return ads_trace_gl(pt->ads, pt->rays, pt->hits, (uint32_t)pt->pixels, &pt->opts->trace,
-                            pt->g_fetch == DIRT_FETCH_RASTER, NULL);
+            return pt->tech->visibility(pt->tech->self, pt->rays, pt->hits);
+        return pt->tech->trace(pt->tech->self, pt->opts, pt->rays, pt->hits,
+                               (uint32_t)pt->pixels, false, pt->g_fetch == DIRT_FETCH_RASTER);
     case P_FETCH:
-        return ads_fetch_gl(pt->ads, pt->g_fetch == DIRT_FETCH_RASTER, pt->rays, pt->hits,
-                            (uint32_t)pt->pixels, pt->gpoints, (uint32_t)(c->k % 3));
+        return pt->tech->fetch(pt->tech->self, pt->g_fetch == DIRT_FETCH_RASTER, pt->rays,
+                               pt->hits, (uint32_t)pt->pixels, pt->gpoints, (uint32_t)(c->k % 3));
     case P_SHADE:
         set_common(pt, pt->g_mode == DIRT_PT_AO ? pt->prog_ao : pt->prog_shade, c->k);
         bind(DIRT_BIND_PATHS, pt->paths);
@@ -187,12 +201,9 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         bind(DIRT_BIND_SHADOW_RAYS, pt->shadow_rays);
         glDispatchCompute(groups(pt->pixels), 1, 1);
         break;
-    case P_SHADOW: {
-        dirt_trace_opts o = pt->opts->trace;
-        o.any_hit = true;
-        return ads_trace_gl(pt->ads, pt->shadow_rays, pt->shadow_hits, (uint32_t)pt->pixels, &o,
-                            false, NULL);
-    }
+    case P_SHADOW:
+        return pt->tech->trace(pt->tech->self, pt->opts, pt->shadow_rays, pt->shadow_hits,
+                               (uint32_t)pt->pixels, true, false);
     case P_RESOLVE:
         glUseProgram(pt->prog_resolve);
         glUniform1ui(0, (GLuint)pt->pixels);
@@ -317,8 +328,70 @@ static bool scene_size(const dirt_frame *f, float *diag)
     return *diag > 0;
 }
 
+/* ---- The DIRT technique: the ads_* entry points of src/dirt ---- */
+
+static bool dirt_tech_trace(void *self, const dirt_pt_opts *opts, GLuint rays, GLuint hits,
+                            uint32_t count, bool any_hit, bool link)
+{
+    if (!any_hit)
+        return ads_trace_gl(self, rays, hits, count, &opts->trace, link, NULL);
+    dirt_trace_opts o = opts->trace;
+    o.any_hit = true;
+    return ads_trace_gl(self, rays, hits, count, &o, link, NULL);
+}
+
+static bool dirt_tech_visibility(void *self, GLuint rays, GLuint hits)
+{
+    return ads_visibility_gl(self, rays, hits);
+}
+
+static bool dirt_tech_fetch(void *self, bool raster, GLuint rays, GLuint hits, uint32_t count,
+                            GLuint gpoints, uint32_t slot)
+{
+    return ads_fetch_gl(self, raster, rays, hits, count, gpoints, slot);
+}
+
+static void dirt_tech_bind_geometry(void *self)
+{
+    ads_bind_geometry(self);
+}
+
+static void dirt_tech_reset_counts(void *self)
+{
+    ads_reset_ray_count(self);
+}
+
+static bool dirt_tech_read_counts(void *self, uint64_t *rays, uint64_t *aborted)
+{
+    return ads_read_counts(self, rays, aborted);
+}
+
 bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const dirt_camera *cam,
-                    const dirt_pt_opts *opts_in, dirt_image *out, dirt_pt_stats *stats)
+                    const dirt_pt_opts *opts, dirt_image *out, dirt_pt_stats *stats)
+{
+    pt_technique tech = {
+        .self = ads,
+        .name = "dirt",
+        .trace = dirt_tech_trace,
+        .visibility = dirt_tech_visibility,
+        .fetch = dirt_tech_fetch,
+        .bind_geometry = dirt_tech_bind_geometry,
+        .reset_counts = dirt_tech_reset_counts,
+        .read_counts = dirt_tech_read_counts,
+        .views = dirt_ads_views(ads),
+    };
+    const dirt_ads_stats *as = dirt_ads_get_stats(ads);
+    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
+        double ms = as->gpu_ms[i] >= 0 ? as->gpu_ms[i] : as->cpu_ms[i];
+        if (ms > 0)
+            tech.build_ms += ms;
+    }
+    return dirt_pt_render_technique(pt, &tech, frame, cam, opts, out, stats);
+}
+
+bool dirt_pt_render_technique(dirt_pt *pt, pt_technique *tech, const dirt_frame *frame,
+                              const dirt_camera *cam, const dirt_pt_opts *opts_in, dirt_image *out,
+                              dirt_pt_stats *stats)
 {
     dirt_pt_opts opts = opts_in ? *opts_in : (dirt_pt_opts){0};
     if (opts.spp <= 0)
@@ -333,7 +406,7 @@ bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const d
     dirt_pt_stats *st = stats ? stats : &local;
     *st = (dirt_pt_stats){0};
     double t0 = dirt_clock_ms();
-    pt->ads = ads;
+    pt->tech = tech;
     pt->opts = &opts;
     pt->width = out->width;
     pt->height = out->height;
@@ -356,7 +429,11 @@ bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const d
      * gathers emission). */
     int events = opts.mode == DIRT_PT_AO ? 1 : opts.bounces + 1;
     if (opts.direct_visibility) {
-        const dirt_view_set *vs = dirt_ads_views(ads);
+        if (!tech->visibility) {
+            DIRT_ERROR("direct visibility is not available with %s", tech->name);
+            goto done;
+        }
+        const dirt_view_set *vs = tech->views;
         if (vs->camera_view < 0 || vs->views[vs->camera_view].width != out->width ||
             vs->views[vs->camera_view].height != out->height) {
             DIRT_ERROR("direct visibility needs a camera view of the image's size (%dx%d)",
@@ -375,7 +452,7 @@ bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const d
     }
     static const float zero = 0.0f;
     glClearNamedBufferData(pt->accum, GL_R32F, GL_RED, GL_FLOAT, &zero);
-    ads_reset_ray_count(ads);
+    tech->reset_counts(tech->self);
     fg_exec_opts eo = {.cpu_timing = opts.cpu_timing, .validate = true};
     for (int s = 0; s < opts.spp; s++) {
         pt->sample = (uint32_t)s;
@@ -414,26 +491,23 @@ bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const d
         }
     }
     free(sums);
-    if (!ads_read_counts(ads, &st->rays, &st->aborted))
+    if (!tech->read_counts(tech->self, &st->rays, &st->aborted))
         goto done;
     if (st->aborted)
         DIRT_WARN("%llu rays ran out of march steps", (unsigned long long)st->aborted);
-    const dirt_ads_stats *as = dirt_ads_get_stats(ads);
-    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
-        double ms = as->gpu_ms[i] >= 0 ? as->gpu_ms[i] : as->cpu_ms[i];
-        if (ms > 0)
-            st->build_ms += ms;
-    }
+    st->build_ms = tech->build_ms;
     st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
     st->bytes_integrator = pixels * (2 * sizeof(struct dirt_gpu_ray) + 2 * sizeof(struct dirt_gpu_hit) +
                                      3 * sizeof(struct dirt_gpu_gpoint) +
-                                     sizeof(struct dirt_gpu_path) + sizeof(struct dirt_gpu_accum));
+                                     sizeof(struct dirt_gpu_path) + sizeof(struct dirt_gpu_accum)) +
+                          tech->bytes_extra;
     ok = gl_check("dirt path tracer");
 done:
     st->total_ms = dirt_clock_ms() - t0;
     dirt_area_lights_free(&area);
     gl_group_pop();
     pt->opts = NULL;
+    pt->tech = NULL;
     return ok;
 }
 

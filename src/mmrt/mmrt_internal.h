@@ -45,6 +45,10 @@ void dirt_mmrt_gl_buffers(const dirt_mmrt *mmrt, dirt_mmrt_gl *out);
  * point. */
 void dirt_mmrt_bind(const dirt_mmrt *mmrt);
 
+/* The thickness a trace with `opts` uses (resolves the default from the
+ * scene of the last build). */
+float dirt_mmrt_thickness(const dirt_mmrt *mmrt, const dirt_mmrt_trace_opts *opts);
+
 /* Traces `count` rays of the dirt_gpu_ray buffer `rays` into the
  * dirt_gpu_hit buffer `hits` (same contract as dirt_mmrt_trace_cpu, without
  * transfers; the caller orders its own barriers around it: this issues a

@@ -13,7 +13,7 @@ _Static_assert(sizeof(dirt_hit) == sizeof(struct dirt_gpu_hit), "hit layout");
 /* Linear marching: the demo's default samples per view. */
 #define MMRT_DEFAULT_SAMPLES 30
 
-static float thickness_of(const dirt_mmrt *m, const dirt_mmrt_trace_opts *o)
+float dirt_mmrt_thickness(const dirt_mmrt *m, const dirt_mmrt_trace_opts *o)
 {
     if (o->thickness > 0)
         return o->thickness;
@@ -26,7 +26,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
                      const dirt_mmrt_trace_opts *opts_in, dirt_mmrt_trace_stats *stats)
 {
     dirt_mmrt_trace_opts o = opts_in ? *opts_in : (dirt_mmrt_trace_opts){0};
-    float thickness = thickness_of(m, &o);
+    float thickness = dirt_mmrt_thickness(m, &o);
     if (stats)
         *stats = (dirt_mmrt_trace_stats){.rays = count, .thickness = thickness,
                                          .gpu_ms = -1, .cpu_ms = -1};

@@ -7,7 +7,9 @@
  * finally accumulation. The light-transport model, the random numbers and
  * the order in which they are drawn are those of the Embree reference
  * (doc/light-transport.md), so both converge to the same image.
- * The rays are traced through a technique: the DIRT structure here. */
+ * The rays are traced through a technique: the DIRT structure
+ * (dirt_pt_render) or the MMRT A-buffer (dirt_pt_render_mmrt), the same frame
+ * graph either way (only the trace, fetch and geometry bindings differ). */
 #ifndef DIRT_PATHTRACE_H
 #define DIRT_PATHTRACE_H
 
@@ -17,6 +19,7 @@
 #include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/image.h"
+#include "dirt/mmrt.h"
 #include "dirt/scene.h"
 
 #ifdef __cplusplus
@@ -42,7 +45,9 @@ typedef struct dirt_pt_opts {
     /* G_1 from a visibility buffer of the camera view instead of traced
      * camera rays (pixel centres: no pixel jitter, no depth of field). */
     bool direct_visibility;
-    dirt_trace_opts trace;
+    dirt_trace_opts trace;    /* DIRT's trace options (dirt_pt_render) */
+    dirt_mmrt_trace_opts mmrt; /* MMRT's (dirt_pt_render_mmrt); its seed is mixed with
+                                  the trace call's index for the linear march jitter */
     bool cpu_timing;          /* glFinish + CPU clock per pass */
     /* Called after every sample (may be NULL). */
     void (*progress)(void *user, int done, int total);
@@ -72,6 +77,22 @@ void dirt_pt_destroy(dirt_pt *pt);
 bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame,
                     const dirt_camera *cam, const dirt_pt_opts *opts, dirt_image *out,
                     dirt_pt_stats *stats);
+
+/* The same through the MMRT A-buffer `mmrt` (built for this frame and
+ * camera), MMRT's way (the MMRT paper: no Fetch): a hit's data node becomes
+ * the shading point directly (the "fetch" pass only converts it: position =
+ * ray origin + t direction, the MMRT hit point; shading normal, uv and
+ * material from the data node; geometric normal of the primitive), and the
+ * shadow rays of next-event estimation are MMRT traces too. Every ray is
+ * traced from 3 thicknesses along it (shadow rays also stop 3 thicknesses
+ * short of their end) so that a ray does not hit the surface it leaves
+ * within the thickness. opts->mmrt gives the march and thickness; fetch
+ * must be compute and direct_visibility false (false, logged, otherwise).
+ * Stats: rays counts the active rays traced; bytes_integrator includes the
+ * technique's offset ray copy. */
+bool dirt_pt_render_mmrt(dirt_pt *pt, dirt_mmrt *mmrt, const dirt_frame *frame,
+                         const dirt_camera *cam, const dirt_pt_opts *opts, dirt_image *out,
+                         dirt_pt_stats *stats);
 
 /* DOT of the last render's frame graph; false before the first render. */
 bool dirt_pt_write_dot(const dirt_pt *pt, const char *path);
