@@ -11,6 +11,7 @@
 
 #include "ads_common.h"
 #include "common/layout.h"
+#include "dirt/log.h"
 #include "dirt/scene.h"
 #include "gpu.h"
 
@@ -214,6 +215,41 @@ static void test_odd_sizes(dirt_gpu *gpu)
     dirt_scene_destroy(scene);
 }
 
+static int limit_errors;
+
+static void on_log(void *user, enum dirt_log_level level, const char *file, int line,
+                   const char *msg)
+{
+    (void)user, (void)file, (void)line;
+    if (level == DIRT_LOG_ERROR && strstr(msg, "largest storage buffer"))
+        limit_errors++;
+}
+
+/* A structure beyond the GPU's largest storage buffer fails with a clear
+ * error naming the knobs, and a normal one still builds afterwards. */
+static void test_limits(dirt_gpu *gpu)
+{
+    dirt_scene *scene = dirt_scene_create_default();
+    dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
+    dirt_ads_opts huge = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = 8192, .height = 8192,
+                                    .tile_size = 1},
+                          .buckets = 1024, .force_emulation = true};
+    dirt_ads *ads = dirt_ads_create(gpu, &huge);
+    CHECK(ads != NULL);
+    dirt_log_set_callback(on_log, NULL);
+    CHECK(!dirt_ads_build(ads, f, &f->cameras[0]));
+    dirt_log_set_callback(NULL, NULL);
+    CHECK(limit_errors == 1);
+    dirt_ads_destroy(ads);
+    dirt_ads_opts ok = {.views = {.width = 32, .height = 24}, .buckets = 4,
+                        .force_emulation = true};
+    ads = dirt_ads_create(gpu, &ok);
+    CHECK(ads && dirt_ads_build(ads, f, &f->cameras[0]));
+    dirt_ads_destroy(ads);
+    dirt_frame_destroy(f);
+    dirt_scene_destroy(scene);
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -223,6 +259,7 @@ int main(void)
     test_overflow(gpu);
     test_odd_sizes(gpu);
     CHECK(dirt_gpu_error_count(gpu) == 0);
+    test_limits(gpu);
     dirt_gpu_destroy(gpu);
     return check_finish();
 }
