@@ -12,12 +12,13 @@
 #include "dirt/gpu.h"
 #include "dirt/image.h"
 #include "dirt/log.h"
+#include "dirt/mmrt.h"
 #include "dirt/raster.h"
 #include "dirt/scene.h"
 
 #define PROG "dirt-render"
 
-enum engine { ENGINE_DIRT, ENGINE_RASTER, ENGINE_EMBREE };
+enum engine { ENGINE_DIRT, ENGINE_RASTER, ENGINE_EMBREE, ENGINE_MMRT };
 
 typedef struct options {
     const char *scene_path;   /* NULL = embedded default scene */
@@ -40,6 +41,7 @@ typedef struct options {
     const char *debug_ads;    /* directory for pictures, or NULL */
     enum dirt_view_mode views;
     long tile_size, buckets, face_size;
+    bool buckets_set;
     bool force_emulation;
     /* path tracing */
     long spp, bounces, hiz_levels;
@@ -52,6 +54,10 @@ typedef struct options {
     long threads;
     double aperture, focus;
     bool direct_visibility;
+    /* MMRT */
+    double thickness;         /* 0 = MMRT's default */
+    enum dirt_mmrt_march march;
+    long march_samples;       /* 0 = MMRT's default */
 } options;
 
 static void usage(FILE *out)
@@ -86,8 +92,10 @@ static void usage(FILE *out)
 "\n"
 "Technique:\n"
 "      --engine NAME     dirt: path tracing through the DIRT structure on the GPU\n"
-"                        (default); embree: the CPU ground truth (Embree 3);\n"
-"                        raster: rasterized preview with direct lighting\n"
+"                        (default); mmrt: the same path tracer through the MMRT\n"
+"                        A-buffer (the fragment-based baseline, doc/mmrt.md);\n"
+"                        embree: the CPU ground truth (Embree 3); raster:\n"
+"                        rasterized preview with direct lighting\n"
 "      --mode MODE       pt (path tracing, default) or ao (ambient occlusion)\n"
 "      --spp N           samples per pixel (default 16)\n"
 "      --bounces K       scattering events per path, 1 = direct light (default 4)\n"
@@ -95,18 +103,21 @@ static void usage(FILE *out)
 "                        paths in every engine\n"
 "      --ao-distance D   AO ray length (default: infinite)\n"
 "      --background R,G,B  radiance of rays that leave the scene (default 0,0,0)\n"
-"      --stats FILE.json write timings, ray counts and memory as JSON\n"
+"      --stats FILE.json write timings, ray counts and memory as JSON (dirt and\n"
+"                        mmrt: also bytes per buffer; mmrt: also fragments)\n"
 "      --threads N       embree: CPU threads (default: all)\n"
 "      --cpu-timing      time passes with glFinish and the CPU clock too (always\n"
 "                        on with a software renderer such as llvmpipe)\n"
 "\n"
-"DIRT acceleration structure (--engine dirt, --debug-ads):\n"
+"DIRT acceleration structure (--engine dirt, --debug-ads; --views, --face-size\n"
+"and -B also set MMRT's):\n"
 "      --debug-ads DIR   build the structure for the frame, print its stats and\n"
 "                        write heat maps of list lengths and depth bounds per\n"
 "                        view into DIR (single frame only)\n"
 "      --views MODE      single | cube | cube+camera (default cube+camera)\n"
 "  -S, --tile S          tile size 1, 2, 4 or 8 (default 2; also --tile-size)\n"
-"  -B, --buckets B       depth buckets per tile, >= 1 (default 16)\n"
+"  -B, --buckets B       depth buckets per tile, >= 1 (default 16 for dirt, 4 for\n"
+"                        mmrt, the MMRT paper's setting)\n"
 "      --face-size N     cube face size in pixels (default max(W,H)/2)\n"
 "      --no-conservative-raster  emulate conservative rasterization even when\n"
 "                        GL_NV_conservative_raster is present\n"
@@ -115,6 +126,15 @@ static void usage(FILE *out)
 "      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
 "      --direct-visibility  first hits from a visibility buffer of the camera view\n"
 "                        (pixel centres: no anti-aliasing or depth of field)\n"
+"\n"
+"MMRT (--engine mmrt; tile size 1: MMRT is per pixel):\n"
+"      --march KIND      hiz (default: walk of the min/max depth pyramid) or linear\n"
+"                        (jittered samples along the ray in each view)\n"
+"      --samples N       linear march: samples per view (default 30)\n"
+"      --thickness T     a fragment is hit when its depth is within T (eye-space\n"
+"                        depth units) of the ray's (default 0.2%% of the scene's\n"
+"                        bounding-box diagonal); rays start 3 T off surfaces\n"
+"      --hiz-top L       as for dirt: highest Hi-Z level of the walk\n"
 "\n"
 "Other:\n"
 "  -q, --quiet           print only errors\n"
@@ -233,8 +253,11 @@ static int parse_args(int argc, char **argv, options *o)
                 o->engine = ENGINE_DIRT;
             } else if (!strcmp(val, "embree")) {
                 o->engine = ENGINE_EMBREE;
+            } else if (!strcmp(val, "mmrt")) {
+                o->engine = ENGINE_MMRT;
             } else {
-                cli_error(PROG, "unknown engine '%s' (available: dirt, embree, raster)", val);
+                cli_error(PROG, "unknown engine '%s' (available: dirt, mmrt, embree, raster)",
+                          val);
                 return DIRT_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--mode")) {
@@ -340,6 +363,25 @@ static int parse_args(int argc, char **argv, options *o)
             NEED_VALUE();
             if (!cli_int(PROG, a, val, 1, 1024, &o->buckets))
                 return DIRT_EXIT_USAGE;
+            o->buckets_set = true;
+        } else if (!strcmp(a, "--march")) {
+            NEED_VALUE();
+            if (!strcmp(val, "hiz")) {
+                o->march = DIRT_MMRT_MARCH_HIZ;
+            } else if (!strcmp(val, "linear")) {
+                o->march = DIRT_MMRT_MARCH_LINEAR;
+            } else {
+                cli_error(PROG, "--march expects hiz or linear, got '%s'", val);
+                return DIRT_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--samples")) {
+            NEED_VALUE();
+            if (!cli_int(PROG, a, val, 1, 65536, &o->march_samples))
+                return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--thickness")) {
+            NEED_VALUE();
+            if (!cli_float(PROG, a, val, 1e-12, 1e12, &o->thickness))
+                return DIRT_EXIT_USAGE;
         } else if (!strcmp(a, "--face-size")) {
             NEED_VALUE();
             if (!cli_int(PROG, a, val, 1, 16384, &o->face_size))
@@ -382,6 +424,11 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (!many && strchr(o->output, '%') && !valid_frame_pattern(o->output)) {
         cli_error(PROG, "output '%s' has a stray '%%'", o->output);
+        return DIRT_EXIT_USAGE;
+    }
+    if (o->engine == ENGINE_MMRT && (o->fetch == DIRT_FETCH_RASTER || o->direct_visibility)) {
+        cli_error(PROG, "--engine mmrt has no Fetch pass and no visibility buffer: "
+                  "--fetch raster and --direct-visibility are DIRT's");
         return DIRT_EXIT_USAGE;
     }
     if (o->debug_ads && many) {
@@ -431,6 +478,8 @@ typedef struct frame_stats {
     uint64_t rays, aborted, bytes_total;
     dirt_ads_stats ads;
     bool has_ads;
+    dirt_mmrt_stats mmrt;
+    bool has_mmrt;
 } frame_stats;
 
 typedef struct progress_state {
@@ -464,7 +513,7 @@ static void json_stats(FILE *f, const frame_stats *s, const char *indent)
             indent, s->build_ms, indent, s->trace_ms, indent, s->fetch_ms, indent, s->shade_ms,
             indent, s->total_ms, indent, (unsigned long long)s->rays, indent, s->mrays_per_s,
             indent, (unsigned long long)s->aborted, indent, (unsigned long long)s->bytes_total);
-    if (s->has_ads) {
+    if (s->has_ads && !s->has_mmrt) {
         const dirt_ads_stats *a = &s->ads;
         fprintf(f, ",\n%s\"bytes\": {\"vertices\": %llu, \"depth bounds\": %llu, "
                    "\"list heads\": %llu, \"id nodes\": %llu, \"id nodes allocated\": %llu},\n"
@@ -473,6 +522,20 @@ static void json_stats(FILE *f, const frame_stats *s, const char *indent)
                 (unsigned long long)a->bytes_heads, (unsigned long long)a->bytes_nodes_used,
                 (unsigned long long)a->bytes_nodes_allocated, indent,
                 (unsigned long long)a->samples, indent, a->buckets_per_sample);
+    } else if (s->has_mmrt) {
+        /* The same keys as DIRT's where they mean the same; "list heads"
+         * holds heads and tails. */
+        const dirt_mmrt_stats *m = &s->mmrt;
+        fprintf(f, ",\n%s\"bytes\": {\"vertices\": %llu, \"depth bounds\": %llu, "
+                   "\"list heads\": %llu, \"id nodes\": %llu, \"id nodes allocated\": %llu, "
+                   "\"data nodes\": %llu, \"data nodes allocated\": %llu},\n"
+                   "%s\"fragments\": %llu,\n%s\"max_layers\": %u,\n%s\"bytes_paper\": %.0f",
+                indent, (unsigned long long)m->bytes_vertices, (unsigned long long)m->bytes_depth,
+                (unsigned long long)m->bytes_heads, (unsigned long long)m->bytes_id_nodes_used,
+                (unsigned long long)m->bytes_id_nodes_allocated,
+                (unsigned long long)m->bytes_data_nodes_used,
+                (unsigned long long)m->bytes_data_nodes_allocated, indent,
+                (unsigned long long)m->fragments, indent, m->max_layers, indent, m->bytes_paper);
     }
 }
 
@@ -499,6 +562,8 @@ static bool write_stats(const options *o, const char *engine, const frame_stats 
     mean.mrays_per_s = frames[count - 1].mrays_per_s;
     mean.ads = frames[count - 1].ads;
     mean.has_ads = frames[count - 1].has_ads;
+    mean.mmrt = frames[count - 1].mmrt;
+    mean.has_mmrt = frames[count - 1].has_mmrt;
     fprintf(f, "{\n  \"engine\": \"%s\",\n  \"device\": \"", engine);
     for (const char *c = gpu_desc; *c; c++)
         fputc(*c == '"' || *c == '\\' ? '\'' : *c, f);
@@ -518,7 +583,10 @@ static bool write_stats(const options *o, const char *engine, const frame_stats 
 
 static const char *engine_name(enum engine e)
 {
-    return e == ENGINE_DIRT ? "dirt" : e == ENGINE_EMBREE ? "embree" : "raster";
+    return e == ENGINE_DIRT     ? "dirt"
+           : e == ENGINE_MMRT   ? "mmrt"
+           : e == ENGINE_EMBREE ? "embree"
+                                : "raster";
 }
 
 int main(int argc, char **argv)
@@ -537,6 +605,7 @@ int main(int argc, char **argv)
     dirt_gpu *gpu = NULL;
     dirt_raster *raster = NULL;
     dirt_ads *ads = NULL;
+    dirt_mmrt *mmrt = NULL;
     dirt_pt *pt = NULL;
     dirt_image *img = NULL;
     frame_stats *fstats = NULL;
@@ -627,7 +696,18 @@ int main(int argc, char **argv)
         if (!ads)
             goto done;
     }
-    if (o.engine == ENGINE_DIRT) {
+    if (o.engine == ENGINE_MMRT) {
+        dirt_mmrt_opts mo = {
+            .views = {.mode = o.views, .width = (int)o.width, .height = (int)o.height,
+                      .face_size = (int)o.face_size, .tile_size = 1},
+            .buckets = o.buckets_set ? (int)o.buckets : 4,
+            .cpu_timing = o.cpu_timing,
+        };
+        mmrt = dirt_mmrt_create(gpu, &mo);
+        if (!mmrt)
+            goto done;
+    }
+    if (o.engine == ENGINE_DIRT || o.engine == ENGINE_MMRT) {
         pt = dirt_pt_create(gpu, scene);
         if (!pt)
             goto done;
@@ -678,6 +758,12 @@ int main(int argc, char **argv)
                 }
             }
         }
+        if (mmrt) {
+            if (!dirt_mmrt_build(mmrt, frame, &cam))
+                goto done;
+            fs->mmrt = *dirt_mmrt_get_stats(mmrt);
+            fs->has_mmrt = true;
+        }
         if (o.engine == ENGINE_RASTER) {
             dirt_raster_stats st;
             dirt_raster_opts ro = {.cpu_timing = o.cpu_timing};
@@ -685,7 +771,7 @@ int main(int argc, char **argv)
                                     img->rgba, &st))
                 goto done;
             fs->shade_ms = st.gpu_ms >= 0 ? st.gpu_ms : st.cpu_ms;
-        } else if (o.engine == ENGINE_DIRT) {
+        } else if (o.engine == ENGINE_DIRT || o.engine == ENGINE_MMRT) {
             dirt_pt_opts po = {
                 .mode = o.ao ? DIRT_PT_AO : DIRT_PT_PATH,
                 .spp = (int)o.spp,
@@ -696,12 +782,16 @@ int main(int argc, char **argv)
                 .fetch = o.fetch,
                 .direct_visibility = o.direct_visibility,
                 .trace = {.hiz_levels = (int)o.hiz_levels},
+                .mmrt = {.march = o.march, .samples = (int)o.march_samples,
+                         .hiz_levels = (int)o.hiz_levels, .thickness = (float)o.thickness,
+                         .seed = (uint32_t)o.seed},
                 .cpu_timing = o.cpu_timing,
                 .progress = on_progress,
                 .progress_user = &prog,
             };
             dirt_pt_stats st;
-            if (!dirt_pt_render(pt, ads, frame, &cam, &po, img, &st))
+            if (o.engine == ENGINE_MMRT ? !dirt_pt_render_mmrt(pt, mmrt, frame, &cam, &po, img, &st)
+                                        : !dirt_pt_render(pt, ads, frame, &cam, &po, img, &st))
                 goto done;
             fs->build_ms = st.build_ms;
             fs->trace_ms = st.trace_ms;
@@ -710,7 +800,8 @@ int main(int argc, char **argv)
             fs->rays = st.rays;
             fs->aborted = st.aborted;
             fs->mrays_per_s = st.mrays_per_s;
-            fs->bytes_total = fs->ads.bytes_total_used + st.bytes_integrator;
+            fs->bytes_total = (mmrt ? fs->mmrt.bytes_total_used : fs->ads.bytes_total_used) +
+                              st.bytes_integrator;
         } else {
             dirt_ref_opts ro = {
                 .width = (int)o.width, .height = (int)o.height, .spp = (int)o.spp,
@@ -762,6 +853,7 @@ done:
     free(fstats);
     dirt_image_destroy(img);
     dirt_pt_destroy(pt);
+    dirt_mmrt_destroy(mmrt);
     dirt_raster_destroy(raster);
     dirt_ads_destroy(ads);
     dirt_frame_destroy(frame);

@@ -53,7 +53,8 @@ float dirt_mmrt_thickness(const dirt_mmrt *mmrt, const dirt_mmrt_trace_opts *opt
  * dirt_gpu_hit buffer `hits` (same contract as dirt_mmrt_trace_cpu, without
  * transfers; the caller orders its own barriers around it: this issues a
  * GL_SHADER_STORAGE_BARRIER_BIT before and after the dispatch). `stats` may
- * be NULL; when given, the counters are read back (blocking). */
+ * be NULL; when given, the dispatch is timed (a GL time query: none may be
+ * active) and the counters are read back (blocking). */
 bool dirt_mmrt_trace(dirt_mmrt *mmrt, GLuint rays, GLuint hits, uint32_t count,
                      const dirt_mmrt_trace_opts *opts, dirt_mmrt_trace_stats *stats);
 

@@ -60,10 +60,15 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glUniform1i(6, o.count ? 1 : 0);
     glUniform1i(7, o.all_views ? 1 : 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    m->trace_timer.cpu_finish = m->opts.cpu_timing;
-    gl_timer_begin(&m->trace_timer);
+    /* Timed only when stats are asked for: a caller timing its own pass (a
+     * frame graph) may have a time query active, and they do not nest. */
+    if (stats) {
+        m->trace_timer.cpu_finish = m->opts.cpu_timing;
+        gl_timer_begin(&m->trace_timer);
+    }
     glDispatchCompute((count + 63) / 64, 1, 1);
-    gl_timer_end(&m->trace_timer);
+    if (stats)
+        gl_timer_end(&m->trace_timer);
     glUseProgram(0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     bool ok = true;
