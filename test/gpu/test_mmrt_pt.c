@@ -1,0 +1,127 @@
+/* Path tracing through MMRT (dirt_pt_render_mmrt) against the Embree
+ * reference on the default scene (64x64, 8 spp, 3 bounces, cube+camera views
+ * 64x64 + 32^2 faces, B = 4), same seed, so both sides draw the same random
+ * numbers: with DIRT this agrees to ~1e-8 (test_dirt_pt). MMRT's hits are
+ * approximate (a fragment within the thickness of the ray's depth in one
+ * view, its pixel-centre attributes, rays started 3 thicknesses off the
+ * surface, oblique and off-view surfaces missed), so paths diverge after
+ * the first wrong hit and the error is that of the technique, not noise.
+ * Reported: relMSE of MMRT (Hi-Z and linear march) against the same-seed
+ * reference, and for scale the relMSE of an Embree render with another seed
+ * (pure 8 spp noise). Asserted: what MMRT guarantees here -- the render
+ * succeeds, no march aborted, no non-finite sample, every ray counted, the
+ * image is not black and its relMSE is below MAX_REL_MSE (a loose bound
+ * from a measurement, see below), and no GL error. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "dirt/mmrt.h"
+#include "dirt/pathtrace.h"
+#include "dirt/ref.h"
+#include "gpu.h"
+
+#define W 64
+#define H 64
+/* Measured on llvmpipe: Hi-Z 0.336, linear 0.409 (Embree seed-to-seed noise
+ * 0.877: at 8 spp relMSE is dominated by where paths diverge, so it is a weak
+ * detector). 0.6 leaves 1.5x room over the worst mode. The mean-brightness
+ * check (within 25 %) is the sharper one: without the 3-thickness ray offset
+ * the Hi-Z render came out 28 % too bright (self-hits; MSE 3.1 vs 0.33). */
+#define MAX_REL_MSE 0.6
+
+static dirt_image *render_mmrt(dirt_pt *pt, dirt_mmrt *m, const dirt_frame *f,
+                               const dirt_camera *cam, const dirt_pt_opts *po, dirt_pt_stats *st)
+{
+    dirt_image *img = dirt_image_create(W, H);
+    CHECK(img != NULL);
+    CHECK(dirt_pt_render_mmrt(pt, m, f, cam, po, img, st));
+    CHECK(st->aborted == 0 && st->invalid_samples == 0 && st->rays > 0);
+    for (int i = 0; i < 4 * W * H; i++)
+        CHECK(isfinite(img->rgba[i]));
+    return img;
+}
+
+static dirt_image *render_ref(const dirt_scene *s, const dirt_frame *f, const dirt_camera *cam,
+                              uint32_t seed)
+{
+    dirt_ref_opts ro = {.width = W, .height = H, .spp = 8, .bounces = 3, .seed = seed};
+    dirt_image *img = dirt_ref_render(s, f, cam, &ro, NULL);
+    CHECK(img != NULL);
+    return img;
+}
+
+static double mean_luminance(const dirt_image *img)
+{
+    double m = 0;
+    for (int i = 0; i < W * H; i++)
+        m += (img->rgba[4 * i] + img->rgba[4 * i + 1] + img->rgba[4 * i + 2]) / (3.0 * W * H);
+    return m;
+}
+
+int main(void)
+{
+    dirt_gpu *gpu = test_gpu();
+    if (!gpu)
+        return TEST_SKIP;
+    dirt_scene *scene = dirt_scene_create_default();
+    dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
+    dirt_camera cam = f->cameras[0];
+    dirt_mmrt_opts mo = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = W, .height = H,
+                                   .face_size = 32}};
+    dirt_mmrt *m = dirt_mmrt_create(gpu, &mo);
+    CHECK(m && dirt_mmrt_build(m, f, &cam));
+    dirt_pt *pt = dirt_pt_create(gpu, scene);
+    CHECK(pt != NULL);
+
+    dirt_image *r = render_ref(scene, f, &cam, 11);
+    dirt_image *r2 = render_ref(scene, f, &cam, 12);
+    double noise = dirt_image_rel_mse(r2, r);
+    fprintf(stderr, "Embree 8 spp seed 12 vs seed 11 (noise scale): relMSE %.4g\n", noise);
+
+    const struct {
+        const char *name;
+        dirt_mmrt_trace_opts t;
+    } modes[] = {
+        {"hiz", {.march = DIRT_MMRT_MARCH_HIZ}},
+        {"linear 30", {.march = DIRT_MMRT_MARCH_LINEAR}},
+    };
+    dirt_image *imgs[2] = {0};
+    for (int i = 0; i < 2; i++) {
+        dirt_pt_opts po = {.spp = 8, .bounces = 3, .seed = 11, .mmrt = modes[i].t};
+        dirt_pt_stats st;
+        imgs[i] = render_mmrt(pt, m, f, &cam, &po, &st);
+        dirt_image_error e;
+        CHECK(dirt_image_compare(imgs[i], r, &e));
+        double lm = mean_luminance(imgs[i]), lr = mean_luminance(r);
+        fprintf(stderr, "MMRT %s, PT 8 spp, same seed: relMSE %.4g (MSE %.4g), mean %.4f vs "
+                "Embree %.4f, %llu rays, trace %.1f ms\n", modes[i].name, e.rel_mse, e.mse, lm,
+                lr, (unsigned long long)st.rays, st.trace_ms);
+        CHECK(e.rel_mse < MAX_REL_MSE);
+        CHECK(lm > 0.75 * lr && lm < 1.25 * lr);
+    }
+    /* The same render twice: deterministic. */
+    dirt_pt_opts po = {.spp = 8, .bounces = 3, .seed = 11};
+    dirt_pt_stats st;
+    dirt_image *again = render_mmrt(pt, m, f, &cam, &po, &st);
+    CHECK(memcmp(again->rgba, imgs[0]->rgba, sizeof(float) * 4 * W * H) == 0);
+    /* MMRT has no raster Fetch and no visibility buffer: refused. */
+    po.fetch = DIRT_FETCH_RASTER;
+    CHECK(!dirt_pt_render_mmrt(pt, m, f, &cam, &po, again, &st));
+    po = (dirt_pt_opts){.spp = 1, .direct_visibility = true};
+    CHECK(!dirt_pt_render_mmrt(pt, m, f, &cam, &po, again, &st));
+
+    dirt_image_destroy(again);
+    dirt_image_destroy(imgs[0]);
+    dirt_image_destroy(imgs[1]);
+    dirt_image_destroy(r);
+    dirt_image_destroy(r2);
+    CHECK(dirt_gpu_error_count(gpu) == 0);
+    dirt_pt_destroy(pt);
+    dirt_mmrt_destroy(m);
+    dirt_frame_destroy(f);
+    dirt_scene_destroy(scene);
+    dirt_gpu_destroy(gpu);
+    return check_finish();
+}
