@@ -435,6 +435,10 @@ static int parse_args(int argc, char **argv, options *o)
         cli_error(PROG, "--debug-ads works on a single frame, not with --frames");
         return DIRT_EXIT_USAGE;
     }
+    if (o->direct_visibility && o->engine == ENGINE_DIRT && o->views == DIRT_VIEWS_CUBE) {
+        cli_error(PROG, "--direct-visibility needs a camera view: --views single or cube+camera");
+        return DIRT_EXIT_USAGE;
+    }
     if (o->png_preview && !cli_has_ext(o->output, ".exr")) {
         cli_error(PROG, "--png needs an .exr output (the output is already a PNG)");
         return DIRT_EXIT_USAGE;

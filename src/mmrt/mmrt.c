@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "views/views_gpu.h"
 #include "gl/program.h"
 #include "mmrt_internal.h"
 
@@ -178,23 +179,7 @@ static bool upload_frame(dirt_mmrt *m, const dirt_frame *f)
 static void upload_views(dirt_mmrt *m)
 {
     struct dirt_gpu_view gv[DIRT_MAX_VIEWS];
-    memset(gv, 0, sizeof(gv));
-    for (int i = 0; i < m->set.count; i++) {
-        const dirt_view *v = &m->set.views[i];
-        for (int c = 0; c < 4; c++) {
-            gv[i].view_proj[c] = (dirt_f4){v->view_proj[c * 4], v->view_proj[c * 4 + 1],
-                                           v->view_proj[c * 4 + 2], v->view_proj[c * 4 + 3]};
-        }
-        gv[i].eye_near = (dirt_f4){v->eye[0], v->eye[1], v->eye[2], v->znear};
-        gv[i].forward_far = (dirt_f4){v->forward[0], v->forward[1], v->forward[2], v->zfar};
-        gv[i].size = (dirt_i4){v->width, v->height, v->tiles_x, v->tiles_y};
-        gv[i].placement = (dirt_i4){v->tile_base, v->atlas_x, v->num_levels, v->face};
-        int lb[16] = {0};
-        for (int d = 0; d < DIRT_MAX_MIP_LEVELS; d++)
-            lb[d] = d < m->set.num_levels ? m->set.level_base[d][i] : 0;
-        for (int k = 0; k < 4; k++)
-            gv[i].level_base[k] = (dirt_i4){lb[4 * k], lb[4 * k + 1], lb[4 * k + 2], lb[4 * k + 3]};
-    }
+    views_pack_gpu(&m->set, gv);
     glNamedBufferSubData(m->views, 0, (GLsizeiptr)sizeof(gv), gv);
 }
 

@@ -81,6 +81,7 @@ expect_rc 2 "stats not json" -- -o "$out/a.png" --stats "$out/s.txt"
 expect_rc 2 "short background" -- -o "$out/a.png" --background 1,2
 expect_rc 2 "bad fetch" -- -o "$out/a.png" --fetch magic
 expect_rc 2 "bad tile size" -- -o "$out/a.png" --tile 3
+expect_rc 2 "direct visibility without camera view" -- -o "$out/a.png" --views cube --direct-visibility
 expect_rc 2 "stats dir missing" -- -o "$out/a.png" --stats "$tmp/no/dir/s.json"
 no_leftovers "$out"
 
