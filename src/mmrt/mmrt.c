@@ -87,10 +87,6 @@ dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
                                    "mmrt counters");
     if (!m->views || !m->params || !m->counters)
         goto error;
-    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++) {
-        if (!gl_timer_init(&m->timers[i], m->opts.cpu_timing, dirt_mmrt_pass_names[i]))
-            goto error;
-    }
     if (!gl_timer_init(&m->trace_timer, m->opts.cpu_timing, "mmrt trace"))
         goto error;
     m->node_capacity = m->opts.initial_nodes;
@@ -120,8 +116,9 @@ void dirt_mmrt_destroy(dirt_mmrt *m)
                       &m->rays, &m->hits};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         gl_buffer_destroy(bufs[i]);
-    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++)
-        gl_timer_release(&m->timers[i]);
+    fg_destroy(m->g_build);
+    fg_destroy(m->g_restore);
+    fg_destroy(m->g_finish);
     gl_timer_release(&m->trace_timer);
     free(m->staging);
     free(m);
@@ -308,22 +305,6 @@ static void raster_views(dirt_mmrt *m, GLuint program)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-static void pass_begin(dirt_mmrt *m, int pass)
-{
-    gl_group_push(dirt_mmrt_pass_names[pass]);
-    gl_timer_begin(&m->timers[pass]);
-}
-
-static void pass_end(dirt_mmrt *m, int pass, double *gpu_acc, double *cpu_acc)
-{
-    gl_timer_end(&m->timers[pass]);
-    gl_group_pop();
-    gpu_acc[pass] = m->timers[pass].gpu_ms < 0 || gpu_acc[pass] < 0
-                        ? -1 : gpu_acc[pass] + m->timers[pass].gpu_ms;
-    if (m->timers[pass].cpu_ms >= 0)
-        cpu_acc[pass] += m->timers[pass].cpu_ms;
-}
-
 static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int runs,
                        const double *gpu_ms, const double *cpu_ms)
 {
@@ -357,6 +338,223 @@ static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int
     }
 }
 
+/* ---- passes (bodies run by the frame graphs) ---- */
+
+static bool exec_clear(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_mmrt *m = user;
+    static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
+    static const uint32_t end = DIRT_LIST_END;
+    glClearNamedBufferData(m->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
+    glClearNamedBufferData(m->tails, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    clear_lists(m);
+    return true;
+}
+
+static bool exec_clear_lists(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    clear_lists(user);
+    return true;
+}
+
+static bool exec_depth(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_mmrt *m = user;
+    dirt_mmrt_bind(m);
+    raster_views(m, m->prog_depth);
+    return true;
+}
+
+static bool exec_mip(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_mmrt *m = user;
+    dirt_mmrt_bind(m);
+    glUseProgram(m->prog_mip);
+    for (int d = 1; d < m->set.num_levels; d++) {
+        int w = 0, h = 0;
+        for (int i = 0; i < m->set.count; i++) {
+            const dirt_view *v = &m->set.views[i];
+            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
+            w = lw > w ? lw : w;
+            h = lh > h ? lh : h;
+        }
+        /* Level d reads level d - 1 written by the previous dispatch. */
+        if (d > 1)
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glUniform1i(0, d);
+        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)m->set.count);
+    }
+    glUseProgram(0);
+    return true;
+}
+
+static bool exec_store(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_mmrt *m = user;
+    dirt_mmrt_bind(m);
+    raster_views(m, m->prog_store);
+    return true;
+}
+
+static bool exec_reorder(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_mmrt *m = user;
+    dirt_mmrt_bind(m);
+    glUseProgram(m->prog_reorder);
+    glDispatchCompute((GLuint)((m->set.num_tiles + 63) / 64), 1, 1);
+    glUseProgram(0);
+    return true;
+}
+
+static bool exec_read_counters(fg_ctx *ctx, void *user)
+{
+    dirt_mmrt *m = user;
+    return fg_gl_read_buffer(ctx, m->r_counters, 0, sizeof(m->counters_cpu), &m->counters_cpu);
+}
+
+static void import_all(dirt_mmrt *m, fg_graph *g)
+{
+    m->r_vertices = fg_import_buffer(g, "vertices", m->vertices, m->vertices_size);
+    m->r_materials = fg_import_buffer(g, "materials", m->materials, m->materials_size);
+    m->r_views = fg_import_buffer(g, "views", m->views, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view));
+    m->r_params = fg_import_buffer(g, "params", m->params, sizeof(struct dirt_mmrt_gpu_params));
+    m->r_depth = fg_import_buffer(g, "depth bounds", m->depth, m->depth_size);
+    m->r_heads = fg_import_buffer(g, "heads", m->heads, m->heads_size);
+    m->r_tails = fg_import_buffer(g, "tails", m->tails, m->tails_size);
+    m->r_ids = fg_import_buffer(g, "id nodes", m->ids, m->node_capacity * DIRT_MMRT_ID_NODE_BYTES);
+    m->r_data = fg_import_buffer(g, "data nodes", m->data,
+                                 m->node_capacity * DIRT_MMRT_DATA_NODE_BYTES);
+    m->r_counters = fg_import_buffer(g, "counters", m->counters,
+                                     sizeof(struct dirt_mmrt_gpu_counters));
+}
+
+static fg_pass *raster_pass(dirt_mmrt *m, fg_graph *g, int which, fg_execute_fn fn)
+{
+    fg_pass *p = fg_add_pass(g, dirt_mmrt_pass_names[which], FG_RASTER, fn, m);
+    fg_set_raster_size(p, &(fg_tex_desc){.width = m->set.atlas_width,
+                                         .height = m->set.atlas_height});
+    return p;
+}
+
+/* The store pass and the counter readback (build and restore graphs). */
+static void add_store(dirt_mmrt *m, fg_graph *g)
+{
+    fg_pass *p = raster_pass(m, g, DIRT_MMRT_PASS_STORE, exec_store);
+    fg_read(p, m->r_vertices, FG_SSBO_READ);
+    fg_read(p, m->r_materials, FG_SSBO_READ);
+    fg_read(p, m->r_views, FG_SSBO_READ);
+    fg_read(p, m->r_params, FG_SSBO_READ);
+    fg_read(p, m->r_depth, FG_SSBO_READ);
+    fg_use(p, m->r_heads, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_heads, FG_SSBO_WRITE);
+    fg_write(p, m->r_ids, FG_SSBO_WRITE);
+    fg_write(p, m->r_data, FG_SSBO_WRITE);
+    fg_use(p, m->r_counters, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_counters, FG_SSBO_WRITE);
+    p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, m);
+    fg_read(p, m->r_counters, FG_TRANSFER_READ);
+    fg_keep(p);
+}
+
+static bool make_graphs(dirt_mmrt *m)
+{
+    fg_destroy(m->g_build);
+    fg_destroy(m->g_restore);
+    fg_destroy(m->g_finish);
+    m->g_build = fg_create(m->gpu);
+    m->g_restore = fg_create(m->gpu);
+    m->g_finish = fg_create(m->gpu);
+    if (!m->g_build || !m->g_restore || !m->g_finish)
+        return false;
+    fg_graph *g = m->g_build;
+    import_all(m, g);
+    fg_pass *p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_CLEAR], FG_COMPUTE,
+                             exec_clear, m);
+    fg_write(p, m->r_depth, FG_TRANSFER_WRITE);
+    fg_write(p, m->r_tails, FG_TRANSFER_WRITE);
+    fg_write(p, m->r_heads, FG_TRANSFER_WRITE);
+    fg_write(p, m->r_counters, FG_TRANSFER_WRITE);
+    p = raster_pass(m, g, DIRT_MMRT_PASS_DEPTH, exec_depth);
+    fg_read(p, m->r_vertices, FG_SSBO_READ);
+    fg_read(p, m->r_views, FG_SSBO_READ);
+    fg_read(p, m->r_params, FG_SSBO_READ);
+    fg_use(p, m->r_depth, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_depth, FG_SSBO_WRITE);
+    p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_MIP], FG_COMPUTE, exec_mip, m);
+    fg_read(p, m->r_views, FG_SSBO_READ);
+    fg_use(p, m->r_depth, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_depth, FG_SSBO_WRITE);
+    add_store(m, g);
+
+    g = m->g_restore;
+    import_all(m, g);
+    p = fg_add_pass(g, "clear lists", FG_COMPUTE, exec_clear_lists, m);
+    fg_write(p, m->r_heads, FG_TRANSFER_WRITE);
+    fg_write(p, m->r_counters, FG_TRANSFER_WRITE);
+    add_store(m, g);
+
+    g = m->g_finish;
+    import_all(m, g);
+    p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_REORDER], FG_COMPUTE, exec_reorder, m);
+    fg_read(p, m->r_params, FG_SSBO_READ);
+    fg_use(p, m->r_heads, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_heads, FG_SSBO_WRITE);
+    fg_use(p, m->r_ids, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_ids, FG_SSBO_WRITE);
+    fg_read(p, m->r_data, FG_SSBO_READ);
+    fg_write(p, m->r_tails, FG_SSBO_WRITE);
+    fg_use(p, m->r_counters, FG_SSBO_READ, NULL);
+    fg_write(p, m->r_counters, FG_SSBO_WRITE);
+    p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, m);
+    fg_read(p, m->r_counters, FG_TRANSFER_READ);
+    fg_keep(p);
+    if (!fg_compile(m->g_build) || !fg_compile(m->g_restore) || !fg_compile(m->g_finish))
+        return false;
+    m->graph_atlas_w = m->set.atlas_width;
+    m->graph_atlas_h = m->set.atlas_height;
+    return true;
+}
+
+/* Points every graph at the current buffers (after growth). */
+static void update_imports(dirt_mmrt *m)
+{
+    fg_graph *gs[3] = {m->g_build, m->g_restore, m->g_finish};
+    for (int i = 0; i < 3; i++) {
+        fg_set_import(gs[i], m->r_vertices, m->vertices, m->vertices_size);
+        fg_set_import(gs[i], m->r_materials, m->materials, m->materials_size);
+        fg_set_import(gs[i], m->r_depth, m->depth, m->depth_size);
+        fg_set_import(gs[i], m->r_heads, m->heads, m->heads_size);
+        fg_set_import(gs[i], m->r_tails, m->tails, m->tails_size);
+        fg_set_import(gs[i], m->r_ids, m->ids, m->node_capacity * DIRT_MMRT_ID_NODE_BYTES);
+        fg_set_import(gs[i], m->r_data, m->data, m->node_capacity * DIRT_MMRT_DATA_NODE_BYTES);
+    }
+}
+
+/* Adds the last execute's pass times of `g` to the per-pass sums. */
+static void collect_times(fg_graph *g, double *gpu_ms, double *cpu_ms)
+{
+    fg_stats s;
+    if (!fg_get_stats(g, &s))
+        return;
+    for (int i = 0; i < s.num_passes; i++) {
+        for (int k = 0; k < DIRT_MMRT_NUM_PASSES; k++) {
+            if (strcmp(s.passes[i].name, dirt_mmrt_pass_names[k]) != 0 &&
+                !(k == DIRT_MMRT_PASS_CLEAR && strcmp(s.passes[i].name, "clear lists") == 0))
+                continue;
+            double g_ms = s.passes[i].gpu_ms, c_ms = s.passes[i].cpu_ms;
+            gpu_ms[k] = g_ms < 0 || gpu_ms[k] < 0 ? -1 : gpu_ms[k] + g_ms;
+            if (c_ms >= 0)
+                cpu_ms[k] += c_ms;
+        }
+    }
+}
+
 bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
 {
     double gpu_ms[DIRT_MMRT_NUM_PASSES] = {0}, cpu_ms[DIRT_MMRT_NUM_PASSES] = {0};
@@ -384,51 +582,19 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
         goto done;
     upload_views(m);
     upload_params(m);
-    dirt_mmrt_bind(m);
-
-    pass_begin(m, DIRT_MMRT_PASS_CLEAR);
-    static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
-    glClearNamedBufferData(m->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
-    static const uint32_t end = DIRT_LIST_END;
-    glClearNamedBufferData(m->tails, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
-    clear_lists(m);
-    pass_end(m, DIRT_MMRT_PASS_CLEAR, gpu_ms, cpu_ms);
-
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    pass_begin(m, DIRT_MMRT_PASS_DEPTH);
-    raster_views(m, m->prog_depth);
-    pass_end(m, DIRT_MMRT_PASS_DEPTH, gpu_ms, cpu_ms);
-
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    pass_begin(m, DIRT_MMRT_PASS_MIP);
-    glUseProgram(m->prog_mip);
-    for (int d = 1; d < m->set.num_levels; d++) {
-        int w = 0, h = 0;
-        for (int i = 0; i < m->set.count; i++) {
-            const dirt_view *v = &m->set.views[i];
-            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
-            w = lw > w ? lw : w;
-            h = lh > h ? lh : h;
-        }
-        glUniform1i(0, d);
-        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)m->set.count);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    pass_end(m, DIRT_MMRT_PASS_MIP, gpu_ms, cpu_ms);
-
-    int runs = 0;
-    struct dirt_mmrt_gpu_counters counters;
-    for (;;) {
-        runs++;
-        pass_begin(m, DIRT_MMRT_PASS_STORE);
-        raster_views(m, m->prog_store);
-        pass_end(m, DIRT_MMRT_PASS_STORE, gpu_ms, cpu_ms);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        if (!gl_buffer_read(m->counters, 0, sizeof(counters), &counters))
+    if (!m->g_build || m->graph_atlas_w != m->set.atlas_width ||
+        m->graph_atlas_h != m->set.atlas_height) {
+        if (!make_graphs(m))
             goto done;
-        size_t need = counters.build.x;
-        if (need <= m->node_capacity)
-            break;
+    }
+    update_imports(m);
+    fg_exec_opts eo = {.cpu_timing = m->opts.cpu_timing, .validate = true};
+    if (!fg_execute(m->g_build, &eo))
+        goto done;
+    collect_times(m->g_build, gpu_ms, cpu_ms);
+    int runs = 1;
+    while (m->counters_cpu.build.x > m->node_capacity) {
+        size_t need = m->counters_cpu.build.x;
         size_t grown = need + need / 4;
         if (grown > max_nodes(m))
             grown = need;
@@ -439,19 +605,19 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
                   before, grown,
                   grown * (double)(DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES) / 1e6);
         upload_params(m);
-        dirt_mmrt_bind(m);
-        clear_lists(m);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        update_imports(m);
+        /* The other graph's shader writes must be visible to this one. */
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        if (!fg_execute(m->g_restore, &eo))
+            goto done;
+        collect_times(m->g_restore, gpu_ms, cpu_ms);
+        runs++;
     }
-
-    pass_begin(m, DIRT_MMRT_PASS_REORDER);
-    glUseProgram(m->prog_reorder);
-    glDispatchCompute((GLuint)((m->set.num_tiles + 63) / 64), 1, 1);
-    pass_end(m, DIRT_MMRT_PASS_REORDER, gpu_ms, cpu_ms);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    if (!gl_buffer_read(m->counters, 0, sizeof(counters), &counters))
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    if (!fg_execute(m->g_finish, &eo))
         goto done;
-    fill_stats(m, &counters, runs, gpu_ms, cpu_ms);
+    collect_times(m->g_finish, gpu_ms, cpu_ms);
+    fill_stats(m, &m->counters_cpu, runs, gpu_ms, cpu_ms);
     ok = gl_check("mmrt build");
     m->built = ok;
 done:

@@ -8,6 +8,7 @@
 #include "common/mmrt_layout.h"
 #include "dirt/mmrt.h"
 #include "gl/gl.h"
+#include "graph/graph.h"
 
 struct dirt_mmrt {
     dirt_gpu *gpu;
@@ -22,8 +23,15 @@ struct dirt_mmrt {
     size_t node_capacity;     /* nodes (id and data pools alike) */
     GLuint rays, hits;        /* trace_cpu staging */
     size_t rays_size, hits_size;
-    gl_timer timers[DIRT_MMRT_NUM_PASSES];
     gl_timer trace_timer;
+    /* frame graphs: build (clear, depth bounds, mip, store, read counters),
+     * restore (clear lists, store, read counters) after pool growth, and
+     * finish (reorder, read counters) */
+    fg_graph *g_build, *g_restore, *g_finish;
+    fg_res r_vertices, r_materials, r_views, r_params, r_depth, r_heads, r_tails, r_ids,
+        r_data, r_counters;
+    int graph_atlas_w, graph_atlas_h;
+    struct dirt_mmrt_gpu_counters counters_cpu; /* read back by the graphs */
     dirt_view_set set;
     size_t num_primitives;
     float scene_diagonal;
