@@ -136,18 +136,6 @@ void dirt_ads_destroy(dirt_ads *a)
     free(a);
 }
 
-/* (Re)allocates `*buf` when it is smaller than `size` bytes. */
-static bool ensure_buffer(dirt_ads *a, GLuint *buf, size_t *cap, size_t size, bool readback,
-                          const char *label)
-{
-    if (*buf && *cap >= size)
-        return true;
-    gl_buffer_destroy(buf);
-    *buf = gl_buffer_create(a->gpu, size, NULL, readback, label);
-    *cap = *buf ? size : 0;
-    return *buf != 0;
-}
-
 static bool upload_frame(dirt_ads *a, const dirt_frame *f)
 {
     size_t nv = f->num_triangles * 3;
@@ -173,13 +161,13 @@ static bool upload_frame(dirt_ads *a, const dirt_frame *f)
     }
     a->material_staging = ms;
     memcpy(ms, f->material, f->num_triangles * sizeof(uint32_t));
-    if (!ensure_buffer(a, &a->prim_material, &a->prim_material_size,
+    if (!gl_buffer_ensure(a->gpu, &a->prim_material, &a->prim_material_size,
                        (f->num_triangles + 1) * sizeof(uint32_t), false, "dirt prim materials"))
         return false;
     glNamedBufferSubData(a->prim_material, 0, (GLsizeiptr)(f->num_triangles * sizeof(uint32_t)),
                          ms);
     size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
-    if (!ensure_buffer(a, &a->vertices, &a->vertices_size, bytes ? bytes : 16, false,
+    if (!gl_buffer_ensure(a->gpu, &a->vertices, &a->vertices_size, bytes ? bytes : 16, false,
                        "dirt vertices"))
         return false;
     if (bytes)
@@ -232,9 +220,9 @@ static bool ensure_targets(dirt_ads *a)
                    "buffer (%.1f MB): use larger tiles or fewer buckets", heads / 1e6, max / 1e6);
         return false;
     }
-    if (!ensure_buffer(a, &a->depth, &a->depth_size, (size_t)s->pyramid_size * 8, true,
+    if (!gl_buffer_ensure(a->gpu, &a->depth, &a->depth_size, (size_t)s->pyramid_size * 8, true,
                        "dirt depth bounds") ||
-        !ensure_buffer(a, &a->heads, &a->heads_size, heads, true, "dirt list heads"))
+        !gl_buffer_ensure(a->gpu, &a->heads, &a->heads_size, heads, true, "dirt list heads"))
         return false;
     if (!a->node_capacity)
         a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
@@ -432,7 +420,7 @@ static void update_imports(dirt_ads *a)
     }
 }
 
-static void collect_times(dirt_ads *a, fg_graph *g, double *gpu_ms, double *cpu_ms)
+static void collect_times(fg_graph *g, double *gpu_ms, double *cpu_ms)
 {
     fg_stats s;
     if (!fg_get_stats(g, &s))
@@ -448,7 +436,6 @@ static void collect_times(dirt_ads *a, fg_graph *g, double *gpu_ms, double *cpu_
                 cpu_ms[k] += c_ms;
         }
     }
-    (void)a;
 }
 
 bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
@@ -482,7 +469,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
      * previous frame's trace read them with shaders: no barrier needed. */
     if (!fg_execute(a->graph, &eo))
         goto done;
-    collect_times(a, a->graph, gpu_ms, cpu_ms);
+    collect_times(a->graph, gpu_ms, cpu_ms);
     st->fill_runs = 1;
     while (a->counters_cpu.fill.x > a->node_capacity) {
         size_t need = a->counters_cpu.fill.x;
@@ -501,7 +488,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(a->refill, &eo))
             goto done;
-        collect_times(a, a->refill, gpu_ms, cpu_ms);
+        collect_times(a->refill, gpu_ms, cpu_ms);
         st->fill_runs++;
     }
     struct dirt_gpu_ads_counters counters = a->counters_cpu;

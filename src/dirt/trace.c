@@ -9,22 +9,11 @@ _Static_assert(sizeof(dirt_hit) == sizeof(struct dirt_gpu_hit), "hit layout");
 _Static_assert(sizeof(dirt_gpoint) == sizeof(struct dirt_gpu_gpoint), "gpoint layout");
 _Static_assert(sizeof(struct dirt_gpu_fetch_params) == 32, "fetch params layout");
 
-static bool ensure(dirt_ads *a, GLuint *buf, size_t *cap, size_t size, bool readback,
-                   const char *label)
-{
-    if (*buf && *cap >= size)
-        return true;
-    gl_buffer_destroy(buf);
-    *buf = gl_buffer_create(a->gpu, size, NULL, readback, label);
-    *cap = *buf ? size : 0;
-    return *buf != 0;
-}
-
 bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                   const dirt_trace_opts *opts_in, bool link, dirt_trace_stats *stats)
 {
     dirt_trace_opts opts = opts_in ? *opts_in : (dirt_trace_opts){0};
-    if (!ensure(a, &a->hit_heads, &a->hit_heads_size, (size_t)a->set.num_tiles * 4 + 4, false,
+    if (!gl_buffer_ensure(a->gpu, &a->hit_heads, &a->hit_heads_size, (size_t)a->set.num_tiles * 4 + 4, false,
                 "dirt hit heads"))
         return false;
     gl_group_push("dirt trace");
@@ -121,8 +110,8 @@ static bool upload_rays(dirt_ads *a, const dirt_ray *rays, size_t count)
         return false;
     }
     size_t bytes = count * sizeof(dirt_ray);
-    if (!ensure(a, &a->rays, &a->rays_size, bytes, false, "dirt rays") ||
-        !ensure(a, &a->hits, &a->hits_size, bytes, true, "dirt hits"))
+    if (!gl_buffer_ensure(a->gpu, &a->rays, &a->rays_size, bytes, false, "dirt rays") ||
+        !gl_buffer_ensure(a->gpu, &a->hits, &a->hits_size, bytes, true, "dirt hits"))
         return false;
     glNamedBufferSubData(a->rays, 0, (GLsizeiptr)bytes, rays);
     return true;
@@ -227,7 +216,7 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
         a->vis_w = v->width;
         a->vis_h = v->height;
     }
-    if (!ensure(a, &a->hit_heads, &a->hit_heads_size, (size_t)a->set.num_tiles * 4 + 4, false,
+    if (!gl_buffer_ensure(a->gpu, &a->hit_heads, &a->hit_heads_size, (size_t)a->set.num_tiles * 4 + 4, false,
                 "dirt hit heads"))
         return false;
     gl_group_push("dirt direct visibility");
@@ -272,8 +261,8 @@ bool dirt_ads_direct_visibility(dirt_ads *a, dirt_ray *rays, dirt_hit *hits)
     }
     const dirt_view *v = &a->set.views[a->set.camera_view];
     size_t n = (size_t)v->width * v->height;
-    if (!ensure(a, &a->rays, &a->rays_size, n * sizeof(dirt_ray), true, "dirt rays") ||
-        !ensure(a, &a->hits, &a->hits_size, n * sizeof(dirt_hit), true, "dirt hits") ||
+    if (!gl_buffer_ensure(a->gpu, &a->rays, &a->rays_size, n * sizeof(dirt_ray), true, "dirt rays") ||
+        !gl_buffer_ensure(a->gpu, &a->hits, &a->hits_size, n * sizeof(dirt_hit), true, "dirt hits") ||
         !ads_visibility_gl(a, a->rays, a->hits))
         return false;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -55,6 +55,11 @@ bool gl_check_(const char *file, int line, const char *what);
 GLuint gl_buffer_create(dirt_gpu *gpu, size_t size, const void *data,
                         bool readback, const char *label);
 void gl_buffer_destroy(GLuint *buf);
+/* Makes *buf (capacity *cap bytes) hold at least `size` bytes: keeps it when
+ * large enough, else replaces it (content lost) with a new one of exactly
+ * `size` bytes. False after logging; then *buf = 0 and *cap = 0. */
+bool gl_buffer_ensure(dirt_gpu *gpu, GLuint *buf, size_t *cap, size_t size, bool readback,
+                      const char *label);
 /* Copies `size` bytes from offset 0 of `buf` into `out` (glGetNamedBufferSubData). */
 bool gl_buffer_read(GLuint buf, size_t offset, size_t size, void *out);
 

@@ -35,6 +35,17 @@ void gl_buffer_destroy(GLuint *buf)
     *buf = 0;
 }
 
+bool gl_buffer_ensure(dirt_gpu *gpu, GLuint *buf, size_t *cap, size_t size, bool readback,
+                      const char *label)
+{
+    if (*buf && *cap >= size)
+        return true;
+    gl_buffer_destroy(buf);
+    *buf = gl_buffer_create(gpu, size, NULL, readback, label);
+    *cap = *buf ? size : 0;
+    return *buf != 0;
+}
+
 bool gl_buffer_read(GLuint buf, size_t offset, size_t size, void *out)
 {
     glGetNamedBufferSubData(buf, (GLintptr)offset, (GLsizeiptr)size, out);

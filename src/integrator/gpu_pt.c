@@ -320,14 +320,6 @@ static void add_times(dirt_pt *pt, dirt_pt_stats *st)
     }
 }
 
-static bool scene_size(const dirt_frame *f, float *diag)
-{
-    float d[3] = {f->bounds_max[0] - f->bounds_min[0], f->bounds_max[1] - f->bounds_min[1],
-                  f->bounds_max[2] - f->bounds_min[2]};
-    *diag = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    return *diag > 0;
-}
-
 /* ---- The DIRT technique: the ads_* entry points of src/dirt ---- */
 
 static bool dirt_tech_trace(void *self, const dirt_pt_opts *opts, GLuint rays, GLuint hits,
@@ -411,8 +403,6 @@ bool dirt_pt_render_technique(dirt_pt *pt, pt_technique *tech, const dirt_frame 
     pt->width = out->width;
     pt->height = out->height;
     pt->bounces = opts.bounces;
-    float diag = 1;
-    scene_size(frame, &diag);
     pt->ao_distance = opts.ao_distance > 0 ? opts.ao_distance : INFINITY;
     size_t pixels = (size_t)out->width * (size_t)out->height;
     bool ok = false;

@@ -124,18 +124,6 @@ void dirt_mmrt_destroy(dirt_mmrt *m)
     free(m);
 }
 
-/* (Re)allocates `*buf` when it is smaller than `size` bytes. */
-static bool ensure_buffer(dirt_mmrt *m, GLuint *buf, size_t *cap, size_t size, bool readback,
-                          const char *label)
-{
-    if (*buf && *cap >= size)
-        return true;
-    gl_buffer_destroy(buf);
-    *buf = gl_buffer_create(m->gpu, size, NULL, readback, label);
-    *cap = *buf ? size : 0;
-    return *buf != 0;
-}
-
 static bool upload_frame(dirt_mmrt *m, const dirt_frame *f)
 {
     size_t nv = f->num_triangles * 3;
@@ -160,9 +148,9 @@ static bool upload_frame(dirt_mmrt *m, const dirt_frame *f)
     }
     size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
     size_t mbytes = f->num_triangles * sizeof(uint32_t);
-    if (!ensure_buffer(m, &m->vertices, &m->vertices_size, bytes ? bytes : 16, false,
+    if (!gl_buffer_ensure(m->gpu, &m->vertices, &m->vertices_size, bytes ? bytes : 16, false,
                        "mmrt vertices") ||
-        !ensure_buffer(m, &m->materials, &m->materials_size, mbytes ? mbytes : 16, false,
+        !gl_buffer_ensure(m->gpu, &m->materials, &m->materials_size, mbytes ? mbytes : 16, false,
                        "mmrt materials"))
         return false;
     if (bytes) {
@@ -232,10 +220,10 @@ static bool ensure_targets(dirt_mmrt *m)
                    max / 1e6);
         return false;
     }
-    if (!ensure_buffer(m, &m->depth, &m->depth_size, (size_t)s->pyramid_size * 8, true,
+    if (!gl_buffer_ensure(m->gpu, &m->depth, &m->depth_size, (size_t)s->pyramid_size * 8, true,
                        "mmrt depth bounds") ||
-        !ensure_buffer(m, &m->heads, &m->heads_size, heads, true, "mmrt bucket heads") ||
-        !ensure_buffer(m, &m->tails, &m->tails_size, heads, true, "mmrt bucket tails"))
+        !gl_buffer_ensure(m->gpu, &m->heads, &m->heads_size, heads, true, "mmrt bucket heads") ||
+        !gl_buffer_ensure(m->gpu, &m->tails, &m->tails_size, heads, true, "mmrt bucket tails"))
         return false;
     if (!m->node_capacity) {
         size_t automatic = (size_t)s->num_tiles * 2 + 1024;

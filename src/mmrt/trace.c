@@ -91,17 +91,6 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     return ok && gl_check("mmrt trace");
 }
 
-static bool ensure(dirt_mmrt *m, GLuint *buf, size_t *cap, size_t size, bool readback,
-                   const char *label)
-{
-    if (*buf && *cap >= size)
-        return true;
-    gl_buffer_destroy(buf);
-    *buf = gl_buffer_create(m->gpu, size, NULL, readback, label);
-    *cap = *buf ? size : 0;
-    return *buf != 0;
-}
-
 bool dirt_mmrt_trace_cpu(dirt_mmrt *m, const dirt_ray *rays, size_t count, dirt_hit *hits,
                          const dirt_mmrt_trace_opts *opts, dirt_mmrt_trace_stats *stats)
 {
@@ -116,8 +105,8 @@ bool dirt_mmrt_trace_cpu(dirt_mmrt *m, const dirt_ray *rays, size_t count, dirt_
         return true;
     }
     size_t bytes = count * sizeof(dirt_ray);
-    if (!ensure(m, &m->rays, &m->rays_size, bytes, false, "mmrt rays") ||
-        !ensure(m, &m->hits, &m->hits_size, bytes, true, "mmrt hits"))
+    if (!gl_buffer_ensure(m->gpu, &m->rays, &m->rays_size, bytes, false, "mmrt rays") ||
+        !gl_buffer_ensure(m->gpu, &m->hits, &m->hits_size, bytes, true, "mmrt hits"))
         return false;
     glNamedBufferSubData(m->rays, 0, (GLsizeiptr)bytes, rays);
     if (!dirt_mmrt_trace(m, m->rays, m->hits, (uint32_t)count, opts, st))
