@@ -1,4 +1,5 @@
 /* DIRT build stage: depth bounds, Hi-Z mip and fill-primitives passes. */
+#include "dirt/mip.h"
 #include "dirt/ads.h"
 
 #include <stdio.h>
@@ -305,22 +306,7 @@ static bool exec_mip(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     dirt_ads *a = user;
-    glUseProgram(a->prog_mip);
-    for (int d = 1; d < a->set.num_levels; d++) {
-        int w = 0, h = 0;
-        for (int i = 0; i < a->set.count; i++) {
-            const dirt_view *v = &a->set.views[i];
-            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
-            w = lw > w ? lw : w;
-            h = lh > h ? lh : h;
-        }
-        /* Level d reads level d - 1 written by the previous dispatch. */
-        if (d > 1)
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glUniform1i(0, d);
-        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)a->set.count);
-    }
-    glUseProgram(0);
+    dirt_mip_dispatch(a->prog_mip, &a->set);
     return true;
 }
 

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dirt/mip.h"
 #include "views/views_gpu.h"
 #include "gl/program.h"
 #include "mmrt_internal.h"
@@ -361,22 +362,7 @@ static bool exec_mip(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
-    glUseProgram(m->prog_mip);
-    for (int d = 1; d < m->set.num_levels; d++) {
-        int w = 0, h = 0;
-        for (int i = 0; i < m->set.count; i++) {
-            const dirt_view *v = &m->set.views[i];
-            int lw = (v->tiles_x + (1 << d) - 1) >> d, lh = (v->tiles_y + (1 << d) - 1) >> d;
-            w = lw > w ? lw : w;
-            h = lh > h ? lh : h;
-        }
-        /* Level d reads level d - 1 written by the previous dispatch. */
-        if (d > 1)
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glUniform1i(0, d);
-        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)m->set.count);
-    }
-    glUseProgram(0);
+    dirt_mip_dispatch(m->prog_mip, &m->set);
     return true;
 }
 
