@@ -74,10 +74,7 @@ int main(int argc, char **argv)
             return 2;
         dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
         dirt_camera cam;
-        if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-            cam = f->cameras[0];
-        else
-            dirt_camera_auto(f, &cam);
+        dirt_camera_default(f, &cam);
         const char *name = strrchr(scenes[si], '/') ? strrchr(scenes[si], '/') + 1 : scenes[si];
         for (int s = 0; s < nS; s++) {
             for (int b = 0; b < nB; b++) {

@@ -186,10 +186,7 @@ int main(int argc, char **argv)
         if (!f)
             return 1;
         dirt_camera cam;
-        if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-            cam = f->cameras[0];
-        else
-            dirt_camera_auto(f, &cam);
+        dirt_camera_default(f, &cam);
         ray_sets rs;
         if (trace && !make_rays(scene, f, &cam, W, H, thick_rel, &rs))
             return 1;

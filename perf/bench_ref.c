@@ -80,10 +80,7 @@ static bool bench_scene(const char *path, int W, int H, int threads, int repeat,
     if (!f)
         goto done;
     dirt_camera cam;
-    if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-        cam = f->cameras[0];
-    else
-        dirt_camera_auto(f, &cam);
+    dirt_camera_default(f, &cam);
     r->tris = f->num_triangles;
 
     dirt_ref_accel_opts ao = {0};

@@ -57,10 +57,7 @@ int main(int argc, char **argv)
             return 2;
         dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
         dirt_camera cam;
-        if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-            cam = f->cameras[0];
-        else
-            dirt_camera_auto(f, &cam);
+        dirt_camera_default(f, &cam);
         dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
         dirt_gbuffer g;
         if (!accel || !dirt_gbuffer_build(accel, scene, f, &cam, W, H, &g))

@@ -150,3 +150,11 @@ void dirt_camera_projection(const dirt_camera *cam, float image_aspect, float ou
         out[14] = -2.0f * n;
     }
 }
+
+void dirt_camera_default(const dirt_frame *frame, dirt_camera *out)
+{
+    if (frame->num_cameras && frame->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
+        *out = frame->cameras[0];
+    else
+        dirt_camera_auto(frame, out);
+}

@@ -18,10 +18,7 @@ static void run_scene(dirt_gpu *gpu, const char *label, dirt_scene *scene, float
     dirt_frame *f = dirt_scene_evaluate(scene, t, NULL);
     CHECK(f != NULL);
     dirt_camera cam;
-    if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-        cam = f->cameras[0];
-    else
-        dirt_camera_auto(f, &cam);
+    dirt_camera_default(f, &cam);
     static const int sizes[] = {1, 2, 4};
     static const int buckets[] = {1, 8, 32};
     static const enum dirt_view_mode modes[] = {DIRT_VIEWS_SINGLE, DIRT_VIEWS_CUBE};

@@ -54,10 +54,7 @@ static void run(dirt_gpu *gpu, const char *label, dirt_scene *scene)
         return;
     dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
     dirt_camera cam;
-    if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-        cam = f->cameras[0];
-    else
-        dirt_camera_auto(f, &cam);
+    dirt_camera_default(f, &cam);
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     CHECK(accel != NULL);
     /* 48x36 camera rays over 64x48 views: every third G-buffer row lies

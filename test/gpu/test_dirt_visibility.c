@@ -21,10 +21,7 @@ static void run(dirt_gpu *gpu, const char *label, dirt_scene *scene, int w, int 
         return;
     dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
     dirt_camera cam;
-    if (f->num_cameras && f->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-        cam = f->cameras[0];
-    else
-        dirt_camera_auto(f, &cam);
+    dirt_camera_default(f, &cam);
     cam.aspect = 0; /* the image's aspect, as the views use */
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = w, .height = h,
                                  .face_size = 32, .tile_size = 2},

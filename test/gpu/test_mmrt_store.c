@@ -539,10 +539,7 @@ int main(void)
     if (scene) {
         dirt_frame *df = dirt_scene_evaluate(scene, 0, NULL);
         dirt_camera dc;
-        if (df->num_cameras && df->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-            dc = df->cameras[0];
-        else
-            dirt_camera_auto(df, &dc);
+        dirt_camera_default(df, &dc);
         dirt_mmrt_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 48,
                                       .height = 36, .face_size = 24},
                             .buckets = 4, .initial_nodes = 1};

@@ -559,10 +559,7 @@ int main(void)
     if (scene) {
         dirt_frame *df = dirt_scene_evaluate(scene, 0, NULL);
         dirt_camera dc;
-        if (df->num_cameras && df->cameras[0].type == DIRT_CAMERA_PERSPECTIVE)
-            dc = df->cameras[0];
-        else
-            dirt_camera_auto(df, &dc);
+        dirt_camera_default(df, &dc);
         random_rays(df, 5, rays, NR);
         run(gpu, "default", df, &dc, DIRT_VIEWS_CUBE_CAMERA, 96, rays, NR, false, NULL);
         dirt_frame_destroy(df);

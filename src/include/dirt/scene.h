@@ -191,6 +191,11 @@ void dirt_frame_destroy(dirt_frame *frame);
  * bounds. Used when the scene has no camera. */
 void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out);
 
+/* The camera a frame is seen from by default: its first camera when that is
+ * a perspective one, else dirt_camera_auto (the techniques' views need a
+ * perspective camera). */
+void dirt_camera_default(const dirt_frame *frame, dirt_camera *out);
+
 /* Builds a camera looking from eye at target with the given up vector. */
 void dirt_camera_look_at(dirt_camera *cam, const float eye[3],
                          const float target[3], const float up[3]);
