@@ -54,6 +54,7 @@ typedef struct options {
     long threads;
     double aperture, focus;
     bool direct_visibility;
+    const char *graph_dot;    /* --graph-dot FILE, or NULL */
     /* MMRT */
     double thickness;         /* 0 = MMRT's default */
     enum dirt_mmrt_march march;
@@ -386,6 +387,13 @@ static int parse_args(int argc, char **argv, options *o)
             NEED_VALUE();
             if (!cli_int(PROG, a, val, 1, 16384, &o->face_size))
                 return DIRT_EXIT_USAGE;
+        } else if (!strcmp(a, "--graph-dot")) {
+            NEED_VALUE();
+            if (!cli_has_ext(val, ".dot")) {
+                cli_error(PROG, "--graph-dot file '%s' must end in .dot", val);
+                return DIRT_EXIT_USAGE;
+            }
+            o->graph_dot = val;
         } else if (!strcmp(a, "--direct-visibility")) {
             o->direct_visibility = true;
         } else if (!strcmp(a, "--no-conservative-raster")) {
@@ -625,6 +633,12 @@ int main(int argc, char **argv)
         goto done;
     if (o.stats_path && !cli_output_dir_ok(PROG, o.stats_path))
         goto done;
+    if (o.graph_dot && !cli_output_dir_ok(PROG, o.graph_dot))
+        goto done;
+    if (o.graph_dot && o.engine != ENGINE_DIRT && o.engine != ENGINE_MMRT) {
+        cli_error(PROG, "--graph-dot needs a path-tracing engine (dirt or mmrt)");
+        goto done;
+    }
     if (o.debug_ads) {
         char probe[4200];
         snprintf(probe, sizeof(probe), "%s/ads.png", o.debug_ads);
@@ -842,6 +856,15 @@ int main(int argc, char **argv)
             fprintf(stderr, "%s: frame %ld/%ld (t=%.3fs) elapsed %.1fs, ETA %.1fs\n", PROG,
                     done_n, total, t, el, el / done_n * (total - done_n));
         }
+    }
+    if (o.graph_dot) {
+        if (!dirt_pt_write_dot(pt, o.graph_dot)) {
+            cli_error(PROG, "could not write '%s'", o.graph_dot);
+            rc = DIRT_EXIT_USAGE;
+            goto done;
+        }
+        if (!o.quiet)
+            printf("wrote %s\n", o.graph_dot);
     }
     if (o.stats_path) {
         if (!write_stats(&o, engine_name(o.engine), fstats, last - first + 1, desc)) {

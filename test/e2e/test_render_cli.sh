@@ -127,6 +127,15 @@ for key in build_ms trace_ms fetch_ms shade_ms bytes_total rays mrays_per_s; do
 done
 grep -q '"bytes": {' "$out/d.json" && ok || fail "d.json lacks the bytes object"
 expect_rc 0 "raster engine" -- --engine raster -o "$out/r.png" -W 32 -H 24
+mkdir -p "$out/ads"
+expect_rc 0 "debug pictures and graph" -- -o "$out/g.png" -W 32 -H 24 --spp 1 --debug-ads "$out/ads" --graph-dot "$out/pt.dot"
+for f in ads_v0_camera_lists.png ads_v0_camera_zmin.png ads_v0_camera_zmax.png ads_v6_nz_lists.png ads_graph.dot; do
+  [ -s "$out/ads/$f" ] && ok || fail "--debug-ads did not write $f"
+done
+head -c 8 "$out/ads/ads_v0_camera_lists.png" | od -An -tx1 | grep -q '89 50 4e 47' && ok || fail "heat map is not a PNG"
+grep -q 'fill primitives' "$out/ads/ads_graph.dot" && ok || fail "build graph DOT lacks the fill pass"
+grep -q 'shadow trace 1' "$out/pt.dot" && grep -q 'accumulate' "$out/pt.dot" && ok || fail "path tracer DOT lacks its passes"
+expect_rc 2 "graph dot with raster engine" -- --engine raster -o "$out/r2.png" --graph-dot "$out/x.dot"
 expect_rc 0 "ao, raster fetch, single view" -- -o "$out/ao.png" -W 32 -H 24 --spp 2 --mode ao --ao-distance 0.5 --fetch raster --views single
 head -c 4 "$out/d.exr" | od -An -tx1 | grep -q '76 2f 31 01' && ok || fail "d.exr is not an EXR"
 [ -s "$out/d.png" ] && ok || fail "no PNG preview beside the EXR"
