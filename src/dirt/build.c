@@ -383,7 +383,7 @@ static bool make_graphs(dirt_ads *a)
     add_fill(a, g);
     /* refill after the node pool grew: clear lists, fill, read counters */
     g = a->refill;
-    p = fg_add_pass(g, "clear lists", FG_COMPUTE, exec_clear_lists, a);
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear_lists, a);
     fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
     add_fill(a, g);
@@ -403,24 +403,6 @@ static void update_imports(dirt_ads *a)
         fg_set_import(graphs[i], a->r_depth, a->depth, a->depth_size);
         fg_set_import(graphs[i], a->r_heads, a->heads, a->heads_size);
         fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * 8);
-    }
-}
-
-static void collect_times(fg_graph *g, double *gpu_ms, double *cpu_ms)
-{
-    fg_stats s;
-    if (!fg_get_stats(g, &s))
-        return;
-    for (int i = 0; i < s.num_passes; i++) {
-        for (int k = 0; k < DIRT_ADS_NUM_PASSES; k++) {
-            if (strcmp(s.passes[i].name, dirt_ads_pass_names[k]) != 0 &&
-                !(k == DIRT_ADS_PASS_CLEAR && strcmp(s.passes[i].name, "clear lists") == 0))
-                continue;
-            double g_ms = s.passes[i].gpu_ms, c_ms = s.passes[i].cpu_ms;
-            gpu_ms[k] = g_ms < 0 || gpu_ms[k] < 0 ? -1 : gpu_ms[k] + g_ms;
-            if (c_ms >= 0)
-                cpu_ms[k] += c_ms;
-        }
     }
 }
 
@@ -455,7 +437,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
      * previous frame's trace read them with shaders: no barrier needed. */
     if (!fg_execute(a->graph, &eo))
         goto done;
-    collect_times(a->graph, gpu_ms, cpu_ms);
+    fg_add_pass_times(a->graph, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, gpu_ms, cpu_ms);
     st->fill_runs = 1;
     while (a->counters_cpu.fill.x > a->node_capacity) {
         size_t need = a->counters_cpu.fill.x;
@@ -474,7 +456,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(a->refill, &eo))
             goto done;
-        collect_times(a->refill, gpu_ms, cpu_ms);
+        fg_add_pass_times(a->refill, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, gpu_ms, cpu_ms);
         st->fill_runs++;
     }
     struct dirt_gpu_ads_counters counters = a->counters_cpu;

@@ -348,6 +348,13 @@ typedef struct fg_stats {
 bool fg_get_stats(const fg_graph *g, fg_stats *s);
 /* Human-readable table of the stats. */
 void fg_print_stats(const fg_graph *g, FILE *f);
+/* Adds the last execute's time of every pass named names[k] (k < count) to
+ * gpu_ms[k] and cpu_ms[k]. A gpu_ms[k] becomes (and stays) -1 once a pass
+ * of that name was not measured; unmeasured cpu times add nothing. For
+ * techniques that run several graphs (e.g. a rerun after pool growth) and
+ * report one time per pass name. */
+void fg_add_pass_times(const fg_graph *g, const char *const *names, int count, double *gpu_ms,
+                       double *cpu_ms);
 
 /* GraphViz DOT of the compiled graph: passes as boxes, resources as
  * ellipses, culled ones grey, edges labelled with the access. Deterministic.

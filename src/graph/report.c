@@ -246,3 +246,21 @@ bool fg_write_dot(const fg_graph *g, FILE *f)
         DIRT_ERROR("frame graph: could not write DOT");
     return ok;
 }
+
+void fg_add_pass_times(const fg_graph *g, const char *const *names, int count, double *gpu_ms,
+                       double *cpu_ms)
+{
+    fg_stats s;
+    if (!fg_get_stats(g, &s))
+        return;
+    for (int i = 0; i < s.num_passes; i++) {
+        for (int k = 0; k < count; k++) {
+            if (strcmp(s.passes[i].name, names[k]) != 0)
+                continue;
+            double g_ms = s.passes[i].gpu_ms, c_ms = s.passes[i].cpu_ms;
+            gpu_ms[k] = g_ms < 0 || gpu_ms[k] < 0 ? -1 : gpu_ms[k] + g_ms;
+            if (c_ms >= 0)
+                cpu_ms[k] += c_ms;
+        }
+    }
+}

@@ -468,7 +468,7 @@ static bool make_graphs(dirt_mmrt *m)
 
     g = m->g_restore;
     import_all(m, g);
-    p = fg_add_pass(g, "clear lists", FG_COMPUTE, exec_clear_lists, m);
+    p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_CLEAR], FG_COMPUTE, exec_clear_lists, m);
     fg_write(p, m->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, m->r_counters, FG_TRANSFER_WRITE);
     add_store(m, g);
@@ -510,25 +510,6 @@ static void update_imports(dirt_mmrt *m)
     }
 }
 
-/* Adds the last execute's pass times of `g` to the per-pass sums. */
-static void collect_times(fg_graph *g, double *gpu_ms, double *cpu_ms)
-{
-    fg_stats s;
-    if (!fg_get_stats(g, &s))
-        return;
-    for (int i = 0; i < s.num_passes; i++) {
-        for (int k = 0; k < DIRT_MMRT_NUM_PASSES; k++) {
-            if (strcmp(s.passes[i].name, dirt_mmrt_pass_names[k]) != 0 &&
-                !(k == DIRT_MMRT_PASS_CLEAR && strcmp(s.passes[i].name, "clear lists") == 0))
-                continue;
-            double g_ms = s.passes[i].gpu_ms, c_ms = s.passes[i].cpu_ms;
-            gpu_ms[k] = g_ms < 0 || gpu_ms[k] < 0 ? -1 : gpu_ms[k] + g_ms;
-            if (c_ms >= 0)
-                cpu_ms[k] += c_ms;
-        }
-    }
-}
-
 bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
 {
     double gpu_ms[DIRT_MMRT_NUM_PASSES] = {0}, cpu_ms[DIRT_MMRT_NUM_PASSES] = {0};
@@ -565,7 +546,7 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
     fg_exec_opts eo = {.cpu_timing = m->opts.cpu_timing, .validate = true};
     if (!fg_execute(m->g_build, &eo))
         goto done;
-    collect_times(m->g_build, gpu_ms, cpu_ms);
+    fg_add_pass_times(m->g_build, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, gpu_ms, cpu_ms);
     int runs = 1;
     while (m->counters_cpu.build.x > m->node_capacity) {
         size_t need = m->counters_cpu.build.x;
@@ -584,13 +565,13 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(m->g_restore, &eo))
             goto done;
-        collect_times(m->g_restore, gpu_ms, cpu_ms);
+        fg_add_pass_times(m->g_restore, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, gpu_ms, cpu_ms);
         runs++;
     }
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     if (!fg_execute(m->g_finish, &eo))
         goto done;
-    collect_times(m->g_finish, gpu_ms, cpu_ms);
+    fg_add_pass_times(m->g_finish, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, gpu_ms, cpu_ms);
     fill_stats(m, &m->counters_cpu, runs, gpu_ms, cpu_ms);
     ok = gl_check("mmrt build");
     m->built = ok;
