@@ -410,11 +410,20 @@ bool dirt_pt_render_technique(dirt_pt *pt, pt_technique *tech, const dirt_frame 
     gl_group_push("dirt path tracer");
     if (!ensure_buffers(pt, pixels))
         goto done;
-    dirt_gpu_model_tables_destroy(&pt->tables);
     if (!dirt_area_lights_build(&area, frame, dirt_scene_materials(pt->scene),
-                                dirt_scene_num_materials(pt->scene)) ||
-        !dirt_gpu_model_tables_create(pt->gpu, pt->scene, frame, &area, cam, NULL, 0, &pt->tables))
+                                dirt_scene_num_materials(pt->scene)))
         goto done;
+    /* Materials and textures are the scene's: uploaded once; lights and the
+     * camera change per frame. */
+    if (pt->tables.materials) {
+        if (!dirt_gpu_model_tables_set_frame(pt->gpu, &pt->tables, frame, &area, cam)) {
+            dirt_gpu_model_tables_destroy(&pt->tables);
+            goto done;
+        }
+    } else if (!dirt_gpu_model_tables_create(pt->gpu, pt->scene, frame, &area, cam, NULL, 0,
+                                             &pt->tables)) {
+        goto done;
+    }
     /* AO: one event (the first hit); path tracing: K + 1 (the last one only
      * gathers emission). */
     int events = opts.mode == DIRT_PT_AO ? 1 : opts.bounces + 1;

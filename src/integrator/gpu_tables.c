@@ -389,23 +389,15 @@ bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texture_array *a,
     return true;
 }
 
-bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
-                                  const dirt_frame *frame, const dirt_area_lights *area,
-                                  const dirt_camera *camera, const float *specular,
-                                  int max_texture_size, dirt_gpu_model_tables *out)
+bool dirt_gpu_model_tables_set_frame(dirt_gpu *gpu, dirt_gpu_model_tables *t,
+                                     const dirt_frame *frame, const dirt_area_lights *area,
+                                     const dirt_camera *camera)
 {
-    memset(out, 0, sizeof(*out));
     bool ok = false;
-    struct dirt_gpu_model_material *mats = NULL;
-    struct dirt_gpu_model_light *lights = NULL;
     dirt_gpu_area_table at = {0};
-    dirt_gpu_texture_array ta = {0};
-
-    size_t nm = 0;
-    mats = dirt_gpu_scene_materials(scene, specular, &nm);
     size_t nl = frame ? frame->num_lights : 0;
-    lights = calloc(nl > 0 ? nl : 1, sizeof(*lights));
-    if (!mats || !lights) {
+    struct dirt_gpu_model_light *lights = calloc(nl > 0 ? nl : 1, sizeof(*lights));
+    if (!lights) {
         DIRT_ERROR("gpu tables: out of memory");
         goto done;
     }
@@ -413,32 +405,54 @@ bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
         dirt_gpu_light_pack(&frame->lights[i], &lights[i]);
     if (!dirt_gpu_area_lights_pack(area, nl, &at))
         goto done;
-    if (!dirt_gpu_textures_pack(dirt_scene_textures(scene), dirt_scene_num_textures(scene),
-                                max_texture_size, &ta))
-        goto done;
     struct dirt_gpu_model_camera cam;
     memset(&cam, 0, sizeof(cam));
     if (camera)
         dirt_gpu_camera_pack(camera, &cam);
-
-    out->num_materials = nm;
-    out->num_area = area ? area->count : 0;
-    out->num_punctual = nl;
-    out->materials = gl_buffer_create(gpu, nm * sizeof(*mats), mats, false, "model materials");
-    out->area_cdf = gl_buffer_create(gpu, at.cdf_size, at.cdf, false, "model area cdf");
-    out->area_prims = gl_buffer_create(gpu, at.prims_size, at.prims, false, "model area prims");
-    out->punctual = gl_buffer_create(gpu, (nl > 0 ? nl : 1) * sizeof(*lights), lights, false,
-                                     "model punctual lights");
-    out->camera = gl_buffer_create(gpu, sizeof(cam), &cam, false, "model camera");
-    if (!out->materials || !out->area_cdf || !out->area_prims || !out->punctual || !out->camera)
-        goto done;
-    if (!dirt_gpu_textures_upload(gpu, &ta, &out->tex_linear, &out->tex_srgb))
-        goto done;
-    ok = true;
+    GLuint old[3] = {t->area_cdf, t->area_prims, t->punctual};
+    for (int i = 0; i < 3; i++)
+        gl_buffer_destroy(&old[i]);
+    t->area_cdf = gl_buffer_create(gpu, at.cdf_size, at.cdf, false, "model area cdf");
+    t->area_prims = gl_buffer_create(gpu, at.prims_size, at.prims, false, "model area prims");
+    t->punctual = gl_buffer_create(gpu, (nl > 0 ? nl : 1) * sizeof(*lights), lights, false,
+                                   "model punctual lights");
+    if (!t->camera)
+        t->camera = gl_buffer_create(gpu, sizeof(cam), &cam, false, "model camera");
+    else
+        glNamedBufferSubData(t->camera, 0, sizeof(cam), &cam);
+    t->num_area = area ? area->count : 0;
+    t->num_punctual = nl;
+    ok = t->area_cdf && t->area_prims && t->punctual && t->camera;
 done:
-    free(mats);
     free(lights);
     dirt_gpu_area_table_free(&at);
+    return ok;
+}
+
+bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
+                                  const dirt_frame *frame, const dirt_area_lights *area,
+                                  const dirt_camera *camera, const float *specular,
+                                  int max_texture_size, dirt_gpu_model_tables *out)
+{
+    memset(out, 0, sizeof(*out));
+    bool ok = false;
+    dirt_gpu_texture_array ta = {0};
+    size_t nm = 0;
+    struct dirt_gpu_model_material *mats = dirt_gpu_scene_materials(scene, specular, &nm);
+    if (!mats) {
+        DIRT_ERROR("gpu tables: out of memory");
+        goto done;
+    }
+    if (!dirt_gpu_textures_pack(dirt_scene_textures(scene), dirt_scene_num_textures(scene),
+                                max_texture_size, &ta))
+        goto done;
+    out->num_materials = nm;
+    out->materials = gl_buffer_create(gpu, nm * sizeof(*mats), mats, false, "model materials");
+    if (!out->materials || !dirt_gpu_textures_upload(gpu, &ta, &out->tex_linear, &out->tex_srgb))
+        goto done;
+    ok = dirt_gpu_model_tables_set_frame(gpu, out, frame, area, camera);
+done:
+    free(mats);
     dirt_gpu_texture_array_free(&ta);
     if (!ok)
         dirt_gpu_model_tables_destroy(out);

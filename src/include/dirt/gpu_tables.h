@@ -131,6 +131,15 @@ bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
                                   const dirt_camera *camera, const float *specular,
                                   int max_texture_size, dirt_gpu_model_tables *out);
 
+/* Replaces the per-frame tables (area-light table of `area`, may be NULL;
+ * the frame's punctual lights; the camera, NULL: a zero record) of tables
+ * made by dirt_gpu_model_tables_create, keeping the per-scene ones
+ * (materials, textures). False after logging (the tables must then be
+ * destroyed). */
+bool dirt_gpu_model_tables_set_frame(dirt_gpu *gpu, dirt_gpu_model_tables *t,
+                                     const dirt_frame *frame, const dirt_area_lights *area,
+                                     const dirt_camera *camera);
+
 /* Replaces the camera record (glNamedBufferSubData). */
 bool dirt_gpu_model_tables_set_camera(dirt_gpu_model_tables *t, const dirt_camera *camera);
 
