@@ -2,7 +2,7 @@
  * shared by C (src/integrator/gpu_tables.c packs them) and GLSL. Same rules
  * as common/layout.h, which this file includes: only structs of
  * DIRT_V4/DIRT_IV4/DIRT_UV4 members and #defines, valid C11 and GLSL 4.50;
- * C checks the sizes with _Static_assert (gpu_tables.c).
+ * src/gl/layout_check.c checks sizes and offsets with _Static_assert.
  *
  * These records are the integrator's, not the raster preview's
  * (dirt_gpu_material / dirt_gpu_light of layout.h). Every value a record
@@ -15,19 +15,12 @@
 
 #include "common/layout.h"
 
-/* Storage buffer bindings of the model's tables (declared by model.glsl
- * when DIRT_MODEL_BUFFERS is defined). */
-#define DIRT_BIND_MODEL_MATERIALS 20   /* dirt_gpu_model_material[materials] */
-#define DIRT_BIND_MODEL_AREA_CDF 21    /* dirt_gpu_model_lights header, float cdf[count] */
-#define DIRT_BIND_MODEL_AREA_PRIMS 22  /* uint prim[count] (at least one entry) */
-#define DIRT_BIND_MODEL_PUNCTUAL 23    /* dirt_gpu_model_light[punctual] (at least one) */
-#define DIRT_BIND_MODEL_CAMERA 24      /* one dirt_gpu_model_camera */
-
-/* Texture units of the scene's texture array: the same RGBA8 storage seen
- * twice, through a GL_RGBA8 view (linear data: metallic-roughness) and a
- * GL_SRGB8_ALPHA8 view (base colour, emissive: decoded before filtering). */
-#define DIRT_UNIT_MODEL_TEX_LINEAR 20
-#define DIRT_UNIT_MODEL_TEX_SRGB 21
+/* The model's tables are bound at DIRT_BIND_MODEL_* (declared by
+ * model.glsl when DIRT_MODEL_BUFFERS is defined; common/constants.h).
+ * The scene's texture array is bound twice, at DIRT_UNIT_MODEL_TEX_LINEAR
+ * through a GL_RGBA8 view (linear data: metallic-roughness) and at
+ * DIRT_UNIT_MODEL_TEX_SRGB through a GL_SRGB8_ALPHA8 view (base colour,
+ * emissive: decoded before filtering). */
 
 /* Punctual light kinds (= enum dirt_light_type). */
 #define DIRT_MODEL_LIGHT_DIRECTIONAL 0

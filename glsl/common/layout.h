@@ -1,12 +1,17 @@
 /* Data layouts shared by C and GLSL: the single definition of every record
  * that crosses the CPU/GPU boundary. Included from C (src/) and from GLSL
  * (glsl/). Every member is a 16-byte vector so std430 and C agree without
- * padding rules; C checks the sizes with _Static_assert.
+ * padding rules; src/gl/layout_check.c checks every size and member offset
+ * with _Static_assert. Binding points and other shared numbers are in
+ * common/constants.h (the registry).
  *
  * This file must stay valid as both C11 and GLSL 4.50: only structs of
  * DIRT_V4/DIRT_IV4/DIRT_UV4 members and #defines. */
 #ifndef DIRT_COMMON_LAYOUT_H
 #define DIRT_COMMON_LAYOUT_H
+
+/* Binding points, node sizes, workgroup sizes, uniform locations. */
+#include "common/constants.h"
 
 #ifdef GL_core_profile
 #define DIRT_V4 vec4
@@ -21,9 +26,8 @@ typedef struct dirt_u4 { unsigned int x, y, z, w; } dirt_u4;
 #define DIRT_UV4 dirt_u4
 #endif
 
-/* Binding points of storage buffers used by the raster preview. */
-#define DIRT_BIND_PREVIEW_MATERIALS 0
-#define DIRT_BIND_PREVIEW_LIGHTS 1
+/* The raster preview binds dirt_gpu_material[] at DIRT_BIND_PREVIEW_MATERIALS
+ * and dirt_gpu_light[] at DIRT_BIND_PREVIEW_LIGHTS. */
 
 /* Light kinds of the raster preview (punctual kinds match dirt_light_type). */
 #define DIRT_PREVIEW_LIGHT_DIRECTIONAL 0
@@ -49,14 +53,8 @@ struct dirt_gpu_light {
 
 /* ---- DIRT acceleration structure (src/dirt/build.c, glsl/dirt/) ---- */
 
-/* Storage buffer bindings of the build passes and the trace. */
-#define DIRT_BIND_VERTICES 0   /* dirt_gpu_vertex[3 * primitives] */
-#define DIRT_BIND_VIEWS 1      /* dirt_gpu_view[views] */
-#define DIRT_BIND_PARAMS 2     /* dirt_gpu_ads_params */
-#define DIRT_BIND_DEPTH 3      /* uvec2[pyramid entries]: float bits of (zmin, zmax) */
-#define DIRT_BIND_HEADS 4      /* uint[buckets * tiles]: first node or DIRT_LIST_END */
-#define DIRT_BIND_NODES 5      /* uvec2[capacity]: (primitive id, next node) */
-#define DIRT_BIND_COUNTERS 6   /* dirt_gpu_ads_counters */
+/* Bindings: DIRT_BIND_VERTICES, _VIEWS, _DEPTH (shared with MMRT) and
+ * DIRT_BIND_PARAMS, _HEADS, _NODES, _COUNTERS (common/constants.h). */
 
 #define DIRT_LIST_END 0xFFFFFFFFu
 #define DIRT_GPU_MAX_VIEWS 7   /* = DIRT_MAX_VIEWS of dirt/views.h */
@@ -103,8 +101,7 @@ struct dirt_gpu_ads_counters {
 
 /* ---- Rays and hits shared by every technique's trace ---- */
 
-#define DIRT_BIND_RAYS 7       /* dirt_gpu_ray[rays] */
-#define DIRT_BIND_HITS 8       /* dirt_gpu_hit[rays] (closest hit per ray) */
+/* Bound at DIRT_BIND_RAYS and DIRT_BIND_HITS (shared range). */
 #define DIRT_NO_HIT 0xFFFFFFFFu
 
 /* A ray of a batch (32 bytes): points p = origin + t * dir, t in (tmin, tmax). */
@@ -121,10 +118,8 @@ struct dirt_gpu_hit {
 
 /* ---- Fetch and the three-point shading buffer ---- */
 
-#define DIRT_BIND_PRIM_MATERIAL 9  /* uint[primitives]: material of each primitive */
-#define DIRT_BIND_GPOINTS 10       /* dirt_gpu_gpoint[3 * pixels]: the shading ring */
-#define DIRT_BIND_HIT_HEADS 11     /* uint[tiles]: first hit record of each ADS tile */
-#define DIRT_BIND_FETCH_PARAMS 12  /* dirt_gpu_fetch_params */
+/* Bindings: DIRT_BIND_PRIM_MATERIAL, DIRT_BIND_GPOINTS (shared range),
+ * DIRT_BIND_HIT_HEADS, DIRT_BIND_FETCH_PARAMS (trace range). */
 
 /* A shading point G_k of a pixel (64 bytes). The ring holds three per pixel:
  * slot (k mod 3) of pixel p is entry 3 p + (k mod 3). prim = DIRT_NO_HIT
@@ -144,9 +139,8 @@ struct dirt_gpu_fetch_params {
 
 /* ---- GPU path tracer (glsl/integrator/) ---- */
 
-#define DIRT_BIND_PATHS 13        /* dirt_gpu_path[pixels] */
-#define DIRT_BIND_ACCUM 14        /* dirt_gpu_accum[pixels] */
-#define DIRT_BIND_SHADOW_RAYS 15  /* dirt_gpu_ray[pixels]: next-event shadow rays */
+/* Bindings: DIRT_BIND_PATHS, DIRT_BIND_ACCUM, DIRT_BIND_SHADOW_RAYS
+ * (integrator range of common/constants.h). */
 
 #define DIRT_PATH_ALIVE 1u        /* dirt_gpu_path.radiance.w flag bits */
 #define DIRT_PATH_PREV_DELTA 2u

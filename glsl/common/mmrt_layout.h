@@ -2,7 +2,7 @@
  * Vardis, Vasilakis, Papaioannou, I3D 2016): data layouts shared by C
  * (src/mmrt/) and GLSL (glsl/mmrt/). Same rules as common/layout.h: valid
  * C11 and GLSL 4.50, structs of DIRT_V4/DIRT_IV4/DIRT_UV4 members and
- * #defines only; C checks the sizes with _Static_assert (src/mmrt/mmrt.c).
+ * #defines only; src/gl/layout_check.c checks sizes and offsets.
  *
  * MMRT reuses from common/layout.h: dirt_gpu_vertex (DIRT_BIND_VERTICES),
  * dirt_gpu_view (DIRT_BIND_VIEWS), the depth bounds + Hi-Z pyramid layout
@@ -15,21 +15,14 @@
 
 #include "common/layout.h"
 
-/* Storage buffer bindings of the MMRT passes (16 and up: 0..15 belong to
- * common/layout.h). */
-#define DIRT_BIND_MMRT_PARAMS 16     /* dirt_mmrt_gpu_params */
-#define DIRT_BIND_MMRT_HEADS 17      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
-#define DIRT_BIND_MMRT_TAILS 18      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
-#define DIRT_BIND_MMRT_IDS 19        /* uint[3 * capacity]: id nodes (below) */
-#define DIRT_BIND_MMRT_DATA 20       /* dirt_mmrt_gpu_data[capacity] */
-#define DIRT_BIND_MMRT_COUNTERS 21   /* dirt_mmrt_gpu_counters */
-#define DIRT_BIND_MMRT_MATERIALS 22  /* uint[primitives]: material index per primitive */
+/* The MMRT passes bind their buffers at DIRT_BIND_MMRT_* (the MMRT range of
+ * common/constants.h) and the per-primitive materials at the shared
+ * DIRT_BIND_PRIM_MATERIAL. */
 
-/* An id node is DIRT_MMRT_ID_UINTS consecutive uints (12 bytes, the MMRT
- * paper's size): [0] float bits of the fragment's eye-space depth z (> 0),
+/* An id node is DIRT_MMRT_ID_UINTS consecutive uints
+ * (DIRT_MMRT_ID_NODE_BYTES, the MMRT paper's 12 bytes; common/constants.h): [0] float bits of the fragment's eye-space depth z (> 0),
  * [1] next node (farther; DIRT_LIST_END ends the list), [2] prev node
  * (nearer; set by the reorder pass). Node i's shading data is data node i. */
-#define DIRT_MMRT_ID_UINTS 3
 #define DIRT_MMRT_ID_Z 0
 #define DIRT_MMRT_ID_NEXT 1
 #define DIRT_MMRT_ID_PREV 2

@@ -6,10 +6,9 @@
 
 #include "common/mmrt_layout.h"
 
-/* pt_rays.comp: the offset copy of a ray batch and the technique's counters.
- * These reuse DIRT's Fetch binding points (unused by every MMRT pass). */
-#define DIRT_BIND_MMRT_PT_RAYS_OUT 11  /* dirt_gpu_ray[count] */
-#define DIRT_BIND_MMRT_PT_COUNTS 12    /* dirt_mmrt_pt_counts */
+/* pt_rays.comp writes the offset copy of a ray batch at
+ * DIRT_BIND_MMRT_PT_RAYS_OUT and counts at DIRT_BIND_MMRT_PT_COUNTS (the
+ * MMRT technique's own range of common/constants.h). */
 
 /* Counters of a render (16 bytes), cleared by the host at its start. */
 struct dirt_mmrt_pt_counts {

@@ -4,7 +4,7 @@
 // stored barycentrics into G_{k+1} of the owner pixel.
 #include "common/layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
     dirt_gpu_vertex vertices[];

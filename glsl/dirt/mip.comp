@@ -4,7 +4,7 @@
 // covers its 2x2 children that exist and odd sizes stay conservative.
 #include "common/layout.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = DIRT_GROUP_SIZE_2D, local_size_y = DIRT_GROUP_SIZE_2D) in;
 
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
@@ -13,7 +13,7 @@ layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
     uvec2 depth[];
 };
 
-layout(location = 0) uniform int u_level;
+layout(location = DIRT_LOC_MIP_LEVEL) uniform int u_level;
 
 int level_base(dirt_gpu_view v, int d)
 {

@@ -17,7 +17,7 @@
 // clip space, where tile boundaries are planes linear in the ray parameter.
 #include "common/layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
     dirt_gpu_vertex vertices[];
@@ -50,10 +50,10 @@ layout(std430, binding = DIRT_BIND_HIT_HEADS) buffer HitHeads {
     uint hit_heads[];
 };
 
-layout(location = 0) uniform uint u_count;
-layout(location = 1) uniform int u_hiz_top;  // highest level to start from; < 0 = top
-layout(location = 2) uniform int u_any_hit;  // 1: stop at the first accepted hit
-layout(location = 3) uniform int u_link;     // 1: link hits per ADS tile (raster Fetch)
+layout(location = DIRT_LOC_TRACE_COUNT) uniform uint u_count;
+layout(location = DIRT_LOC_TRACE_HIZ_TOP) uniform int u_hiz_top;  // highest level to start from; < 0 = top
+layout(location = DIRT_LOC_TRACE_ANY_HIT) uniform int u_any_hit;  // 1: stop at the first accepted hit
+layout(location = DIRT_LOC_TRACE_LINK) uniform int u_link;     // 1: link hits per ADS tile (raster Fetch)
 
 #define MAX_STEPS 65536
 

@@ -11,7 +11,7 @@ layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
 
-layout(location = 0) uniform int u_view;
+layout(location = DIRT_LOC_VISIBILITY_VIEW) uniform int u_view;
 
 layout(location = 0) out vec2 v_bary;
 

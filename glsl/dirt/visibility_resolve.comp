@@ -6,7 +6,7 @@
 // also linked into their tile's hit list (for the raster Fetch).
 #include "common/layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
     dirt_gpu_vertex vertices[];
@@ -27,8 +27,8 @@ layout(std430, binding = DIRT_BIND_HIT_HEADS) buffer HitHeads {
     uint hit_heads[];
 };
 
-layout(binding = 0) uniform usampler2D u_vis;
-layout(location = 0) uniform int u_view;
+layout(binding = DIRT_UNIT_VISIBILITY) uniform usampler2D u_vis;
+layout(location = DIRT_LOC_VIS_RESOLVE_VIEW) uniform int u_view;
 
 void main()
 {

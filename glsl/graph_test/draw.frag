@@ -1,8 +1,9 @@
 #version 450 core
+#include "common/constants.h"
 // Frame graph GPU test, pass 3: colour = (r, 2r, 1 - r, 1), r fetched from
 // the image pass 2 wrote, at this fragment's pixel.
 
-layout(binding = 0) uniform sampler2D u_image;
+layout(binding = DIRT_UNIT_TEST) uniform sampler2D u_image;
 
 layout(location = 0) out vec4 o_color;
 

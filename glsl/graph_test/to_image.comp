@@ -1,12 +1,13 @@
 #version 450 core
+#include "common/constants.h"
 // Frame graph GPU test, pass 2: image(x, y) = values[y * width + x] / 1000 + 0.25.
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = DIRT_GROUP_SIZE_2D, local_size_y = DIRT_GROUP_SIZE_2D) in;
 
-layout(std430, binding = 0) readonly buffer Values { uint values[]; };
-layout(r32f, binding = 0) writeonly uniform image2D u_image;
+layout(std430, binding = DIRT_BIND_TEST_IN) readonly buffer Values { uint values[]; };
+layout(r32f, binding = DIRT_UNIT_TEST) writeonly uniform image2D u_image;
 
-layout(location = 0) uniform ivec2 u_size;
+layout(location = DIRT_LOC_TEST_TO_IMAGE_SIZE) uniform ivec2 u_size;
 
 void main()
 {

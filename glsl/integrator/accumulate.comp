@@ -3,7 +3,7 @@
 // (non-finite samples are dropped and counted, like the reference).
 #include "common/layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_PATHS) readonly buffer Paths {
     dirt_gpu_path paths[];
@@ -12,7 +12,7 @@ layout(std430, binding = DIRT_BIND_ACCUM) buffer Accum {
     dirt_gpu_accum accum[];
 };
 
-layout(location = 0) uniform uint u_pixels;
+layout(location = DIRT_LOC_ACCUM_PIXELS) uniform uint u_pixels;
 
 void main()
 {

@@ -14,16 +14,16 @@ layout(std430, binding = DIRT_BIND_PATHS) buffer Paths {
     dirt_gpu_path paths[];
 };
 
-layout(location = 0) uniform uint u_pixels;
-layout(location = 1) uniform int u_width;
-layout(location = 2) uniform int u_height;
-layout(location = 3) uniform uint u_seed;
-layout(location = 4) uniform uint u_sample;
-layout(location = 5) uniform uint u_bounce;    // k: the path event being shaded
-layout(location = 6) uniform uint u_bounces;   // K: scattering events allowed
-layout(location = 7) uniform uint u_slot;      // ring slot of G_k
-layout(location = 8) uniform vec3 u_background;
-layout(location = 9) uniform float u_ao_distance;
+layout(location = DIRT_LOC_PT_PIXELS) uniform uint u_pixels;
+layout(location = DIRT_LOC_PT_WIDTH) uniform int u_width;
+layout(location = DIRT_LOC_PT_HEIGHT) uniform int u_height;
+layout(location = DIRT_LOC_PT_SEED) uniform uint u_seed;
+layout(location = DIRT_LOC_PT_SAMPLE) uniform uint u_sample;
+layout(location = DIRT_LOC_PT_BOUNCE) uniform uint u_bounce;    // k: the path event being shaded
+layout(location = DIRT_LOC_PT_BOUNCES) uniform uint u_bounces;   // K: scattering events allowed
+layout(location = DIRT_LOC_PT_SLOT) uniform uint u_slot;      // ring slot of G_k
+layout(location = DIRT_LOC_PT_BACKGROUND) uniform vec3 u_background;
+layout(location = DIRT_LOC_PT_AO_DISTANCE) uniform float u_ao_distance;
 
 #define SHADOW_SHORTEN 1e-4
 

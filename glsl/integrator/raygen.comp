@@ -7,7 +7,7 @@
 #include "integrator/model.glsl"
 #include "integrator/pt_common.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_RAYS) writeonly buffer Rays {
     dirt_gpu_ray rays[];

@@ -4,7 +4,7 @@
 // rays' any-hit results).
 #include "common/layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_PATHS) buffer Paths {
     dirt_gpu_path paths[];
@@ -13,7 +13,7 @@ layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
     dirt_gpu_hit hits[];
 };
 
-layout(location = 0) uniform uint u_pixels;
+layout(location = DIRT_LOC_RESOLVE_PIXELS) uniform uint u_pixels;
 
 void main()
 {

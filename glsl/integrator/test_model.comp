@@ -11,13 +11,13 @@
 #define DIRT_MODEL_BUFFERS 1
 #include "integrator/model.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
-layout(std430, binding = 0) readonly buffer TestIn { vec4 in_data[]; };
-layout(std430, binding = 1) writeonly buffer TestOut { vec4 out_data[]; };
+layout(std430, binding = DIRT_BIND_TEST_IN) readonly buffer TestIn { vec4 in_data[]; };
+layout(std430, binding = DIRT_BIND_TEST_OUT) writeonly buffer TestOut { vec4 out_data[]; };
 
-layout(location = 0) uniform int u_mode;
-layout(location = 1) uniform uint u_count;
+layout(location = DIRT_LOC_TEST_MODEL_MODE) uniform int u_mode;
+layout(location = DIRT_LOC_TEST_MODEL_COUNT) uniform uint u_count;
 
 #define TEST_STRIDE 8u
 

@@ -10,7 +10,7 @@
 #include "common/layout.h"
 #include "common/mmrt_pt_layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
     dirt_gpu_ray rays[];
@@ -25,9 +25,9 @@ layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) readonly buffer Counters {
     dirt_mmrt_gpu_counters counters;
 };
 
-layout(location = 0) uniform uint u_count;
-layout(location = 1) uniform float u_offset;
-layout(location = 2) uniform int u_shadow;
+layout(location = DIRT_LOC_MMRT_PT_RAYS_COUNT) uniform uint u_count;
+layout(location = DIRT_LOC_MMRT_PT_RAYS_OFFSET) uniform float u_offset;
+layout(location = DIRT_LOC_MMRT_PT_RAYS_SHADOW) uniform int u_shadow;
 
 shared uint s_active;
 

@@ -23,7 +23,7 @@ layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
 #ifdef MMRT_PASS_STORE
-layout(std430, binding = DIRT_BIND_MMRT_MATERIALS) readonly buffer Materials {
+layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer Materials {
     uint materials[];
 };
 #endif

@@ -16,7 +16,7 @@
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_MMRT_PARAMS) readonly buffer Params {
     dirt_mmrt_gpu_params params;

@@ -11,7 +11,7 @@
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
     dirt_gpu_vertex vertices[];
@@ -29,8 +29,8 @@ layout(std430, binding = DIRT_BIND_MMRT_DATA) readonly buffer Data {
     dirt_mmrt_gpu_data data[];
 };
 
-layout(location = 0) uniform uint u_count;
-layout(location = 1) uniform uint u_slot;
+layout(location = DIRT_LOC_MMRT_TO_GPOINT_COUNT) uniform uint u_count;
+layout(location = DIRT_LOC_MMRT_TO_GPOINT_SLOT) uniform uint u_slot;
 
 void main()
 {

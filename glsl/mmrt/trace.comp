@@ -28,7 +28,7 @@
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
@@ -61,14 +61,14 @@ layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
     dirt_gpu_hit hits[];
 };
 
-layout(location = 0) uniform uint u_count;
-layout(location = 1) uniform int u_march;      // 0 Hi-Z, 1 linear
-layout(location = 2) uniform int u_samples;    // linear: samples per view
-layout(location = 3) uniform int u_top_level;  // Hi-Z: highest level used
-layout(location = 4) uniform float u_thickness;
-layout(location = 5) uniform uint u_seed;
-layout(location = 6) uniform int u_stats;      // count pixels / nodes visited
-layout(location = 7) uniform int u_all_views;  // every view over the whole segment
+layout(location = DIRT_LOC_MMRT_TRACE_COUNT) uniform uint u_count;
+layout(location = DIRT_LOC_MMRT_TRACE_MARCH) uniform int u_march;      // 0 Hi-Z, 1 linear
+layout(location = DIRT_LOC_MMRT_TRACE_SAMPLES) uniform int u_samples;    // linear: samples per view
+layout(location = DIRT_LOC_MMRT_TRACE_TOP_LEVEL) uniform int u_top_level;  // Hi-Z: highest level used
+layout(location = DIRT_LOC_MMRT_TRACE_THICKNESS) uniform float u_thickness;
+layout(location = DIRT_LOC_MMRT_TRACE_SEED) uniform uint u_seed;
+layout(location = DIRT_LOC_MMRT_TRACE_STATS) uniform int u_stats;      // count pixels / nodes visited
+layout(location = DIRT_LOC_MMRT_TRACE_ALL_VIEWS) uniform int u_all_views;  // every view over the whole segment
 
 #define BIG 3.0e38
 

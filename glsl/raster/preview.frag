@@ -11,13 +11,13 @@ layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec2 v_uv;
 
-layout(location = 1) uniform vec3 u_eye;
-layout(location = 2) uniform int u_material;
-layout(location = 3) uniform int u_num_lights;
-layout(location = 4) uniform float u_ambient;
+layout(location = DIRT_LOC_PREVIEW_EYE) uniform vec3 u_eye;
+layout(location = DIRT_LOC_PREVIEW_MATERIAL) uniform int u_material;
+layout(location = DIRT_LOC_PREVIEW_NUM_LIGHTS) uniform int u_num_lights;
+layout(location = DIRT_LOC_PREVIEW_AMBIENT) uniform float u_ambient;
 
-layout(binding = 0) uniform sampler2D u_base_color_tex;
-layout(binding = 1) uniform sampler2D u_emissive_tex;
+layout(binding = DIRT_UNIT_PREVIEW_BASE_COLOR) uniform sampler2D u_base_color_tex;
+layout(binding = DIRT_UNIT_PREVIEW_EMISSIVE) uniform sampler2D u_emissive_tex;
 
 layout(std430, binding = DIRT_BIND_PREVIEW_MATERIALS) readonly buffer Materials {
     dirt_gpu_material materials[];

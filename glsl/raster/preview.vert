@@ -1,11 +1,12 @@
 #version 450 core
+#include "common/constants.h"
 // Raster preview: transforms world-space triangles (already animated on the CPU).
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 
-layout(location = 0) uniform mat4 u_view_proj;
+layout(location = DIRT_LOC_PREVIEW_VIEW_PROJ) uniform mat4 u_view_proj;
 
 layout(location = 0) out vec3 v_position;
 layout(location = 1) out vec3 v_normal;

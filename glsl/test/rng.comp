@@ -1,11 +1,12 @@
 #version 450 core
+#include "common/constants.h"
 // Test shader: the GLSL RNG over a grid of keys, for comparison with C.
 #include "common/rng.glsl"
 
-layout(local_size_x = 64) in;
-layout(std430, binding = 0) writeonly buffer Out { uvec2 values[]; };
-layout(location = 0) uniform uint u_count;
-layout(location = 1) uniform uint u_seed;
+layout(local_size_x = DIRT_GROUP_SIZE) in;
+layout(std430, binding = DIRT_BIND_TEST_OUT) writeonly buffer Out { uvec2 values[]; };
+layout(location = DIRT_LOC_TEST_RNG_COUNT) uniform uint u_count;
+layout(location = DIRT_LOC_TEST_RNG_SEED) uniform uint u_seed;
 
 void main()
 {

@@ -197,16 +197,16 @@ static void upload_params(dirt_ads *a)
 static bool ensure_nodes(dirt_ads *a, size_t nodes)
 {
     int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)(nodes * 8) > max) {
+    if (max > 0 && (int64_t)(nodes * DIRT_NODE_BYTES) > max) {
         DIRT_ERROR("the primitive lists need %zu nodes (%.1f MB), more than this GPU's "
                    "largest storage buffer (%.1f MB): use larger tiles, fewer buckets or "
-                   "smaller views", nodes, nodes * 8 / 1e6, max / 1e6);
+                   "smaller views", nodes, nodes * DIRT_NODE_BYTES / 1e6, max / 1e6);
         return false;
     }
     if (a->nodes && a->node_capacity >= nodes)
         return true;
     gl_buffer_destroy(&a->nodes);
-    a->nodes = gl_buffer_create(a->gpu, nodes * 8, NULL, true, "dirt id nodes");
+    a->nodes = gl_buffer_create(a->gpu, nodes * DIRT_NODE_BYTES, NULL, true, "dirt id nodes");
     a->node_capacity = a->nodes ? nodes : 0;
     return a->nodes != 0;
 }
@@ -214,14 +214,14 @@ static bool ensure_nodes(dirt_ads *a, size_t nodes)
 static bool ensure_targets(dirt_ads *a)
 {
     const dirt_view_set *s = &a->set;
-    size_t heads = (size_t)a->opts.buckets * (size_t)s->num_tiles * 4;
+    size_t heads = (size_t)a->opts.buckets * (size_t)s->num_tiles * DIRT_HEAD_BYTES;
     int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
     if (max > 0 && (int64_t)heads > max) {
         DIRT_ERROR("the list heads need %.1f MB, more than this GPU's largest storage "
                    "buffer (%.1f MB): use larger tiles or fewer buckets", heads / 1e6, max / 1e6);
         return false;
     }
-    if (!gl_buffer_ensure(a->gpu, &a->depth, &a->depth_size, (size_t)s->pyramid_size * 8, true,
+    if (!gl_buffer_ensure(a->gpu, &a->depth, &a->depth_size, (size_t)s->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, true,
                        "dirt depth bounds") ||
         !gl_buffer_ensure(a->gpu, &a->heads, &a->heads_size, heads, true, "dirt list heads"))
         return false;
@@ -358,7 +358,7 @@ static bool make_graphs(dirt_ads *a)
         a->r_params = fg_import_buffer(g, "params", a->params, sizeof(struct dirt_gpu_ads_params));
         a->r_depth = fg_import_buffer(g, "depth bounds", a->depth, a->depth_size);
         a->r_heads = fg_import_buffer(g, "list heads", a->heads, a->heads_size);
-        a->r_nodes = fg_import_buffer(g, "id nodes", a->nodes, a->node_capacity * 8);
+        a->r_nodes = fg_import_buffer(g, "id nodes", a->nodes, a->node_capacity * DIRT_NODE_BYTES);
         a->r_counters = fg_import_buffer(g, "counters", a->counters,
                                          sizeof(struct dirt_gpu_ads_counters));
     }
@@ -402,7 +402,7 @@ static void update_imports(dirt_ads *a)
         fg_set_import(graphs[i], a->r_vertices, a->vertices, a->vertices_size);
         fg_set_import(graphs[i], a->r_depth, a->depth, a->depth_size);
         fg_set_import(graphs[i], a->r_heads, a->heads, a->heads_size);
-        fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * 8);
+        fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * DIRT_NODE_BYTES);
     }
 }
 
@@ -443,10 +443,10 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         size_t need = a->counters_cpu.fill.x;
         size_t grown = need + need / 4;
         int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-        if (max > 0 && (int64_t)(grown * 8) > max)
+        if (max > 0 && (int64_t)(grown * DIRT_NODE_BYTES) > max)
             grown = need;
         DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB); fill pass rerun",
-                  a->node_capacity, grown, grown * 8 / 1e6);
+                  a->node_capacity, grown, grown * DIRT_NODE_BYTES / 1e6);
         if (!ensure_nodes(a, grown))
             goto done;
         upload_params(a);
@@ -466,10 +466,10 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->buckets_per_sample = st->samples ? (double)st->nodes / (double)st->samples : 0;
     st->conservative_nv = a->use_nv;
     st->bytes_vertices = a->num_primitives * 3 * sizeof(struct dirt_gpu_vertex);
-    st->bytes_depth = (uint64_t)a->set.pyramid_size * 8;
-    st->bytes_heads = (uint64_t)a->opts.buckets * (uint64_t)a->set.num_tiles * 4;
-    st->bytes_nodes_allocated = (uint64_t)a->node_capacity * 8;
-    st->bytes_nodes_used = st->nodes * 8;
+    st->bytes_depth = (uint64_t)a->set.pyramid_size * DIRT_DEPTH_ENTRY_BYTES;
+    st->bytes_heads = (uint64_t)a->opts.buckets * (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES;
+    st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
+    st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                                 st->bytes_nodes_allocated;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
@@ -512,17 +512,17 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
                                                                    : a->node_capacity);
     size_t heads = (size_t)out->buckets * (size_t)out->num_tiles;
     out->depth = malloc((size_t)out->pyramid_size * sizeof(*out->depth) + 8);
-    out->heads = malloc(heads * 4 + 4);
-    out->nodes = malloc((size_t)out->num_nodes * 8 + 8);
+    out->heads = malloc(heads * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);
+    out->nodes = malloc((size_t)out->num_nodes * DIRT_NODE_BYTES + DIRT_NODE_BYTES);
     if (!out->depth || !out->heads || !out->nodes) {
         DIRT_ERROR("out of memory reading the structure back");
         dirt_ads_data_free(out);
         return false;
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    if (!gl_buffer_read(a->depth, 0, (size_t)out->pyramid_size * 8, out->depth) ||
-        !gl_buffer_read(a->heads, 0, heads * 4, out->heads) ||
-        (out->num_nodes && !gl_buffer_read(a->nodes, 0, (size_t)out->num_nodes * 8, out->nodes))) {
+    if (!gl_buffer_read(a->depth, 0, (size_t)out->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, out->depth) ||
+        !gl_buffer_read(a->heads, 0, heads * DIRT_HEAD_BYTES, out->heads) ||
+        (out->num_nodes && !gl_buffer_read(a->nodes, 0, (size_t)out->num_nodes * DIRT_NODE_BYTES, out->nodes))) {
         dirt_ads_data_free(out);
         return false;
     }

@@ -28,10 +28,10 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     glUseProgram(a->prog_trace);
-    glUniform1ui(0, count);
-    glUniform1i(1, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
-    glUniform1i(2, opts.any_hit ? 1 : 0);
-    glUniform1i(3, link ? 1 : 0);
+    glUniform1ui(DIRT_LOC_TRACE_COUNT, count);
+    glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
+    glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
+    glUniform1i(DIRT_LOC_TRACE_LINK, link ? 1 : 0);
     /* Rays may come from a shader (the integrator's ray generation). */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* Timed here only when called on its own (stats requested); inside a
@@ -40,7 +40,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         a->trace_timer.cpu_finish = a->opts.cpu_timing;
         gl_timer_begin(&a->trace_timer);
     }
-    glDispatchCompute((count + 63) / 64, 1, 1);
+    glDispatchCompute(DIRT_GROUPS(count), 1, 1);
     if (stats)
         gl_timer_end(&a->trace_timer);
     glUseProgram(0);
@@ -75,7 +75,7 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(raster ? a->prog_fetch_miss : a->prog_fetch);
-    glDispatchCompute((count + 63) / 64, 1, 1);
+    glDispatchCompute(DIRT_GROUPS(count), 1, 1);
     if (raster) {
         if (a->fetch_fbo_w != a->set.atlas_width || a->fetch_fbo_h != a->set.atlas_height) {
             glNamedFramebufferParameteri(a->fetch_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
@@ -232,7 +232,7 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
     glUseProgram(a->prog_vis);
-    glUniform1i(0, a->set.camera_view);
+    glUniform1i(DIRT_LOC_VISIBILITY_VIEW, a->set.camera_view);
     glBindVertexArray(a->vis_vao);
     if (a->num_primitives)
         glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
@@ -241,12 +241,12 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(a->prog_vis_resolve);
-    glUniform1i(0, a->set.camera_view);
-    glBindTextureUnit(0, a->vis_color);
+    glUniform1i(DIRT_LOC_VIS_RESOLVE_VIEW, a->set.camera_view);
+    glBindTextureUnit(DIRT_UNIT_VISIBILITY, a->vis_color);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
-    glDispatchCompute((GLuint)(((size_t)v->width * v->height + 63) / 64), 1, 1);
+    glDispatchCompute((GLuint)DIRT_GROUPS((size_t)v->width * v->height), 1, 1);
     glUseProgram(0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();

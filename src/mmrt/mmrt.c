@@ -213,7 +213,7 @@ static bool ensure_nodes(dirt_mmrt *m, size_t nodes)
 static bool ensure_targets(dirt_mmrt *m)
 {
     const dirt_view_set *s = &m->set;
-    size_t heads = (size_t)m->opts.buckets * (size_t)s->num_tiles * 4;
+    size_t heads = (size_t)m->opts.buckets * (size_t)s->num_tiles * DIRT_HEAD_BYTES;
     int64_t max = dirt_gpu_get_caps(m->gpu)->max_ssbo_size;
     if (max > 0 && (int64_t)heads > max) {
         DIRT_ERROR("the bucket heads need %.1f MB, more than this GPU's largest storage "
@@ -221,7 +221,7 @@ static bool ensure_targets(dirt_mmrt *m)
                    max / 1e6);
         return false;
     }
-    if (!gl_buffer_ensure(m->gpu, &m->depth, &m->depth_size, (size_t)s->pyramid_size * 8, true,
+    if (!gl_buffer_ensure(m->gpu, &m->depth, &m->depth_size, (size_t)s->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, true,
                        "mmrt depth bounds") ||
         !gl_buffer_ensure(m->gpu, &m->heads, &m->heads_size, heads, true, "mmrt bucket heads") ||
         !gl_buffer_ensure(m->gpu, &m->tails, &m->tails_size, heads, true, "mmrt bucket tails"))
@@ -252,7 +252,7 @@ void dirt_mmrt_bind(const dirt_mmrt *m)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_IDS, m->ids);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_DATA, m->data);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_COUNTERS, m->counters);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_MATERIALS, m->materials);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, m->materials);
 }
 
 void dirt_mmrt_gl_buffers(const dirt_mmrt *m, dirt_mmrt_gl *out)
@@ -309,8 +309,8 @@ static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int
     st->store_runs = runs;
     st->sort = m->opts.sort;
     st->bytes_vertices = m->num_primitives * (3 * sizeof(struct dirt_gpu_vertex) + 4);
-    st->bytes_depth = (uint64_t)m->set.pyramid_size * 8;
-    st->bytes_heads = 2 * 4 * B * P;
+    st->bytes_depth = (uint64_t)m->set.pyramid_size * DIRT_DEPTH_ENTRY_BYTES;
+    st->bytes_heads = 2 * DIRT_HEAD_BYTES * B * P;
     st->bytes_id_nodes_allocated = (uint64_t)m->node_capacity * DIRT_MMRT_ID_NODE_BYTES;
     st->bytes_id_nodes_used = st->fragments * DIRT_MMRT_ID_NODE_BYTES;
     st->bytes_data_nodes_allocated = (uint64_t)m->node_capacity * DIRT_MMRT_DATA_NODE_BYTES;
@@ -381,7 +381,7 @@ static bool exec_reorder(fg_ctx *ctx, void *user)
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
     glUseProgram(m->prog_reorder);
-    glDispatchCompute((GLuint)((m->set.num_tiles + 63) / 64), 1, 1);
+    glDispatchCompute((GLuint)DIRT_GROUPS(m->set.num_tiles), 1, 1);
     glUseProgram(0);
     return true;
 }
@@ -610,8 +610,8 @@ bool dirt_mmrt_read(dirt_mmrt *m, dirt_mmrt_data *out)
                                                                        : m->node_capacity);
     size_t heads = (size_t)out->buckets * (size_t)out->num_pixels;
     out->depth = malloc((size_t)out->pyramid_size * sizeof(*out->depth) + 8);
-    out->heads = malloc(heads * 4 + 4);
-    out->tails = malloc(heads * 4 + 4);
+    out->heads = malloc(heads * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);
+    out->tails = malloc(heads * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);
     out->ids = malloc((size_t)out->num_nodes * sizeof(*out->ids) + 16);
     out->data = malloc((size_t)out->num_nodes * sizeof(*out->data) + 32);
     if (!out->depth || !out->heads || !out->tails || !out->ids || !out->data) {
@@ -621,9 +621,9 @@ bool dirt_mmrt_read(dirt_mmrt *m, dirt_mmrt_data *out)
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     size_t n = out->num_nodes;
-    if (!gl_buffer_read(m->depth, 0, (size_t)out->pyramid_size * 8, out->depth) ||
-        !gl_buffer_read(m->heads, 0, heads * 4, out->heads) ||
-        !gl_buffer_read(m->tails, 0, heads * 4, out->tails) ||
+    if (!gl_buffer_read(m->depth, 0, (size_t)out->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, out->depth) ||
+        !gl_buffer_read(m->heads, 0, heads * DIRT_HEAD_BYTES, out->heads) ||
+        !gl_buffer_read(m->tails, 0, heads * DIRT_HEAD_BYTES, out->tails) ||
         (n && !gl_buffer_read(m->ids, 0, n * DIRT_MMRT_ID_NODE_BYTES, out->ids)) ||
         (n && !gl_buffer_read(m->data, 0, n * DIRT_MMRT_DATA_NODE_BYTES, out->data))) {
         dirt_mmrt_data_free(out);

@@ -51,14 +51,14 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glUseProgram(m->prog_trace);
-    glUniform1ui(0, count);
-    glUniform1i(1, o.march == DIRT_MMRT_MARCH_HIZ ? 0 : 1);
-    glUniform1i(2, samples);
-    glUniform1i(3, top);
-    glUniform1f(4, thickness);
-    glUniform1ui(5, o.seed);
-    glUniform1i(6, o.count ? 1 : 0);
-    glUniform1i(7, o.all_views ? 1 : 0);
+    glUniform1ui(DIRT_LOC_MMRT_TRACE_COUNT, count);
+    glUniform1i(DIRT_LOC_MMRT_TRACE_MARCH, o.march == DIRT_MMRT_MARCH_HIZ ? 0 : 1);
+    glUniform1i(DIRT_LOC_MMRT_TRACE_SAMPLES, samples);
+    glUniform1i(DIRT_LOC_MMRT_TRACE_TOP_LEVEL, top);
+    glUniform1f(DIRT_LOC_MMRT_TRACE_THICKNESS, thickness);
+    glUniform1ui(DIRT_LOC_MMRT_TRACE_SEED, o.seed);
+    glUniform1i(DIRT_LOC_MMRT_TRACE_STATS, o.count ? 1 : 0);
+    glUniform1i(DIRT_LOC_MMRT_TRACE_ALL_VIEWS, o.all_views ? 1 : 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     /* Timed only when stats are asked for: a caller timing its own pass (a
      * frame graph) may have a time query active, and they do not nest. */
@@ -66,7 +66,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
         m->trace_timer.cpu_finish = m->opts.cpu_timing;
         gl_timer_begin(&m->trace_timer);
     }
-    glDispatchCompute((count + 63) / 64, 1, 1);
+    glDispatchCompute(DIRT_GROUPS(count), 1, 1);
     if (stats)
         gl_timer_end(&m->trace_timer);
     glUseProgram(0);

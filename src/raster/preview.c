@@ -164,10 +164,10 @@ static bool exec_draw(fg_ctx *ctx, void *user)
     glClearBufferfv(GL_COLOR, 0, clear_color);
     glClearBufferfv(GL_DEPTH, 0, &clear_depth);
     glUseProgram(r->program);
-    glUniformMatrix4fv(0, 1, GL_FALSE, r->frame.view_proj);
-    glUniform3fv(1, 1, r->frame.eye);
-    glUniform1i(3, r->frame.num_lights);
-    glUniform1f(4, r->frame.ambient);
+    glUniformMatrix4fv(DIRT_LOC_PREVIEW_VIEW_PROJ, 1, GL_FALSE, r->frame.view_proj);
+    glUniform3fv(DIRT_LOC_PREVIEW_EYE, 1, r->frame.eye);
+    glUniform1i(DIRT_LOC_PREVIEW_NUM_LIGHTS, r->frame.num_lights);
+    glUniform1f(DIRT_LOC_PREVIEW_AMBIENT, r->frame.ambient);
     glBindVertexArray(r->vao);
     const dirt_material *mat = dirt_scene_materials(r->scene);
     for (size_t i = 0; i < r->num_ranges; i++) {
@@ -177,9 +177,9 @@ static bool exec_draw(fg_ctx *ctx, void *user)
                           ? r->textures[m->base_color_tex] : 0;
         GLuint emis = m->emissive_tex >= 0 && (size_t)m->emissive_tex < r->num_textures
                           ? r->textures[m->emissive_tex] : 0;
-        glBindTextureUnit(0, base ? base : r->white);
-        glBindTextureUnit(1, emis ? emis : r->white);
-        glUniform1i(2, (GLint)mr->material);
+        glBindTextureUnit(DIRT_UNIT_PREVIEW_BASE_COLOR, base ? base : r->white);
+        glBindTextureUnit(DIRT_UNIT_PREVIEW_EMISSIVE, emis ? emis : r->white);
+        glUniform1i(DIRT_LOC_PREVIEW_MATERIAL, (GLint)mr->material);
         glDrawArrays(GL_TRIANGLES, (GLint)mr->first_vertex, (GLsizei)mr->num_vertices);
     }
     glBindVertexArray(0);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "common/constants.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"
@@ -78,7 +79,7 @@ int main(void)
         gl_timer t;
         CHECK(gl_timer_init(&t, true, "test timer"));
         glUseProgram(prog);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, buf);
         gl_timer_begin(&t);
         glDispatchCompute(1, 1, 1);
         gl_timer_end(&t);

@@ -734,11 +734,11 @@ static bool run_mode(dirt_gpu *gpu, GLuint prog, int mode, const float *in, int 
     bool ok = bin && bout;
     if (ok) {
         glUseProgram(prog);
-        glProgramUniform1i(prog, 0, mode);
-        glProgramUniform1ui(prog, 1, (GLuint)n);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bin);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bout);
-        glDispatchCompute((GLuint)((n + 63) / 64), 1, 1);
+        glProgramUniform1i(prog, DIRT_LOC_TEST_MODEL_MODE, mode);
+        glProgramUniform1ui(prog, DIRT_LOC_TEST_MODEL_COUNT, (GLuint)n);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_IN, bin);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, bout);
+        glDispatchCompute((GLuint)DIRT_GROUPS(n), 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         ok = gl_buffer_read(bout, 0, bytes, out) && gl_check("model test dispatch");
     }

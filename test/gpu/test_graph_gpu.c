@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "common/constants.h"
 #include "dirt/log.h"
 #include "gl/program.h"
 #include "gpu.h"
@@ -45,9 +46,9 @@ static bool exec_fill(fg_ctx *ctx, void *user)
     int w, h;
     fg_resolution(ctx, &w, &h);
     glUseProgram(prog.fill);
-    glUniform1ui(0, (GLuint)(w * h));
-    glUniform1ui(1, c->seed);
-    glDispatchCompute((GLuint)(w * h + 63) / 64, 1, 1);
+    glUniform1ui(DIRT_LOC_TEST_FILL_COUNT, (GLuint)(w * h));
+    glUniform1ui(DIRT_LOC_TEST_FILL_SEED, c->seed);
+    glDispatchCompute((GLuint)DIRT_GROUPS(w * h), 1, 1);
     fg_report_used(ctx, c->values, (size_t)w * (size_t)h * 4);
     return true;
 }
@@ -58,8 +59,8 @@ static bool exec_to_image(fg_ctx *ctx, void *user)
     int w, h;
     fg_resolution(ctx, &w, &h);
     glUseProgram(prog.to_image);
-    glUniform2i(0, w, h);
-    glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, 1);
+    glUniform2i(DIRT_LOC_TEST_TO_IMAGE_SIZE, w, h);
+    glDispatchCompute((GLuint)DIRT_GROUPS_2D(w), (GLuint)DIRT_GROUPS_2D(h), 1);
     return true;
 }
 
@@ -90,14 +91,14 @@ static void add_chain(fg_graph *g, chain *c, const char *suffix)
 
     snprintf(name, sizeof(name), "fill_%s", suffix);
     fg_pass *fill = fg_add_pass(g, name, FG_COMPUTE, exec_fill, c);
-    fg_use(fill, c->values, FG_SSBO_WRITE, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_use(fill, c->values, FG_SSBO_WRITE, &(fg_use_opts){.bind = true, .binding = DIRT_BIND_TEST_OUT});
     snprintf(name, sizeof(name), "to_image_%s", suffix);
     fg_pass *conv = fg_add_pass(g, name, FG_COMPUTE, exec_to_image, c);
-    fg_use(conv, c->values, FG_SSBO_READ, &(fg_use_opts){.bind = true, .binding = 0});
-    fg_use(conv, c->image, FG_IMAGE_STORE, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_use(conv, c->values, FG_SSBO_READ, &(fg_use_opts){.bind = true, .binding = DIRT_BIND_TEST_IN});
+    fg_use(conv, c->image, FG_IMAGE_STORE, &(fg_use_opts){.bind = true, .binding = DIRT_UNIT_TEST});
     snprintf(name, sizeof(name), "draw_%s", suffix);
     fg_pass *draw = fg_add_pass(g, name, FG_RASTER, exec_draw, c);
-    fg_use(draw, c->image, FG_SAMPLED, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_use(draw, c->image, FG_SAMPLED, &(fg_use_opts){.bind = true, .binding = DIRT_UNIT_TEST});
     fg_use(draw, c->target, FG_COLOR, &(fg_use_opts){.binding = 0});
     snprintf(name, sizeof(name), "readback_%s", suffix);
     fg_pass *rb = fg_add_pass(g, name, FG_COMPUTE, exec_readback, c);
@@ -123,7 +124,7 @@ static bool exec_splat(fg_ctx *ctx, void *user)
     (void)ctx;
     splat *sp = user;
     glUseProgram(prog.splat);
-    glUniform1ui(0, sp->add);
+    glUniform1ui(DIRT_LOC_TEST_SPLAT_ADD, sp->add);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     return true;
 }
@@ -151,10 +152,10 @@ static void test_attachmentless(dirt_gpu *gpu)
     fg_write(clear, counts, FG_TRANSFER_WRITE);
     const fg_tex_desc half = {.div = 2};
     fg_pass *p1 = fg_add_pass(g, "splat1", FG_RASTER, exec_splat, &s1);
-    fg_use(p1, counts, FG_IMAGE_ATOMIC, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_use(p1, counts, FG_IMAGE_ATOMIC, &(fg_use_opts){.bind = true, .binding = DIRT_UNIT_TEST});
     fg_set_raster_size(p1, &half);
     fg_pass *p2 = fg_add_pass(g, "splat2", FG_RASTER, exec_splat, &s2);
-    fg_use(p2, counts, FG_IMAGE_ATOMIC, &(fg_use_opts){.bind = true, .binding = 0});
+    fg_use(p2, counts, FG_IMAGE_ATOMIC, &(fg_use_opts){.bind = true, .binding = DIRT_UNIT_TEST});
     fg_set_raster_size(p2, &half);
     fg_pass *rb = fg_add_pass(g, "read_counts", FG_COMPUTE, exec_read_counts, &s1);
     fg_read(rb, counts, FG_TRANSFER_READ);

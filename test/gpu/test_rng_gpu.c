@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "common/constants.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"
@@ -25,10 +26,10 @@ int main(void)
     static const uint32_t seeds[] = {0u, 1u, 0xDEADBEEFu};
     for (int s = 0; s < 3; s++) {
         glUseProgram(prog);
-        glUniform1ui(0, N);
-        glUniform1ui(1, seeds[s]);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf);
-        glDispatchCompute(N / 64, 1, 1);
+        glUniform1ui(DIRT_LOC_TEST_RNG_COUNT, N);
+        glUniform1ui(DIRT_LOC_TEST_RNG_SEED, seeds[s]);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, buf);
+        glDispatchCompute(DIRT_GROUPS(N), 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         CHECK(gl_buffer_read(buf, 0, N * 8, out));
         uint32_t bad_u = 0, bad_f = 0;

@@ -25,6 +25,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "common/constants.h" /* DIRT_MMRT_*_NODE_BYTES */
+
 #include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
@@ -60,9 +62,9 @@ enum { DIRT_MMRT_PASS_CLEAR, DIRT_MMRT_PASS_DEPTH, DIRT_MMRT_PASS_MIP, DIRT_MMRT
 
 extern const char *const dirt_mmrt_pass_names[DIRT_MMRT_NUM_PASSES];
 
-/* Node sizes in bytes. */
-#define DIRT_MMRT_ID_NODE_BYTES 12   /* {z, next, prev} */
-#define DIRT_MMRT_DATA_NODE_BYTES 32 /* dirt_mmrt_data_node */
+/* Node sizes in bytes: DIRT_MMRT_ID_NODE_BYTES (12, {z, next, prev}) and
+ * DIRT_MMRT_DATA_NODE_BYTES (32, dirt_mmrt_data_node), defined once in the
+ * shared registry. */
 
 typedef struct dirt_mmrt_stats {
     /* Counts of the last build. */

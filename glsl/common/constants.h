@@ -1,0 +1,280 @@
+/* The registry of constants shared by C and GLSL: compute workgroup sizes,
+ * node sizes, storage-buffer binding points (grouped into one named range
+ * per subsystem), texture units and uniform locations. Every number that
+ * both sides must agree on is defined here once and used by name on both
+ * sides; the record layouts that use them live in common/layout.h,
+ * integrator_layout.h, mmrt_layout.h and mmrt_pt_layout.h, which include
+ * this file.
+ *
+ * This file must stay valid as both C11 and GLSL 4.50: #define, #if and
+ * #error only. The #error checks below run in every C file and every shader
+ * that includes it (shaders are validated at build time), so a binding
+ * outside its subsystem's range or two overlapping ranges fail the build.
+ * src/gl/layout_check.c adds what the preprocessor cannot check
+ * (uniqueness of every binding and of each program's uniform locations,
+ * record sizes and member offsets). */
+#ifndef DIRT_COMMON_CONSTANTS_H
+#define DIRT_COMMON_CONSTANTS_H
+
+/* ---- Compute workgroups ---- */
+
+/* local_size_x of every one-dimensional compute shader; the host launches
+ * DIRT_GROUPS(n) groups for n invocations (the shaders bound-check). */
+#define DIRT_GROUP_SIZE 64
+#define DIRT_GROUPS(n) (((n) + DIRT_GROUP_SIZE - 1) / DIRT_GROUP_SIZE)
+/* local_size_x = local_size_y of two-dimensional compute shaders (the Hi-Z
+ * mip pass, the frame-graph test's image pass): DIRT_GROUPS_2D(w) x
+ * DIRT_GROUPS_2D(h) groups cover a w x h image. */
+#define DIRT_GROUP_SIZE_2D 8
+#define DIRT_GROUPS_2D(n) (((n) + DIRT_GROUP_SIZE_2D - 1) / DIRT_GROUP_SIZE_2D)
+
+/* ---- Node and entry sizes (bytes) ---- */
+
+#define DIRT_NODE_BYTES 8              /* DIRT id node: uvec2 (primitive id, next) */
+#define DIRT_DEPTH_ENTRY_BYTES 8       /* depth-bounds pyramid entry: uvec2 (zmin, zmax) bits */
+#define DIRT_HEAD_BYTES 4              /* list head: one uint */
+#define DIRT_HIT_NODE_BYTES 32         /* dirt_gpu_hit (the DIRT paper's hit node) */
+#define DIRT_MMRT_ID_UINTS 3           /* MMRT id node: {z, next, prev} uints */
+#define DIRT_MMRT_ID_NODE_BYTES 12     /* = 4 * DIRT_MMRT_ID_UINTS (the MMRT paper's size) */
+#define DIRT_MMRT_DATA_NODE_BYTES 32   /* dirt_mmrt_gpu_data */
+
+/* ---- Storage-buffer binding points ----
+ *
+ * Each subsystem owns the range [DIRT_BIND_<S>_FIRST, DIRT_BIND_<S>_LAST];
+ * the ranges are disjoint and ascending, so no two names share a binding
+ * point and a pass may bind buffers of several subsystems at once (the path
+ * tracer's Shade reads the shared range, the integrator's and the model
+ * tables together). Buffers read or written by more than one subsystem
+ * (DIRT, MMRT and the integrator exchange vertices, rays, hits and shading
+ * points through them) are in the SHARED range. */
+
+#define DIRT_BIND_SHARED_FIRST 0
+#define DIRT_BIND_VERTICES 0         /* dirt_gpu_vertex[3 * primitives] */
+#define DIRT_BIND_VIEWS 1            /* dirt_gpu_view[views] (DIRT and MMRT) */
+#define DIRT_BIND_DEPTH 2            /* uvec2[pyramid entries]: float bits of (zmin, zmax) */
+#define DIRT_BIND_RAYS 3             /* dirt_gpu_ray[rays] */
+#define DIRT_BIND_HITS 4             /* dirt_gpu_hit[rays] (closest hit per ray) */
+#define DIRT_BIND_PRIM_MATERIAL 5    /* uint[primitives]: material of each primitive */
+#define DIRT_BIND_GPOINTS 6          /* dirt_gpu_gpoint[3 * pixels]: the shading ring */
+#define DIRT_BIND_SHARED_LAST 6
+
+/* DIRT acceleration structure (src/dirt/build.c, glsl/dirt/build.*). */
+#define DIRT_BIND_ADS_FIRST 7
+#define DIRT_BIND_PARAMS 7           /* dirt_gpu_ads_params */
+#define DIRT_BIND_HEADS 8            /* uint[buckets * tiles]: first node or DIRT_LIST_END */
+#define DIRT_BIND_NODES 9            /* uvec2[capacity]: (primitive id, next node) */
+#define DIRT_BIND_COUNTERS 10        /* dirt_gpu_ads_counters */
+#define DIRT_BIND_ADS_LAST 10
+
+/* DIRT trace and fetch (src/dirt/trace.c, glsl/dirt/trace.comp, fetch*). */
+#define DIRT_BIND_TRACE_FIRST 11
+#define DIRT_BIND_HIT_HEADS 11       /* uint[tiles]: first hit record of each ADS tile */
+#define DIRT_BIND_FETCH_PARAMS 12    /* dirt_gpu_fetch_params */
+#define DIRT_BIND_TRACE_LAST 12
+
+/* GPU path tracer (src/integrator/gpu_pt.c, glsl/integrator/). */
+#define DIRT_BIND_INTEGRATOR_FIRST 13
+#define DIRT_BIND_PATHS 13           /* dirt_gpu_path[pixels] */
+#define DIRT_BIND_ACCUM 14           /* dirt_gpu_accum[pixels] */
+#define DIRT_BIND_SHADOW_RAYS 15     /* dirt_gpu_ray[pixels]: next-event shadow rays */
+#define DIRT_BIND_INTEGRATOR_LAST 15
+
+/* MMRT A-buffer (src/mmrt/, glsl/mmrt/); its per-primitive materials are
+ * DIRT_BIND_PRIM_MATERIAL. */
+#define DIRT_BIND_MMRT_FIRST 16
+#define DIRT_BIND_MMRT_PARAMS 16     /* dirt_mmrt_gpu_params */
+#define DIRT_BIND_MMRT_HEADS 17      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_TAILS 18      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_IDS 19        /* uint[DIRT_MMRT_ID_UINTS * capacity]: id nodes */
+#define DIRT_BIND_MMRT_DATA 20       /* dirt_mmrt_gpu_data[capacity] */
+#define DIRT_BIND_MMRT_COUNTERS 21   /* dirt_mmrt_gpu_counters */
+#define DIRT_BIND_MMRT_LAST 21
+
+/* The path tracer's MMRT technique (src/mmrt/pt_mmrt.c, glsl/mmrt/pt_rays.comp). */
+#define DIRT_BIND_MMRT_PT_FIRST 22
+#define DIRT_BIND_MMRT_PT_RAYS_OUT 22 /* dirt_gpu_ray[count]: the offset copy of a batch */
+#define DIRT_BIND_MMRT_PT_COUNTS 23   /* dirt_mmrt_pt_counts */
+#define DIRT_BIND_MMRT_PT_LAST 23
+
+/* Tables of the light-transport model (src/integrator/gpu_tables.c,
+ * glsl/integrator/model.glsl with DIRT_MODEL_BUFFERS). */
+#define DIRT_BIND_MODEL_FIRST 24
+#define DIRT_BIND_MODEL_MATERIALS 24   /* dirt_gpu_model_material[materials] */
+#define DIRT_BIND_MODEL_AREA_CDF 25    /* dirt_gpu_model_lights header, float cdf[count] */
+#define DIRT_BIND_MODEL_AREA_PRIMS 26  /* uint prim[count] (at least one entry) */
+#define DIRT_BIND_MODEL_PUNCTUAL 27    /* dirt_gpu_model_light[punctual] (at least one) */
+#define DIRT_BIND_MODEL_CAMERA 28      /* one dirt_gpu_model_camera */
+#define DIRT_BIND_MODEL_LAST 28
+
+/* Raster preview (src/raster/preview.c, glsl/raster/). */
+#define DIRT_BIND_PREVIEW_FIRST 29
+#define DIRT_BIND_PREVIEW_MATERIALS 29 /* dirt_gpu_material[materials] */
+#define DIRT_BIND_PREVIEW_LIGHTS 30    /* dirt_gpu_light[lights] */
+#define DIRT_BIND_PREVIEW_LAST 30
+
+/* Test shaders (glsl/test/, glsl/graph_test/, integrator/test_model.comp). */
+#define DIRT_BIND_TEST_FIRST 31
+#define DIRT_BIND_TEST_IN 31           /* a test's input buffer */
+#define DIRT_BIND_TEST_OUT 32          /* a test's output buffer */
+#define DIRT_BIND_TEST_LAST 32
+
+/* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
+ * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
+#define DIRT_BIND_LAST DIRT_BIND_TEST_LAST
+
+/* The ranges are non-empty, ascending and disjoint. */
+#if DIRT_BIND_SHARED_FIRST != 0 || DIRT_BIND_SHARED_LAST < DIRT_BIND_SHARED_FIRST || \
+    DIRT_BIND_ADS_FIRST <= DIRT_BIND_SHARED_LAST || DIRT_BIND_ADS_LAST < DIRT_BIND_ADS_FIRST || \
+    DIRT_BIND_TRACE_FIRST <= DIRT_BIND_ADS_LAST || DIRT_BIND_TRACE_LAST < DIRT_BIND_TRACE_FIRST || \
+    DIRT_BIND_INTEGRATOR_FIRST <= DIRT_BIND_TRACE_LAST || \
+    DIRT_BIND_INTEGRATOR_LAST < DIRT_BIND_INTEGRATOR_FIRST || \
+    DIRT_BIND_MMRT_FIRST <= DIRT_BIND_INTEGRATOR_LAST || DIRT_BIND_MMRT_LAST < DIRT_BIND_MMRT_FIRST || \
+    DIRT_BIND_MMRT_PT_FIRST <= DIRT_BIND_MMRT_LAST || \
+    DIRT_BIND_MMRT_PT_LAST < DIRT_BIND_MMRT_PT_FIRST || \
+    DIRT_BIND_MODEL_FIRST <= DIRT_BIND_MMRT_PT_LAST || DIRT_BIND_MODEL_LAST < DIRT_BIND_MODEL_FIRST || \
+    DIRT_BIND_PREVIEW_FIRST <= DIRT_BIND_MODEL_LAST || \
+    DIRT_BIND_PREVIEW_LAST < DIRT_BIND_PREVIEW_FIRST || \
+    DIRT_BIND_TEST_FIRST <= DIRT_BIND_PREVIEW_LAST || DIRT_BIND_TEST_LAST < DIRT_BIND_TEST_FIRST
+#error "common/constants.h: storage-buffer binding ranges overlap or are out of order"
+#endif
+
+/* Every binding lies in its subsystem's range. */
+#define DIRT_BIND_IN(b, first, last) ((b) >= (first) && (b) <= (last))
+#if !DIRT_BIND_IN(DIRT_BIND_VERTICES, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_VIEWS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_DEPTH, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_RAYS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_HITS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_PRIM_MATERIAL, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_GPOINTS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST)
+#error "common/constants.h: a shared binding lies outside DIRT_BIND_SHARED_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_PARAMS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_HEADS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_NODES, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_COUNTERS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST)
+#error "common/constants.h: a DIRT structure binding lies outside DIRT_BIND_ADS_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_HIT_HEADS, DIRT_BIND_TRACE_FIRST, DIRT_BIND_TRACE_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_FETCH_PARAMS, DIRT_BIND_TRACE_FIRST, DIRT_BIND_TRACE_LAST)
+#error "common/constants.h: a trace/fetch binding lies outside DIRT_BIND_TRACE_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_PATHS, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_ACCUM, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_SHADOW_RAYS, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST)
+#error "common/constants.h: an integrator binding lies outside DIRT_BIND_INTEGRATOR_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_MMRT_PARAMS, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MMRT_HEADS, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MMRT_TAILS, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MMRT_IDS, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MMRT_DATA, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MMRT_COUNTERS, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST)
+#error "common/constants.h: an MMRT binding lies outside DIRT_BIND_MMRT_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_MMRT_PT_RAYS_OUT, DIRT_BIND_MMRT_PT_FIRST, DIRT_BIND_MMRT_PT_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MMRT_PT_COUNTS, DIRT_BIND_MMRT_PT_FIRST, DIRT_BIND_MMRT_PT_LAST)
+#error "common/constants.h: an MMRT technique binding lies outside DIRT_BIND_MMRT_PT_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_MODEL_MATERIALS, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MODEL_AREA_CDF, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MODEL_AREA_PRIMS, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MODEL_PUNCTUAL, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MODEL_CAMERA, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST)
+#error "common/constants.h: a model-table binding lies outside DIRT_BIND_MODEL_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_PREVIEW_MATERIALS, DIRT_BIND_PREVIEW_FIRST, DIRT_BIND_PREVIEW_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_PREVIEW_LIGHTS, DIRT_BIND_PREVIEW_FIRST, DIRT_BIND_PREVIEW_LAST)
+#error "common/constants.h: a preview binding lies outside DIRT_BIND_PREVIEW_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_TEST_IN, DIRT_BIND_TEST_FIRST, DIRT_BIND_TEST_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_TEST_OUT, DIRT_BIND_TEST_FIRST, DIRT_BIND_TEST_LAST)
+#error "common/constants.h: a test binding lies outside DIRT_BIND_TEST_*"
+#endif
+
+/* ---- Texture and image units ---- */
+
+/* The scene's texture array seen twice (integrator_layout.h). */
+#define DIRT_UNIT_MODEL_TEX_LINEAR 20
+#define DIRT_UNIT_MODEL_TEX_SRGB 21
+/* Raster preview: a material's base colour and emissive textures. */
+#define DIRT_UNIT_PREVIEW_BASE_COLOR 0
+#define DIRT_UNIT_PREVIEW_EMISSIVE 1
+/* Direct visibility: the RGBA32UI visibility buffer read by the resolve. */
+#define DIRT_UNIT_VISIBILITY 0
+/* Frame-graph tests: the one sampled texture / storage image of a pass. */
+#define DIRT_UNIT_TEST 0
+
+/* ---- Uniform locations ----
+ *
+ * layout(location = DIRT_LOC_*) in the shader, glUniform*(DIRT_LOC_*, ...)
+ * on the host. Locations are per program: the names of one program (one
+ * block below) are distinct, names of different programs may share values. */
+
+/* glsl/integrator/pt_common.glsl: raygen.comp, shade.comp (and its AO variant). */
+#define DIRT_LOC_PT_PIXELS 0         /* uint: pixels of the image */
+#define DIRT_LOC_PT_WIDTH 1          /* int */
+#define DIRT_LOC_PT_HEIGHT 2         /* int */
+#define DIRT_LOC_PT_SEED 3           /* uint */
+#define DIRT_LOC_PT_SAMPLE 4         /* uint: sample index */
+#define DIRT_LOC_PT_BOUNCE 5         /* uint k: the path event being shaded */
+#define DIRT_LOC_PT_BOUNCES 6        /* uint K: scattering events allowed */
+#define DIRT_LOC_PT_SLOT 7           /* uint: ring slot of G_k (k mod 3) */
+#define DIRT_LOC_PT_BACKGROUND 8     /* vec3 */
+#define DIRT_LOC_PT_AO_DISTANCE 9    /* float */
+/* glsl/integrator/resolve.comp */
+#define DIRT_LOC_RESOLVE_PIXELS 0    /* uint */
+/* glsl/integrator/accumulate.comp */
+#define DIRT_LOC_ACCUM_PIXELS 0      /* uint */
+/* glsl/integrator/test_model.comp */
+#define DIRT_LOC_TEST_MODEL_MODE 0   /* int */
+#define DIRT_LOC_TEST_MODEL_COUNT 1  /* uint */
+
+/* glsl/dirt/trace.comp */
+#define DIRT_LOC_TRACE_COUNT 0       /* uint: rays */
+#define DIRT_LOC_TRACE_HIZ_TOP 1     /* int: highest level to start from; < 0 = top */
+#define DIRT_LOC_TRACE_ANY_HIT 2     /* int: 1 stops at the first accepted hit */
+#define DIRT_LOC_TRACE_LINK 3        /* int: 1 links hits per ADS tile (raster Fetch) */
+/* glsl/dirt/mip.comp */
+#define DIRT_LOC_MIP_LEVEL 0         /* int: the level written */
+/* glsl/dirt/visibility.vert */
+#define DIRT_LOC_VISIBILITY_VIEW 0   /* int: the camera view */
+/* glsl/dirt/visibility_resolve.comp */
+#define DIRT_LOC_VIS_RESOLVE_VIEW 0  /* int: the camera view */
+
+/* glsl/mmrt/trace.comp */
+#define DIRT_LOC_MMRT_TRACE_COUNT 0      /* uint: rays */
+#define DIRT_LOC_MMRT_TRACE_MARCH 1      /* int: 0 Hi-Z, 1 linear */
+#define DIRT_LOC_MMRT_TRACE_SAMPLES 2    /* int: linear samples per view */
+#define DIRT_LOC_MMRT_TRACE_TOP_LEVEL 3  /* int: Hi-Z highest level used */
+#define DIRT_LOC_MMRT_TRACE_THICKNESS 4  /* float */
+#define DIRT_LOC_MMRT_TRACE_SEED 5       /* uint */
+#define DIRT_LOC_MMRT_TRACE_STATS 6      /* int: count pixels / nodes visited */
+#define DIRT_LOC_MMRT_TRACE_ALL_VIEWS 7  /* int: every view over the whole segment */
+/* glsl/mmrt/pt_rays.comp */
+#define DIRT_LOC_MMRT_PT_RAYS_COUNT 0    /* uint: rays */
+#define DIRT_LOC_MMRT_PT_RAYS_OFFSET 1   /* float: origin offset */
+#define DIRT_LOC_MMRT_PT_RAYS_SHADOW 2   /* int: 1 for a shadow (any-hit) batch */
+/* glsl/mmrt/to_gpoint.comp */
+#define DIRT_LOC_MMRT_TO_GPOINT_COUNT 0  /* uint: rays */
+#define DIRT_LOC_MMRT_TO_GPOINT_SLOT 1   /* uint: ring slot written */
+
+/* glsl/raster/preview.vert + preview.frag (one program) */
+#define DIRT_LOC_PREVIEW_VIEW_PROJ 0   /* mat4 */
+#define DIRT_LOC_PREVIEW_EYE 1         /* vec3 */
+#define DIRT_LOC_PREVIEW_MATERIAL 2    /* int */
+#define DIRT_LOC_PREVIEW_NUM_LIGHTS 3  /* int */
+#define DIRT_LOC_PREVIEW_AMBIENT 4     /* float */
+
+/* glsl/test/rng.comp */
+#define DIRT_LOC_TEST_RNG_COUNT 0      /* uint */
+#define DIRT_LOC_TEST_RNG_SEED 1       /* uint */
+/* glsl/graph_test/fill.comp */
+#define DIRT_LOC_TEST_FILL_COUNT 0     /* uint */
+#define DIRT_LOC_TEST_FILL_SEED 1      /* uint */
+/* glsl/graph_test/to_image.comp */
+#define DIRT_LOC_TEST_TO_IMAGE_SIZE 0  /* ivec2 */
+/* glsl/graph_test/splat.frag */
+#define DIRT_LOC_TEST_SPLAT_ADD 0      /* uint */
+
+#endif
