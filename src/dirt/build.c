@@ -14,10 +14,7 @@
 #include "graph/graph.h"
 #include "views/views_gpu.h"
 
-_Static_assert(sizeof(struct dirt_gpu_vertex) == 32, "vertex layout");
-_Static_assert(sizeof(struct dirt_gpu_view) == 192, "view layout");
-_Static_assert(sizeof(struct dirt_gpu_ads_params) == 32, "params layout");
-_Static_assert(sizeof(struct dirt_gpu_ads_counters) == 16, "counters layout");
+/* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
 const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
     "clear", "depth bounds", "mip", "fill primitives",

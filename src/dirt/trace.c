@@ -4,10 +4,7 @@
 
 #include "dirt/ads_internal.h"
 
-_Static_assert(sizeof(dirt_ray) == sizeof(struct dirt_gpu_ray), "ray layout");
-_Static_assert(sizeof(dirt_hit) == sizeof(struct dirt_gpu_hit), "hit layout");
-_Static_assert(sizeof(dirt_gpoint) == sizeof(struct dirt_gpu_gpoint), "gpoint layout");
-_Static_assert(sizeof(struct dirt_gpu_fetch_params) == 32, "fetch params layout");
+/* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
 bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                   const dirt_trace_opts *opts_in, bool link, dirt_trace_stats *stats)

@@ -9,10 +9,7 @@
 #include "dirt/log.h"
 #include "gl/gl.h"
 
-_Static_assert(sizeof(struct dirt_gpu_model_material) == 64, "std430 material record");
-_Static_assert(sizeof(struct dirt_gpu_model_light) == 64, "std430 light record");
-_Static_assert(sizeof(struct dirt_gpu_model_lights) == 32, "std430 light table header");
-_Static_assert(sizeof(struct dirt_gpu_model_camera) == 80, "std430 camera record");
+/* Record sizes and offsets are checked in src/gl/layout_check.c. */
 _Static_assert(DIRT_MODEL_LIGHT_DIRECTIONAL == DIRT_LIGHT_DIRECTIONAL &&
                DIRT_MODEL_LIGHT_POINT == DIRT_LIGHT_POINT &&
                DIRT_MODEL_LIGHT_SPOT == DIRT_LIGHT_SPOT, "light kinds");

@@ -9,15 +9,7 @@
 #include "gl/program.h"
 #include "mmrt_internal.h"
 
-_Static_assert(sizeof(struct dirt_mmrt_gpu_params) == 32, "params layout");
-_Static_assert(sizeof(struct dirt_mmrt_gpu_data) == DIRT_MMRT_DATA_NODE_BYTES, "data layout");
-_Static_assert(sizeof(struct dirt_mmrt_gpu_counters) == 48, "counters layout");
-_Static_assert(sizeof(dirt_mmrt_data_node) == sizeof(struct dirt_mmrt_gpu_data),
-               "data node mirror");
-_Static_assert(sizeof(dirt_mmrt_id_node) == DIRT_MMRT_ID_NODE_BYTES &&
-               DIRT_MMRT_ID_UINTS * 4 == DIRT_MMRT_ID_NODE_BYTES, "id node layout");
-_Static_assert(sizeof(struct dirt_gpu_vertex) == 32, "vertex layout");
-_Static_assert(sizeof(struct dirt_gpu_view) == 192, "view layout");
+/* Record sizes and offsets are checked in src/gl/layout_check.c. */
 _Static_assert(DIRT_MMRT_END == DIRT_LIST_END, "list end");
 
 const char *const dirt_mmrt_pass_names[DIRT_MMRT_NUM_PASSES] = {

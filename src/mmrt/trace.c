@@ -5,8 +5,7 @@
 
 #include "mmrt_internal.h"
 
-_Static_assert(sizeof(dirt_ray) == sizeof(struct dirt_gpu_ray), "ray layout");
-_Static_assert(sizeof(dirt_hit) == sizeof(struct dirt_gpu_hit), "hit layout");
+/* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
 /* Default thickness: this fraction of the scene's bounding-box diagonal. */
 #define MMRT_DEFAULT_THICKNESS 0.002f
