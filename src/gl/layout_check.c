@@ -377,27 +377,30 @@ static const dirt_layout_uniform u_to_image[] = {U("u_size", DIRT_LOC_TEST_TO_IM
 static const dirt_layout_uniform u_splat[] = {U("u_add", DIRT_LOC_TEST_SPLAT_ADD)};
 #undef U
 
-#define P(a, b, u) {{a, b, NULL}, NULL, u, sizeof(u) / sizeof(u[0])}
+#define P(a, b, r, u) {{a, b, NULL}, NULL, r, u, sizeof(u) / sizeof(u[0])}
+#define SH DIRT_RANGE_SHARED
 const dirt_layout_program dirt_layout_programs[] = {
-    P("integrator/raygen.comp", NULL, u_pt),
-    P("integrator/shade.comp", NULL, u_pt),
-    {{"integrator/shade.comp", NULL, NULL}, "DIRT_AO", u_pt, sizeof(u_pt) / sizeof(u_pt[0])},
-    P("integrator/resolve.comp", NULL, u_resolve),
-    P("integrator/accumulate.comp", NULL, u_accum),
-    P("integrator/test_model.comp", NULL, u_test_model),
-    P("dirt/trace.comp", NULL, u_trace),
-    P("dirt/mip.comp", NULL, u_mip),
-    P("dirt/visibility.vert", "dirt/visibility.frag", u_vis),
-    P("dirt/visibility_resolve.comp", NULL, u_vis_resolve),
-    P("mmrt/trace.comp", NULL, u_mmrt_trace),
-    P("mmrt/pt_rays.comp", NULL, u_pt_rays),
-    P("mmrt/to_gpoint.comp", NULL, u_to_gpoint),
-    P("raster/preview.vert", "raster/preview.frag", u_preview),
-    P("test/rng.comp", NULL, u_rng),
-    P("graph_test/fill.comp", NULL, u_fill),
-    P("graph_test/to_image.comp", NULL, u_to_image),
-    P("graph_test/draw.vert", "graph_test/splat.frag", u_splat),
+    P("integrator/raygen.comp", NULL, SH | DIRT_RANGE_INTEGRATOR | DIRT_RANGE_MODEL, u_pt),
+    P("integrator/shade.comp", NULL, SH | DIRT_RANGE_INTEGRATOR | DIRT_RANGE_MODEL, u_pt),
+    {{"integrator/shade.comp", NULL, NULL}, "DIRT_AO", SH | DIRT_RANGE_INTEGRATOR | DIRT_RANGE_MODEL,
+     u_pt, sizeof(u_pt) / sizeof(u_pt[0])},
+    P("integrator/resolve.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_resolve),
+    P("integrator/accumulate.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_accum),
+    P("integrator/test_model.comp", NULL, DIRT_RANGE_TEST | DIRT_RANGE_MODEL, u_test_model),
+    P("dirt/trace.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_trace),
+    P("dirt/mip.comp", NULL, SH, u_mip),
+    P("dirt/visibility.vert", "dirt/visibility.frag", SH, u_vis),
+    P("dirt/visibility_resolve.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_vis_resolve),
+    P("mmrt/trace.comp", NULL, SH | DIRT_RANGE_MMRT, u_mmrt_trace),
+    P("mmrt/pt_rays.comp", NULL, SH | DIRT_RANGE_MMRT | DIRT_RANGE_MMRT_PT, u_pt_rays),
+    P("mmrt/to_gpoint.comp", NULL, SH | DIRT_RANGE_MMRT, u_to_gpoint),
+    P("raster/preview.vert", "raster/preview.frag", DIRT_RANGE_PREVIEW, u_preview),
+    P("test/rng.comp", NULL, DIRT_RANGE_TEST, u_rng),
+    P("graph_test/fill.comp", NULL, DIRT_RANGE_TEST, u_fill),
+    P("graph_test/to_image.comp", NULL, DIRT_RANGE_TEST, u_to_image),
+    P("graph_test/draw.vert", "graph_test/splat.frag", DIRT_RANGE_TEST, u_splat),
 };
+#undef SH
 #undef P
 const size_t dirt_layout_num_programs =
     sizeof(dirt_layout_programs) / sizeof(dirt_layout_programs[0]);

@@ -31,6 +31,7 @@ typedef struct dirt_layout_uniform {
 typedef struct dirt_layout_program {
     const char *paths[3];                  /* stage sources, NULL-terminated */
     const char *define;                    /* one define (value 1) or NULL */
+    unsigned ranges;                       /* bit i: may bind in dirt_layout_ranges[i] */
     const dirt_layout_uniform *uniforms;
     size_t num_uniforms;
 } dirt_layout_program;
@@ -38,7 +39,13 @@ typedef struct dirt_layout_program {
 /* Every DIRT_BIND_* of the registry, ascending. */
 extern const dirt_layout_binding dirt_layout_bindings[];
 extern const size_t dirt_layout_num_bindings;
-/* Every DIRT_BIND_<range>_FIRST/_LAST pair, ascending. */
+/* Every DIRT_BIND_<range>_FIRST/_LAST pair, ascending; bit i of a
+ * program's `ranges` is dirt_layout_ranges[i]. */
+enum {
+    DIRT_RANGE_SHARED = 1u << 0, DIRT_RANGE_ADS = 1u << 1, DIRT_RANGE_TRACE = 1u << 2,
+    DIRT_RANGE_INTEGRATOR = 1u << 3, DIRT_RANGE_MMRT = 1u << 4, DIRT_RANGE_MMRT_PT = 1u << 5,
+    DIRT_RANGE_MODEL = 1u << 6, DIRT_RANGE_PREVIEW = 1u << 7, DIRT_RANGE_TEST = 1u << 8,
+};
 extern const dirt_layout_range dirt_layout_ranges[];
 extern const size_t dirt_layout_num_ranges;
 /* Every program with named uniform locations. */

@@ -155,7 +155,7 @@ static void test_record_layout(dirt_gpu *gpu)
 }
 
 /* Every registered program: its storage blocks at named, distinct binding
- * points; its named uniforms at the registry's locations when active
+ * points inside the ranges the program may use; its named uniforms at the registry's locations when active
  * (unused ones may be dropped: -1), and every uniform of a table active in
  * at least one program using the table. */
 #define MAX_TABLE 16
@@ -201,6 +201,12 @@ static void test_programs(void)
             bool named = binding >= 0 && binding <= DIRT_BIND_LAST &&
                          dirt_layout_binding_name(binding) != NULL;
             CHECK_MSG(named, "%s: block %s at unnamed binding %d", lp->paths[0], name, binding);
+            unsigned bit = 0;
+            for (size_t r = 0; r < dirt_layout_num_ranges; r++)
+                if (binding >= dirt_layout_ranges[r].first && binding <= dirt_layout_ranges[r].last)
+                    bit = 1u << r;
+            CHECK_MSG(lp->ranges & bit, "%s: block %s at %s, outside the program's ranges",
+                      lp->paths[0], name, named ? dirt_layout_binding_name(binding) : "?");
             if (named) {
                 CHECK_MSG(!seen[binding], "%s: two blocks at %s", lp->paths[0],
                           dirt_layout_binding_name(binding));
