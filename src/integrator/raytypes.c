@@ -7,17 +7,13 @@
 #include "dirt/integrator.h"
 #include "dirt/log.h"
 #include "integrator/rng.h"
+#include "integrator/vec3.h"
 
 _Static_assert(sizeof(dirt_ray) == sizeof(dirt_ref_ray), "ray layouts");
 
 const char *const dirt_ray_type_names[DIRT_RAY_TYPES] = {
     "primary", "visibility", "specular", "glossy", "diffuse",
 };
-
-static dirt_vec3 v3(const float a[3])
-{
-    return (dirt_vec3){a[0], a[1], a[2]};
-}
 
 static void light_target(const dirt_scene *scene, const dirt_frame *f, float diag, float out[3])
 {
@@ -137,7 +133,7 @@ size_t dirt_rays_generate(const dirt_gbuffer *g, const dirt_camera *cam, enum di
         return k;
     }
     for (size_t i = 0; i < g->count; i++) {
-        dirt_vec3 n = v3(g->normal[i]), v = v3(g->view_dir[i]);
+        dirt_vec3 n = v3_load(g->normal[i]), v = v3_load(g->view_dir[i]);
         float o[3];
         for (int c = 0; c < 3; c++)
             o[c] = g->position[i][c] + g->epsilon * g->normal[i][c];

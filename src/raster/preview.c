@@ -28,9 +28,9 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "graph/graph.h"
+#include "integrator/vec3.h"
 
-_Static_assert(sizeof(struct dirt_gpu_material) == 64, "material layout");
-_Static_assert(sizeof(struct dirt_gpu_light) == 64, "light layout");
+/* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
 #define PASS_DRAW "preview draw"
 #define PASS_READBACK "preview readback"
@@ -460,15 +460,15 @@ oom:
     return false;
 }
 
+/* Area of triangle (a, b, c); n = its unnormalised normal (b - a) x (c - a). */
 static float tri_area(const float a[3], const float b[3], const float c[3], float n[3])
 {
-    float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    return 0.5f * len;
+    dirt_vec3 a3 = v3_load(a);
+    dirt_vec3 cr = v3_cross(v3_sub(v3_load(b), a3), v3_sub(v3_load(c), a3));
+    n[0] = cr.x;
+    n[1] = cr.y;
+    n[2] = cr.z;
+    return 0.5f * v3_length(cr);
 }
 
 /* Punctual lights plus one lumped point per (instance, emissive material):

@@ -18,19 +18,14 @@
 #include "check.h"
 #include "dirt/integrator.h"
 #include "integrator/rng.h"
+#include "integrator/vec3.h"
 
 #define PI 3.14159265358979323846
-
-static dirt_vec3 vec(float x, float y, float z)
-{
-    dirt_vec3 r = {x, y, z};
-    return r;
-}
 
 static dirt_vec3 dir_from_mu(float mu, float phi)
 {
     float s = sqrtf(fmaxf(0.0f, 1.0f - mu * mu));
-    return vec(s * cosf(phi), s * sinf(phi), mu);
+    return v3(s * cosf(phi), s * sinf(phi), mu);
 }
 
 static dirt_bsdf material(float r, float g, float b, float metallic, float roughness, float spec)
@@ -226,8 +221,8 @@ static void check_reciprocity(void)
     CHECK_MSG(bad == 0, "%d non-reciprocal or invalid evaluations", bad);
     /* Below the surface the BSDF and the pdf are zero. */
     dirt_bsdf b = material(0.8f, 0.8f, 0.8f, 0.0f, 0.5f, 1.0f);
-    CHECK(dirt_bsdf_eval(&b, vec(0, 0, 1), vec(0, 0.6f, -0.8f)).x == 0.0f);
-    CHECK(dirt_bsdf_pdf(&b, vec(0, 0.6f, -0.8f), vec(0, 0, 1)) == 0.0f);
+    CHECK(dirt_bsdf_eval(&b, v3(0, 0, 1), v3(0, 0.6f, -0.8f)).x == 0.0f);
+    CHECK(dirt_bsdf_pdf(&b, v3(0, 0.6f, -0.8f), v3(0, 0, 1)) == 0.0f);
 }
 
 static void check_delta(void)
@@ -335,9 +330,9 @@ static void check_warps(void)
         if (s % 2)
             n.z = -n.z;
         if (s == 2)
-            n = vec(0, 0, 1);
+            n = v3(0, 0, 1);
         if (s == 3)
-            n = vec(0, 0, -1);
+            n = v3(0, 0, -1);
         dirt_vec3 t, b;
         dirt_onb(n, &t, &b);
         float d[6] = {t.x * t.x + t.y * t.y + t.z * t.z - 1, b.x * b.x + b.y * b.y + b.z * b.z - 1,
@@ -368,8 +363,8 @@ static void check_warps(void)
     CHECK_NEAR(dirt_mis_power(1.0f, 1.0f), 0.5, 1e-7);
     CHECK_NEAR(dirt_mis_power(3.0f, 1.0f), 0.9, 1e-7);
     CHECK(dirt_mis_power(0.0f, 0.0f) == 0.0f);
-    CHECK_NEAR(dirt_rr_survival(vec(0.2f, 0.7f, 0.1f)), 0.7, 1e-7);
-    CHECK(dirt_rr_survival(vec(2.0f, 0.0f, 0.0f)) == 1.0f);
+    CHECK_NEAR(dirt_rr_survival(v3(0.2f, 0.7f, 0.1f)), 0.7, 1e-7);
+    CHECK(dirt_rr_survival(v3(2.0f, 0.0f, 0.0f)) == 1.0f);
 }
 
 int main(void)
