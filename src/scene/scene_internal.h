@@ -184,6 +184,11 @@ void scene_copy_name(char *dst, size_t size, const char *src);
 /* Reads a .gltf or .glb file into a finalized scene, NULL (logged) on error. */
 dirt_scene *scene_load_gltf(const char *path);
 
+/* The same from `size` bytes in memory (.glb when they start with "glTF",
+ * else .gltf JSON); `label` names them in messages and its file stem names
+ * the scene. External URIs are refused (an error), never read. */
+dirt_scene *scene_load_gltf_memory(const void *data, size_t size, const char *label);
+
 /* Column-major 4x4 helpers shared by the evaluator and the builders. */
 void scene_mat4_identity(float m[16]);
 void scene_mat4_mul(float out[16], const float a[16], const float b[16]);

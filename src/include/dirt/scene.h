@@ -89,6 +89,16 @@ typedef struct dirt_load_opts {
  * `opts` may be NULL. */
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
 
+/* Loads a glTF held in memory: `size` bytes of .glb (they start with "glTF")
+ * or of .gltf JSON (not necessarily NUL-terminated), whose buffers and images
+ * must be embedded (data URIs, or the .glb BIN chunk); an external URI is an
+ * error, no file is ever read. `name` labels the data in messages and names
+ * the scene (its file stem, as for dirt_scene_load: "room.glb" -> "room").
+ * The bytes are not kept: the caller may free them on return. Same failure
+ * behaviour as dirt_scene_load; `opts` may be NULL. */
+dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
+                                   const dirt_load_opts *opts);
+
 /* The project's own default scene: a closed Cornell-style room (red left wall,
  * green right wall, white floor/ceiling/back/front) with boxes and spheres of
  * different materials (diffuse, metal, glossy), lit by an emissive ceiling
