@@ -99,11 +99,13 @@ dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
 dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
                                    const dirt_load_opts *opts);
 
-/* The project's own default scene: a closed Cornell-style room (red left wall,
- * green right wall, white floor/ceiling/back/front) with boxes and spheres of
- * different materials (diffuse, metal, glossy), lit by an emissive ceiling
- * panel, and one camera inside the room near the front wall looking at the
- * back wall. Never fails except on out-of-memory (NULL, logged). */
+/* The project's own default scene, data/default_scene.gltf embedded into the
+ * library at build time (nothing is read from disk), named "default": a
+ * closed Cornell-style room (red left wall, green right wall, white
+ * floor/ceiling/back/front) with boxes and spheres of different materials
+ * (diffuse, metal, glossy), lit by an emissive ceiling panel, and one camera
+ * inside the room near the front wall looking at the back wall. Never fails
+ * except on out-of-memory (NULL, logged). */
 dirt_scene *dirt_scene_create_default(void);
 
 void dirt_scene_destroy(dirt_scene *scene);
