@@ -110,6 +110,19 @@ dirt_scene *dirt_scene_create_default(void);
 
 void dirt_scene_destroy(dirt_scene *scene);
 
+/* Writes a human-readable summary of the scene to `out` (a FILE *), one
+ * labelled line per item with the labels padded to one column: name;
+ * triangles; meshes (primitives); nodes; materials; textures; emitters
+ * (emissive materials and the triangles that use them, per frame); cameras,
+ * then one line each (index, name, type, yfov in degrees and aspect, or
+ * xmag/ymag, near/far, node); punctual lights, then one line each (index,
+ * name, type, colour, intensity with its unit, range, cone angles); clips,
+ * then one line each (index, name, duration, channels, bounds over the clip
+ * as dirt_scene_clip_bounds gives them); and the rest pose's bounds.
+ * Returns false (logged) on NULL arguments, out-of-memory or a write error.
+ * Evaluates the scene (dirt_scene_clip_bounds once per clip). */
+bool dirt_scene_print_info(const dirt_scene *scene, void *out);
+
 /* Read-only views into the scene. Pointers are owned by the scene. */
 const char *dirt_scene_name(const dirt_scene *scene);
 size_t dirt_scene_num_materials(const dirt_scene *scene);
