@@ -83,19 +83,17 @@ void dirt_camera_look_at(dirt_camera *cam, const float eye[3], const float targe
     scene_camera_set_basis(cam, f, up);
 }
 
-void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out)
+void dirt_camera_auto_bounds(const float min[3], const float max[3], dirt_camera *out)
 {
     static const float yfov = 0.785398163f; /* 45 degrees */
-    float c[3] = {0.0f, 0.0f, 0.0f};
-    float r = 0.0f;
-    if (frame && frame->num_triangles > 0) {
-        float d[3];
-        for (int k = 0; k < 3; k++) {
-            c[k] = 0.5f * (frame->bounds_min[k] + frame->bounds_max[k]);
-            d[k] = frame->bounds_max[k] - frame->bounds_min[k];
-        }
-        r = 0.5f * sqrtf(dot3(d, d));
+    float c[3], d[3];
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5f * (min[k] + max[k]);
+        d[k] = max[k] - min[k];
     }
+    float r = 0.5f * sqrtf(dot3(d, d));
+    if (!isfinite(c[0]) || !isfinite(c[1]) || !isfinite(c[2]))
+        c[0] = c[1] = c[2] = 0.0f;
     if (!(r > 1e-6f) || !isfinite(r))
         r = 1.0f;
     /* Far enough that the bounding sphere fits the vertical field of view. */
@@ -115,6 +113,15 @@ void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out)
     out->xmag = out->ymag = r;
     out->aperture_radius = 0.0f;
     out->focus_distance = dist;
+}
+
+void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out)
+{
+    static const float zero[3] = {0.0f, 0.0f, 0.0f};
+    if (frame && frame->num_triangles > 0)
+        dirt_camera_auto_bounds(frame->bounds_min, frame->bounds_max, out);
+    else
+        dirt_camera_auto_bounds(zero, zero, out);
 }
 
 void dirt_camera_projection(const dirt_camera *cam, float image_aspect, float out[16])

@@ -1231,40 +1231,78 @@ uint32_t le32(const unsigned char *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-bool parse_model(const char *path, tinygltf::Model *model)
+/* File-system callbacks for models parsed from memory: every external
+ * reference (a buffer or image URI that is not a data URI) fails, so that a
+ * model from memory never reads files. */
+/* Claims that every file exists, so that tinygltf goes on to no_read_file
+ * and its message says why the reference cannot be used. */
+bool any_file_exists(const std::string &, void *)
 {
-    std::vector<unsigned char> bytes;
-    if (!read_file(path, &bytes))
-        return false;
-    if (bytes.empty()) {
+    return true;
+}
+
+std::string no_expand(const std::string &path, void *)
+{
+    return path;
+}
+
+bool no_read_file(std::vector<unsigned char> *, std::string *err, const std::string &path,
+                  void *)
+{
+    if (err)
+        *err += "external file '" + path + "' cannot be read by a scene loaded from memory\n";
+    return false;
+}
+
+bool no_write_file(std::string *err, const std::string &, const std::vector<unsigned char> &,
+                   void *)
+{
+    if (err)
+        *err += "writing is not supported\n";
+    return false;
+}
+
+/* Parses `size` bytes of .gltf JSON or .glb (told apart by the "glTF" magic)
+ * into `model`. `label` names the data in messages. External URIs resolve
+ * against `base_dir`, or always fail when `base_dir` is NULL. */
+bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
+                 const char *base_dir, tinygltf::Model *model)
+{
+    const char *path = label;
+    if (size == 0) {
         DIRT_ERROR("'%s' is empty", path);
         return false;
     }
-    if (bytes.size() > UINT32_MAX) {
+    if (size > UINT32_MAX) {
         DIRT_ERROR("'%s' is larger than 4 GiB", path);
         return false;
     }
-    std::string p(path);
-    size_t slash = p.find_last_of('/');
-    std::string base_dir = slash == std::string::npos ? "." : p.substr(0, slash);
-    if (base_dir.empty())
-        base_dir = "/";
 
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(keep_encoded_image, nullptr);
+    if (!base_dir) {
+        tinygltf::FsCallbacks fs = {};
+        fs.FileExists = any_file_exists;
+        fs.ExpandFilePath = no_expand;
+        fs.ReadWholeFile = no_read_file;
+        fs.WriteWholeFile = no_write_file;
+        fs.user_data = nullptr;
+        gltf.SetFsCallbacks(fs);
+    }
+    std::string dir = base_dir ? base_dir : "";
     std::string err, warn;
     bool ok;
-    bool binary = bytes.size() >= 4 && memcmp(bytes.data(), "glTF", 4) == 0;
+    bool binary = size >= 4 && memcmp(bytes, "glTF", 4) == 0;
     if (binary) {
-        if (bytes.size() < 20) {
-            DIRT_ERROR("'%s': truncated .glb (%zu bytes, header needs 20)", path, bytes.size());
+        if (size < 20) {
+            DIRT_ERROR("'%s': truncated .glb (%zu bytes, header needs 20)", path, size);
             return false;
         }
         uint32_t length = le32(&bytes[8]);
         uint32_t json_len = le32(&bytes[12]);
-        if (length > bytes.size()) {
+        if (length > size) {
             DIRT_ERROR("'%s': truncated .glb: header says %u bytes, file has %zu", path,
-                       length, bytes.size());
+                       length, size);
             return false;
         }
         if ((uint64_t)json_len + 20u > length) {
@@ -1280,11 +1318,10 @@ bool parse_model(const char *path, tinygltf::Model *model)
                 return false;
             }
         }
-        ok = gltf.LoadBinaryFromMemory(model, &err, &warn, bytes.data(),
-                                       (unsigned int)bytes.size(), base_dir);
+        ok = gltf.LoadBinaryFromMemory(model, &err, &warn, bytes, (unsigned int)size, dir);
     } else {
-        ok = gltf.LoadASCIIFromString(model, &err, &warn, (const char *)bytes.data(),
-                                      (unsigned int)bytes.size(), base_dir);
+        ok = gltf.LoadASCIIFromString(model, &err, &warn, (const char *)bytes,
+                                      (unsigned int)size, dir);
     }
     log_lines(false, path, warn);
     if (!ok) {
@@ -1295,6 +1332,19 @@ bool parse_model(const char *path, tinygltf::Model *model)
         return false;
     }
     return true;
+}
+
+bool parse_model(const char *path, tinygltf::Model *model)
+{
+    std::vector<unsigned char> bytes;
+    if (!read_file(path, &bytes))
+        return false;
+    std::string p(path);
+    size_t slash = p.find_last_of('/');
+    std::string base_dir = slash == std::string::npos ? "." : p.substr(0, slash);
+    if (base_dir.empty())
+        base_dir = "/";
+    return parse_bytes(bytes.data(), bytes.size(), path, base_dir.c_str(), model);
 }
 
 /* Destroys the scene under construction unless released (also when a
@@ -1344,24 +1394,38 @@ bool convert(Loader &L, const tinygltf::Model &model, const char *path)
     return scene_finalize(L.s, roots_ptr, roots.size());
 }
 
-dirt_scene *load(const char *path)
+/* Converts a parsed model into a finalized scene named `name`; `label`
+ * names the source in messages. */
+dirt_scene *convert_model(const tinygltf::Model &model, const char *label, const char *name)
 {
-    tinygltf::Model model;
-    if (!parse_model(path, &model))
-        return nullptr;
-
-    SceneGuard guard{scene_new(file_stem(path).c_str())};
+    SceneGuard guard{scene_new(name)};
     if (!guard.s)
         return nullptr;
     Loader L;
     L.m = &model;
     L.s = guard.s;
-    L.path = path;
-    if (!convert(L, model, path)) {
-        DIRT_ERROR("cannot load '%s'", path);
+    L.path = label;
+    if (!convert(L, model, label)) {
+        DIRT_ERROR("cannot load '%s'", label);
         return nullptr;
     }
     return guard.release();
+}
+
+dirt_scene *load(const char *path)
+{
+    tinygltf::Model model;
+    if (!parse_model(path, &model))
+        return nullptr;
+    return convert_model(model, path, file_stem(path).c_str());
+}
+
+dirt_scene *load_memory(const void *data, size_t size, const char *label)
+{
+    tinygltf::Model model;
+    if (!parse_bytes((const unsigned char *)data, size, label, nullptr, &model))
+        return nullptr;
+    return convert_model(model, label, file_stem(label).c_str());
 }
 
 } // namespace
@@ -1376,6 +1440,20 @@ extern "C" dirt_scene *scene_load_gltf(const char *path)
         DIRT_ERROR("cannot load '%s': %s", path, e.what());
     } catch (...) {
         DIRT_ERROR("cannot load '%s': unknown error", path);
+    }
+    return nullptr;
+}
+
+extern "C" dirt_scene *scene_load_gltf_memory(const void *data, size_t size, const char *label)
+{
+    try {
+        return load_memory(data, size, label);
+    } catch (const std::bad_alloc &) {
+        DIRT_ERROR("out of memory loading '%s'", label);
+    } catch (const std::exception &e) {
+        DIRT_ERROR("cannot load '%s': %s", label, e.what());
+    } catch (...) {
+        DIRT_ERROR("cannot load '%s': unknown error", label);
     }
     return nullptr;
 }

@@ -432,6 +432,19 @@ dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
     return scene_load_gltf(path);
 }
 
+dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
+                                   const dirt_load_opts *opts)
+{
+    (void)opts;
+    if (!name || !*name)
+        name = "memory";
+    if (!data && size > 0) {
+        DIRT_ERROR("dirt_scene_load_memory: '%s': no data given", name);
+        return NULL;
+    }
+    return scene_load_gltf_memory(data ? data : "", size, name);
+}
+
 const char *dirt_scene_name(const dirt_scene *s)
 {
     return s ? s->name : "";

@@ -89,14 +89,39 @@ typedef struct dirt_load_opts {
  * `opts` may be NULL. */
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
 
-/* The project's own default scene: a closed Cornell-style room (red left wall,
- * green right wall, white floor/ceiling/back/front) with boxes and spheres of
- * different materials (diffuse, metal, glossy), lit by an emissive ceiling
- * panel, and one camera inside the room near the front wall looking at the
- * back wall. Never fails except on out-of-memory (NULL, logged). */
+/* Loads a glTF held in memory: `size` bytes of .glb (they start with "glTF")
+ * or of .gltf JSON (not necessarily NUL-terminated), whose buffers and images
+ * must be embedded (data URIs, or the .glb BIN chunk); an external URI is an
+ * error, no file is ever read. `name` labels the data in messages and names
+ * the scene (its file stem, as for dirt_scene_load: "room.glb" -> "room").
+ * The bytes are not kept: the caller may free them on return. Same failure
+ * behaviour as dirt_scene_load; `opts` may be NULL. */
+dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
+                                   const dirt_load_opts *opts);
+
+/* The project's own default scene, data/default_scene.gltf embedded into the
+ * library at build time (nothing is read from disk), named "default": a
+ * closed Cornell-style room (red left wall, green right wall, white
+ * floor/ceiling/back/front) with boxes and spheres of different materials
+ * (diffuse, metal, glossy), lit by an emissive ceiling panel, and one camera
+ * inside the room near the front wall looking at the back wall. Never fails
+ * except on out-of-memory (NULL, logged). */
 dirt_scene *dirt_scene_create_default(void);
 
 void dirt_scene_destroy(dirt_scene *scene);
+
+/* Writes a human-readable summary of the scene to `out` (a FILE *), one
+ * labelled line per item with the labels padded to one column: name;
+ * triangles; meshes (primitives); nodes; materials; textures; emitters
+ * (emissive materials and the triangles that use them, per frame); cameras,
+ * then one line each (index, name, type, yfov in degrees and aspect, or
+ * xmag/ymag, near/far, node); punctual lights, then one line each (index,
+ * name, type, colour, intensity with its unit, range, cone angles); clips,
+ * then one line each (index, name, duration, channels, bounds over the clip
+ * as dirt_scene_clip_bounds gives them); and the rest pose's bounds.
+ * Returns false (logged) on NULL arguments, out-of-memory or a write error.
+ * Evaluates the scene (dirt_scene_clip_bounds once per clip). */
+bool dirt_scene_print_info(const dirt_scene *scene, void *out);
 
 /* Read-only views into the scene. Pointers are owned by the scene. */
 const char *dirt_scene_name(const dirt_scene *scene);
@@ -186,9 +211,37 @@ bool dirt_scene_evaluate_into(const dirt_scene *scene, float t,
 
 void dirt_frame_destroy(dirt_frame *frame);
 
-/* A camera framing the frame's bounds: looks at the centre from the +Z side
- * (slightly above), 45 degree vertical field of view, near/far from the
- * bounds. Used when the scene has no camera. */
+/* Union of the frame bounds over the animation `opts` selects (NULL = clip
+ * 0; see dirt_eval_opts): the frames at t = 0, at every key time of the
+ * clip (every clip when all_clips) and at n uniform times i * D / n,
+ * i = 1..n, over its duration D (the longest clip's when all_clips), with
+ * n = 120 per second of D, at least 64 and at most 2048. With no animation
+ * (no clips, clip -1, a clip that does not exist) the rest pose's bounds
+ * (opts->loop is honoured, so a looping clip's last instant is its first).
+ * Bounds are exact at those times; a frame between two samples lies inside
+ * up to the distance a vertex moves in D / n. All 0 when the scene has no
+ * triangles. Returns false (logged) on NULL arguments or out-of-memory;
+ * deterministic. Cost: up to about 2100 evaluations of the scene. */
+bool dirt_scene_clip_bounds(const dirt_scene *scene, const dirt_eval_opts *opts,
+                            float min[3], float max[3]);
+
+/* The automatic camera for an axis-aligned box (min <= max componentwise):
+ * a perspective pinhole looking at the box centre from the +Z side, slightly
+ * above (direction (0, 0.3, 1) from the centre), 45 degree vertical field of
+ * view, at the distance where the box's bounding sphere exactly fits that
+ * vertical field of view; near/far planes enclose the sphere. Its aspect is
+ * 0, i.e. the image's: with images at least as wide as tall (aspect >= 1)
+ * the whole sphere is in view; a portrait image crops its sides. A box with
+ * no extent frames a sphere of radius 1 around its centre. Pure function of
+ * the six floats: the same box gives the same bits. Pass the bounds of
+ * dirt_scene_clip_bounds to frame a whole clip with one camera for every
+ * frame (no zoom as objects move). */
+void dirt_camera_auto_bounds(const float min[3], const float max[3], dirt_camera *out);
+
+/* dirt_camera_auto_bounds of one frame's bounds (radius-1 sphere at the
+ * origin for a NULL frame or one without triangles). Used when the scene has
+ * no camera; it follows the frame, so over an animation it zooms as objects
+ * move (dirt_scene_clip_bounds + dirt_camera_auto_bounds does not). */
 void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out);
 
 /* The camera a frame is seen from by default: its first camera when that is
