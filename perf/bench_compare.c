@@ -82,7 +82,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
         build += sum_ms(as->gpu_ms, as->cpu_ms, DIRT_ADS_NUM_PASSES) / c->repeat;
     }
     dirt_pt_stats st;
-    if (!dirt_pt_render(pt, ads, f, cam, &po, img, &st))
+    if (!dirt_pt_render(pt, dirt_ads_tracer(ads, NULL), f, cam, &po, img, &st))
         goto done;
     const dirt_ads_stats *as = dirt_ads_get_stats(ads);
     printf("| %s | %s | DIRT | n_p %llu, nodes %llu | %.2f | %.1f | %.1f | %llu | %.3f | %.3g |\n",
@@ -105,7 +105,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
         const dirt_mmrt_stats *ms = dirt_mmrt_get_stats(m);
         build += sum_ms(ms->gpu_ms, ms->cpu_ms, DIRT_MMRT_NUM_PASSES) / c->repeat;
     }
-    if (!dirt_pt_render_mmrt(pt, m, f, cam, &po, img, &st))
+    if (!dirt_pt_render(pt, dirt_mmrt_tracer(m, NULL), f, cam, &po, img, &st))
         goto done;
     const dirt_mmrt_stats *ms = dirt_mmrt_get_stats(m);
     printf("| %s | %s | MMRT | fragments %llu | %.2f | %.1f | %.1f | %llu | %.3f | %.3g |\n",

@@ -204,6 +204,8 @@
 #define DIRT_UNIT_VISIBILITY 0
 /* Frame-graph tests: the one sampled texture / storage image of a pass. */
 #define DIRT_UNIT_TEST 0
+/* image unit of the path tracer's display texture (glsl/integrator/display.comp) */
+#define DIRT_UNIT_DISPLAY 0
 
 /* ---- Uniform locations ----
  *
@@ -226,6 +228,10 @@
 #define DIRT_LOC_RESOLVE_PIXELS 0    /* uint */
 /* glsl/integrator/accumulate.comp */
 #define DIRT_LOC_ACCUM_PIXELS 0      /* uint */
+/* glsl/integrator/display.comp */
+#define DIRT_LOC_DISPLAY_PIXELS 0    /* uint */
+#define DIRT_LOC_DISPLAY_WIDTH 1     /* int: image width */
+#define DIRT_LOC_DISPLAY_INV_SAMPLES 2 /* float: 1 / samples accumulated */
 /* glsl/integrator/test_model.comp */
 #define DIRT_LOC_TEST_MODEL_MODE 0   /* int */
 #define DIRT_LOC_TEST_MODEL_COUNT 1  /* uint */
@@ -235,7 +241,7 @@
 #define DIRT_LOC_TRACE_HIZ_TOP 1     /* int: highest level to start from; < 0 = top */
 #define DIRT_LOC_TRACE_ANY_HIT 2     /* int: 1 stops at the first accepted hit */
 #define DIRT_LOC_TRACE_LINK 3        /* int: 1 links hits per ADS tile (raster Fetch) */
-/* glsl/dirt/mip.comp */
+/* glsl/views/hiz.comp */
 #define DIRT_LOC_MIP_LEVEL 0         /* int: the level written */
 /* glsl/dirt/visibility.vert */
 #define DIRT_LOC_VISIBILITY_VIEW 0   /* int: the camera view */

@@ -1,8 +1,11 @@
 #include "app/cli.h"
 
+#include "dirt/clock.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -81,4 +84,142 @@ bool cli_output_dir_ok(const char *prog, const char *path)
         return false;
     }
     return true;
+}
+
+bool cli_value(const char *prog, const char *option, const char *val, char kind, void *dst,
+               double lo, double hi, const char *const *names)
+{
+    long n = 0;
+    double d = 0;
+    switch (kind) {
+    case 's':
+        *(const char **)dst = val;
+        return true;
+    case 'i':
+    case 'l':
+    case 'u':
+        if (!cli_int(prog, option, val, (long)lo, (long)hi, &n))
+            return false;
+        if (kind == 'i')
+            *(int *)dst = (int)n;
+        else if (kind == 'l')
+            *(long *)dst = n;
+        else
+            *(uint32_t *)dst = (uint32_t)n;
+        return true;
+    case 'd':
+    case 'f':
+        if (!cli_float(prog, option, val, lo, hi, &d))
+            return false;
+        if (kind == 'd')
+            *(double *)dst = d;
+        else
+            *(float *)dst = (float)d;
+        return true;
+    case 'c': {
+        char list[256] = "";
+        for (int c = 0; names[c]; c++) {
+            if (!names[c][0])
+                continue; /* a placeholder for a default value */
+            if (!strcmp(val, names[c])) {
+                *(int *)dst = c;
+                return true;
+            }
+            size_t len = strlen(list);
+            snprintf(list + len, sizeof(list) - len, "%s%s", len ? ", " : "", names[c]);
+        }
+        if (!strcmp(option, "--engine"))
+            cli_error(prog, "unknown engine '%s' (available: %s)", val, list);
+        else
+            cli_error(prog, "%s expects one of %s, got '%s'", option, list, val);
+        return false;
+    }
+    case 'j':
+    case 'g': {
+        const char *ext = kind == 'j' ? ".json" : ".dot";
+        if (!cli_has_ext(val, ext)) {
+            cli_error(prog, "%s file '%s' must end in %s", option, val, ext);
+            return false;
+        }
+        *(const char **)dst = val;
+        return true;
+    }
+    case 'b': {
+        float *rgb = dst;
+        char extra;
+        bool ok = sscanf(val, "%f,%f,%f%c", &rgb[0], &rgb[1], &rgb[2], &extra) == 3;
+        for (int k = 0; ok && k < 3; k++)
+            ok = rgb[k] >= 0 && rgb[k] <= 1e30f;
+        if (!ok)
+            cli_error(prog, "%s expects R,G,B (non-negative), got '%s'", option, val);
+        return ok;
+    }
+    default:
+        return true; /* the caller parses the rest */
+    }
+}
+
+bool cli_frame_pattern_ok(const char *pattern)
+{
+    int conversions = 0;
+    for (const char *p = pattern; *p; p++) {
+        if (*p != '%')
+            continue;
+        if (p[1] == '%') {
+            p++;
+            continue;
+        }
+        p++;
+        if (*p == '0')
+            p++;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (*p != 'd')
+            return false;
+        conversions++;
+    }
+    return conversions == 1;
+}
+
+void cli_frame_path(const char *pattern, long frame, char *buf, size_t size)
+{
+    if (strchr(pattern, '%'))
+        snprintf(buf, size, pattern, (int)frame);
+    else
+        snprintf(buf, size, "%s", pattern);
+}
+
+bool cli_write_image(const char *prog, const dirt_image *img, const char *path, double exposure,
+                     bool png_preview, bool quiet)
+{
+    dirt_image_write_options wo = {.png = {.exposure = (float)exposure}};
+    if (!dirt_image_write(img, path, &wo)) {
+        cli_error(prog, "could not write '%s'", path);
+        return false;
+    }
+    if (!quiet)
+        printf("wrote %s\n", path);
+    if (png_preview) {
+        char png[4200];
+        snprintf(png, sizeof(png), "%.*s.png", (int)(strlen(path) - 4), path);
+        if (!dirt_image_write_png(img, png, &wo.png)) {
+            cli_error(prog, "could not write '%s'", png);
+            return false;
+        }
+        if (!quiet)
+            printf("wrote %s\n", png);
+    }
+    return true;
+}
+
+void cli_progress_sample(void *user, int done, int total)
+{
+    cli_progress *p = user;
+    double now = dirt_clock_ms();
+    if (p->quiet || (now - p->last < 1000.0 && done < total))
+        return;
+    p->last = now;
+    double el = (now - p->start) / 1000.0;
+    fprintf(stderr, "%s: frame %ld: sample %d/%d, %.1fs elapsed, ETA %.1fs\n", p->prog, p->frame,
+            done, total, el, done ? el / done * (total - done) : 0.0);
 }

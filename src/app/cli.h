@@ -5,6 +5,9 @@
 #define DIRT_APP_CLI_H
 
 #include <stdbool.h>
+#include <stddef.h>
+
+#include "dirt/image.h"
 
 enum {
     DIRT_EXIT_OK = 0,
@@ -26,11 +29,43 @@ bool cli_int(const char *prog, const char *option, const char *text, long lo, lo
 bool cli_float(const char *prog, const char *option, const char *text, double lo, double hi,
                double *out);
 
+/* Parses the value `val` of `option` by `kind` into `dst`: 's' a string
+ * (const char *), 'i' int, 'l' long, 'u' uint32_t (integers in [lo, hi]),
+ * 'd' double, 'f' float (in [lo, hi]), 'c' the index (int) of `val` in the
+ * NULL-terminated `names` ("" entries are skipped), 'j' / 'g' a path that
+ * must end in .json / .dot, 'b' three non-negative floats "R,G,B" (float[3]).
+ * Other kinds are left to the caller (true). On
+ * failure prints "prog: ..." and returns false. */
+bool cli_value(const char *prog, const char *option, const char *val, char kind, void *dst,
+               double lo, double hi, const char *const *names);
+
 /* True when `path` ends with `ext` (case-insensitive, ext includes the dot). */
 bool cli_has_ext(const char *path, const char *ext);
 
 /* True when the directory that would hold `path` exists and is writable.
  * Prints the reason when not. */
 bool cli_output_dir_ok(const char *prog, const char *path);
+
+/* Output names of frame sequences: a pattern with exactly one integer
+ * conversion (%d, %04d, ...) and no other '%' except "%%". */
+bool cli_frame_pattern_ok(const char *pattern);
+/* The file of `frame`: the pattern formatted, or the path itself without '%'. */
+void cli_frame_path(const char *pattern, long frame, char *buf, size_t size);
+
+/* Writes `img` to `path` (.exr or .png, atomically) and, with `png_preview`,
+ * a PNG beside it (path with .png for its 4-letter extension); prints each
+ * file written unless `quiet`. False after printing why. */
+bool cli_write_image(const char *prog, const dirt_image *img, const char *path, double exposure,
+                     bool png_preview, bool quiet);
+
+/* Progress of a frame's samples on stderr, at most once a second (and at
+ * the end): a callback for dirt_session_add_samples with a cli_progress. */
+typedef struct cli_progress {
+    const char *prog;
+    double start, last;       /* dirt_clock_ms */
+    long frame;
+    bool quiet;
+} cli_progress;
+void cli_progress_sample(void *user, int done, int total);
 
 #endif

@@ -6,7 +6,7 @@
 #include "common/layout.h"
 #include "dirt/ads.h"
 #include "gl/gl.h"
-#include "graph/graph.h"
+#include "gl/graph_gl.h"
 
 struct dirt_ads {
     dirt_gpu *gpu;
@@ -48,6 +48,10 @@ struct dirt_ads {
     GLuint prog_vis, prog_vis_resolve;
     GLuint vis_fbo, vis_color, vis_depth, vis_vao;
     int vis_w, vis_h;
+    /* the integrator's view of it (tracer.c) */
+    dirt_tracer tracer;
+    dirt_ads_tracer_opts tracer_opts;
+    bool built;               /* the last build succeeded */
 };
 
 /* Direct visibility of the camera view: rasterizes a visibility buffer and

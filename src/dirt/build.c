@@ -1,5 +1,5 @@
 /* DIRT build stage: depth bounds, Hi-Z mip and fill-primitives passes. */
-#include "dirt/mip.h"
+#include "views/hiz.h"
 #include "dirt/ads.h"
 
 #include <stdio.h>
@@ -11,7 +11,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "dirt/ads_internal.h"
-#include "graph/graph.h"
+#include "gl/graph_gl.h"
 #include "views/views_gpu.h"
 
 /* Record sizes and offsets are checked in src/gl/layout_check.c. */
@@ -54,7 +54,7 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
     defs[1].name = "DIRT_PASS_FILL";
     a->prog_fill = gl_program_create("dirt fill primitives", paths, defs, ndefs);
-    a->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
+    a->prog_mip = views_hiz_program();
     a->prog_trace = gl_program_compute("dirt/trace.comp", NULL, 0);
     a->prog_fetch = gl_program_compute("dirt/fetch.comp", NULL, 0);
     a->prog_fetch_miss = gl_program_compute("dirt/fetch_miss.comp", NULL, 0);
@@ -303,7 +303,7 @@ static bool exec_mip(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     dirt_ads *a = user;
-    dirt_mip_dispatch(a->prog_mip, &a->set);
+    views_hiz_dispatch(a->prog_mip, &a->set);
     return true;
 }
 
@@ -343,8 +343,8 @@ static bool make_graphs(dirt_ads *a)
 {
     fg_destroy(a->graph);
     fg_destroy(a->refill);
-    a->graph = fg_create(a->gpu);
-    a->refill = fg_create(a->gpu);
+    a->graph = gl_graph_create(a->gpu);
+    a->refill = gl_graph_create(a->gpu);
     if (!a->graph || !a->refill)
         return false;
     fg_graph *graphs[2] = {a->graph, a->refill};
@@ -417,6 +417,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
                    a->set.atlas_height, max_fb_h);
         return false;
     }
+    a->built = false;
     gl_group_push("dirt build");
     bool ok = false;
     if (!upload_frame(a, f) || !ensure_targets(a))
@@ -479,6 +480,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     }
     ok = gl_check("dirt build");
 done:
+    a->built = ok;
     glUseProgram(0);
     gl_group_pop();
     return ok;

@@ -69,6 +69,11 @@ GLuint gl_texture_2d(GLenum internal_format, int width, int height, int levels,
 GLuint gl_texture_2d_array(GLenum internal_format, int width, int height,
                            int layers, int levels, const char *label);
 void gl_texture_destroy(GLuint *tex);
+/* Replaces level 0 of an RGBA32F 2D texture with width x height RGBA floats
+ * (row 0 first). False after logging a GL error. */
+bool gl_texture_upload_rgba32f(GLuint tex, int width, int height, const float *rgba);
+/* Reads level 0 of an RGBA32F 2D texture (blocking; row 0 first). */
+bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba);
 
 /* ---- timers (timer.c) ---- */
 

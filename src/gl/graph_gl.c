@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "dirt/clock.h"
-#include "graph/graph.h"
+#include "gl/graph_gl.h"
 
 _Static_assert(FG_BARRIER_VERTEX_ATTRIB_ARRAY == GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT, "bits");
 _Static_assert(FG_BARRIER_ELEMENT_ARRAY == GL_ELEMENT_ARRAY_BARRIER_BIT, "bits");
@@ -345,6 +345,14 @@ bool fg_gl_backend(dirt_gpu *gpu, fg_backend *out)
     gl_label(GL_VERTEX_ARRAY, b->vao, "frame graph empty vao");
     *out = (fg_backend){.ops = &gl_ops, .self = b};
     return true;
+}
+
+fg_graph *gl_graph_create(dirt_gpu *gpu)
+{
+    fg_backend b;
+    if (!fg_gl_backend(gpu, &b))
+        return NULL;
+    return fg_create(&b);
 }
 
 /* ---- helpers for pass bodies ---------------------------------------------- */

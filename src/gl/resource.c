@@ -95,3 +95,19 @@ void gl_texture_destroy(GLuint *tex)
         glDeleteTextures(1, tex);
     *tex = 0;
 }
+
+bool gl_texture_upload_rgba32f(GLuint tex, int width, int height, const float *rgba)
+{
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(tex, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba);
+    return gl_check("texture upload");
+}
+
+bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba)
+{
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT,
+                      (GLsizei)((size_t)width * (size_t)height * 4 * sizeof(float)), rgba);
+    return gl_check("texture read");
+}

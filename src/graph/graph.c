@@ -252,7 +252,7 @@ fg_pass *fg_pass_find(const fg_graph *g, const char *name)
 
 /* ---- lifetime ------------------------------------------------------------ */
 
-fg_graph *fg_create_with_backend(const fg_backend *backend)
+fg_graph *fg_create(const fg_backend *backend)
 {
     fg_graph *g = calloc(1, sizeof(*g));
     if (!g) {
@@ -266,16 +266,6 @@ fg_graph *fg_create_with_backend(const fg_backend *backend)
         g->has_backend = true;
     }
     return g;
-}
-
-fg_graph *fg_create(dirt_gpu *gpu)
-{
-    if (!gpu)
-        return fg_create_with_backend(NULL);
-    fg_backend b;
-    if (!fg_gl_backend(gpu, &b))
-        return NULL;
-    return fg_create_with_backend(&b);
 }
 
 void fg_destroy(fg_graph *g)

@@ -12,8 +12,9 @@
  * barriers that were really issued.
  *
  * Layering: everything in src/graph/ is plain C without GL. GL work goes
- * through a small backend interface (fg_backend); the OpenGL backend and the
- * GL helpers for pass bodies (fg_gl_*) live in src/gl/graph_gl.c. Unit tests
+ * through a small backend interface (fg_backend) handed in by the code that
+ * creates the graph; the OpenGL backend and the GL helpers for pass bodies
+ * (fg_gl_*) live in src/gl/graph_gl.h, a layer above this one. Unit tests
  * compile graphs with no backend, or execute them with a fake one.
  *
  * Resource semantics ("call order"): every fg_use() of a resource sees the
@@ -35,7 +36,6 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "dirt/gpu.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -364,12 +364,6 @@ bool fg_write_dot(const fg_graph *g, FILE *f);
 
 /* ---- lifetime and backends ----------------------------------------------- */
 
-/* A graph executing on `gpu` (OpenGL backend). gpu may be NULL: such a graph
- * compiles, exports and reports, but cannot execute. NULL after logging. */
-fg_graph *fg_create(dirt_gpu *gpu);
-/* Frees the graph and every allocation it made. NULL is fine. */
-void fg_destroy(fg_graph *g);
-
 /* Physical allocation requested from a backend. */
 typedef struct fg_phys_desc {
     bool texture;
@@ -425,22 +419,16 @@ typedef struct fg_backend {
     void *self;
 } fg_backend;
 
-/* A graph on a custom backend (tests use a recording fake). The graph takes
- * ownership of backend->self (released with ops->release). */
-fg_graph *fg_create_with_backend(const fg_backend *backend);
 
-/* ---- OpenGL backend and pass helpers (src/gl/graph_gl.c) ------------------ */
+/* A graph executing on `backend` (the graph takes ownership of
+ * backend->self, released with ops->release, also on failure). backend may
+ * be NULL: such a graph compiles, exports and reports, but cannot execute.
+ * The code that owns the GPU hands the backend in: src/gl/graph_gl.h makes
+ * an OpenGL one (gl_graph_create). NULL after logging. */
+fg_graph *fg_create(const fg_backend *backend);
+/* Frees the graph and every allocation it made. NULL is fine. */
+void fg_destroy(fg_graph *g);
 
-/* The OpenGL backend on `gpu`. False after logging. */
-bool fg_gl_backend(dirt_gpu *gpu, fg_backend *out);
-/* Readback/clear helpers for pass bodies. They check that the pass declared
- * FG_TRANSFER_READ (read helpers) or FG_TRANSFER_WRITE (clear). */
-bool fg_gl_read_buffer(const fg_ctx *ctx, fg_res r, size_t offset, size_t size, void *out);
-/* Whole level `level` of a 2D texture (all layers of an array), tightly
- * packed in the format's natural client type; `size` is the capacity of out. */
-bool fg_gl_read_texture(const fg_ctx *ctx, fg_res r, int level, void *out, size_t size);
-/* Zero-fills a buffer or every level of a texture. */
-bool fg_gl_clear(const fg_ctx *ctx, fg_res r);
 
 #ifdef __cplusplus
 }

@@ -5,7 +5,7 @@
 
 #include <math.h>
 
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 
 #define PI_F 3.14159265358979323846f
 #define INV_PI_F 0.31830988618379067154f

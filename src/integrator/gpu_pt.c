@@ -7,25 +7,28 @@
 #include <string.h>
 
 #include "common/layout.h"
-#include "dirt/ads_internal.h"
 #include "dirt/clock.h"
 #include "dirt/file.h"
 #include "dirt/gpu_tables.h"
 #include "dirt/integrator.h"
 #include "gl/gl.h"
 #include "gl/program.h"
-#include "graph/graph.h"
-#include "integrator/pt_technique.h"
+#include "gl/graph_gl.h"
 
-_Static_assert(sizeof(struct dirt_gpu_gpoint) == 64, "gpoint layout");
-_Static_assert(sizeof(struct dirt_gpu_path) == 80, "path layout");
-_Static_assert(sizeof(struct dirt_gpu_accum) == 48, "accum layout");
-
-enum pass_kind { P_RAYGEN, P_TRACE, P_FETCH, P_SHADE, P_SHADOW, P_RESOLVE, P_ACCUM };
+const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
+    [DIRT_PT_PASS_RAYGEN] = "raygen",
+    [DIRT_PT_PASS_VISIBILITY] = "direct visibility",
+    [DIRT_PT_PASS_TRACE] = "trace",
+    [DIRT_PT_PASS_FETCH] = "fetch",
+    [DIRT_PT_PASS_SHADE] = "shade",
+    [DIRT_PT_PASS_SHADOW] = "shadow trace",
+    [DIRT_PT_PASS_RESOLVE] = "resolve",
+    [DIRT_PT_PASS_ACCUMULATE] = "accumulate",
+};
 
 typedef struct pass_ctx {
     struct dirt_pt *pt;
-    enum pass_kind kind;
+    enum dirt_pt_pass kind;
     int k; /* path event */
 } pass_ctx;
 
@@ -34,7 +37,7 @@ typedef struct pass_ctx {
 struct dirt_pt {
     dirt_gpu *gpu;
     const dirt_scene *scene;
-    GLuint prog_raygen, prog_shade, prog_ao, prog_resolve, prog_accum;
+    GLuint prog_raygen, prog_shade, prog_ao, prog_resolve, prog_accum, prog_display;
     /* per-pixel buffers */
     GLuint rays, hits, shadow_rays, shadow_hits, gpoints, paths, accum;
     size_t pixels;
@@ -43,29 +46,25 @@ struct dirt_pt {
     size_t g_pixels;
     int g_events;
     enum dirt_pt_mode g_mode;
-    enum dirt_fetch_mode g_fetch;
     bool g_direct;
     pass_ctx ctx[MAX_PASSES];
     int num_ctx;
-    /* render state read by the pass bodies */
-    pt_technique *tech;
+    /* accumulation: image size and samples so far */
+    int width, height;
+    uint32_t samples;
+    bool accum_valid;         /* reset since the buffers were (re)made */
+    /* display texture (dirt_pt_display_texture) */
+    GLuint display;
+    int display_w, display_h;
+    uint32_t display_samples; /* samples it shows; ~0 = stale */
+    /* state read by the pass bodies during dirt_pt_add_samples */
+    const dirt_tracer *tech;
     dirt_gpu_model_tables tables;
     const dirt_pt_opts *opts;
-    int width, height, bounces;
+    int bounces;
     uint32_t sample;
     float ao_distance;
-    pt_tech_state tech_state; /* a technique's persistent state (MMRT's) */
 };
-
-pt_tech_state *dirt_pt_tech_state(dirt_pt *pt)
-{
-    return &pt->tech_state;
-}
-
-dirt_gpu *dirt_pt_gpu(const dirt_pt *pt)
-{
-    return pt->gpu;
-}
 
 dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
 {
@@ -82,8 +81,9 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
     pt->prog_ao = gl_program_compute("integrator/shade.comp", &ao, 1);
     pt->prog_resolve = gl_program_compute("integrator/resolve.comp", NULL, 0);
     pt->prog_accum = gl_program_compute("integrator/accumulate.comp", NULL, 0);
+    pt->prog_display = gl_program_compute("integrator/display.comp", NULL, 0);
     if (!pt->prog_raygen || !pt->prog_shade || !pt->prog_ao || !pt->prog_resolve ||
-        !pt->prog_accum) {
+        !pt->prog_accum || !pt->prog_display) {
         dirt_pt_destroy(pt);
         return NULL;
     }
@@ -96,7 +96,9 @@ static void release_buffers(dirt_pt *pt)
                    &pt->gpoints, &pt->paths, &pt->accum};
     for (size_t i = 0; i < sizeof(b) / sizeof(b[0]); i++)
         gl_buffer_destroy(b[i]);
+    gl_texture_destroy(&pt->display);
     pt->pixels = 0;
+    pt->accum_valid = false;
 }
 
 void dirt_pt_destroy(dirt_pt *pt)
@@ -104,14 +106,12 @@ void dirt_pt_destroy(dirt_pt *pt)
     if (!pt)
         return;
     GLuint *p[] = {&pt->prog_raygen, &pt->prog_shade, &pt->prog_ao, &pt->prog_resolve,
-                   &pt->prog_accum};
+                   &pt->prog_accum, &pt->prog_display};
     for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++)
         gl_program_destroy(p[i]);
     release_buffers(pt);
     dirt_gpu_model_tables_destroy(&pt->tables);
     fg_destroy(pt->graph);
-    if (pt->tech_state.release)
-        pt->tech_state.release(pt->tech_state.state);
     free(pt);
 }
 
@@ -148,16 +148,16 @@ static bool ensure_buffers(dirt_pt *pt, size_t pixels)
 static void set_common(dirt_pt *pt, GLuint prog, int k)
 {
     glUseProgram(prog);
-    glUniform1ui(0, (GLuint)pt->pixels);
-    glUniform1i(1, pt->width);
-    glUniform1i(2, pt->height);
-    glUniform1ui(3, pt->opts->seed);
-    glUniform1ui(4, pt->sample);
-    glUniform1ui(5, (GLuint)k);
-    glUniform1ui(6, (GLuint)pt->bounces);
-    glUniform1ui(7, (GLuint)(k % 3));
-    glUniform3fv(8, 1, pt->opts->background);
-    glUniform1f(9, pt->ao_distance);
+    glUniform1ui(DIRT_LOC_PT_PIXELS, (GLuint)pt->pixels);
+    glUniform1i(DIRT_LOC_PT_WIDTH, pt->width);
+    glUniform1i(DIRT_LOC_PT_HEIGHT, pt->height);
+    glUniform1ui(DIRT_LOC_PT_SEED, pt->opts->seed);
+    glUniform1ui(DIRT_LOC_PT_SAMPLE, pt->sample);
+    glUniform1ui(DIRT_LOC_PT_BOUNCE, (GLuint)k);
+    glUniform1ui(DIRT_LOC_PT_BOUNCES, (GLuint)pt->bounces);
+    glUniform1ui(DIRT_LOC_PT_SLOT, (GLuint)(k % 3));
+    glUniform3fv(DIRT_LOC_PT_BACKGROUND, 1, pt->opts->background);
+    glUniform1f(DIRT_LOC_PT_AO_DISTANCE, pt->ao_distance);
     dirt_gpu_model_tables_bind(&pt->tables);
     pt->tech->bind_geometry(pt->tech->self);
 }
@@ -169,7 +169,7 @@ static void bind(GLuint binding, GLuint buf)
 
 static GLuint groups(size_t n)
 {
-    return (GLuint)((n + 63) / 64);
+    return (GLuint)DIRT_GROUPS(n);
 }
 
 static bool exec_pass(fg_ctx *ctx, void *user)
@@ -178,21 +178,20 @@ static bool exec_pass(fg_ctx *ctx, void *user)
     pass_ctx *c = user;
     dirt_pt *pt = c->pt;
     switch (c->kind) {
-    case P_RAYGEN:
+    case DIRT_PT_PASS_RAYGEN:
         set_common(pt, pt->prog_raygen, 0);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_RAYS, pt->rays);
         glDispatchCompute(groups(pt->pixels), 1, 1);
         break;
-    case P_TRACE:
-        if (c->k == 1 && pt->g_direct)
-            return pt->tech->visibility(pt->tech->self, pt->rays, pt->hits);
-        return pt->tech->trace(pt->tech->self, pt->opts, pt->rays, pt->hits,
-                               (uint32_t)pt->pixels, false, pt->g_fetch == DIRT_FETCH_RASTER);
-    case P_FETCH:
-        return pt->tech->fetch(pt->tech->self, pt->g_fetch == DIRT_FETCH_RASTER, pt->rays,
-                               pt->hits, (uint32_t)pt->pixels, pt->gpoints, (uint32_t)(c->k % 3));
-    case P_SHADE:
+    case DIRT_PT_PASS_VISIBILITY:
+        return pt->tech->visibility(pt->tech->self, pt->rays, pt->hits);
+    case DIRT_PT_PASS_TRACE:
+        return pt->tech->trace(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->pixels, false);
+    case DIRT_PT_PASS_FETCH:
+        return pt->tech->fetch(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->pixels,
+                               pt->gpoints, (uint32_t)(c->k % 3));
+    case DIRT_PT_PASS_SHADE:
         set_common(pt, pt->g_mode == DIRT_PT_AO ? pt->prog_ao : pt->prog_shade, c->k);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_GPOINTS, pt->gpoints);
@@ -201,19 +200,20 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         bind(DIRT_BIND_SHADOW_RAYS, pt->shadow_rays);
         glDispatchCompute(groups(pt->pixels), 1, 1);
         break;
-    case P_SHADOW:
-        return pt->tech->trace(pt->tech->self, pt->opts, pt->shadow_rays, pt->shadow_hits,
-                               (uint32_t)pt->pixels, true, false);
-    case P_RESOLVE:
+    case DIRT_PT_PASS_SHADOW:
+        return pt->tech->trace(pt->tech->self, pt->shadow_rays, pt->shadow_hits,
+                               (uint32_t)pt->pixels, true);
+    case DIRT_PT_PASS_RESOLVE:
         glUseProgram(pt->prog_resolve);
-        glUniform1ui(0, (GLuint)pt->pixels);
+        glUniform1ui(DIRT_LOC_RESOLVE_PIXELS, (GLuint)pt->pixels);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_HITS, pt->shadow_hits);
         glDispatchCompute(groups(pt->pixels), 1, 1);
         break;
-    case P_ACCUM:
+    case DIRT_PT_PASS_ACCUMULATE:
+    case DIRT_PT_NUM_PASSES:
         glUseProgram(pt->prog_accum);
-        glUniform1ui(0, (GLuint)pt->pixels);
+        glUniform1ui(DIRT_LOC_ACCUM_PIXELS, (GLuint)pt->pixels);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_ACCUM, pt->accum);
         glDispatchCompute(groups(pt->pixels), 1, 1);
@@ -230,7 +230,7 @@ static bool exec_pass(fg_ctx *ctx, void *user)
 static bool make_graph(dirt_pt *pt, int events)
 {
     fg_destroy(pt->graph);
-    pt->graph = fg_create(pt->gpu);
+    pt->graph = gl_graph_create(pt->gpu);
     if (!pt->graph)
         return false;
     fg_graph *g = pt->graph;
@@ -248,7 +248,7 @@ static bool make_graph(dirt_pt *pt, int events)
      fg_add_pass(g, name, FG_COMPUTE, exec_pass, &pt->ctx[pt->num_ctx++]))
     char name[64];
     snprintf(name, sizeof(name), "raygen");
-    fg_pass *p = ADD(P_RAYGEN, 0);
+    fg_pass *p = ADD(DIRT_PT_PASS_RAYGEN, 0);
     fg_write(p, rays, FG_SSBO_WRITE);
     fg_write(p, paths, FG_SSBO_WRITE);
     for (int k = 1; k <= events; k++) {
@@ -256,21 +256,22 @@ static bool make_graph(dirt_pt *pt, int events)
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
-        if (k == 1 && pt->g_direct)
+        bool vis = k == 1 && pt->g_direct;
+        if (vis)
             snprintf(name, sizeof(name), "direct visibility");
         else
             snprintf(name, sizeof(name), "trace %d", k);
-        p = ADD(P_TRACE, k);
+        p = ADD(vis ? DIRT_PT_PASS_VISIBILITY : DIRT_PT_PASS_TRACE, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_write(p, hits, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "fetch %d", k);
-        p = ADD(P_FETCH, k);
+        p = ADD(DIRT_PT_PASS_FETCH, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
         fg_use(p, gpts, FG_SSBO_READ, NULL);
         fg_write(p, gpts, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "shade %d", k);
-        p = ADD(P_SHADE, k);
+        p = ADD(DIRT_PT_PASS_SHADE, k);
         fg_read(p, gpts, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
         fg_use(p, paths, FG_SSBO_READ, NULL);
@@ -278,17 +279,17 @@ static bool make_graph(dirt_pt *pt, int events)
         fg_write(p, rays, FG_SSBO_WRITE);
         fg_write(p, srays, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "shadow trace %d", k);
-        p = ADD(P_SHADOW, k);
+        p = ADD(DIRT_PT_PASS_SHADOW, k);
         fg_read(p, srays, FG_SSBO_READ);
         fg_write(p, shits, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "resolve %d", k);
-        p = ADD(P_RESOLVE, k);
+        p = ADD(DIRT_PT_PASS_RESOLVE, k);
         fg_read(p, shits, FG_SSBO_READ);
         fg_use(p, paths, FG_SSBO_READ, NULL);
         fg_write(p, paths, FG_SSBO_WRITE);
     }
     snprintf(name, sizeof(name), "accumulate");
-    p = ADD(P_ACCUM, 0);
+    p = ADD(DIRT_PT_PASS_ACCUMULATE, 0);
     fg_read(p, paths, FG_SSBO_READ);
     fg_use(p, accum, FG_SSBO_READ, NULL);
     fg_write(p, accum, FG_SSBO_WRITE);
@@ -300,98 +301,105 @@ static bool make_graph(dirt_pt *pt, int events)
     return true;
 }
 
-/* Sums the last execute's pass times into trace / fetch / shade. */
+/* Adds the last execute's pass times to `st`, keyed by each pass's kind
+ * (the passes' declaration order is pt->ctx's). */
 static void add_times(dirt_pt *pt, dirt_pt_stats *st)
 {
     fg_stats s;
     if (!fg_get_stats(pt->graph, &s))
         return;
-    for (int i = 0; i < s.num_passes; i++) {
+    for (int i = 0; i < s.num_passes && i < pt->num_ctx; i++) {
         const fg_pass_stats *p = &s.passes[i];
         double ms = p->gpu_ms >= 0 ? p->gpu_ms : p->cpu_ms;
         if (ms < 0)
             continue;
-        if (!strncmp(p->name, "trace", 5) || !strncmp(p->name, "shadow", 6))
-            st->trace_ms += ms;
-        else if (!strncmp(p->name, "fetch", 5))
-            st->fetch_ms += ms;
-        else
-            st->shade_ms += ms;
+        st->clock = p->gpu_ms >= 0 ? DIRT_CLOCK_GPU : DIRT_CLOCK_CPU;
+        st->pass_ms[pt->ctx[i].kind] += ms;
     }
+    st->trace_ms = st->pass_ms[DIRT_PT_PASS_TRACE] + st->pass_ms[DIRT_PT_PASS_SHADOW];
+    st->fetch_ms = st->pass_ms[DIRT_PT_PASS_FETCH];
+    st->visibility_ms = st->pass_ms[DIRT_PT_PASS_VISIBILITY];
+    st->shade_ms = st->pass_ms[DIRT_PT_PASS_RAYGEN] + st->pass_ms[DIRT_PT_PASS_SHADE] +
+                   st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
 }
 
-/* ---- The DIRT technique: the ads_* entry points of src/dirt ---- */
-
-static bool dirt_tech_trace(void *self, const dirt_pt_opts *opts, GLuint rays, GLuint hits,
-                            uint32_t count, bool any_hit, bool link)
+static size_t bytes_per_pixel(void)
 {
-    if (!any_hit)
-        return ads_trace_gl(self, rays, hits, count, &opts->trace, link, NULL);
-    dirt_trace_opts o = opts->trace;
-    o.any_hit = true;
-    return ads_trace_gl(self, rays, hits, count, &o, link, NULL);
+    return 2 * sizeof(struct dirt_gpu_ray) + 2 * sizeof(struct dirt_gpu_hit) +
+           3 * sizeof(struct dirt_gpu_gpoint) + sizeof(struct dirt_gpu_path) +
+           sizeof(struct dirt_gpu_accum);
 }
 
-static bool dirt_tech_visibility(void *self, GLuint rays, GLuint hits)
+int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
+                    int max)
 {
-    return ads_visibility_gl(self, rays, hits);
-}
-
-static bool dirt_tech_fetch(void *self, bool raster, GLuint rays, GLuint hits, uint32_t count,
-                            GLuint gpoints, uint32_t slot)
-{
-    return ads_fetch_gl(self, raster, rays, hits, count, gpoints, slot);
-}
-
-static void dirt_tech_bind_geometry(void *self)
-{
-    ads_bind_geometry(self);
-}
-
-static void dirt_tech_reset_counts(void *self)
-{
-    ads_reset_ray_count(self);
-}
-
-static bool dirt_tech_read_counts(void *self, uint64_t *rays, uint64_t *aborted)
-{
-    return ads_read_counts(self, rays, aborted);
-}
-
-bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame, const dirt_camera *cam,
-                    const dirt_pt_opts *opts, dirt_image *out, dirt_pt_stats *stats)
-{
-    pt_technique tech = {
-        .self = ads,
-        .name = "dirt",
-        .trace = dirt_tech_trace,
-        .visibility = dirt_tech_visibility,
-        .fetch = dirt_tech_fetch,
-        .bind_geometry = dirt_tech_bind_geometry,
-        .reset_counts = dirt_tech_reset_counts,
-        .read_counts = dirt_tech_read_counts,
-        .views = dirt_ads_views(ads),
+    size_t px = pt->pixels;
+    const dirt_buffer_bytes all[] = {
+        {"pt rays", px * sizeof(struct dirt_gpu_ray), 0},
+        {"pt hits", px * sizeof(struct dirt_gpu_hit), 0},
+        {"pt shadow rays", px * sizeof(struct dirt_gpu_ray), 0},
+        {"pt shadow hits", px * sizeof(struct dirt_gpu_hit), 0},
+        {"pt shading ring", 3 * px * sizeof(struct dirt_gpu_gpoint), 0},
+        {"pt paths", px * sizeof(struct dirt_gpu_path), 0},
+        {"pt accumulation", px * sizeof(struct dirt_gpu_accum), 0},
+        {"tracer", tracer ? tracer->bytes_extra : 0, 0},
     };
-    const dirt_ads_stats *as = dirt_ads_get_stats(ads);
-    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
-        double ms = as->gpu_ms[i] >= 0 ? as->gpu_ms[i] : as->cpu_ms[i];
-        if (ms > 0)
-            tech.build_ms += ms;
+    int n = 0;
+    for (size_t i = 0; i < sizeof(all) / sizeof(all[0]) && n < max; i++) {
+        if (!all[i].used)
+            continue;
+        out[n] = all[i];
+        out[n].allocated = out[n].used;
+        n++;
     }
-    return dirt_pt_render_technique(pt, &tech, frame, cam, opts, out, stats);
+    return n;
 }
 
-bool dirt_pt_render_technique(dirt_pt *pt, pt_technique *tech, const dirt_frame *frame,
-                              const dirt_camera *cam, const dirt_pt_opts *opts_in, dirt_image *out,
-                              dirt_pt_stats *stats)
+bool dirt_pt_reset(dirt_pt *pt, int width, int height)
 {
+    if (width < 1 || height < 1) {
+        DIRT_ERROR("image size %dx%d", width, height);
+        return false;
+    }
+    size_t pixels = (size_t)width * (size_t)height;
+    if (!ensure_buffers(pt, pixels))
+        return false;
+    static const float zero = 0.0f;
+    glClearNamedBufferData(pt->accum, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    pt->width = width;
+    pt->height = height;
+    pt->samples = 0;
+    pt->accum_valid = true;
+    pt->display_samples = UINT32_MAX;
+    return gl_check("dirt_pt_reset");
+}
+
+int dirt_pt_samples(const dirt_pt *pt)
+{
+    return pt->accum_valid ? (int)pt->samples : 0;
+}
+
+bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                         const dirt_camera *cam, const dirt_pt_opts *opts_in, int count,
+                         dirt_pt_stats *stats)
+{
+    if (!pt->accum_valid) {
+        DIRT_ERROR("dirt_pt_add_samples before dirt_pt_reset");
+        return false;
+    }
+    if (!tech) {
+        DIRT_ERROR("no tracer (the technique's build failed?)");
+        return false;
+    }
     dirt_pt_opts opts = opts_in ? *opts_in : (dirt_pt_opts){0};
-    if (opts.spp <= 0)
-        opts.spp = 1;
     if (!opts.bounces_set && opts.bounces <= 0)
         opts.bounces = 4;
     if (opts.bounces < 0 || opts.bounces > 64) {
         DIRT_ERROR("bounces %d: must be in [0, 64]", opts.bounces);
+        return false;
+    }
+    if (count < 0 || (uint64_t)pt->samples + (uint64_t)count > UINT32_MAX / 2) {
+        DIRT_ERROR("sample count %d", count);
         return false;
     }
     dirt_pt_stats local;
@@ -400,16 +408,12 @@ bool dirt_pt_render_technique(dirt_pt *pt, pt_technique *tech, const dirt_frame 
     double t0 = dirt_clock_ms();
     pt->tech = tech;
     pt->opts = &opts;
-    pt->width = out->width;
-    pt->height = out->height;
     pt->bounces = opts.bounces;
     pt->ao_distance = opts.ao_distance > 0 ? opts.ao_distance : INFINITY;
-    size_t pixels = (size_t)out->width * (size_t)out->height;
+    size_t pixels = pt->pixels;
     bool ok = false;
     dirt_area_lights area = {0};
     gl_group_push("dirt path tracer");
-    if (!ensure_buffers(pt, pixels))
-        goto done;
     if (!dirt_area_lights_build(&area, frame, dirt_scene_materials(pt->scene),
                                 dirt_scene_num_materials(pt->scene)))
         goto done;
@@ -433,73 +437,39 @@ bool dirt_pt_render_technique(dirt_pt *pt, pt_technique *tech, const dirt_frame 
             goto done;
         }
         const dirt_view_set *vs = tech->views;
-        if (vs->camera_view < 0 || vs->views[vs->camera_view].width != out->width ||
-            vs->views[vs->camera_view].height != out->height) {
+        if (vs->camera_view < 0 || vs->views[vs->camera_view].width != pt->width ||
+            vs->views[vs->camera_view].height != pt->height) {
             DIRT_ERROR("direct visibility needs a camera view of the image's size (%dx%d)",
-                       out->width, out->height);
+                       pt->width, pt->height);
             goto done;
         }
     }
     if (!pt->graph || pt->g_pixels != pixels || pt->g_events != events ||
-        pt->g_mode != opts.mode || pt->g_fetch != opts.fetch ||
-        pt->g_direct != opts.direct_visibility) {
+        pt->g_mode != opts.mode || pt->g_direct != opts.direct_visibility) {
         pt->g_mode = opts.mode;
-        pt->g_fetch = opts.fetch;
         pt->g_direct = opts.direct_visibility;
         if (!make_graph(pt, events))
             goto done;
     }
-    static const float zero = 0.0f;
-    glClearNamedBufferData(pt->accum, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    if (pt->samples == 0 && tech->restart)
+        tech->restart(tech->self);
     tech->reset_counts(tech->self);
     fg_exec_opts eo = {.cpu_timing = opts.cpu_timing, .validate = true};
-    for (int s = 0; s < opts.spp; s++) {
-        pt->sample = (uint32_t)s;
+    for (int s = 0; s < count; s++) {
+        pt->sample = pt->samples;
         if (!fg_execute(pt->graph, &eo))
             goto done;
+        pt->samples++;
         add_times(pt, st);
         if (opts.progress)
-            opts.progress(opts.progress_user, s + 1, opts.spp);
+            opts.progress(opts.progress_user, s + 1, count);
     }
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
-    if (!sums || !gl_buffer_read(pt->accum, 0, pixels * sizeof(*sums), sums)) {
-        free(sums);
-        DIRT_ERROR("could not read the image back");
-        goto done;
-    }
-    float *albedo[3] = {dirt_image_find_channel(out, "albedo.R"),
-                        dirt_image_find_channel(out, "albedo.G"),
-                        dirt_image_find_channel(out, "albedo.B")};
-    float *normal[3] = {dirt_image_find_channel(out, "N.X"), dirt_image_find_channel(out, "N.Y"),
-                        dirt_image_find_channel(out, "N.Z")};
-    double inv = 1.0 / opts.spp;
-    for (size_t i = 0; i < pixels; i++) {
-        out->rgba[4 * i + 0] = (float)(sums[i].color.x * inv);
-        out->rgba[4 * i + 1] = (float)(sums[i].color.y * inv);
-        out->rgba[4 * i + 2] = (float)(sums[i].color.z * inv);
-        out->rgba[4 * i + 3] = 1.0f;
-        st->invalid_samples += (uint64_t)sums[i].albedo.w;
-        float a[3] = {sums[i].albedo.x, sums[i].albedo.y, sums[i].albedo.z};
-        float n[3] = {sums[i].normal.x, sums[i].normal.y, sums[i].normal.z};
-        for (int k = 0; k < 3; k++) {
-            if (albedo[k])
-                albedo[k][i] = (float)(a[k] * inv);
-            if (normal[k])
-                normal[k][i] = (float)(n[k] * inv);
-        }
-    }
-    free(sums);
     if (!tech->read_counts(tech->self, &st->rays, &st->aborted))
         goto done;
     if (st->aborted)
         DIRT_WARN("%llu rays ran out of march steps", (unsigned long long)st->aborted);
-    st->build_ms = tech->build_ms;
     st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
-    st->bytes_integrator = pixels * (2 * sizeof(struct dirt_gpu_ray) + 2 * sizeof(struct dirt_gpu_hit) +
-                                     3 * sizeof(struct dirt_gpu_gpoint) +
-                                     sizeof(struct dirt_gpu_path) + sizeof(struct dirt_gpu_accum)) +
-                          tech->bytes_extra;
+    st->bytes_integrator = pixels * bytes_per_pixel() + tech->bytes_extra;
     ok = gl_check("dirt path tracer");
 done:
     st->total_ms = dirt_clock_ms() - t0;
@@ -508,6 +478,104 @@ done:
     pt->opts = NULL;
     pt->tech = NULL;
     return ok;
+}
+
+bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
+{
+    if (!pt->accum_valid || !pt->samples) {
+        DIRT_ERROR("no samples to read");
+        return false;
+    }
+    if (out->width != pt->width || out->height != pt->height) {
+        DIRT_ERROR("image %dx%d, accumulation %dx%d", out->width, out->height, pt->width,
+                   pt->height);
+        return false;
+    }
+    size_t pixels = pt->pixels;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
+    if (!sums || !gl_buffer_read(pt->accum, 0, pixels * sizeof(*sums), sums)) {
+        free(sums);
+        DIRT_ERROR("could not read the image back");
+        return false;
+    }
+    float *albedo[3] = {dirt_image_find_channel(out, "albedo.R"),
+                        dirt_image_find_channel(out, "albedo.G"),
+                        dirt_image_find_channel(out, "albedo.B")};
+    float *normal[3] = {dirt_image_find_channel(out, "N.X"), dirt_image_find_channel(out, "N.Y"),
+                        dirt_image_find_channel(out, "N.Z")};
+    /* The display pass multiplies by the same float (glsl/integrator/display.comp). */
+    float inv = 1.0f / (float)pt->samples;
+    uint64_t invalid = 0;
+    for (size_t i = 0; i < pixels; i++) {
+        out->rgba[4 * i + 0] = sums[i].color.x * inv;
+        out->rgba[4 * i + 1] = sums[i].color.y * inv;
+        out->rgba[4 * i + 2] = sums[i].color.z * inv;
+        out->rgba[4 * i + 3] = 1.0f;
+        invalid += (uint64_t)sums[i].albedo.w;
+        float a[3] = {sums[i].albedo.x, sums[i].albedo.y, sums[i].albedo.z};
+        float n[3] = {sums[i].normal.x, sums[i].normal.y, sums[i].normal.z};
+        for (int k = 0; k < 3; k++) {
+            if (albedo[k])
+                albedo[k][i] = a[k] * inv;
+            if (normal[k])
+                normal[k][i] = n[k] * inv;
+        }
+    }
+    free(sums);
+    if (invalid_samples)
+        *invalid_samples = invalid;
+    return gl_check("dirt_pt_read");
+}
+
+uint32_t dirt_pt_display_texture(dirt_pt *pt)
+{
+    if (!pt->accum_valid || !pt->samples) {
+        DIRT_ERROR("no samples to display");
+        return 0;
+    }
+    if (!pt->display || pt->display_w != pt->width || pt->display_h != pt->height) {
+        gl_texture_destroy(&pt->display);
+        pt->display = gl_texture_2d(GL_RGBA32F, pt->width, pt->height, 1, "pt display");
+        if (!pt->display)
+            return 0;
+        pt->display_w = pt->width;
+        pt->display_h = pt->height;
+        pt->display_samples = UINT32_MAX;
+    }
+    if (pt->display_samples == pt->samples)
+        return pt->display;
+    gl_group_push("dirt path tracer display");
+    /* The accumulation was written by shader stores. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(pt->prog_display);
+    glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)pt->pixels);
+    glUniform1i(DIRT_LOC_DISPLAY_WIDTH, pt->width);
+    glUniform1f(DIRT_LOC_DISPLAY_INV_SAMPLES, 1.0f / (float)pt->samples);
+    bind(DIRT_BIND_ACCUM, pt->accum);
+    glBindImageTexture(DIRT_UNIT_DISPLAY, pt->display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(groups(pt->pixels), 1, 1);
+    glUseProgram(0);
+    /* Readers sample, fetch or copy it. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    gl_group_pop();
+    if (!gl_check("dirt_pt_display_texture"))
+        return 0;
+    pt->display_samples = pt->samples;
+    return pt->display;
+}
+
+bool dirt_pt_render(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                    const dirt_camera *cam, const dirt_pt_opts *opts, dirt_image *out,
+                    dirt_pt_stats *stats)
+{
+    int spp = opts && opts->spp > 0 ? opts->spp : 1;
+    dirt_pt_stats local;
+    dirt_pt_stats *st = stats ? stats : &local;
+    return dirt_pt_reset(pt, out->width, out->height) &&
+           dirt_pt_add_samples(pt, tech, frame, cam, opts, spp, st) &&
+           dirt_pt_read(pt, out, &st->invalid_samples);
 }
 
 bool dirt_pt_write_dot(const dirt_pt *pt, const char *path)

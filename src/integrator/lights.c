@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #include "dirt/log.h"
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 
 bool dirt_punctual_light(const dirt_light *light, dirt_vec3 p, dirt_vec3 *wi,
                          float *dist, dirt_vec3 *li)

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <pthread.h>
 
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 
 static float srgb_table[256];
 static pthread_once_t srgb_once = PTHREAD_ONCE_INIT;

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dirt/mip.h"
+#include "views/hiz.h"
 #include "views/views_gpu.h"
 #include "gl/program.h"
 #include "mmrt_internal.h"
@@ -54,7 +54,7 @@ dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
     defs[1].name = "MMRT_PASS_STORE";
     m->prog_store = gl_program_create("mmrt store", paths, defs, 2);
     /* The min/max pyramid is DIRT's, on a tile size of 1. */
-    m->prog_mip = gl_program_compute("dirt/mip.comp", NULL, 0);
+    m->prog_mip = views_hiz_program();
     if (m->opts.sort == DIRT_MMRT_SORT_AUTO)
         m->opts.sort = dirt_gpu_get_caps(gpu)->software ? DIRT_MMRT_SORT_LIST
                                                         : DIRT_MMRT_SORT_REGISTERS;
@@ -95,6 +95,7 @@ void dirt_mmrt_destroy(dirt_mmrt *m)
 {
     if (!m)
         return;
+    mmrt_tracer_release(m);
     gl_program_destroy(&m->prog_depth);
     gl_program_destroy(&m->prog_store);
     gl_program_destroy(&m->prog_mip);
@@ -354,7 +355,7 @@ static bool exec_mip(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
-    dirt_mip_dispatch(m->prog_mip, &m->set);
+    views_hiz_dispatch(m->prog_mip, &m->set);
     return true;
 }
 
@@ -433,9 +434,9 @@ static bool make_graphs(dirt_mmrt *m)
     fg_destroy(m->g_build);
     fg_destroy(m->g_restore);
     fg_destroy(m->g_finish);
-    m->g_build = fg_create(m->gpu);
-    m->g_restore = fg_create(m->gpu);
-    m->g_finish = fg_create(m->gpu);
+    m->g_build = gl_graph_create(m->gpu);
+    m->g_restore = gl_graph_create(m->gpu);
+    m->g_finish = gl_graph_create(m->gpu);
     if (!m->g_build || !m->g_restore || !m->g_finish)
         return false;
     fg_graph *g = m->g_build;

@@ -8,7 +8,7 @@
 #include "common/mmrt_layout.h"
 #include "dirt/mmrt.h"
 #include "gl/gl.h"
-#include "graph/graph.h"
+#include "gl/graph_gl.h"
 
 struct dirt_mmrt {
     dirt_gpu *gpu;
@@ -39,7 +39,11 @@ struct dirt_mmrt {
     struct dirt_gpu_vertex *staging;
     size_t staging_cap;
     dirt_mmrt_stats stats;
+    struct mmrt_tracer *tracer; /* the integrator's view of it (tracer.c) */
 };
+
+/* Frees the tracer state (tracer.c); called by dirt_mmrt_destroy. */
+void mmrt_tracer_release(dirt_mmrt *mmrt);
 
 /* GL names of the structure's buffers (valid until the next build or
  * destroy). */

@@ -27,8 +27,8 @@
 #include "common/layout.h"
 #include "gl/gl.h"
 #include "gl/program.h"
-#include "graph/graph.h"
-#include "integrator/vec3.h"
+#include "gl/graph_gl.h"
+#include "core/vec3.h"
 
 /* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
@@ -266,7 +266,7 @@ static bool declare_textures(dirt_raster *r, fg_pass *draw)
  * later, by ensure_graph, once the image size is known. */
 static bool build_graph(dirt_raster *r)
 {
-    r->graph = fg_create(r->gpu);
+    r->graph = gl_graph_create(r->gpu);
     if (!r->graph)
         return false;
     fg_graph *g = r->graph;

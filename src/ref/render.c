@@ -15,7 +15,7 @@
 #include "dirt/integrator.h"
 #include "dirt/log.h"
 #include "integrator/rng.h"
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 #include "ref/parallel.h"
 
 #define TILE 16

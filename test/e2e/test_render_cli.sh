@@ -5,6 +5,7 @@
 #   test_render_cli.sh PATH/TO/dirt-render
 set -u
 render=$1
+json=$(dirname "$0")/json_check.py
 tmp=$(mktemp -d /tmp/dirt-e2e-XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
 fails=0 passes=0
@@ -104,9 +105,10 @@ no_leftovers "$out"
 expect_rc 0 "embree engine" -- --engine embree -o "$out/e.exr" -W 16 -H 12 --spp 2 --stats "$out/e.json"
 head -c 4 "$out/e.exr" | od -An -tx1 | grep -q '76 2f 31 01' && ok || fail "e.exr is not an EXR"
 grep -aq 'albedo.R' "$out/e.exr" && grep -aq 'N.X' "$out/e.exr" && ok || fail "e.exr lacks the AOV channels"
-for key in build_ms rays mrays_per_s; do
-  grep -q "\"$key\": [0-9]" "$out/e.json" && ok || fail "e.json lacks $key"
-done
+"$json" "$out/e.json" 'd["engine"] == "embree" and d["device"] == "CPU"' \
+  'd["build_ms"] > 0 and d["mrays_per_s"] > 0' \
+  'd["rays"] >= 16 * 12 * 2 and d["spp"] == 2 and d["width"] == 16 and d["height"] == 12' \
+  'all(p["clock"] == "cpu" for p in d["passes"])' && ok || fail "e.json figures"
 rm -f "$out"/e.*
 
 # Good inputs need a GL context; without one the program says so with exit 3.
@@ -122,10 +124,17 @@ head -c 8 "$out/default.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' &
 grep -q "wrote $out/default.png" "$tmp/stdout" && ok || fail "output path not printed"
 
 expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --spp 2 --stats "$out/d.json"
-for key in build_ms trace_ms fetch_ms shade_ms bytes_total rays mrays_per_s; do
-  grep -q "\"$key\": [0-9]" "$out/d.json" && ok || fail "d.json lacks $key"
-done
-grep -q '"bytes": {' "$out/d.json" && ok || fail "d.json lacks the bytes object"
+# The stats: figures that add up (32x24, 2 spp, DIRT's structure + the
+# integrator's 448 bytes per pixel), each pass tagged with its clock.
+"$json" "$out/d.json" 'd["engine"] == "dirt" and d["frames_rendered"] == 1' \
+  'all(d[k] > 0 for k in ("build_ms", "trace_ms", "fetch_ms", "shade_ms", "mrays_per_s"))' \
+  'd["rays"] >= 32 * 24 * 2 and d["aborted_rays"] == 0 and d["spp"] == 2' \
+  'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes")) + 32 * 24 * 448' \
+  'd["samples_np"] > 0 and d["frames"][0]["samples"] == 2' \
+  'all(p["clock"] in ("gpu", "cpu") and p["ms"] >= 0 for p in d["passes"])' \
+  'set(p["name"] for p in d["passes"]) >= {"depth bounds", "fill primitives", "trace", "fetch", "shade"}' \
+  && ok || fail "d.json figures"
 expect_rc 0 "raster engine" -- --engine raster -o "$out/r.png" -W 32 -H 24
 mkdir -p "$out/ads"
 expect_rc 0 "debug pictures and graph" -- -o "$out/g.png" -W 32 -H 24 --spp 1 --debug-ads "$out/ads" --graph-dot "$out/pt.dot"

@@ -5,6 +5,7 @@
 #   test_render_mmrt.sh PATH/TO/dirt-render
 set -u
 render=$1
+json=$(dirname "$0")/json_check.py
 tmp=$(mktemp -d /tmp/dirt-e2e-mmrt-XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
 fails=0 passes=0
@@ -50,13 +51,10 @@ if [ $rc -eq 3 ]; then
 fi
 [ $rc -eq 0 ] && ok || { fail "mmrt render exit $rc"; cat "$tmp/stderr" >&2; }
 [ -s "$out/m.png" ] && head -c 8 "$out/m.png" | grep -q PNG && ok || fail "no PNG written"
-for key in engine build_ms trace_ms fetch_ms shade_ms bytes_total bytes rays mrays_per_s \
-           fragments; do
-  grep -q "\"$key\":" "$out/m.json" && ok || fail "stats JSON lacks \"$key\""
-done
-grep -q '"engine": "mmrt"' "$out/m.json" && ok || fail "stats engine is not mmrt"
-grep -q '"fragments": [1-9]' "$out/m.json" && ok || fail "no fragments counted"
-grep -q '"rays": [1-9]' "$out/m.json" && ok || fail "no rays counted"
+"$json" "$out/m.json" 'd["engine"] == "mmrt"' 'd["fragments"] > 0' 'd["rays"] > 0' \
+  'all(d[k] >= 0 for k in ("build_ms", "trace_ms", "fetch_ms", "shade_ms", "mrays_per_s"))' \
+  'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
+  'd["bytes"]["data nodes"] == 32 * d["fragments"]' && ok || fail "stats JSON figures"
 expect_rc 0 "linear march, single view, B 2, thickness" -- --engine mmrt -o "$out/l.png" \
   -W 24 -H 16 --spp 1 --bounces 1 --march linear --samples 12 --views single -B 2 \
   --thickness 0.01

@@ -25,11 +25,13 @@
 #define MAX_REL_MSE 1e-4
 
 static dirt_image *render_dirt(dirt_pt *pt, dirt_ads *ads, const dirt_frame *f,
-                               const dirt_camera *cam, const dirt_pt_opts *po)
+                               const dirt_camera *cam, const dirt_pt_opts *po,
+                               enum dirt_fetch_mode fetch)
 {
     dirt_image *img = dirt_image_create(W, H);
     dirt_pt_stats st;
-    CHECK(dirt_pt_render(pt, ads, f, cam, po, img, &st));
+    const dirt_tracer *tr = dirt_ads_tracer(ads, &(dirt_ads_tracer_opts){.fetch = fetch});
+    CHECK(tr && dirt_pt_render(pt, tr, f, cam, po, img, &st));
     CHECK(st.aborted == 0 && st.invalid_samples == 0 && st.rays > 0);
     return img;
 }
@@ -62,7 +64,7 @@ int main(void)
 
     /* Same seed: same paths. */
     dirt_pt_opts po = {.spp = 8, .bounces = 3, .seed = 11};
-    dirt_image *d = render_dirt(pt, ads, f, &cam, &po);
+    dirt_image *d = render_dirt(pt, ads, f, &cam, &po, DIRT_FETCH_COMPUTE);
     dirt_image *r = render_ref(scene, f, &cam, 8, 11, false, 0);
     dirt_image_error e;
     CHECK(dirt_image_compare(d, r, &e));
@@ -70,8 +72,7 @@ int main(void)
     CHECK(e.rel_mse < MAX_REL_MSE);
 
     /* Raster Fetch: the very same image. */
-    po.fetch = DIRT_FETCH_RASTER;
-    dirt_image *dr = render_dirt(pt, ads, f, &cam, &po);
+    dirt_image *dr = render_dirt(pt, ads, f, &cam, &po, DIRT_FETCH_RASTER);
     CHECK(memcmp(d->rgba, dr->rgba, sizeof(float) * 4 * W * H) == 0);
     fprintf(stderr, "raster Fetch image %s the compute Fetch image\n",
             memcmp(d->rgba, dr->rgba, sizeof(float) * 4 * W * H) ? "differs from" : "equals");
@@ -79,7 +80,7 @@ int main(void)
     /* Independent seed: converges like the reference does. */
     dirt_image *hi = render_ref(scene, f, &cam, 32, 99, false, 0);
     po = (dirt_pt_opts){.spp = 8, .bounces = 3, .seed = 5};
-    dirt_image *d5 = render_dirt(pt, ads, f, &cam, &po);
+    dirt_image *d5 = render_dirt(pt, ads, f, &cam, &po, DIRT_FETCH_COMPUTE);
     dirt_image *r5 = render_ref(scene, f, &cam, 8, 6, false, 0);
     double ed = dirt_image_rel_mse(d5, hi), er = dirt_image_rel_mse(r5, hi);
     fprintf(stderr, "PT 8 spp vs 32 spp reference (other seeds): DIRT relMSE %.4g, Embree %.4g\n",
@@ -88,7 +89,7 @@ int main(void)
 
     /* Ambient occlusion, 0.5 units. */
     po = (dirt_pt_opts){.mode = DIRT_PT_AO, .spp = 8, .seed = 3, .ao_distance = 0.5f};
-    dirt_image *da = render_dirt(pt, ads, f, &cam, &po);
+    dirt_image *da = render_dirt(pt, ads, f, &cam, &po, DIRT_FETCH_COMPUTE);
     dirt_image *ra = render_ref(scene, f, &cam, 8, 3, true, 0.5f);
     CHECK(dirt_image_compare(da, ra, &e));
     double mean = 0;

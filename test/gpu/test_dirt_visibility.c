@@ -62,7 +62,7 @@ static void run(dirt_gpu *gpu, const char *label, dirt_scene *scene, int w, int 
     dirt_pt_opts po = {.spp = 2, .bounces = 2, .direct_visibility = true,
                        .background = {1, 1, 1}}; /* the truck has no lights */
     dirt_pt_stats st;
-    CHECK(pt && img && dirt_pt_render(pt, ads, f, &cam, &po, img, &st));
+    CHECK(pt && img && dirt_pt_render(pt, dirt_ads_tracer(ads, NULL), f, &cam, &po, img, &st));
     CHECK(st.aborted == 0 && st.invalid_samples == 0);
     double sum = 0;
     for (size_t i = 0; i < n; i++)

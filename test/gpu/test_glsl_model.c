@@ -60,7 +60,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 
 #define N 10000
 #define STRIDE 32 /* floats per record (8 vec4) */

@@ -12,7 +12,7 @@
 #include "dirt/log.h"
 #include "gl/program.h"
 #include "gpu.h"
-#include "graph/graph.h"
+#include "gl/graph_gl.h"
 
 enum { W = 37, H = 23 };
 
@@ -141,7 +141,7 @@ static void test_attachmentless(dirt_gpu *gpu)
 {
     uint32_t *out = calloc((size_t)W * H, sizeof(uint32_t));
     splat s1 = {.add = 1, .out = out}, s2 = {.add = 2, .out = out};
-    fg_graph *g = fg_create(gpu);
+    fg_graph *g = gl_graph_create(gpu);
     CHECK(g && out);
     if (!g || !out)
         goto done;
@@ -227,7 +227,7 @@ int main(void)
     float *pix_a = calloc((size_t)W * H * 4, sizeof(float));
     float *pix_b = calloc((size_t)W * H * 4, sizeof(float));
     chain a = {.seed = 11, .pixels = pix_a}, b = {.seed = 503, .pixels = pix_b};
-    fg_graph *g = fg_create(gpu);
+    fg_graph *g = gl_graph_create(gpu);
     CHECK(g != NULL);
     if (!g || !pix_a || !pix_b || !prog.fill || !prog.to_image || !prog.draw)
         goto done;

@@ -1,4 +1,4 @@
-/* Path tracing through MMRT (dirt_pt_render_mmrt) against the Embree
+/* Path tracing through MMRT (dirt_mmrt_tracer + dirt_pt_render) against the Embree
  * reference on the default scene (64x64, 8 spp, 3 bounces, cube+camera views
  * 64x64 + 32^2 faces, B = 4), same seed, so both sides draw the same random
  * numbers: with DIRT this agrees to ~1e-8 (test_dirt_pt). MMRT's hits are
@@ -32,11 +32,13 @@
 #define MAX_REL_MSE 0.6
 
 static dirt_image *render_mmrt(dirt_pt *pt, dirt_mmrt *m, const dirt_frame *f,
-                               const dirt_camera *cam, const dirt_pt_opts *po, dirt_pt_stats *st)
+                               const dirt_camera *cam, const dirt_pt_opts *po,
+                               const dirt_mmrt_trace_opts *to, dirt_pt_stats *st)
 {
     dirt_image *img = dirt_image_create(W, H);
     CHECK(img != NULL);
-    CHECK(dirt_pt_render_mmrt(pt, m, f, cam, po, img, st));
+    const dirt_tracer *tr = dirt_mmrt_tracer(m, to);
+    CHECK(tr && dirt_pt_render(pt, tr, f, cam, po, img, st));
     CHECK(st->aborted == 0 && st->invalid_samples == 0 && st->rays > 0);
     for (int i = 0; i < 4 * W * H; i++)
         CHECK(isfinite(img->rgba[i]));
@@ -89,9 +91,9 @@ int main(void)
     };
     dirt_image *imgs[2] = {0};
     for (int i = 0; i < 2; i++) {
-        dirt_pt_opts po = {.spp = 8, .bounces = 3, .seed = 11, .mmrt = modes[i].t};
+        dirt_pt_opts po = {.spp = 8, .bounces = 3, .seed = 11};
         dirt_pt_stats st;
-        imgs[i] = render_mmrt(pt, m, f, &cam, &po, &st);
+        imgs[i] = render_mmrt(pt, m, f, &cam, &po, &modes[i].t, &st);
         dirt_image_error e;
         CHECK(dirt_image_compare(imgs[i], r, &e));
         double lm = mean_luminance(imgs[i]), lr = mean_luminance(r);
@@ -104,13 +106,11 @@ int main(void)
     /* The same render twice: deterministic. */
     dirt_pt_opts po = {.spp = 8, .bounces = 3, .seed = 11};
     dirt_pt_stats st;
-    dirt_image *again = render_mmrt(pt, m, f, &cam, &po, &st);
+    dirt_image *again = render_mmrt(pt, m, f, &cam, &po, NULL, &st);
     CHECK(memcmp(again->rgba, imgs[0]->rgba, sizeof(float) * 4 * W * H) == 0);
-    /* MMRT has no raster Fetch and no visibility buffer: refused. */
-    po.fetch = DIRT_FETCH_RASTER;
-    CHECK(!dirt_pt_render_mmrt(pt, m, f, &cam, &po, again, &st));
+    /* MMRT has no visibility buffer: refused. */
     po = (dirt_pt_opts){.spp = 1, .direct_visibility = true};
-    CHECK(!dirt_pt_render_mmrt(pt, m, f, &cam, &po, again, &st));
+    CHECK(!dirt_pt_render(pt, dirt_mmrt_tracer(m, NULL), f, &cam, &po, again, &st));
 
     dirt_image_destroy(again);
     dirt_image_destroy(imgs[0]);

@@ -243,7 +243,7 @@ static void test_pass_bits(void)
 /* Graph whose second resource reuses the first one's memory. */
 static fg_graph *alias_graph(bool aliasing, fg_backend *backend)
 {
-    fg_graph *g = backend ? fg_create_with_backend(backend) : fg_create(NULL);
+    fg_graph *g = fg_create(backend);
     fg_set_aliasing(g, aliasing);
     fg_res x = fg_buffer(g, "x", &(fg_buf_desc){.bytes = 1000});
     fg_res y = fg_buffer(g, "y", &(fg_buf_desc){.bytes = 1000});
@@ -383,7 +383,7 @@ static bool exec_draw(fg_ctx *ctx, void *user)
 static fg_graph *demo_graph(fake *f, demo *d)
 {
     fg_backend b = {&fake_ops, f};
-    fg_graph *g = fg_create_with_backend(&b);
+    fg_graph *g = fg_create(&b);
     fg_set_resolution(g, 8, 4);
     d->values = fg_buffer(g, "values", &(fg_buf_desc){.per_pixel = 4});
     d->img = fg_texture(g, "img", &(fg_tex_desc){.format = FG_R32F});

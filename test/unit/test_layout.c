@@ -8,7 +8,7 @@
 #include "check.h"
 #include "common/constants.h"
 #include "dirt/mmrt.h"
-#include "gl/layout_check.h"
+#include "session/layout_check.h"
 
 static void test_bindings(void)
 {

@@ -18,7 +18,7 @@
 #include "check.h"
 #include "dirt/integrator.h"
 #include "integrator/rng.h"
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 
 #define PI 3.14159265358979323846
 

@@ -17,6 +17,7 @@
 
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
+#include "dirt/tracer.h"
 #include "dirt/views.h"
 
 #ifdef __cplusplus
@@ -90,25 +91,6 @@ void dirt_ads_data_free(dirt_ads_data *data);
 
 /* ---- Trace ---- */
 
-/* A ray: points org + t dir for t in (tmin, tmax). Same layout as the GPU's
- * dirt_gpu_ray (glsl/common/layout.h). */
-typedef struct dirt_ray {
-    float org[3];
-    float tmin;
-    float dir[3];
-    float tmax;
-} dirt_ray;
-
-#define DIRT_HIT_NONE 0xFFFFFFFFu
-
-/* The closest hit of a ray (layout of dirt_gpu_hit): prim = DIRT_HIT_NONE
- * when nothing was hit; the hit point is org + t dir
- * = (1 - u - v) p0 + u p1 + v p2; view = the view it was found in. */
-typedef struct dirt_hit {
-    uint32_t prim, view, owner, next;
-    float u, v, t, reserved;
-} dirt_hit;
-
 /* Zero-initialised = full Hi-Z, closest hit. */
 typedef struct dirt_trace_opts {
     int hiz_levels;   /* 0 = start at the pyramid's top; n > 0: at level n - 1 */
@@ -145,6 +127,21 @@ typedef struct dirt_gpoint {
     float wo[3];          /* unit direction back along the arriving ray */
     float v;
 } dirt_gpoint;
+
+/* ---- The structure as the integrator's tracer (dirt/tracer.h) ---- */
+
+/* DIRT's options for path tracing through the structure. Zero-initialised
+ * = full Hi-Z, compute Fetch. */
+typedef struct dirt_ads_tracer_opts {
+    dirt_trace_opts trace;    /* any_hit is ignored (the integrator asks per batch) */
+    enum dirt_fetch_mode fetch;
+} dirt_ads_tracer_opts;
+
+/* The tracer over the structure of the last dirt_ads_build with `opts`
+ * (NULL = defaults). Owned by `ads`; valid until the next call or
+ * dirt_ads_destroy. It has a visibility function (direct visibility of the
+ * camera view). NULL (logged) before a successful build. */
+const dirt_tracer *dirt_ads_tracer(dirt_ads *ads, const dirt_ads_tracer_opts *opts);
 
 /* Traces the rays and fetches every hit into out[i] (owner = ray i) with the
  * given Fetch. For tests and tools (blocking). */

@@ -22,13 +22,11 @@
 
 #include "dirt/scene.h"
 
+#include "dirt/vec.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef struct dirt_vec3 {
-    float x, y, z;
-} dirt_vec3;
 
 /* GGX alpha below which the specular lobe is a perfect mirror (delta). */
 #define DIRT_ALPHA_DELTA 1e-3f

@@ -27,7 +27,7 @@
 
 #include "common/constants.h" /* DIRT_MMRT_*_NODE_BYTES */
 
-#include "dirt/ads.h"
+#include "dirt/tracer.h"
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
 #include "dirt/views.h"
@@ -190,6 +190,21 @@ typedef struct dirt_mmrt_trace_stats {
  * fragment's depth. `opts` and `stats` may be NULL. */
 bool dirt_mmrt_trace_cpu(dirt_mmrt *mmrt, const dirt_ray *rays, size_t count, dirt_hit *hits,
                          const dirt_mmrt_trace_opts *opts, dirt_mmrt_trace_stats *stats);
+
+/* ---- The A-buffer as the integrator's tracer (dirt/tracer.h) ---- */
+
+/* The tracer over the A-buffer of the last dirt_mmrt_build with trace
+ * options `opts` (NULL = defaults; the seed jitters the linear march, mixed
+ * with the index of the trace since the tracer's counts were last reset).
+ * MMRT's way (the MMRT paper: no Fetch): a hit's data node becomes the
+ * shading point directly (position = ray origin + t direction, the MMRT hit
+ * point; shading normal, uv and material from the data node; geometric
+ * normal of the primitive). Every ray is traced from 3 thicknesses along it
+ * (shadow rays also stop 3 thicknesses short of their end) so that a ray
+ * does not hit the surface it leaves within the thickness. No visibility
+ * function. Owned by `mmrt`; valid until the next call or destroy. NULL
+ * (logged) before a successful build. */
+const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts *opts);
 
 #ifdef __cplusplus
 }

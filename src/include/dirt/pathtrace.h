@@ -7,20 +7,25 @@
  * finally accumulation. The light-transport model, the random numbers and
  * the order in which they are drawn are those of the Embree reference
  * (doc/light-transport.md), so both converge to the same image.
- * The rays are traced through a technique: the DIRT structure
- * (dirt_pt_render) or the MMRT A-buffer (dirt_pt_render_mmrt), the same frame
- * graph either way (only the trace, fetch and geometry bindings differ). */
+ * The rays are traced through a technique's tracer (dirt/tracer.h: the DIRT
+ * structure, the MMRT A-buffer); this header knows no technique.
+ *
+ * Progressive: the accumulation persists between calls. dirt_pt_reset
+ * starts it for an image size, dirt_pt_add_samples adds samples (sample
+ * indices continue, so 1 + 1 + 2 samples give the image of one 4-sample
+ * render), dirt_pt_read gives the mean, dirt_pt_display_texture the same
+ * mean in a GL texture that never leaves the GPU. */
 #ifndef DIRT_PATHTRACE_H
 #define DIRT_PATHTRACE_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/image.h"
-#include "dirt/mmrt.h"
 #include "dirt/scene.h"
+#include "dirt/stats.h"
+#include "dirt/tracer.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -31,7 +36,7 @@ typedef struct dirt_pt dirt_pt;
 enum dirt_pt_mode { DIRT_PT_PATH = 0, DIRT_PT_AO = 1 };
 
 /* Zero-initialised = path tracing, 1 spp, 4 bounces (as the reference), seed 0, black
- * background, compute Fetch. */
+ * background. */
 typedef struct dirt_pt_opts {
     enum dirt_pt_mode mode;
     int spp;                  /* samples per pixel (default 1) */
@@ -41,60 +46,94 @@ typedef struct dirt_pt_opts {
     uint32_t seed;
     float background[3];      /* radiance of rays that leave the scene */
     float ao_distance;        /* AO ray length; 0 = infinite */
-    enum dirt_fetch_mode fetch;
     /* G_1 from a visibility buffer of the camera view instead of traced
      * camera rays (pixel centres: no pixel jitter, no depth of field). */
-    bool direct_visibility;
-    dirt_trace_opts trace;    /* DIRT's trace options (dirt_pt_render) */
-    dirt_mmrt_trace_opts mmrt; /* MMRT's (dirt_pt_render_mmrt); its seed is mixed with
-                                  the trace call's index for the linear march jitter */
+    bool direct_visibility;   /* needs a tracer with a visibility function */
     bool cpu_timing;          /* glFinish + CPU clock per pass */
-    /* Called after every sample (may be NULL). */
+    /* Called after every sample of a call (done/total of that call; may be NULL). */
     void (*progress)(void *user, int done, int total);
     void *progress_user;
 } dirt_pt_opts;
 
+/* The path tracer's passes, in the order of a sample. */
+enum dirt_pt_pass {
+    DIRT_PT_PASS_RAYGEN,
+    DIRT_PT_PASS_VISIBILITY,  /* direct visibility (replaces trace 1) */
+    DIRT_PT_PASS_TRACE,       /* closest-hit traces */
+    DIRT_PT_PASS_FETCH,
+    DIRT_PT_PASS_SHADE,
+    DIRT_PT_PASS_SHADOW,      /* any-hit shadow traces */
+    DIRT_PT_PASS_RESOLVE,
+    DIRT_PT_PASS_ACCUMULATE,
+    DIRT_PT_NUM_PASSES
+};
+
+extern const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES];
+
+/* Figures of one dirt_pt_add_samples call (or one dirt_pt_render). */
 typedef struct dirt_pt_stats {
-    double build_ms;          /* the structure's build (from its stats) */
-    double trace_ms, fetch_ms, shade_ms; /* summed over samples and events */
-    double total_ms;          /* wall time of the render */
+    double pass_ms[DIRT_PT_NUM_PASSES]; /* summed over samples and events */
+    enum dirt_clock clock;    /* what measured them */
+    double trace_ms;          /* trace + shadow trace */
+    double fetch_ms;
+    double visibility_ms;     /* direct visibility */
+    double shade_ms;          /* raygen + shade + resolve + accumulate */
+    double total_ms;          /* wall time of the call */
     uint64_t rays;            /* rays traced (camera, continuation, shadow) */
     uint64_t aborted;         /* rays whose march gave up (see dirt_trace_stats) */
     double mrays_per_s;       /* rays / trace time */
-    uint64_t invalid_samples; /* non-finite samples dropped */
-    uint64_t bytes_integrator; /* rays, hits, shading ring, paths, sums */
+    uint64_t invalid_samples; /* non-finite samples dropped (dirt_pt_render only) */
+    uint64_t bytes_integrator; /* rays, hits, shading ring, paths, sums, the tracer's own */
 } dirt_pt_stats;
 
-/* Uploads the scene's materials and textures. The scene must outlive it.
- * NULL on failure (logged). */
+/* Compiles the programs. The scene must outlive it; its materials and
+ * textures are uploaded on the first samples. NULL on failure (logged). */
 dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene);
+/* Accepts NULL. */
 void dirt_pt_destroy(dirt_pt *pt);
 
-/* Renders `frame` from `cam` through the DIRT structure `ads` (built for
- * this frame and camera) into `out` (its size is the image size): beauty in
- * RGBA (alpha 1) and, when `out` has them, the channels "albedo.R/G/B" and
- * "N.X/Y/Z" (first-hit means). `stats` may be NULL. */
-bool dirt_pt_render(dirt_pt *pt, dirt_ads *ads, const dirt_frame *frame,
+/* Starts a new accumulation of width x height pixels (0 samples). False
+ * (logged) when the per-pixel buffers exceed the GPU's limits. */
+bool dirt_pt_reset(dirt_pt *pt, int width, int height);
+
+/* Adds `count` samples of `frame` seen from `cam`, traced through `tracer`
+ * (the technique's structure built for this frame and camera; borrowed for
+ * the call). Sample indices continue from dirt_pt_samples, so the random
+ * numbers, and the image, are those of one render of all samples. opts->spp
+ * is ignored. `stats` (may be NULL) gets this call's figures. False
+ * (logged) before dirt_pt_reset or on GL failure. */
+bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tracer, const dirt_frame *frame,
+                         const dirt_camera *cam, const dirt_pt_opts *opts, int count,
+                         dirt_pt_stats *stats);
+
+/* Samples accumulated since the last reset. */
+int dirt_pt_samples(const dirt_pt *pt);
+
+/* The mean of the accumulation into `out` (of the accumulation's size):
+ * beauty in RGBA (alpha 1) and, when `out` has them, the channels
+ * "albedo.R/G/B" and "N.X/Y/Z" (first-hit means). `invalid_samples` (may be
+ * NULL) gets the non-finite samples dropped. Blocking readback. False
+ * (logged) with no samples or a size mismatch. */
+bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples);
+
+/* The same mean beauty in an RGBA32F texture (GL name; texel (x, y) = image
+ * pixel (x, y), row 0 = top; alpha 1), updated on the GPU when samples were
+ * added: the pixels equal dirt_pt_read's. Owned by `pt`, valid until the
+ * next reset to another size or destroy. 0 (logged) with no samples. */
+uint32_t dirt_pt_display_texture(dirt_pt *pt);
+
+/* One render: reset to out's size, opts->spp samples (default 1), read. */
+bool dirt_pt_render(dirt_pt *pt, const dirt_tracer *tracer, const dirt_frame *frame,
                     const dirt_camera *cam, const dirt_pt_opts *opts, dirt_image *out,
                     dirt_pt_stats *stats);
 
-/* The same through the MMRT A-buffer `mmrt` (built for this frame and
- * camera), MMRT's way (the MMRT paper: no Fetch): a hit's data node becomes
- * the shading point directly (the "fetch" pass only converts it: position =
- * ray origin + t direction, the MMRT hit point; shading normal, uv and
- * material from the data node; geometric normal of the primitive), and the
- * shadow rays of next-event estimation are MMRT traces too. Every ray is
- * traced from 3 thicknesses along it (shadow rays also stop 3 thicknesses
- * short of their end) so that a ray does not hit the surface it leaves
- * within the thickness. opts->mmrt gives the march and thickness; fetch
- * must be compute and direct_visibility false (false, logged, otherwise).
- * Stats: rays counts the active rays traced; bytes_integrator includes the
- * technique's offset ray copy. */
-bool dirt_pt_render_mmrt(dirt_pt *pt, dirt_mmrt *mmrt, const dirt_frame *frame,
-                         const dirt_camera *cam, const dirt_pt_opts *opts, dirt_image *out,
-                         dirt_pt_stats *stats);
+/* The integrator's buffers (and the tracer's own, when `tracer` is given)
+ * for the current accumulation size: at most `max` records into `out`;
+ * returns how many. */
+int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
+                    int max);
 
-/* DOT of the last render's frame graph; false before the first render. */
+/* DOT of the last frame graph; false before the first samples. */
 bool dirt_pt_write_dot(const dirt_pt *pt, const char *path);
 
 #ifdef __cplusplus

@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "dirt/ads.h"
+#include "dirt/ray.h"
 #include "dirt/ref.h"
 #include "dirt/scene.h"
 

@@ -1,6 +1,14 @@
-#include "dirt/mip.h"
+#include "views/hiz.h"
 
-void dirt_mip_dispatch(GLuint program, const dirt_view_set *set)
+#include "common/layout.h"
+#include "gl/program.h"
+
+GLuint views_hiz_program(void)
+{
+    return gl_program_compute("views/hiz.comp", NULL, 0);
+}
+
+void views_hiz_dispatch(GLuint program, const dirt_view_set *set)
 {
     glUseProgram(program);
     for (int d = 1; d < set->num_levels; d++) {
@@ -14,8 +22,8 @@ void dirt_mip_dispatch(GLuint program, const dirt_view_set *set)
         /* Level d reads level d - 1 written by the previous dispatch. */
         if (d > 1)
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glUniform1i(0, d);
-        glDispatchCompute((GLuint)(w + 7) / 8, (GLuint)(h + 7) / 8, (GLuint)set->count);
+        glUniform1i(DIRT_LOC_MIP_LEVEL, d);
+        glDispatchCompute((GLuint)DIRT_GROUPS_2D(w), (GLuint)DIRT_GROUPS_2D(h), (GLuint)set->count);
     }
     glUseProgram(0);
 }

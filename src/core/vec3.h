@@ -1,11 +1,13 @@
-/* Private vector helpers of the integrator and the reference renderer
- * (mirror GLSL's vec3 operators). */
-#ifndef DIRT_INTEGRATOR_VEC3_H
-#define DIRT_INTEGRATOR_VEC3_H
+/* The engine's one vector-math header: dirt_vec3 operations that mirror
+ * GLSL's vec3 operators one float operation at a time, so the CPU reference
+ * and the shaders round alike. Header-only. */
+#ifndef DIRT_CORE_VEC3_H
+#define DIRT_CORE_VEC3_H
 
 #include <math.h>
+#include <stdbool.h>
 
-#include "dirt/integrator.h"
+#include "dirt/vec.h"
 
 static inline dirt_vec3 v3(float x, float y, float z)
 {

@@ -7,7 +7,7 @@
  * under std430 member i starts at byte 16 * i and the record's size is 16
  * times its vector count; the C compiler must give the same numbers, which
  * the asserts below pin down member by member. */
-#include "gl/layout_check.h"
+#include "session/layout_check.h"
 
 #include <stdint.h>
 
@@ -330,6 +330,12 @@ static inline int distinct_locations(int program, int loc)
             L(DIRT_LOC_TEST_FILL_COUNT) L(DIRT_LOC_TEST_FILL_SEED) return 1;
         }
         break;
+    case 9:
+        switch (loc) {
+            L(DIRT_LOC_DISPLAY_PIXELS) L(DIRT_LOC_DISPLAY_WIDTH) L(DIRT_LOC_DISPLAY_INV_SAMPLES)
+            return 1;
+        }
+        break;
     }
     return 0;
 }
@@ -347,6 +353,9 @@ static const dirt_layout_uniform u_pt[] = {
 };
 static const dirt_layout_uniform u_resolve[] = {U("u_pixels", DIRT_LOC_RESOLVE_PIXELS)};
 static const dirt_layout_uniform u_accum[] = {U("u_pixels", DIRT_LOC_ACCUM_PIXELS)};
+static const dirt_layout_uniform u_display[] = {U("u_pixels", DIRT_LOC_DISPLAY_PIXELS),
+                                               U("u_width", DIRT_LOC_DISPLAY_WIDTH),
+                                               U("u_inv_samples", DIRT_LOC_DISPLAY_INV_SAMPLES)};
 static const dirt_layout_uniform u_test_model[] = {
     U("u_mode", DIRT_LOC_TEST_MODEL_MODE), U("u_count", DIRT_LOC_TEST_MODEL_COUNT)};
 static const dirt_layout_uniform u_trace[] = {
@@ -388,7 +397,8 @@ const dirt_layout_program dirt_layout_programs[] = {
     P("integrator/accumulate.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_accum),
     P("integrator/test_model.comp", NULL, DIRT_RANGE_TEST | DIRT_RANGE_MODEL, u_test_model),
     P("dirt/trace.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_trace),
-    P("dirt/mip.comp", NULL, SH, u_mip),
+    P("views/hiz.comp", NULL, SH, u_mip),
+    P("integrator/display.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_display),
     P("dirt/visibility.vert", "dirt/visibility.frag", SH, u_vis),
     P("dirt/visibility_resolve.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_vis_resolve),
     P("mmrt/trace.comp", NULL, SH | DIRT_RANGE_MMRT, u_mmrt_trace),

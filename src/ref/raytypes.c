@@ -7,7 +7,7 @@
 #include "dirt/integrator.h"
 #include "dirt/log.h"
 #include "integrator/rng.h"
-#include "integrator/vec3.h"
+#include "core/vec3.h"
 
 _Static_assert(sizeof(dirt_ray) == sizeof(dirt_ref_ray), "ray layouts");
 

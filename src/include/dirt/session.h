@@ -1,0 +1,200 @@
+/* DIRT engine: the render session every program uses.
+ *
+ * A session renders one scene through one engine: it owns the evaluated
+ * frame (time, clip, loop), the camera, the technique (the DIRT structure,
+ * the MMRT A-buffer, the Embree reference or the raster preview), the path
+ * tracer and its accumulation, and the result image; it borrows the GPU and
+ * the scene, which must outlive it. Rendering is progressive: samples are
+ * added to the accumulation until something that changes the image (time,
+ * camera, options) restarts it. The structure is rebuilt only when the
+ * frame, the camera or its own options change.
+ *
+ * Typical use:
+ *   dirt_session *s = dirt_session_create(gpu, scene, &opts);
+ *   dirt_session_set_time(s, t);
+ *   dirt_session_add_samples(s, 16);
+ *   const dirt_image *img = dirt_session_image(s);   // beauty + AOVs
+ *   const dirt_session_stats *st = dirt_session_get_stats(s);
+ */
+#ifndef DIRT_SESSION_H
+#define DIRT_SESSION_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dirt/ads.h"
+#include "dirt/gpu.h"
+#include "dirt/image.h"
+#include "dirt/mmrt.h"
+#include "dirt/pathtrace.h"
+#include "dirt/scene.h"
+#include "dirt/stats.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct dirt_session dirt_session;
+
+enum dirt_engine {
+    DIRT_ENGINE_DIRT = 0,  /* path tracing through the DIRT structure (GPU) */
+    DIRT_ENGINE_MMRT,      /* the same path tracer through the MMRT A-buffer (GPU) */
+    DIRT_ENGINE_EMBREE,    /* the CPU ground truth (Embree 3) */
+    DIRT_ENGINE_RASTER,    /* rasterized preview with direct lighting (GPU) */
+    DIRT_NUM_ENGINES
+};
+
+extern const char *const dirt_engine_names[DIRT_NUM_ENGINES]; /* "dirt", "mmrt", ... */
+/* False when `name` is none of dirt_engine_names. */
+bool dirt_engine_parse(const char *name, enum dirt_engine *out);
+
+/* Views of the structure; DEFAULT = camera view and cube faces. */
+enum dirt_session_views {
+    DIRT_SESSION_VIEWS_DEFAULT = 0,
+    DIRT_SESSION_VIEWS_SINGLE,
+    DIRT_SESSION_VIEWS_CUBE,
+    DIRT_SESSION_VIEWS_CUBE_CAMERA,
+};
+
+/* Zero-initialised = the defaults named per field. */
+typedef struct dirt_session_opts {
+    enum dirt_engine engine;    /* default dirt */
+    int width;                  /* image width (default 640) */
+    int height;                 /* 0 = width / the camera's aspect (4:3 when it has none) */
+    /* the structure (dirt and mmrt) */
+    enum dirt_session_views views;
+    int face_size;              /* cube face pixels (0 = max(width, height) / 2) */
+    int tile_size;              /* DIRT's S in {1, 2, 4, 8} (0 = 2; MMRT is per pixel) */
+    int buckets;                /* 0 = 16 for dirt, 4 for mmrt (the MMRT paper's) */
+    bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
+    int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
+    enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
+    bool direct_visibility;     /* dirt: first hits from a visibility buffer */
+    enum dirt_mmrt_march march; /* mmrt: Hi-Z (default) or linear */
+    int march_samples;          /* mmrt linear: samples per view (0 = 30) */
+    float thickness;            /* mmrt: 0 = 0.2 % of the scene's diagonal */
+    /* light transport (every engine but raster) */
+    enum dirt_pt_mode mode;     /* path tracing (default) or AO */
+    int bounces;                /* 0 = 4 */
+    uint32_t seed;
+    float background[3];
+    float ao_distance;          /* 0 = infinite */
+    float aperture;             /* thin-lens radius (0 = pinhole) */
+    float focus;                /* focus distance (0 = distance to the scene centre) */
+    int threads;                /* embree: CPU threads (0 = all) */
+    bool cpu_timing;            /* CPU clock around every pass even on a GPU */
+} dirt_session_opts;
+
+/* Which camera the session looks through. */
+enum dirt_camera_choice {
+    DIRT_CAMERA_DEFAULT = 0,    /* the scene's camera 0, or automatic without cameras */
+    DIRT_CAMERA_SCENE,          /* the scene's camera `index` */
+    DIRT_CAMERA_AUTO,           /* frames the whole animation clip, the same at every time */
+    DIRT_CAMERA_EXPLICIT,       /* a camera given by the application */
+};
+
+/* Figures of the accumulation since the last restart (times and rays add
+ * up over dirt_session_add_samples calls; the build's are the last build's). */
+typedef struct dirt_session_stats {
+    enum dirt_engine engine;
+    char device[256];           /* the GL renderer, or "CPU" */
+    int width, height;
+    int samples;                /* accumulated */
+    int bounces;
+    enum dirt_pt_mode mode;
+    double time;                /* scene time of the frame */
+    double build_ms;            /* the structure's last build (embree: BVH) */
+    double trace_ms, fetch_ms, visibility_ms, shade_ms;
+    double total_ms;            /* wall time of the calls, build included */
+    uint64_t rays, aborted, invalid_samples;
+    double mrays_per_s;
+    int num_passes;
+    dirt_pass_time passes[32];  /* build passes, then the path tracer's */
+    int num_buffers;
+    dirt_buffer_bytes buffers[24];
+    uint64_t bytes_total_used, bytes_total_allocated;
+    /* The technique's own figures (the DIRT and MMRT papers' tables). */
+    bool has_ads;
+    dirt_ads_stats ads;
+    bool has_mmrt;
+    dirt_mmrt_stats mmrt;
+} dirt_session_stats;
+
+/* A session on `scene` (and `gpu`, which may be NULL for the embree engine
+ * only). Evaluates time 0 of clip 0 and takes the default camera. NULL after
+ * logging on bad options or when the engine cannot be made. */
+dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
+                                  const dirt_session_opts *opts);
+/* Accepts NULL. */
+void dirt_session_destroy(dirt_session *s);
+
+/* Sets the options. Rebuilds only what they touch (engine objects, the
+ * structure, the integrator state). *restarted (may be NULL) says whether the
+ * accumulation restarts (it does for any change that alters the image).
+ * False after logging on bad options; the session keeps the old ones. */
+bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool *restarted);
+const dirt_session_opts *dirt_session_get_opts(const dirt_session *s);
+
+/* Evaluates the scene at `time` seconds of `eval` (clip, loop; NULL = clip 0,
+ * clamped). Restarts the accumulation. False after logging (bad clip). */
+bool dirt_session_set_time(dirt_session *s, double time, const dirt_eval_opts *eval);
+const dirt_frame *dirt_session_frame(const dirt_session *s);
+
+/* Chooses the camera: `index` is the scene camera for DIRT_CAMERA_SCENE,
+ * `cam` the camera for DIRT_CAMERA_EXPLICIT (else ignored, may be NULL).
+ * Restarts the accumulation. False after logging (no such camera). */
+bool dirt_session_set_camera(dirt_session *s, enum dirt_camera_choice choice, int index,
+                             const dirt_camera *cam);
+/* The camera in use at the current time (aperture and focus applied). */
+const dirt_camera *dirt_session_camera(const dirt_session *s);
+
+/* Image size in use (height resolved from the camera's aspect). */
+void dirt_session_size(const dirt_session *s, int *width, int *height);
+
+/* Builds the technique's structure for the current frame, camera and
+ * options now (dirt_session_add_samples does it when needed). */
+bool dirt_session_build(dirt_session *s);
+
+/* Restarts the accumulation (0 samples). */
+void dirt_session_reset(dirt_session *s);
+/* Adds `count` samples (raster: renders the preview; count is ignored),
+ * building the structure first when the frame, camera or options changed.
+ * `progress` (may be NULL) is called after every sample. False after
+ * logging on failure. */
+bool dirt_session_add_samples(dirt_session *s, int count,
+                              void (*progress)(void *user, int done, int total), void *user);
+int dirt_session_samples(const dirt_session *s);
+
+/* The accumulated image: RGBA beauty (the mean) and the engine's AOVs
+ * (dirt, mmrt, embree: "albedo.R/G/B", "N.X/Y/Z"; embree also "Z"). Owned by
+ * the session, valid until the next call that changes it. NULL (logged)
+ * before any sample or on a readback failure. */
+const dirt_image *dirt_session_image(dirt_session *s);
+
+/* The beauty as an RGBA32F GL texture (texel (x, y) = pixel (x, y), row 0 =
+ * top) for display: on the GPU engines it never leaves the GPU; embree's
+ * image is uploaded. Owned by the session. 0 (logged) before any sample. */
+uint32_t dirt_session_display_texture(dirt_session *s);
+
+const dirt_session_stats *dirt_session_get_stats(const dirt_session *s);
+
+/* Writes a stats document as JSON (through cJSON), atomically: the
+ * figures of `frames[count - 1]`'s run (engine, device, size, samples),
+ * their means, and every frame's record in "frames". False after logging
+ * when the file cannot be written. */
+bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count);
+
+/* Frame graph DOT of the path tracer (dirt, mmrt) or of the raster preview.
+ * False (logged) before the first samples or for the embree engine. */
+bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
+
+/* The DIRT structure or MMRT A-buffer of the last build (NULL for other
+ * engines or before a build): for pictures and checks. */
+dirt_ads *dirt_session_ads(dirt_session *s);
+dirt_mmrt *dirt_session_mmrt(dirt_session *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

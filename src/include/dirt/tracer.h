@@ -1,0 +1,62 @@
+/* DIRT engine: rays, hits and the tracer interface every ray-tracing
+ * technique offers the integrator.
+ *
+ * A technique (the DIRT structure, the MMRT A-buffer) builds its structure
+ * for a frame, then hands out a dirt_tracer: a small table of functions over
+ * GPU buffers (OpenGL buffer names) that traces batches of dirt_gpu_ray
+ * records into dirt_gpu_hit records and turns hits into shading points
+ * (dirt_gpu_gpoint, glsl/common/layout.h). The integrator (pathtrace.h)
+ * knows only this interface, never a technique's internals; each technique's
+ * own options (march, Hi-Z levels, Fetch kind, thickness) are given to it
+ * when the tracer is made (dirt_ads_tracer, dirt_mmrt_tracer). */
+#ifndef DIRT_TRACER_H
+#define DIRT_TRACER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dirt/ray.h"
+#include "dirt/views.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A technique's tracer for the structure of its last build. Owned by the
+ * technique; valid until its next build, option change or destruction.
+ * Buffers are OpenGL buffer names; every function issues the memory
+ * barriers it needs before and after its own work. */
+typedef struct dirt_tracer {
+    const char *name;          /* "dirt", "mmrt" */
+    void *self;
+    /* Traces `count` dirt_gpu_ray records of `rays` into the dirt_gpu_hit
+     * records of `hits` (hit i's owner = i). any_hit: shadow rays (only
+     * "something in (tmin, tmax)" matters). */
+    bool (*trace)(void *self, uint32_t rays, uint32_t hits, uint32_t count, bool any_hit);
+    /* First hits of the camera view from a visibility buffer (one ray and
+     * hit per pixel of the camera view); NULL when the technique has none. */
+    bool (*visibility)(void *self, uint32_t rays, uint32_t hits);
+    /* Writes G of every hit's owner pixel into ring slot `slot` of
+     * `gpoints` (misses: prim = DIRT_NO_HIT, wo = -ray direction), for the
+     * hits of the last closest-hit trace (or visibility) of these buffers. */
+    bool (*fetch)(void *self, uint32_t rays, uint32_t hits, uint32_t count, uint32_t gpoints,
+                  uint32_t slot);
+    /* Binds the dirt_gpu_vertex buffer at DIRT_BIND_VERTICES and the
+     * per-primitive materials at DIRT_BIND_PRIM_MATERIAL (Shade reads them). */
+    void (*bind_geometry)(void *self);
+    /* Resets / reads the active rays traced (tmax >= tmin) and the rays
+     * whose march gave up, since the reset (blocking read). */
+    void (*reset_counts)(void *self);
+    bool (*read_counts)(void *self, uint64_t *rays, uint64_t *aborted);
+    /* A new accumulation begins (sample 0): a technique whose traces are
+     * randomised per call restarts its sequence. NULL when there is none. */
+    void (*restart)(void *self);
+    const dirt_view_set *views; /* the technique's views (direct visibility) */
+    uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
+} dirt_tracer;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,169 @@
+/* The render session (dirt/session.h): progressive accumulation equals one
+ * render of all samples, bit for bit, in every GPU engine; the display
+ * texture holds the same pixels; option changes restart only when the image
+ * changes; the automatic camera is one camera for a whole animation; the
+ * stats record adds up. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dirt/session.h"
+#include "gl/gl.h"
+#include "gpu.h"
+
+#define W 48
+#define H 36
+
+/* True when both images have the same size, channels and bits. */
+static bool same_image(const dirt_image *a, const dirt_image *b)
+{
+    if (a->width != b->width || a->height != b->height ||
+        a->channel_count != b->channel_count)
+        return false;
+    size_t n = (size_t)a->width * a->height;
+    if (memcmp(a->rgba, b->rgba, 4 * n * sizeof(float)))
+        return false;
+    for (int c = 0; c < a->channel_count; c++) {
+        const float *o = dirt_image_find_channel(b, a->channels[c].name);
+        if (!o || memcmp(a->channels[c].data, o, n * sizeof(float)))
+            return false;
+    }
+    return true;
+}
+
+static dirt_image *copy_image(const dirt_image *img)
+{
+    dirt_image *c = dirt_image_create(img->width, img->height);
+    CHECK(c != NULL);
+    memcpy(c->rgba, img->rgba, 4 * sizeof(float) * img->width * img->height);
+    for (int i = 0; i < img->channel_count; i++) {
+        float *d = dirt_image_add_channel(c, img->channels[i].name);
+        memcpy(d, img->channels[i].data, sizeof(float) * img->width * img->height);
+    }
+    return c;
+}
+
+/* 1 + 1 + 2 samples, then 4 at once in a fresh session: the same image. */
+static void check_progressive(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_opts o,
+                              const char *what)
+{
+    dirt_session *s = dirt_session_create(gpu, scene, &o);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    CHECK(dirt_session_add_samples(s, 1, NULL, NULL));
+    CHECK(dirt_session_add_samples(s, 1, NULL, NULL));
+    const dirt_image *two = dirt_session_image(s); /* reading in between changes nothing */
+    CHECK(two != NULL);
+    CHECK(dirt_session_add_samples(s, 2, NULL, NULL));
+    CHECK(dirt_session_samples(s) == 4);
+    dirt_image *steps = copy_image(dirt_session_image(s));
+    const dirt_session_stats *st = dirt_session_get_stats(s);
+    CHECK(st->samples == 4 && st->rays > 0 && st->aborted == 0);
+
+    /* The display texture: the same pixels, never through the CPU image. */
+    GLuint tex = dirt_session_display_texture(s);
+    CHECK(tex != 0);
+    float *px = malloc(sizeof(float) * 4 * W * H);
+    CHECK(px && gl_texture_read_rgba32f(tex, W, H, px));
+    CHECK_MSG(memcmp(px, steps->rgba, sizeof(float) * 4 * W * H) == 0,
+              "%s: display texture differs from the image", what);
+    free(px);
+
+    dirt_session *one = dirt_session_create(gpu, scene, &o);
+    CHECK(one && dirt_session_add_samples(one, 4, NULL, NULL));
+    const dirt_image *all = one ? dirt_session_image(one) : NULL;
+    CHECK_MSG(all && same_image(steps, all), "%s: 1+1+2 samples differ from 4", what);
+    /* Not trivially equal: 2 samples differ from 4. */
+    dirt_session_reset(one);
+    CHECK(dirt_session_samples(one) == 0);
+    CHECK(dirt_session_add_samples(one, 2, NULL, NULL));
+    const dirt_image *half = dirt_session_image(one);
+    CHECK_MSG(half && !same_image(steps, half), "%s: 2 samples equal 4", what);
+    fprintf(stderr, "%s: 1+1+2 samples == 4 samples, display texture == image\n", what);
+    dirt_image_destroy(steps);
+    dirt_session_destroy(one);
+    dirt_session_destroy(s);
+}
+
+static void check_restarts(dirt_gpu *gpu, const dirt_scene *scene)
+{
+    dirt_session_opts o = {.width = W, .height = H, .views = DIRT_SESSION_VIEWS_SINGLE};
+    dirt_session *s = dirt_session_create(gpu, scene, &o);
+    CHECK(s && dirt_session_add_samples(s, 2, NULL, NULL));
+    bool restarted = true;
+    o.threads = 3; /* how the work is done, not the image */
+    CHECK(dirt_session_set_opts(s, &o, &restarted) && !restarted);
+    CHECK(dirt_session_samples(s) == 2);
+    o.seed = 9;
+    CHECK(dirt_session_set_opts(s, &o, &restarted) && restarted);
+    CHECK(dirt_session_samples(s) == 0);
+    CHECK(dirt_session_add_samples(s, 1, NULL, NULL));
+    o.buckets = 3; /* the structure */
+    CHECK(dirt_session_set_opts(s, &o, &restarted) && restarted);
+    CHECK(dirt_session_add_samples(s, 1, NULL, NULL));
+    CHECK(dirt_session_get_stats(s)->ads.bytes_heads ==
+          (uint64_t)3 * 4 * ((W + 1) / 2) * ((H + 1) / 2));
+    /* Bad options are refused and the old ones kept. */
+    dirt_session_opts bad = o;
+    bad.tile_size = 3;
+    CHECK(!dirt_session_set_opts(s, &bad, &restarted));
+    CHECK(dirt_session_get_opts(s)->tile_size == 0);
+    dirt_session_destroy(s);
+}
+
+/* The stats record: build passes and the path tracer's, tagged with a clock;
+ * the buffers add up to the totals and to the technique's own figures. */
+static void check_stats(dirt_gpu *gpu, const dirt_scene *scene)
+{
+    dirt_session_opts o = {.width = W, .height = H};
+    dirt_session *s = dirt_session_create(gpu, scene, &o);
+    CHECK(s && dirt_session_add_samples(s, 1, NULL, NULL));
+    const dirt_session_stats *st = dirt_session_get_stats(s);
+    bool software = dirt_gpu_get_caps(gpu)->software;
+    uint64_t used = 0, allocated = 0;
+    for (int i = 0; i < st->num_buffers; i++) {
+        used += st->buffers[i].used;
+        allocated += st->buffers[i].allocated;
+        CHECK(st->buffers[i].used <= st->buffers[i].allocated);
+    }
+    CHECK(used == st->bytes_total_used && allocated == st->bytes_total_allocated);
+    CHECK(st->has_ads && st->ads.bytes_total_used < st->bytes_total_used);
+    /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 64 + 80 + 48 bytes per pixel. */
+    CHECK(st->bytes_total_used - st->ads.bytes_total_used == (uint64_t)W * H * 448);
+    int build = 0, pt = 0;
+    for (int i = 0; i < st->num_passes; i++) {
+        const dirt_pass_time *p = &st->passes[i];
+        CHECK_MSG(p->clock == (software ? DIRT_CLOCK_CPU : DIRT_CLOCK_GPU),
+                  "pass %s measured by %s", p->name, dirt_clock_names[p->clock]);
+        for (int k = 0; k < DIRT_ADS_NUM_PASSES; k++)
+            build += !strcmp(p->name, dirt_ads_pass_names[k]);
+        pt += !strcmp(p->name, "trace") || !strcmp(p->name, "shade");
+    }
+    CHECK(build == DIRT_ADS_NUM_PASSES && pt == 2);
+    CHECK(st->build_ms > 0 && st->trace_ms > 0 && st->rays >= (uint64_t)W * H);
+    dirt_session_destroy(s);
+}
+
+int main(void)
+{
+    dirt_gpu *gpu = test_gpu();
+    if (!gpu)
+        return TEST_SKIP;
+    dirt_scene *scene = dirt_scene_create_default();
+    CHECK(scene != NULL);
+    dirt_session_opts dirt = {.width = W, .height = H, .bounces = 2, .seed = 3};
+    check_progressive(gpu, scene, dirt, "dirt");
+    dirt.fetch = DIRT_FETCH_RASTER;
+    dirt.views = DIRT_SESSION_VIEWS_SINGLE;
+    check_progressive(gpu, scene, dirt, "dirt, raster fetch, single view");
+    dirt_session_opts mmrt = {.engine = DIRT_ENGINE_MMRT, .width = W, .height = H,
+                              .bounces = 2, .march = DIRT_MMRT_MARCH_LINEAR, .seed = 5};
+    check_progressive(gpu, scene, mmrt, "mmrt, linear march");
+    check_restarts(gpu, scene);
+    check_stats(gpu, scene);
+    CHECK(dirt_gpu_error_count(gpu) == 0);
+    dirt_scene_destroy(scene);
+    dirt_gpu_destroy(gpu);
+    return check_finish();
+}
