@@ -153,6 +153,19 @@ expect_rc 0 "frame range" -- "$tmp/good.gltf" -o "$out/f_%03d.png" --frames 2:4 
 for i in 002 003 004; do [ -s "$out/f_$i.png" ] && ok || fail "frame $i missing"; done
 [ ! -e "$out/f_001.png" ] && [ ! -e "$out/f_005.png" ] && ok || fail "frames outside the range written"
 
+# --info: the scene summary, no output needed.
+expect_rc 0 "info of the default scene" -- --info
+grep -q '^triangles  1478$' "$tmp/stdout" && grep -q '^cameras    1$' "$tmp/stdout" \
+  && grep -q '^emitters   2 triangles, 1 emissive material$' "$tmp/stdout" && ok \
+  || fail "--info lacks the default scene's counts"
+expect_rc 2 "info of a missing scene" -- --info "$tmp/nope.gltf"
+
+# Without -H the height follows the camera's aspect (the default scene's
+# camera has none: 4:3, like the automatic camera).
+expect_rc 0 "height from the aspect" -- -o "$out/aspect.png" -W 40 --spp 1
+python3 -c 'import struct,sys; d=open(sys.argv[1],"rb").read(24); sys.exit(struct.unpack(">II", d[16:24]) != (40, 30))' \
+  "$out/aspect.png" && ok || fail "aspect.png is not 40x30"
+
 expect_rc 0 "missing texture only warns" -- "$tmp/notex.gltf" -o "$out/notex.png" -W 16 -H 16 --spp 1
 grep -qi "missing.png" "$tmp/stderr" && ok || fail "no warning naming the missing texture"
 
