@@ -6,7 +6,8 @@ usage: check_layers.py SRC_DIR STAMP
 Each folder of src/ is one layer; LAYERS lists what each may use (the
 layers below it; the techniques dirt, mmrt and raster are siblings and do
 not see each other). A public header (src/include/dirt/X.h) belongs to the
-layer that implements it (PUBLIC). Headers of glsl/common/ (shared C/GLSL
+layer that implements it (PUBLIC). The programs (app) include public
+headers only. Headers of glsl/common/ (shared C/GLSL
 layouts) are open to every layer. On success the stamp file is written; on
 a violation every offending line is printed and the exit status is 1.
 """
@@ -91,7 +92,12 @@ def main():
                     if not m:
                         continue
                     o = owner(m.group(1), here)
-                    if o is not None and o not in allowed:
+                    inc = m.group(1)
+                    if here == "app" and o not in (None, "app") and not (
+                            inc.startswith("dirt/") and inc[5:] in PUBLIC):
+                        errors.append("%s:%d: the programs use public headers only, not \"%s\""
+                                      % (os.path.relpath(path, src), no, inc))
+                    elif o is not None and o not in allowed:
                         errors.append("%s:%d: layer '%s' includes \"%s\" of layer '%s'"
                                       % (os.path.relpath(path, src), no, here, m.group(1), o))
     for path in missing:
