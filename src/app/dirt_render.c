@@ -115,7 +115,6 @@ static void usage(FILE *out)
 "Images are written atomically: a failed run leaves no partial file.\n");
 }
 
-static const char *const engines[] = {"dirt", "mmrt", "embree", "raster", NULL};
 static const char *const modes[] = {"pt", "ao", NULL};
 static const char *const views[] = {"", "single", "cube", "cube+camera", NULL};
 static const char *const fetches[] = {"compute", "raster", NULL};
@@ -146,6 +145,7 @@ static bool check_options(const options *o)
 {
     const dirt_session_opts *s = &o->s;
     bool many = o->frames_set && o->frame_last > o->frame_first;
+    char why[256];
     if (o->info)
         return true;
     if (!o->output) {
@@ -157,18 +157,10 @@ static bool check_options(const options *o)
                   "integer pattern such as frame_%%04d.exr", o->output);
     } else if (!many && strchr(o->output, '%') && !cli_frame_pattern_ok(o->output)) {
         cli_error(PROG, "output '%s' has a stray '%%'", o->output);
-    } else if (s->tile_size && s->tile_size != 1 && s->tile_size != 2 && s->tile_size != 4 &&
-               s->tile_size != 8) {
-        cli_error(PROG, "--tile expects 1, 2, 4 or 8, got '%d'", s->tile_size);
-    } else if (s->engine == DIRT_ENGINE_MMRT &&
-               (s->fetch == DIRT_FETCH_RASTER || s->direct_visibility)) {
-        cli_error(PROG, "--engine mmrt has no Fetch pass and no visibility buffer: "
-                  "--fetch raster and --direct-visibility are DIRT's");
+    } else if (!dirt_session_check_opts(s, why, sizeof(why))) {
+        cli_error(PROG, "%s", why);
     } else if (o->debug_ads && many) {
         cli_error(PROG, "--debug-ads works on a single frame, not with --frames");
-    } else if (s->direct_visibility && s->engine == DIRT_ENGINE_DIRT &&
-               s->views == DIRT_SESSION_VIEWS_CUBE) {
-        cli_error(PROG, "--direct-visibility needs a camera view: --views single or cube+camera");
     } else if (o->png_preview && !cli_has_ext(o->output, ".exr")) {
         cli_error(PROG, "--png needs an .exr output (the output is already a PNG)");
     } else if (o->graph_dot && s->engine != DIRT_ENGINE_DIRT && s->engine != DIRT_ENGINE_MMRT) {
@@ -184,6 +176,9 @@ static int parse_args(int argc, char **argv, options *o)
 {
     *o = (options){.s = {.width = 640}, .fps = 24, .camera = -1, .spp = 16};
     long hiz_top = -1;
+    const char *engines[DIRT_NUM_ENGINES + 1] = {0};
+    for (int e = 0; e < DIRT_NUM_ENGINES; e++)
+        engines[e] = dirt_engine_names[e];
     /* Options with a value (argv[i + 1]), by kind: s string, i int, l long,
      * u uint32, d double, f float, c choice of `names`, F frames, b colour,
      * j .json path, g .dot path. */

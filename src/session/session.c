@@ -14,17 +14,6 @@
 
 const char *const dirt_engine_names[DIRT_NUM_ENGINES] = {"dirt", "mmrt", "embree", "raster"};
 
-bool dirt_engine_parse(const char *name, enum dirt_engine *out)
-{
-    for (int i = 0; name && i < DIRT_NUM_ENGINES; i++) {
-        if (!strcmp(name, dirt_engine_names[i])) {
-            *out = (enum dirt_engine)i;
-            return true;
-        }
-    }
-    return false;
-}
-
 struct dirt_session {
     dirt_gpu *gpu;
     const dirt_scene *scene;
@@ -77,40 +66,45 @@ static enum dirt_view_mode view_mode(enum dirt_session_views v)
                                           : DIRT_VIEWS_CUBE_CAMERA;
 }
 
+bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
+{
+    char local[8];
+    if (!why) {
+        why = local;
+        size = sizeof(local);
+    }
+    if ((unsigned)o->engine >= DIRT_NUM_ENGINES)
+        snprintf(why, size, "engine %d unknown", (int)o->engine);
+    else if (o->width < 0 || o->height < 0 || o->width > 16384 || o->height > 16384)
+        snprintf(why, size, "image size %dx%d out of range", o->width, o->height);
+    else if (o->tile_size && o->tile_size != 1 && o->tile_size != 2 && o->tile_size != 4 &&
+             o->tile_size != 8)
+        snprintf(why, size, "tile size %d: must be 1, 2, 4 or 8", o->tile_size);
+    else if (o->buckets < 0 || o->bounces < 0 || o->bounces > 64 || o->face_size < 0 ||
+             o->hiz_levels < 0 || o->march_samples < 0 || o->thickness < 0 ||
+             o->aperture < 0 || o->focus < 0 || o->ao_distance < 0 || o->threads < 0)
+        snprintf(why, size, "a negative or out-of-range option");
+    else if (o->engine == DIRT_ENGINE_MMRT &&
+             (o->fetch == DIRT_FETCH_RASTER || o->direct_visibility))
+        snprintf(why, size, "the mmrt engine has no Fetch pass and no visibility buffer: the "
+                            "raster Fetch and direct visibility are DIRT's");
+    else if (o->engine == DIRT_ENGINE_DIRT && o->direct_visibility &&
+             o->views == DIRT_SESSION_VIEWS_CUBE)
+        snprintf(why, size, "direct visibility needs a camera view: single or cube+camera views");
+    else
+        return true;
+    return false;
+}
+
 static bool check_opts(const dirt_session_opts *o, bool have_gpu)
 {
-    if ((unsigned)o->engine >= DIRT_NUM_ENGINES) {
-        DIRT_ERROR("engine %d unknown", (int)o->engine);
+    char why[256];
+    if (!dirt_session_check_opts(o, why, sizeof(why))) {
+        DIRT_ERROR("%s", why);
         return false;
     }
     if (gpu_engine(o->engine) && !have_gpu) {
         DIRT_ERROR("engine %s needs a GPU", dirt_engine_names[o->engine]);
-        return false;
-    }
-    if (o->width < 0 || o->height < 0 || o->width > 16384 || o->height > 16384) {
-        DIRT_ERROR("image size %dx%d out of range", o->width, o->height);
-        return false;
-    }
-    if (o->tile_size && o->tile_size != 1 && o->tile_size != 2 && o->tile_size != 4 &&
-        o->tile_size != 8) {
-        DIRT_ERROR("tile size %d: 1, 2, 4 or 8", o->tile_size);
-        return false;
-    }
-    if (o->buckets < 0 || o->bounces < 0 || o->bounces > 64 || o->face_size < 0 ||
-        o->hiz_levels < 0 || o->march_samples < 0 || o->thickness < 0 || o->aperture < 0 ||
-        o->focus < 0 || o->ao_distance < 0 || o->threads < 0) {
-        DIRT_ERROR("negative or out-of-range session option");
-        return false;
-    }
-    if (o->engine == DIRT_ENGINE_MMRT &&
-        (o->fetch == DIRT_FETCH_RASTER || o->direct_visibility)) {
-        DIRT_ERROR("MMRT has no Fetch pass and no visibility buffer: raster Fetch and direct "
-                   "visibility are DIRT's");
-        return false;
-    }
-    if (o->engine == DIRT_ENGINE_DIRT && o->direct_visibility &&
-        o->views == DIRT_SESSION_VIEWS_CUBE) {
-        DIRT_ERROR("direct visibility needs a camera view (single or cube+camera views)");
         return false;
     }
     return true;

@@ -46,8 +46,6 @@ enum dirt_engine {
 };
 
 extern const char *const dirt_engine_names[DIRT_NUM_ENGINES]; /* "dirt", "mmrt", ... */
-/* False when `name` is none of dirt_engine_names. */
-bool dirt_engine_parse(const char *name, enum dirt_engine *out);
 
 /* Views of the structure; DEFAULT = camera view and cube faces. */
 enum dirt_session_views {
@@ -85,6 +83,11 @@ typedef struct dirt_session_opts {
     int threads;                /* embree: CPU threads (0 = all) */
     bool cpu_timing;            /* CPU clock around every pass even on a GPU */
 } dirt_session_opts;
+
+/* True when `opts` are valid (the checks dirt_session_create and
+ * dirt_session_set_opts make, except that a GPU engine needs a GPU); else
+ * false with the reason in `why` (may be NULL; one line, no prefix). */
+bool dirt_session_check_opts(const dirt_session_opts *opts, char *why, size_t size);
 
 /* Which camera the session looks through. */
 enum dirt_camera_choice {
