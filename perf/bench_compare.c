@@ -16,112 +16,77 @@
  * same frame graph: trace ms (trace + shadow trace passes), rays traced,
  * Mrays/s, and relMSE of that 1-spp image against Embree's with the same
  * seed (DIRT agrees to float rounding; MMRT's paths diverge where its hits
- * are approximate). Times: CPU wall clock around glFinish per pass
- * (cpu_timing), the meaningful figure on llvmpipe. */
+ * are approximate). Everything runs through the render session
+ * (dirt/session.h), so the figures are the ones dirt-render --stats reports;
+ * times follow the engine's one timing rule (GPU timers on a GPU, the CPU
+ * clock around glFinish on a software renderer such as llvmpipe). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
-#include "dirt/mmrt.h"
-#include "dirt/pathtrace.h"
-#include "dirt/ref.h"
-#include "dirt/scene.h"
+#include "dirt/session.h"
 
 typedef struct config {
     int width, height, buckets, bounces, repeat;
-    enum dirt_view_mode views[3];
+    enum dirt_session_views views[3];
     int num_views;
 } config;
 
-static const char *view_name(enum dirt_view_mode m)
+static const char *view_name(enum dirt_session_views m)
 {
-    return m == DIRT_VIEWS_SINGLE ? "single" : m == DIRT_VIEWS_CUBE ? "cube" : "cube+camera";
+    return m == DIRT_SESSION_VIEWS_SINGLE ? "single"
+           : m == DIRT_SESSION_VIEWS_CUBE ? "cube"
+                                          : "cube+camera";
 }
 
-static double sum_ms(const double *gpu, const double *cpu, int n)
+static dirt_session_opts session_opts(const config *c, enum dirt_engine e,
+                                      enum dirt_session_views vm)
 {
-    double s = 0;
-    for (int i = 0; i < n; i++) {
-        double t = cpu[i] >= 0 ? cpu[i] : gpu[i];
-        if (t > 0)
-            s += t;
-    }
-    return s;
+    return (dirt_session_opts){.engine = e, .width = c->width, .height = c->height,
+                               .views = vm, .tile_size = 1, .buckets = c->buckets,
+                               .bounces = c->bounces, .seed = 7, .background = {1, 1, 1}};
 }
 
-/* One row per technique for one scene and view mode. */
-static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame *f,
-                        const dirt_camera *cam, const config *c, enum dirt_view_mode vm,
-                        const char *scene_name, const dirt_image *ref, dirt_pt *pt)
+/* One row: the build (mean of --repeat after a warm-up) and one sample per
+ * pixel through technique `e`. */
+static bool bench_row(dirt_gpu *gpu, const dirt_scene *scene, const config *c,
+                      enum dirt_engine e, enum dirt_session_views vm, const char *scene_name,
+                      const dirt_image *ref)
 {
-    dirt_view_opts vo = {.mode = vm, .width = c->width, .height = c->height, .tile_size = 1};
-    dirt_pt_opts po = {.spp = 1, .bounces = c->bounces, .seed = 7, .cpu_timing = true,
-                       .background = {1, 1, 1}};
-    bool ok = false;
-    dirt_ads *ads = NULL;
-    dirt_mmrt *m = NULL;
-    dirt_image *img = dirt_image_create(c->width, c->height);
-    (void)scene;
-    if (!img)
-        goto done;
-
-    /* DIRT */
-    dirt_ads_opts ao = {.views = vo, .buckets = c->buckets, .cpu_timing = true};
-    ads = dirt_ads_create(gpu, &ao);
-    if (!ads || !dirt_ads_build(ads, f, cam))
-        goto done;
+    dirt_session_opts o = session_opts(c, e, vm);
+    dirt_session *s = dirt_session_create(gpu, scene, &o);
+    bool ok = s && dirt_session_build(s);
     double build = 0;
-    for (int r = 0; r < c->repeat; r++) {
-        if (!dirt_ads_build(ads, f, cam))
-            goto done;
-        const dirt_ads_stats *as = dirt_ads_get_stats(ads);
-        build += sum_ms(as->gpu_ms, as->cpu_ms, DIRT_ADS_NUM_PASSES) / c->repeat;
+    for (int r = 0; ok && r < c->repeat; r++) {
+        ok = dirt_session_set_time(s, 0, NULL) && dirt_session_build(s);
+        build += ok ? dirt_session_get_stats(s)->build_ms / c->repeat : 0;
     }
-    dirt_pt_stats st;
-    if (!dirt_pt_render(pt, dirt_ads_tracer(ads, NULL), f, cam, &po, img, &st))
-        goto done;
-    const dirt_ads_stats *as = dirt_ads_get_stats(ads);
-    printf("| %s | %s | DIRT | n_p %llu, nodes %llu | %.2f | %.1f | %.1f | %llu | %.3f | %.3g |\n",
-           scene_name, view_name(vm), (unsigned long long)as->samples,
-           (unsigned long long)as->nodes, as->bytes_total_used / 1048576.0, build, st.trace_ms,
-           (unsigned long long)st.rays, st.mrays_per_s, dirt_image_rel_mse(img, ref));
-    fflush(stdout);
-    dirt_ads_destroy(ads);
-    ads = NULL;
-
-    /* MMRT */
-    dirt_mmrt_opts mo = {.views = vo, .buckets = c->buckets, .cpu_timing = true};
-    m = dirt_mmrt_create(gpu, &mo);
-    if (!m || !dirt_mmrt_build(m, f, cam))
-        goto done;
-    build = 0;
-    for (int r = 0; r < c->repeat; r++) {
-        if (!dirt_mmrt_build(m, f, cam))
-            goto done;
-        const dirt_mmrt_stats *ms = dirt_mmrt_get_stats(m);
-        build += sum_ms(ms->gpu_ms, ms->cpu_ms, DIRT_MMRT_NUM_PASSES) / c->repeat;
+    ok = ok && dirt_session_add_samples(s, 1, NULL, NULL);
+    const dirt_image *img = ok ? dirt_session_image(s) : NULL;
+    if (img) {
+        const dirt_session_stats *st = dirt_session_get_stats(s);
+        char records[96];
+        if (st->has_ads)
+            snprintf(records, sizeof(records), "n_p %llu, nodes %llu",
+                     (unsigned long long)st->ads.samples, (unsigned long long)st->ads.nodes);
+        else
+            snprintf(records, sizeof(records), "fragments %llu",
+                     (unsigned long long)st->mmrt.fragments);
+        uint64_t bytes = st->has_ads ? st->ads.bytes_total_used : st->mmrt.bytes_total_used;
+        printf("| %s | %s | %s | %s | %.2f | %.1f | %.1f | %llu | %.3f | %.3g |\n", scene_name,
+               view_name(vm), e == DIRT_ENGINE_DIRT ? "DIRT" : "MMRT", records,
+               bytes / 1048576.0, build, st->trace_ms, (unsigned long long)st->rays,
+               st->mrays_per_s, dirt_image_rel_mse(img, ref));
+        fflush(stdout);
+    } else {
+        fprintf(stderr, "bench-compare: %s, %s views, %s failed (see above)\n", scene_name,
+                view_name(vm), dirt_engine_names[e]);
     }
-    if (!dirt_pt_render(pt, dirt_mmrt_tracer(m, NULL), f, cam, &po, img, &st))
-        goto done;
-    const dirt_mmrt_stats *ms = dirt_mmrt_get_stats(m);
-    printf("| %s | %s | MMRT | fragments %llu | %.2f | %.1f | %.1f | %llu | %.3f | %.3g |\n",
-           scene_name, view_name(vm), (unsigned long long)ms->fragments,
-           ms->bytes_total_used / 1048576.0, build, st.trace_ms, (unsigned long long)st.rays,
-           st.mrays_per_s, dirt_image_rel_mse(img, ref));
-    fflush(stdout);
-    ok = true;
-done:
-    if (!ok)
-        fprintf(stderr, "bench-compare: %s, %s views failed (see above)\n", scene_name,
-                view_name(vm));
-    dirt_ads_destroy(ads);
-    dirt_mmrt_destroy(m);
-    dirt_image_destroy(img);
-    return ok;
+    dirt_session_destroy(s);
+    return img != NULL;
 }
 
 static bool parse_views(const char *s, config *c)
@@ -130,11 +95,11 @@ static bool parse_views(const char *s, config *c)
     while (*s && c->num_views < 3) {
         size_t n = strcspn(s, ",");
         if (n == 6 && !strncmp(s, "single", 6))
-            c->views[c->num_views++] = DIRT_VIEWS_SINGLE;
+            c->views[c->num_views++] = DIRT_SESSION_VIEWS_SINGLE;
         else if (n == 4 && !strncmp(s, "cube", 4))
-            c->views[c->num_views++] = DIRT_VIEWS_CUBE;
+            c->views[c->num_views++] = DIRT_SESSION_VIEWS_CUBE;
         else if (n == 11 && !strncmp(s, "cube+camera", 11))
-            c->views[c->num_views++] = DIRT_VIEWS_CUBE_CAMERA;
+            c->views[c->num_views++] = DIRT_SESSION_VIEWS_CUBE_CAMERA;
         else
             return false;
         s += n;
@@ -147,7 +112,8 @@ static bool parse_views(const char *s, config *c)
 int main(int argc, char **argv)
 {
     config c = {.width = 512, .height = 256, .buckets = 4, .bounces = 4, .repeat = 2,
-                .views = {DIRT_VIEWS_SINGLE, DIRT_VIEWS_CUBE_CAMERA}, .num_views = 2};
+                .views = {DIRT_SESSION_VIEWS_SINGLE, DIRT_SESSION_VIEWS_CUBE_CAMERA},
+                .num_views = 2};
     const char *scenes[16];
     int num_scenes = 0;
     for (int i = 1; i < argc; i++) {
@@ -205,28 +171,20 @@ int main(int argc, char **argv)
             continue;
         }
         dirt_scene *scene = def ? dirt_scene_create_default() : dirt_scene_load(scenes[s], NULL);
-        dirt_frame *f = scene ? dirt_scene_evaluate(scene, 0, NULL) : NULL;
-        dirt_pt *pt = scene ? dirt_pt_create(gpu, scene) : NULL;
-        dirt_image *ref = NULL;
-        if (f && pt) {
-            dirt_camera cam;
-            if (f->num_cameras)
-                cam = f->cameras[0];
-            else
-                dirt_camera_auto(f, &cam);
-            dirt_ref_opts ro = {.width = c.width, .height = c.height, .spp = 1,
-                                .bounces = c.bounces, .seed = 7, .background = {1, 1, 1}};
-            ref = dirt_ref_render(scene, f, &cam, &ro, NULL);
-            const char *name = def ? "default" : strrchr(scenes[s], '/') ? strrchr(scenes[s], '/') + 1
-                                                                        : scenes[s];
-            for (int v = 0; ref && v < c.num_views; v++)
-                failures += !bench_views(gpu, scene, f, &cam, &c, c.views[v], name, ref, pt);
+        /* The reference: Embree, the same seed, camera and settings. */
+        dirt_session_opts ro = session_opts(&c, DIRT_ENGINE_EMBREE, DIRT_SESSION_VIEWS_DEFAULT);
+        dirt_session *ref = scene ? dirt_session_create(gpu, scene, &ro) : NULL;
+        const dirt_image *ref_img =
+            ref && dirt_session_add_samples(ref, 1, NULL, NULL) ? dirt_session_image(ref) : NULL;
+        const char *name = def ? "default" : strrchr(scenes[s], '/') ? strrchr(scenes[s], '/') + 1
+                                                                    : scenes[s];
+        for (int v = 0; ref_img && v < c.num_views; v++) {
+            failures += !bench_row(gpu, scene, &c, DIRT_ENGINE_DIRT, c.views[v], name, ref_img);
+            failures += !bench_row(gpu, scene, &c, DIRT_ENGINE_MMRT, c.views[v], name, ref_img);
         }
-        if (!f || !pt || !ref)
+        if (!ref_img)
             failures++;
-        dirt_image_destroy(ref);
-        dirt_pt_destroy(pt);
-        dirt_frame_destroy(f);
+        dirt_session_destroy(ref);
         dirt_scene_destroy(scene);
     }
     dirt_gpu_destroy(gpu);
