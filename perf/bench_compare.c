@@ -59,7 +59,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
                         const char *scene_name, const dirt_image *ref, dirt_pt *pt)
 {
     dirt_view_opts vo = {.mode = vm, .width = c->width, .height = c->height, .tile_size = 1};
-    dirt_pt_opts po = {.spp = 1, .bounces = c->bounces, .seed = 7, .cpu_timing = true,
+    dirt_pt_opts po = {.spp = 1, .bounces = c->bounces, .seed = 7,
                        .background = {1, 1, 1}};
     bool ok = false;
     dirt_ads *ads = NULL;
@@ -70,7 +70,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
         goto done;
 
     /* DIRT */
-    dirt_ads_opts ao = {.views = vo, .buckets = c->buckets, .cpu_timing = true};
+    dirt_ads_opts ao = {.views = vo, .buckets = c->buckets};
     ads = dirt_ads_create(gpu, &ao);
     if (!ads || !dirt_ads_build(ads, f, cam))
         goto done;
@@ -79,7 +79,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
         if (!dirt_ads_build(ads, f, cam))
             goto done;
         const dirt_ads_stats *as = dirt_ads_get_stats(ads);
-        build += sum_ms(as->gpu_ms, as->cpu_ms, DIRT_ADS_NUM_PASSES) / c->repeat;
+        build += sum_ms(as->ms, as->ms, DIRT_ADS_NUM_PASSES) / c->repeat;
     }
     dirt_pt_stats st;
     if (!dirt_pt_render(pt, dirt_ads_tracer(ads, NULL), f, cam, &po, img, &st))
@@ -94,7 +94,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
     ads = NULL;
 
     /* MMRT */
-    dirt_mmrt_opts mo = {.views = vo, .buckets = c->buckets, .cpu_timing = true};
+    dirt_mmrt_opts mo = {.views = vo, .buckets = c->buckets};
     m = dirt_mmrt_create(gpu, &mo);
     if (!m || !dirt_mmrt_build(m, f, cam))
         goto done;
@@ -103,7 +103,7 @@ static bool bench_views(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame
         if (!dirt_mmrt_build(m, f, cam))
             goto done;
         const dirt_mmrt_stats *ms = dirt_mmrt_get_stats(m);
-        build += sum_ms(ms->gpu_ms, ms->cpu_ms, DIRT_MMRT_NUM_PASSES) / c->repeat;
+        build += sum_ms(ms->ms, ms->ms, DIRT_MMRT_NUM_PASSES) / c->repeat;
     }
     if (!dirt_pt_render(pt, dirt_mmrt_tracer(m, NULL), f, cam, &po, img, &st))
         goto done;
@@ -184,7 +184,7 @@ int main(int argc, char **argv)
         scenes[num_scenes++] = "default";
         scenes[num_scenes++] = "../shared/scenes/gltf/FlightHelmet/FlightHelmet.gltf";
     }
-    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
+    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.cpu_timing = true});
     if (!gpu) {
         fprintf(stderr, "bench-compare: no OpenGL 4.5 context\n");
         return 3;
