@@ -19,6 +19,7 @@ typedef struct options {
     int camera;               /* -1 default, -2 automatic, else scene camera */
     int clip;
     bool loop, png_preview, quiet, info, frames_set;
+    bool cpu_timing;          /* dirt_gpu_opts.cpu_timing */
     long frame_first, frame_last;
     int spp;
 } options;
@@ -220,7 +221,7 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--loop", &o->loop}, {NULL, "--png", &o->png_preview},
         {NULL, "--info", &o->info}, {NULL, "--direct-visibility", &o->s.direct_visibility},
         {NULL, "--no-conservative-raster", &o->s.force_emulation},
-        {NULL, "--cpu-timing", &o->s.cpu_timing}, {"-q", "--quiet", &o->quiet},
+        {NULL, "--cpu-timing", &o->cpu_timing}, {"-q", "--quiet", &o->quiet},
     };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -333,7 +334,7 @@ int main(int argc, char **argv)
     }
     if (o.s.engine != DIRT_ENGINE_EMBREE || o.debug_ads) {
         rc = DIRT_EXIT_NO_GPU;
-        gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
+        gpu = dirt_gpu_create(&(dirt_gpu_opts){.cpu_timing = o.cpu_timing});
         if (!gpu) {
             cli_error(PROG, "no OpenGL 4.5 context could be made (see the error above)");
             goto done;

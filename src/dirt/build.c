@@ -77,7 +77,7 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
                                        "dirt fetch params");
     if (!a->fetch_params)
         goto error;
-    if (!gl_timer_init(&a->trace_timer, a->opts.cpu_timing, "dirt trace"))
+    if (!gl_timer_init(&a->trace_timer, gpu, "dirt trace"))
         goto error;
     a->views = gl_buffer_create(gpu, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view), NULL,
                                 false, "dirt views");
@@ -406,7 +406,8 @@ static void update_imports(dirt_ads *a)
 bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
 {
     dirt_ads_stats *st = &a->stats;
-    double gpu_ms[DIRT_ADS_NUM_PASSES] = {0}, cpu_ms[DIRT_ADS_NUM_PASSES] = {0};
+    double ms[DIRT_ADS_NUM_PASSES] = {0};
+    enum dirt_clock clock = DIRT_CLOCK_NONE;
     int max_fb = 0, max_fb_h = 0;
     glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_fb);
     glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_fb_h);
@@ -430,12 +431,12 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
             goto done;
     }
     update_imports(a);
-    fg_exec_opts eo = {.cpu_timing = a->opts.cpu_timing, .validate = true};
+    fg_exec_opts eo = {.validate = true};
     /* Buffers were written by glBufferSubData (ordered by GL itself); the
      * previous frame's trace read them with shaders: no barrier needed. */
     if (!fg_execute(a->graph, &eo))
         goto done;
-    fg_add_pass_times(a->graph, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, gpu_ms, cpu_ms);
+    fg_add_pass_times(a->graph, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, ms, &clock);
     st->fill_runs = 1;
     while (a->counters_cpu.fill.x > a->node_capacity) {
         size_t need = a->counters_cpu.fill.x;
@@ -454,7 +455,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(a->refill, &eo))
             goto done;
-        fg_add_pass_times(a->refill, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, gpu_ms, cpu_ms);
+        fg_add_pass_times(a->refill, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, ms, &clock);
         st->fill_runs++;
     }
     struct dirt_gpu_ads_counters counters = a->counters_cpu;
@@ -474,10 +475,9 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
                            st->bytes_nodes_used;
     st->bytes_table3 = (double)a->set.num_tiles * (8.0 * 1.33 + 4.0 * a->opts.buckets) +
                        8.0 * st->buckets_per_sample * (double)st->samples;
-    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
-        st->gpu_ms[i] = gpu_ms[i];
-        st->cpu_ms[i] = a->opts.cpu_timing ? cpu_ms[i] : -1;
-    }
+    st->clock = clock;
+    for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++)
+        st->ms[i] = clock == DIRT_CLOCK_NONE ? -1 : ms[i];
     ok = gl_check("dirt build");
 done:
     a->built = ok;

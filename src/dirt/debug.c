@@ -129,12 +129,9 @@ void dirt_ads_print_stats(const dirt_ads *ads, void *out_)
             set->num_tiles ? (double)set->pyramid_size / set->num_tiles : 0.0);
     for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
         fprintf(out, "  pass %-16s", dirt_ads_pass_names[i]);
-        if (s->gpu_ms[i] >= 0)
-            fprintf(out, "  gpu %8.3f ms", s->gpu_ms[i]);
+        if (s->clock != DIRT_CLOCK_NONE && s->ms[i] >= 0)
+            fprintf(out, "  %8.3f ms (%s clock)\n", s->ms[i], dirt_clock_names[s->clock]);
         else
-            fprintf(out, "  gpu        n/a");
-        if (s->cpu_ms[i] >= 0)
-            fprintf(out, "  cpu(glFinish) %8.3f ms", s->cpu_ms[i]);
-        fputc('\n', out);
+            fprintf(out, "       n/a\n");
     }
 }

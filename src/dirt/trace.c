@@ -33,10 +33,8 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* Timed here only when called on its own (stats requested); inside a
      * frame graph the graph times the pass (GL timer queries don't nest). */
-    if (stats) {
-        a->trace_timer.cpu_finish = a->opts.cpu_timing;
+    if (stats)
         gl_timer_begin(&a->trace_timer);
-    }
     glDispatchCompute(DIRT_GROUPS(count), 1, 1);
     if (stats)
         gl_timer_end(&a->trace_timer);
@@ -44,8 +42,8 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     if (stats) {
-        *stats = (dirt_trace_stats){.rays = count, .gpu_ms = a->trace_timer.gpu_ms,
-                                    .cpu_ms = a->trace_timer.cpu_ms};
+        *stats = (dirt_trace_stats){.rays = count, .ms = a->trace_timer.ms,
+                                    .clock = a->trace_timer.clock};
         struct dirt_gpu_ads_counters c;
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         if (!gl_buffer_read(a->counters, 0, sizeof(c), &c))
@@ -120,7 +118,7 @@ bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *h
     dirt_trace_stats local;
     if (!stats)
         stats = &local;
-    *stats = (dirt_trace_stats){.gpu_ms = -1, .cpu_ms = -1};
+    *stats = (dirt_trace_stats){.ms = -1, .clock = DIRT_CLOCK_NONE};
     if (!count)
         return true;
     if (!upload_rays(a, rays, count) ||

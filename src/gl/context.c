@@ -265,6 +265,14 @@ void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size)
              c->timer_query ? (c->software ? "yes (software: raster not timed)" : "yes") : "no");
 }
 
+enum dirt_clock dirt_gpu_clock(const dirt_gpu *gpu)
+{
+    const dirt_gpu_caps *c = &gpu->caps;
+    if (gpu->opts.cpu_timing || c->software || !c->timer_query)
+        return DIRT_CLOCK_CPU;
+    return DIRT_CLOCK_GPU;
+}
+
 void dirt_gpu_finish(dirt_gpu *gpu)
 {
     (void)gpu;

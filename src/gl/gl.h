@@ -77,22 +77,24 @@ bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba);
 
 /* ---- timers (timer.c) ---- */
 
-/* Measures GPU time of a region with GL_TIME_ELAPSED queries, and CPU wall
- * time around glFinish when `cpu_finish` is set (llvmpipe: timestamps do not
- * time rasterization). Results are read after gl_timer_end. */
+/* Times a region of GL work with the GPU's one clock (dirt_gpu_clock):
+ * DIRT_CLOCK_GPU: a GL_TIME_ELAPSED query around the region (no glFinish);
+ * DIRT_CLOCK_CPU: glFinish before and after, CPU wall clock in between.
+ * Time queries do not nest: do not time a region inside another timed one
+ * (a frame graph pass). Results are read after gl_timer_end. */
 typedef struct gl_timer {
-    GLuint query;
-    bool cpu_finish;
+    GLuint query;          /* GPU clock only */
+    enum dirt_clock clock; /* the clock `ms` is measured with (fixed at init) */
     bool running;
-    bool gpu_unreliable; /* software renderer: gpu_ms stays -1 */
     double cpu_start;
-    double gpu_ms;  /* -1 when unavailable (software renderer) */
-    double cpu_ms;  /* -1 when cpu_finish was off */
+    double ms;             /* the last region; -1 until one was measured */
 } gl_timer;
 
-bool gl_timer_init(gl_timer *t, bool cpu_finish, const char *label);
+/* False after logging when the query cannot be created. */
+bool gl_timer_init(gl_timer *t, dirt_gpu *gpu, const char *label);
 void gl_timer_begin(gl_timer *t);
-/* Ends the region; waits for the query result (blocking). */
+/* Ends the region and sets t->ms (blocking: waits for the query result or
+ * for glFinish). */
 void gl_timer_end(gl_timer *t);
 void gl_timer_release(gl_timer *t);
 

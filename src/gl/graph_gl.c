@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dirt/clock.h"
 #include "gl/graph_gl.h"
 
 _Static_assert(FG_BARRIER_VERTEX_ATTRIB_ARRAY == GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT, "bits");
@@ -54,9 +53,8 @@ typedef struct pass_state {
     GLuint fbo;
     uint32_t key[MAX_ATTACH * 3 + 3];
     int key_len;
-    gl_timer timer;
+    gl_timer timer;           /* with the gpu's one clock (dirt_gpu_clock) */
     bool timer_ok;
-    double cpu_start;
 } pass_state;
 
 typedef struct graph_gl {
@@ -263,31 +261,25 @@ static bool gl_begin_pass(void *self, const fg_pass_info *p)
         gl_group_pop();
         return false;
     }
-    if (p->gpu_timer) {
+    if (p->timed) {
         if (!s->timer_ok)
-            s->timer_ok = gl_timer_init(&s->timer, p->cpu_timing, p->name);
-        s->timer.cpu_finish = p->cpu_timing;
+            s->timer_ok = gl_timer_init(&s->timer, b->gpu, p->name);
         if (s->timer_ok)
             gl_timer_begin(&s->timer);
-    } else if (p->cpu_timing) {
-        glFinish();
-        s->cpu_start = dirt_clock_ms();
     }
     return true;
 }
 
-static bool gl_end_pass(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms)
+static bool gl_end_pass(void *self, const fg_pass_info *p, double *ms, enum dirt_clock *clock)
 {
     graph_gl *b = self;
     pass_state *s = state_of(b, p->index);
-    *gpu_ms = *cpu_ms = -1;
-    if (s && p->gpu_timer && s->timer_ok) {
+    *ms = -1;
+    *clock = DIRT_CLOCK_NONE;
+    if (s && p->timed && s->timer_ok && s->timer.running) {
         gl_timer_end(&s->timer);
-        *gpu_ms = s->timer.gpu_ms;
-        *cpu_ms = p->cpu_timing ? s->timer.cpu_ms : -1;
-    } else if (s && p->cpu_timing) {
-        glFinish();
-        *cpu_ms = dirt_clock_ms() - s->cpu_start;
+        *ms = s->timer.ms;
+        *clock = s->timer.clock;
     }
     if (p->kind == FG_RASTER) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);

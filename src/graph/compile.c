@@ -740,7 +740,7 @@ static bool build_stats(fg_graph *g)
         const fg_pass *p = g->passes[i];
         g->pstats[i] = (fg_pass_stats){
             .name = p->name, .kind = p->kind, .culled = !p->live, .position = p->position,
-            .barrier = p->barrier, .gpu_ms = -1, .cpu_ms = -1,
+            .barrier = p->barrier, .ms = -1, .clock = DIRT_CLOCK_NONE,
         };
     }
     for (int i = 0; i < g->num_res; i++) {

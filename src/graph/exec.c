@@ -253,8 +253,10 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
     if (o.debug_drop_barrier && !fg_pass_find(g, o.debug_drop_barrier))
         DIRT_WARN("frame graph: debug_drop_barrier names no pass ('%s')", o.debug_drop_barrier);
     g->executions++;
-    for (int i = 0; i < g->num_passes; i++)
-        g->pstats[i].gpu_ms = g->pstats[i].cpu_ms = -1;
+    for (int i = 0; i < g->num_passes; i++) {
+        g->pstats[i].ms = -1;
+        g->pstats[i].clock = DIRT_CLOCK_NONE;
+    }
 
     if (g->entry_barrier) {
         g->backend.ops->barrier(g->backend.self, FG_BARRIER_ALL);
@@ -289,7 +291,7 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
             .name = p->name, .index = p->index, .position = pos, .kind = p->kind,
             .bindings = g->scratch, .num_bindings = nb, .raster_width = p->raster_width,
             .raster_height = p->raster_height, .raster_layers = p->raster_layers,
-            .gpu_timer = !o.no_gpu_timers, .cpu_timing = o.cpu_timing,
+            .timed = !o.no_timers,
         };
         if (!g->backend.ops->begin_pass(g->backend.self, &info)) {
             DIRT_ERROR("frame graph: pass '%s' could not start", p->name);
@@ -298,14 +300,19 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
         }
         fg_ctx ctx = {.g = g, .pass = p, .bindings = g->scratch, .num_bindings = nb};
         bool pass_ok = p->fn ? p->fn(&ctx, p->user) : true;
-        double gpu_ms = -1, cpu_ms = -1;
-        if (!g->backend.ops->end_pass(g->backend.self, &info, &gpu_ms, &cpu_ms))
+        double ms = -1;
+        enum dirt_clock clock = DIRT_CLOCK_NONE;
+        if (!g->backend.ops->end_pass(g->backend.self, &info, &ms, &clock))
             pass_ok = false;
         note_accesses(g, p, g->scratch, nb);
-        p->gpu_ms = gpu_ms;
-        p->cpu_ms = cpu_ms;
-        g->pstats[p->index].gpu_ms = gpu_ms;
-        g->pstats[p->index].cpu_ms = cpu_ms;
+        if (ms < 0 || clock == DIRT_CLOCK_NONE) {
+            ms = -1; /* one of the two alone is no measurement */
+            clock = DIRT_CLOCK_NONE;
+        }
+        p->ms = ms;
+        p->clock = clock;
+        g->pstats[p->index].ms = ms;
+        g->pstats[p->index].clock = clock;
         if (!pass_ok) {
             DIRT_ERROR("frame graph: pass '%s' failed", p->name);
             ok = false;

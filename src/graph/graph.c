@@ -490,7 +490,8 @@ fg_pass *fg_add_pass(fg_graph *g, const char *name, fg_pass_kind kind, fg_execut
     p->fn = fn;
     p->user = user;
     p->position = -1;
-    p->gpu_ms = p->cpu_ms = -1;
+    p->ms = -1;
+    p->clock = DIRT_CLOCK_NONE;
     g->passes[g->num_passes++] = p;
     fg_invalidate(g);
     return p;

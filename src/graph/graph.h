@@ -8,7 +8,8 @@
  * lets transient resources with disjoint lifetimes share one allocation, and
  * derives the glMemoryBarrier bits every pass needs. fg_execute() allocates,
  * binds, issues the barriers, runs the pass callbacks inside debug groups and
- * times them; its validation mode re-checks every hazard against the
+ * times them (with the backend's one clock, see fg_backend_ops.end_pass and
+ * doc/frame-graph.md, Timing); its validation mode re-checks every hazard against the
  * barriers that were really issued.
  *
  * Layering: everything in src/graph/ is plain C without GL. GL work goes
@@ -36,6 +37,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "dirt/stats.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -273,8 +275,8 @@ size_t fg_bytes(const fg_graph *g, fg_res r);
 /* ---- execute ------------------------------------------------------------- */
 
 typedef struct fg_exec_opts {
-    bool no_gpu_timers;   /* skip GL_TIME_ELAPSED queries (they block per pass) */
-    bool cpu_timing;      /* glFinish + CPU clock around each pass (llvmpipe) */
+    bool no_timers;       /* do not time the passes (their ms stay -1): no time
+                             queries, no glFinish around them */
     bool validate;        /* check every hazard against the barriers really
                              issued; violations are errors */
     /* Test hook: do not issue the derived barrier of the pass with this name
@@ -311,8 +313,9 @@ typedef struct fg_pass_stats {
     bool culled;
     int position;         /* execution position, -1 when culled */
     uint32_t barrier;     /* bits issued before it */
-    double gpu_ms;        /* last execute; -1 when not measured */
-    double cpu_ms;        /* last execute; -1 unless cpu_timing */
+    double ms;            /* last execute; -1 when not measured (culled, no_timers) */
+    enum dirt_clock clock; /* what measured ms (the backend's one clock);
+                              DIRT_CLOCK_NONE when not measured */
 } fg_pass_stats;
 
 typedef struct fg_res_stats {
@@ -338,7 +341,11 @@ typedef struct fg_stats {
     size_t peak_bytes;              /* allocated_bytes + imported_bytes */
     size_t peak_bytes_no_alias;     /* transient_bytes + imported_bytes */
     size_t used_bytes;              /* sum of the reported used bytes */
-    double gpu_ms, cpu_ms;          /* sums over the passes of the last execute */
+    double ms;                      /* sum over the passes measured in the last
+                                       execute; -1 when none was measured */
+    enum dirt_clock clock;          /* their clock; DIRT_CLOCK_NONE when none was
+                                       measured or (a contract violation of the
+                                       backend) they disagree, then ms = -1 */
     uint64_t executions;
     uint64_t validation_errors;     /* since creation */
 } fg_stats;
@@ -348,13 +355,17 @@ typedef struct fg_stats {
 bool fg_get_stats(const fg_graph *g, fg_stats *s);
 /* Human-readable table of the stats. */
 void fg_print_stats(const fg_graph *g, FILE *f);
-/* Adds the last execute's time of every pass named names[k] (k < count) to
- * gpu_ms[k] and cpu_ms[k]. A gpu_ms[k] becomes (and stays) -1 once a pass
- * of that name was not measured; unmeasured cpu times add nothing. For
- * techniques that run several graphs (e.g. a rerun after pool growth) and
- * report one time per pass name. */
-void fg_add_pass_times(const fg_graph *g, const char *const *names, int count, double *gpu_ms,
-                       double *cpu_ms);
+/* Adds the last execute's time of every measured pass named names[k]
+ * (k < count) to ms[k]; passes not measured (culled, no_timers) add
+ * nothing. *clock takes the clock of the measured passes: the caller starts
+ * it at DIRT_CLOCK_NONE (and ms[] at 0) and may add several graphs' times;
+ * *clock still DIRT_CLOCK_NONE afterwards means nothing was measured. A
+ * pass measured by another clock than *clock already holds is left out
+ * (logged; one backend has one clock). For techniques that run several
+ * graphs (e.g. a rerun after pool growth) and report one time per pass
+ * name. */
+void fg_add_pass_times(const fg_graph *g, const char *const *names, int count, double *ms,
+                       enum dirt_clock *clock);
 
 /* GraphViz DOT of the compiled graph: passes as boxes, resources as
  * ellipses, culled ones grey, edges labelled with the access. Deterministic.
@@ -397,7 +408,7 @@ typedef struct fg_pass_info {
     const fg_binding *bindings;
     int num_bindings;
     int raster_width, raster_height, raster_layers; /* attachment-less raster */
-    bool gpu_timer, cpu_timing;
+    bool timed;                     /* time the pass (fg_exec_opts.no_timers off) */
 } fg_pass_info;
 
 typedef struct fg_backend_ops {
@@ -407,9 +418,12 @@ typedef struct fg_backend_ops {
     void (*barrier)(void *self, uint32_t bits);
     /* Debug group, framebuffer, bindings, timer start. False after logging. */
     bool (*begin_pass)(void *self, const fg_pass_info *p);
-    /* Timer stop, state reset; writes -1 for what was not measured. False
+    /* Timer stop, state reset. When p->timed, writes the pass's time (ms)
+     * and the clock that measured it; a backend has one clock for all its
+     * passes (the GL one: dirt_gpu_clock). Else, or when it could not time,
+     * *ms = -1 and *clock = DIRT_CLOCK_NONE (the graph presets these). False
      * (after logging) when the pass left a GL error. */
-    bool (*end_pass)(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms);
+    bool (*end_pass)(void *self, const fg_pass_info *p, double *ms, enum dirt_clock *clock);
     /* Frees `self`. */
     void (*release)(void *self);
 } fg_backend_ops;

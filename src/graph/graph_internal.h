@@ -77,7 +77,8 @@ struct fg_pass {
     int position;
     uint32_t barrier;
     int raster_width, raster_height, raster_layers;
-    double gpu_ms, cpu_ms;
+    double ms;              /* last execute; -1 when not measured */
+    enum dirt_clock clock;
 };
 
 /* A physical allocation (compiled desc + the backend's name once realized). */

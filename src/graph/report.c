@@ -38,13 +38,33 @@ bool fg_get_stats(const fg_graph *g, fg_stats *s)
     }
     s->peak_bytes = s->allocated_bytes + s->imported_bytes;
     s->peak_bytes_no_alias = s->transient_bytes + s->imported_bytes;
+    s->ms = -1;
+    s->clock = DIRT_CLOCK_NONE;
+    bool mixed = false;
     for (int i = 0; i < g->num_passes; i++) {
-        if (g->pstats[i].gpu_ms > 0)
-            s->gpu_ms += g->pstats[i].gpu_ms;
-        if (g->pstats[i].cpu_ms > 0)
-            s->cpu_ms += g->pstats[i].cpu_ms;
+        const fg_pass_stats *p = &g->pstats[i];
+        if (p->clock == DIRT_CLOCK_NONE)
+            continue;
+        if (s->clock == DIRT_CLOCK_NONE) {
+            s->clock = p->clock;
+            s->ms = 0;
+        }
+        mixed |= p->clock != s->clock;
+        s->ms += p->ms;
+    }
+    if (mixed) {
+        s->ms = -1;
+        s->clock = DIRT_CLOCK_NONE;
     }
     return true;
+}
+
+/* "gpu", "cpu", "none" (also for values out of range). */
+static const char *clock_name(enum dirt_clock c)
+{
+    return (unsigned)c < sizeof(dirt_clock_names) / sizeof(dirt_clock_names[0])
+               ? dirt_clock_names[c]
+               : dirt_clock_names[DIRT_CLOCK_NONE];
 }
 
 static double mib(size_t b)
@@ -63,14 +83,15 @@ void fg_print_stats(const fg_graph *g, FILE *f)
     }
     fprintf(f, "frame graph: %d passes (%d culled), %d resources, %d allocations\n",
             s.num_passes, s.num_passes - g->num_order, s.num_resources, s.num_physical);
-    fprintf(f, "  %-4s %-24s %-8s %-36s %10s %10s\n", "pos", "pass", "kind", "barrier",
-            "gpu ms", "cpu ms");
+    fprintf(f, "  %-4s %-24s %-8s %-36s %10s %-5s\n", "pos", "pass", "kind", "barrier", "ms",
+            "clock");
     for (int pos = 0; pos < g->num_order; pos++) {
         const fg_pass_stats *p = &s.passes[g->order[pos]];
         char bits[256];
-        fprintf(f, "  %-4d %-24s %-8s %-36s %10.3f %10.3f\n", pos, p->name,
+        fprintf(f, "  %-4d %-24s %-8s %-36s %10.3f %-5s\n", pos, p->name,
                 p->kind == FG_RASTER ? "raster" : "compute",
-                fg_barrier_string(p->barrier, bits, sizeof(bits)), p->gpu_ms, p->cpu_ms);
+                fg_barrier_string(p->barrier, bits, sizeof(bits)), p->ms,
+                clock_name(p->clock));
     }
     fprintf(f, "  %-24s %-8s %12s %12s %5s %9s\n", "resource", "kind", "MiB", "used MiB",
             "phys", "life");
@@ -89,8 +110,8 @@ void fg_print_stats(const fg_graph *g, FILE *f)
             "peak %.3f MiB, imported %.3f MiB, used %.3f MiB\n", mib(s.transient_bytes),
             mib(s.allocated_bytes), mib(s.transient_bytes - s.allocated_bytes),
             mib(s.live_peak_bytes), mib(s.imported_bytes), mib(s.used_bytes));
-    fprintf(f, "  total gpu %.3f ms, cpu %.3f ms, %llu executions, %llu validation errors\n",
-            s.gpu_ms, s.cpu_ms, (unsigned long long)s.executions,
+    fprintf(f, "  total %.3f ms (%s clock), %llu executions, %llu validation errors\n", s.ms,
+            clock_name(s.clock), (unsigned long long)s.executions,
             (unsigned long long)s.validation_errors);
 }
 
@@ -247,20 +268,27 @@ bool fg_write_dot(const fg_graph *g, FILE *f)
     return ok;
 }
 
-void fg_add_pass_times(const fg_graph *g, const char *const *names, int count, double *gpu_ms,
-                       double *cpu_ms)
+void fg_add_pass_times(const fg_graph *g, const char *const *names, int count, double *ms,
+                       enum dirt_clock *clock)
 {
     fg_stats s;
     if (!fg_get_stats(g, &s))
         return;
     for (int i = 0; i < s.num_passes; i++) {
+        const fg_pass_stats *p = &s.passes[i];
+        if (p->clock == DIRT_CLOCK_NONE)
+            continue;
+        if (*clock != DIRT_CLOCK_NONE && p->clock != *clock) {
+            DIRT_ERROR("frame graph: pass '%s' measured by the %s clock, the others by the %s "
+                       "clock; its time is left out", p->name, clock_name(p->clock),
+                       clock_name(*clock));
+            continue;
+        }
         for (int k = 0; k < count; k++) {
-            if (strcmp(s.passes[i].name, names[k]) != 0)
+            if (strcmp(p->name, names[k]) != 0)
                 continue;
-            double g_ms = s.passes[i].gpu_ms, c_ms = s.passes[i].cpu_ms;
-            gpu_ms[k] = g_ms < 0 || gpu_ms[k] < 0 ? -1 : gpu_ms[k] + g_ms;
-            if (c_ms >= 0)
-                cpu_ms[k] += c_ms;
+            ms[k] += p->ms;
+            *clock = p->clock;
         }
     }
 }

@@ -302,19 +302,17 @@ static bool make_graph(dirt_pt *pt, int events)
 }
 
 /* Adds the last execute's pass times to `st`, keyed by each pass's kind
- * (the passes' declaration order is pt->ctx's). */
+ * (the passes' declaration order is pt->ctx's); st->clock is the graph's. */
 static void add_times(dirt_pt *pt, dirt_pt_stats *st)
 {
     fg_stats s;
-    if (!fg_get_stats(pt->graph, &s))
+    if (!fg_get_stats(pt->graph, &s) || s.clock == DIRT_CLOCK_NONE)
         return;
+    st->clock = s.clock;
     for (int i = 0; i < s.num_passes && i < pt->num_ctx; i++) {
         const fg_pass_stats *p = &s.passes[i];
-        double ms = p->gpu_ms >= 0 ? p->gpu_ms : p->cpu_ms;
-        if (ms < 0)
-            continue;
-        st->clock = p->gpu_ms >= 0 ? DIRT_CLOCK_GPU : DIRT_CLOCK_CPU;
-        st->pass_ms[pt->ctx[i].kind] += ms;
+        if (p->clock == s.clock)
+            st->pass_ms[pt->ctx[i].kind] += p->ms;
     }
     st->trace_ms = st->pass_ms[DIRT_PT_PASS_TRACE] + st->pass_ms[DIRT_PT_PASS_SHADOW];
     st->fetch_ms = st->pass_ms[DIRT_PT_PASS_FETCH];
@@ -454,7 +452,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     if (pt->samples == 0 && tech->restart)
         tech->restart(tech->self);
     tech->reset_counts(tech->self);
-    fg_exec_opts eo = {.cpu_timing = opts.cpu_timing, .validate = true};
+    fg_exec_opts eo = {.validate = true};
     for (int s = 0; s < count; s++) {
         pt->sample = pt->samples;
         if (!fg_execute(pt->graph, &eo))

@@ -80,7 +80,7 @@ dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
                                    "mmrt counters");
     if (!m->views || !m->params || !m->counters)
         goto error;
-    if (!gl_timer_init(&m->trace_timer, m->opts.cpu_timing, "mmrt trace"))
+    if (!gl_timer_init(&m->trace_timer, gpu, "mmrt trace"))
         goto error;
     m->node_capacity = m->opts.initial_nodes;
     if (!gl_check("mmrt create"))
@@ -288,7 +288,7 @@ static void raster_views(dirt_mmrt *m, GLuint program)
 }
 
 static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int runs,
-                       const double *gpu_ms, const double *cpu_ms)
+                       const double *ms, enum dirt_clock clock)
 {
     dirt_mmrt_stats *st = &m->stats;
     const uint64_t B = (uint64_t)m->opts.buckets, P = (uint64_t)m->set.num_tiles;
@@ -314,10 +314,9 @@ static void fill_stats(dirt_mmrt *m, const struct dirt_mmrt_gpu_counters *c, int
     st->bytes_total_used = fixed + st->bytes_id_nodes_used + st->bytes_data_nodes_used;
     st->bytes_paper = (double)P * (8.0 + 8.0 * (double)B) +
                       (double)st->fragments * (DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES);
-    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++) {
-        st->gpu_ms[i] = gpu_ms[i];
-        st->cpu_ms[i] = m->opts.cpu_timing ? cpu_ms[i] : -1;
-    }
+    st->clock = clock;
+    for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++)
+        st->ms[i] = clock == DIRT_CLOCK_NONE ? -1 : ms[i];
 }
 
 /* ---- passes (bodies run by the frame graphs) ---- */
@@ -505,7 +504,8 @@ static void update_imports(dirt_mmrt *m)
 
 bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
 {
-    double gpu_ms[DIRT_MMRT_NUM_PASSES] = {0}, cpu_ms[DIRT_MMRT_NUM_PASSES] = {0};
+    double ms[DIRT_MMRT_NUM_PASSES] = {0};
+    enum dirt_clock clock = DIRT_CLOCK_NONE;
     m->built = false;
     int max_fb_w = 0, max_fb_h = 0;
     glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_fb_w);
@@ -536,10 +536,10 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
             goto done;
     }
     update_imports(m);
-    fg_exec_opts eo = {.cpu_timing = m->opts.cpu_timing, .validate = true};
+    fg_exec_opts eo = {.validate = true};
     if (!fg_execute(m->g_build, &eo))
         goto done;
-    fg_add_pass_times(m->g_build, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, gpu_ms, cpu_ms);
+    fg_add_pass_times(m->g_build, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
     int runs = 1;
     while (m->counters_cpu.build.x > m->node_capacity) {
         size_t need = m->counters_cpu.build.x;
@@ -558,14 +558,14 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(m->g_restore, &eo))
             goto done;
-        fg_add_pass_times(m->g_restore, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, gpu_ms, cpu_ms);
+        fg_add_pass_times(m->g_restore, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
         runs++;
     }
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     if (!fg_execute(m->g_finish, &eo))
         goto done;
-    fg_add_pass_times(m->g_finish, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, gpu_ms, cpu_ms);
-    fill_stats(m, &m->counters_cpu, runs, gpu_ms, cpu_ms);
+    fg_add_pass_times(m->g_finish, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
+    fill_stats(m, &m->counters_cpu, runs, ms, clock);
     ok = gl_check("mmrt build");
     m->built = ok;
 done:
@@ -670,8 +670,8 @@ void dirt_mmrt_print_stats(const dirt_mmrt *m, void *out)
             s->bytes_id_nodes_used / 1e6, s->bytes_id_nodes_allocated / 1e6,
             s->bytes_data_nodes_used / 1e6, s->bytes_data_nodes_allocated / 1e6,
             s->bytes_total_used / 1e6, s->bytes_total_allocated / 1e6, s->bytes_paper / 1e6);
-    fprintf(f, "  ms (gpu / cpu):");
+    fprintf(f, "  ms (%s clock):", dirt_clock_names[s->clock]);
     for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++)
-        fprintf(f, " %s %.2f / %.2f%s", dirt_mmrt_pass_names[i] + 5, s->gpu_ms[i], s->cpu_ms[i],
+        fprintf(f, " %s %.2f%s", dirt_mmrt_pass_names[i] + 5, s->ms[i],
                 i + 1 < DIRT_MMRT_NUM_PASSES ? "," : "\n");
 }

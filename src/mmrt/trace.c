@@ -28,7 +28,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     float thickness = dirt_mmrt_thickness(m, &o);
     if (stats)
         *stats = (dirt_mmrt_trace_stats){.rays = count, .thickness = thickness,
-                                         .gpu_ms = -1, .cpu_ms = -1};
+                                         .ms = -1, .clock = DIRT_CLOCK_NONE};
     if (!m->built) {
         DIRT_ERROR("mmrt trace before a successful build");
         return false;
@@ -61,10 +61,8 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     /* Timed only when stats are asked for: a caller timing its own pass (a
      * frame graph) may have a time query active, and they do not nest. */
-    if (stats) {
-        m->trace_timer.cpu_finish = m->opts.cpu_timing;
+    if (stats)
         gl_timer_begin(&m->trace_timer);
-    }
     glDispatchCompute(DIRT_GROUPS(count), 1, 1);
     if (stats)
         gl_timer_end(&m->trace_timer);
@@ -80,8 +78,8 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
             stats->nodes_visited = c.trace.z;
             stats->pixels_tested = c.trace2.x;
             stats->aborted = c.trace.w;
-            stats->gpu_ms = m->trace_timer.gpu_ms;
-            stats->cpu_ms = m->trace_timer.cpu_ms;
+            stats->ms = m->trace_timer.ms;
+            stats->clock = m->trace_timer.clock;
             if (c.trace.w)
                 DIRT_WARN("mmrt trace: %u of %u rays ran out of march steps", c.trace.w, count);
         }
@@ -100,7 +98,7 @@ bool dirt_mmrt_trace_cpu(dirt_mmrt *m, const dirt_ray *rays, size_t count, dirt_
         return false;
     }
     if (!count) {
-        *st = (dirt_mmrt_trace_stats){.gpu_ms = -1, .cpu_ms = -1};
+        *st = (dirt_mmrt_trace_stats){.ms = -1, .clock = DIRT_CLOCK_NONE};
         return true;
     }
     size_t bytes = count * sizeof(dirt_ray);

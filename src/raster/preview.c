@@ -574,31 +574,31 @@ static bool ensure_import(dirt_raster *r, GLuint *buf, size_t *capacity, size_t 
 /* Copies the graph's per-pass figures of the last execute into `stats`. */
 static void fill_stats(const dirt_raster *r, int num_lights, dirt_raster_stats *stats)
 {
-    *stats = (dirt_raster_stats){.gpu_ms = -1, .cpu_ms = -1, .num_lights = num_lights};
+    *stats = (dirt_raster_stats){.ms = -1, .clock = DIRT_CLOCK_NONE, .num_lights = num_lights};
     fg_stats gs;
     if (!fg_get_stats(r->graph, &gs))
         return;
-    double gpu = 0, cpu = 0;
-    bool gpu_ok = true, cpu_ok = true;
+    double sum = 0;
+    bool measured = true;
     for (int pos = 0; pos < fg_num_ordered(r->graph); pos++) {
         int index = fg_order(r->graph, pos);
         if (index < 0 || index >= gs.num_passes)
             continue;
         const fg_pass_stats *p = &gs.passes[index];
-        gpu_ok = gpu_ok && p->gpu_ms >= 0;
-        cpu_ok = cpu_ok && p->cpu_ms >= 0;
-        gpu += p->gpu_ms;
-        cpu += p->cpu_ms;
+        measured = measured && p->clock != DIRT_CLOCK_NONE && p->clock == gs.clock;
+        sum += p->ms;
         if (stats->num_passes < DIRT_RASTER_MAX_PASSES) {
             dirt_raster_pass_stats *o = &stats->passes[stats->num_passes++];
             snprintf(o->name, sizeof(o->name), "%s", p->name);
-            o->gpu_ms = p->gpu_ms;
-            o->cpu_ms = p->cpu_ms;
+            o->ms = p->ms;
+            o->clock = p->clock;
             o->barrier = p->barrier;
         }
     }
-    stats->gpu_ms = gpu_ok && stats->num_passes ? gpu : -1;
-    stats->cpu_ms = cpu_ok && stats->num_passes ? cpu : -1;
+    if (measured && stats->num_passes) {
+        stats->ms = sum;
+        stats->clock = gs.clock;
+    }
     stats->transient_bytes = gs.allocated_bytes;
     stats->imported_bytes = gs.imported_bytes;
     stats->validation_errors = gs.validation_errors;
@@ -659,8 +659,7 @@ bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *
     r->frame.height = height;
 
     /* Validation is always on: it only compares bookkeeping (no GL queries). */
-    ok = fg_execute(r->graph, &(fg_exec_opts){.cpu_timing = opts.cpu_timing,
-                                             .validate = true});
+    ok = fg_execute(r->graph, &(fg_exec_opts){.validate = true});
     r->frame.rgba = NULL;
     r->frame.eye = NULL;
     if (!ok) {

@@ -18,7 +18,6 @@ struct dirt_session {
     dirt_gpu *gpu;
     const dirt_scene *scene;
     dirt_session_opts opts;
-    bool cpu_timing;          /* opts.cpu_timing or a software renderer */
     /* frame and camera */
     dirt_frame *frame;
     double time;
@@ -216,7 +215,6 @@ static bool make_engine(dirt_session *s)
                                              .views = vo,
                                              .buckets = o->buckets ? o->buckets : 16,
                                              .force_emulation = o->force_emulation,
-                                             .cpu_timing = s->cpu_timing,
                                          });
         if (!s->ads)
             return false;
@@ -226,7 +224,6 @@ static bool make_engine(dirt_session *s)
         s->mmrt = dirt_mmrt_create(s->gpu, &(dirt_mmrt_opts){
                                                .views = vo,
                                                .buckets = o->buckets ? o->buckets : 4,
-                                               .cpu_timing = s->cpu_timing,
                                            });
         if (!s->mmrt)
             return false;
@@ -270,7 +267,6 @@ dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
     s->gpu = gpu;
     s->scene = scene;
     s->opts = o;
-    s->cpu_timing = o.cpu_timing || (gpu && dirt_gpu_get_caps(gpu)->software);
     s->frame = dirt_scene_evaluate(scene, 0, &s->eval);
     if (!s->frame)
         goto error;
@@ -303,12 +299,12 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
         return false;
     dirt_session_opts old = s->opts;
     /* What the structure is made of, what only its tracer reads, and what
-     * only changes how the work is timed or spread (threads, cpu_timing). */
+     * only changes how the work is spread (threads). */
     bool layout = old.engine != n.engine || old.width != n.width || old.height != n.height ||
                   old.views != n.views || old.face_size != n.face_size ||
                   old.tile_size != n.tile_size || old.buckets != n.buckets ||
                   old.force_emulation != n.force_emulation;
-    bool structure = layout || old.cpu_timing != n.cpu_timing;
+    bool structure = layout;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||
@@ -318,7 +314,6 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
                          old.seed != n.seed || old.ao_distance != n.ao_distance ||
                          memcmp(old.background, n.background, sizeof(n.background)) != 0;
     s->opts = n;
-    s->cpu_timing = n.cpu_timing || (s->gpu && dirt_gpu_get_caps(s->gpu)->software);
     if (structure) {
         release_engine(s);
         resolve_size(s);
@@ -326,7 +321,6 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
             /* Back to the old options (their objects were made before). */
             release_engine(s);
             s->opts = old;
-            s->cpu_timing = old.cpu_timing || (s->gpu && dirt_gpu_get_caps(s->gpu)->software);
             resolve_size(s);
             if (!make_engine(s))
                 DIRT_ERROR("the session's old engine could not be remade either");
@@ -442,20 +436,11 @@ dirt_mmrt *dirt_session_mmrt(dirt_session *s)
 
 /* ---- stats ---- */
 
-/* The one rule for reporting a pass measured both ways: the GPU timer
- * where it times the work, else the CPU clock. */
-static double pick_ms(double gpu_ms, double cpu_ms, enum dirt_clock *clock)
+/* A figure as the session adds it up: 0 when it was not measured. Which
+ * clock measured it is the figure's own (dirt_gpu_clock decided). */
+static double measured_ms(double ms, enum dirt_clock clock)
 {
-    if (gpu_ms >= 0) {
-        *clock = DIRT_CLOCK_GPU;
-        return gpu_ms;
-    }
-    if (cpu_ms >= 0) {
-        *clock = DIRT_CLOCK_CPU;
-        return cpu_ms;
-    }
-    *clock = DIRT_CLOCK_NONE;
-    return 0;
+    return clock != DIRT_CLOCK_NONE && ms > 0 ? ms : 0;
 }
 
 static void add_pass(dirt_session_stats *st, const char *name, double ms, enum dirt_clock clock)
@@ -486,16 +471,14 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
     st->num_buffers = 0;
     st->bytes_total_used = st->bytes_total_allocated = 0;
     st->build_ms = 0;
-    enum dirt_clock clock;
     if (s->ads) {
         const dirt_ads_stats *a = dirt_ads_get_stats(s->ads);
         st->has_ads = true;
         st->ads = *a;
         for (int i = 0; i < DIRT_ADS_NUM_PASSES; i++) {
-            double ms = pick_ms(a->gpu_ms[i], a->cpu_ms[i], &clock);
-            if (clock != DIRT_CLOCK_NONE && ms > 0)
-                st->build_ms += ms;
-            add_pass(st, dirt_ads_pass_names[i], ms, clock);
+            double ms = measured_ms(a->ms[i], a->clock);
+            st->build_ms += ms;
+            add_pass(st, dirt_ads_pass_names[i], ms, a->clock);
         }
         add_buffer(st, "vertices", a->bytes_vertices, a->bytes_vertices);
         add_buffer(st, "depth bounds", a->bytes_depth, a->bytes_depth);
@@ -506,10 +489,9 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
         st->has_mmrt = true;
         st->mmrt = *m;
         for (int i = 0; i < DIRT_MMRT_NUM_PASSES; i++) {
-            double ms = pick_ms(m->gpu_ms[i], m->cpu_ms[i], &clock);
-            if (clock != DIRT_CLOCK_NONE && ms > 0)
-                st->build_ms += ms;
-            add_pass(st, dirt_mmrt_pass_names[i], ms, clock);
+            double ms = measured_ms(m->ms[i], m->clock);
+            st->build_ms += ms;
+            add_pass(st, dirt_mmrt_pass_names[i], ms, m->clock);
         }
         add_buffer(st, "vertices", m->bytes_vertices, m->bytes_vertices);
         add_buffer(st, "depth bounds", m->bytes_depth, m->bytes_depth);
@@ -607,7 +589,6 @@ static dirt_pt_opts pt_opts(const dirt_session *s)
         .background = {o->background[0], o->background[1], o->background[2]},
         .ao_distance = o->ao_distance,
         .direct_visibility = o->direct_visibility,
-        .cpu_timing = s->cpu_timing,
     };
 }
 
@@ -741,18 +722,16 @@ bool dirt_session_add_samples(dirt_session *s, int count,
                 return false;
         }
         dirt_raster_stats rs;
-        dirt_raster_opts ro = {.cpu_timing = s->cpu_timing};
-        ok = dirt_raster_render(s->raster, s->frame, &s->cam, s->width, s->height, &ro,
+        ok = dirt_raster_render(s->raster, s->frame, &s->cam, s->width, s->height, NULL,
                                 s->img->rgba, &rs);
         if (ok) {
             st->num_passes = 0;
             for (int i = 0; i < rs.num_passes; i++) {
-                enum dirt_clock clock;
-                double ms = pick_ms(rs.passes[i].gpu_ms, rs.passes[i].cpu_ms, &clock);
-                add_pass(st, i == 0 ? "preview draw" : "preview readback", ms, clock);
+                const dirt_raster_pass_stats *p = &rs.passes[i];
+                add_pass(st, i == 0 ? "preview draw" : "preview readback",
+                         measured_ms(p->ms, p->clock), p->clock);
             }
-            enum dirt_clock clock;
-            st->shade_ms = pick_ms(rs.gpu_ms, rs.cpu_ms, &clock);
+            st->shade_ms = measured_ms(rs.ms, rs.clock);
             s->samples = 1;
             if (progress)
                 progress(user, 1, 1);

@@ -251,7 +251,7 @@ int main(void)
     CHECK(fg_pass_barrier(g, "fill_b") & GL_SHADER_STORAGE_BARRIER_BIT);
 
     /* validated runs give the right pixels, twice (steady state) */
-    fg_exec_opts vopts = {.validate = true, .cpu_timing = true};
+    fg_exec_opts vopts = {.validate = true};
     for (int run = 0; run < 2; run++) {
         memset(pix_a, 0, (size_t)W * H * 4 * sizeof(float));
         memset(pix_b, 0, (size_t)W * H * 4 * sizeof(float));
@@ -266,12 +266,20 @@ int main(void)
     fg_stats s;
     CHECK(fg_get_stats(g, &s));
     CHECK(s.validation_errors == 0 && s.executions == 2);
-    /* software renderers report GPU times as unavailable (-1) */
+    /* every pass timed by the GPU's one clock: the CPU clock on a software
+     * renderer (its time queries do not time rasterization), else queries */
     bool software = dirt_gpu_get_caps(gpu)->software;
+    enum dirt_clock want = software ? DIRT_CLOCK_CPU : DIRT_CLOCK_GPU;
+    CHECK(dirt_gpu_clock(gpu) == want);
+    double sum = 0;
     for (int i = 0; i < s.num_passes; i++) {
-        CHECK_MSG((software || s.passes[i].gpu_ms >= 0) && s.passes[i].cpu_ms >= 0,
-                  "pass %s: %g %g", s.passes[i].name, s.passes[i].gpu_ms, s.passes[i].cpu_ms);
+        const fg_pass_stats *p = &s.passes[i];
+        CHECK_MSG(p->clock == want && (software ? p->ms > 0 : p->ms >= 0), "pass %s: %g ms, %s",
+                  p->name, p->ms, dirt_clock_names[p->clock]);
+        sum += p->ms;
     }
+    CHECK(s.clock == want);
+    CHECK_NEAR(s.ms, sum, 1e-9);
     CHECK(s.resources[0].used_reported && s.resources[0].used_bytes == (size_t)W * H * 4);
     /* aliasing halves the transient memory: 3 allocations for 6 resources */
     const size_t per_chain = (size_t)W * H * (4 + 4 + 16);
@@ -309,8 +317,9 @@ int main(void)
     fg_set_aliasing(g, false);
     CHECK(fg_compile(g));
     CHECK(fg_num_physical(g) == 6);
-    CHECK(fg_execute(g, &(fg_exec_opts){.validate = true, .no_gpu_timers = true}));
+    CHECK(fg_execute(g, &(fg_exec_opts){.validate = true, .no_timers = true}));
     CHECK(check_pixels(&a) == 0 && check_pixels(&b) == 0);
+    CHECK(fg_get_stats(g, &s) && s.clock == DIRT_CLOCK_NONE && s.ms == -1);
     CHECK(dirt_gpu_error_count(gpu) == 0);
 
     if (prog.splat)

@@ -290,6 +290,12 @@ typedef struct fake {
     char events[4096];
     bool released;
     uint32_t names_seen[16][2];  /* per pass index: names of its first two bindings */
+    /* end_pass reports 0.5 ms per timed pass, measured by `clock`
+     * (DIRT_CLOCK_NONE: the GPU clock); the pass of declaration index
+     * odd_pass - 1 (none when 0) by odd_clock (a broken backend). */
+    enum dirt_clock clock;
+    int odd_pass;
+    enum dirt_clock odd_clock;
 } fake;
 
 static void ev(fake *f, const char *fmt, const char *a, unsigned x)
@@ -334,13 +340,16 @@ static bool fake_begin(void *self, const fg_pass_info *p)
     return true;
 }
 
-static bool fake_end(void *self, const fg_pass_info *p, double *gpu_ms, double *cpu_ms)
+static bool fake_end(void *self, const fg_pass_info *p, double *ms, enum dirt_clock *clock)
 {
     fake *f = self;
-    (void)p;
     f->ends++;
-    *gpu_ms = 0.5;
-    *cpu_ms = -1;
+    if (!p->timed)
+        return true; /* the graph preset -1 and DIRT_CLOCK_NONE */
+    *ms = 0.5;
+    *clock = f->clock == DIRT_CLOCK_NONE ? DIRT_CLOCK_GPU : f->clock;
+    if (f->odd_pass == p->index + 1)
+        *clock = f->odd_clock;
     return true;
 }
 
@@ -438,7 +447,8 @@ static void test_execute(void)
     fg_stats s;
     CHECK(fg_get_stats(g, &s));
     CHECK(s.executions == 3 && s.validation_errors == 0);
-    CHECK_NEAR(s.gpu_ms, 2.0, 1e-9);
+    CHECK_NEAR(s.ms, 2.0, 1e-9);
+    CHECK(s.clock == DIRT_CLOCK_GPU);
     CHECK(s.resources[0].used_reported && s.resources[0].used_bytes == 100);
     CHECK(s.used_bytes == 100);
     CHECK(s.passes[1].barrier == fg_pass_barrier(g, "to_image"));
@@ -511,6 +521,60 @@ static void test_alias_validation(void)
     fg_destroy(g);
 }
 
+/* One clock per graph: pass stats carry the backend's (ms, clock), the
+ * totals and fg_add_pass_times follow it, no_timers measures nothing, and
+ * a backend mixing clocks is caught rather than summed. */
+static void test_timing(void)
+{
+    fake f = {.next_name = 900, .clock = DIRT_CLOCK_CPU};
+    demo d = {0};
+    fg_graph *g = demo_graph(&f, &d);
+    CHECK(fg_compile(g));
+    CHECK(fg_execute(g, &(fg_exec_opts){.validate = true}));
+    fg_stats s;
+    CHECK(fg_get_stats(g, &s));
+    for (int i = 0; i < s.num_passes; i++)
+        CHECK_MSG(s.passes[i].clock == DIRT_CLOCK_CPU && s.passes[i].ms == 0.5, "pass %s: %g %s",
+                  s.passes[i].name, s.passes[i].ms, dirt_clock_names[s.passes[i].clock]);
+    CHECK(s.clock == DIRT_CLOCK_CPU);
+    CHECK_NEAR(s.ms, 2.0, 1e-9);
+
+    /* by name, over several executes; unknown names stay 0 */
+    const char *const names[3] = {"fill", "draw", "no such pass"};
+    double ms[3] = {0};
+    enum dirt_clock clock = DIRT_CLOCK_NONE;
+    fg_add_pass_times(g, names, 3, ms, &clock);
+    CHECK(clock == DIRT_CLOCK_CPU && ms[0] == 0.5 && ms[1] == 0.5 && ms[2] == 0);
+    CHECK(fg_execute(g, NULL));
+    fg_add_pass_times(g, names, 3, ms, &clock);
+    CHECK(clock == DIRT_CLOCK_CPU && ms[0] == 1.0 && ms[1] == 1.0 && ms[2] == 0);
+
+    /* no timers: nothing measured, nothing added */
+    CHECK(fg_execute(g, &(fg_exec_opts){.no_timers = true}));
+    CHECK(fg_get_stats(g, &s) && s.clock == DIRT_CLOCK_NONE && s.ms == -1);
+    for (int i = 0; i < s.num_passes; i++)
+        CHECK(s.passes[i].clock == DIRT_CLOCK_NONE && s.passes[i].ms == -1);
+    fg_add_pass_times(g, names, 3, ms, &clock);
+    CHECK(clock == DIRT_CLOCK_CPU && ms[0] == 1.0 && ms[1] == 1.0);
+    enum dirt_clock none = DIRT_CLOCK_NONE;
+    double none_ms[3] = {0};
+    fg_add_pass_times(g, names, 3, none_ms, &none);
+    CHECK(none == DIRT_CLOCK_NONE && none_ms[0] == 0 && none_ms[1] == 0);
+
+    /* a backend that mixes clocks (draw on the GPU clock): no total, and
+     * the odd pass is left out of a CPU-clock sum, logged */
+    f.odd_pass = 3; /* "draw", declaration index 2 */
+    f.odd_clock = DIRT_CLOCK_GPU;
+    CHECK(fg_execute(g, NULL));
+    CHECK(fg_get_stats(g, &s) && s.clock == DIRT_CLOCK_NONE && s.ms == -1);
+    CHECK(s.passes[2].clock == DIRT_CLOCK_GPU && s.passes[0].clock == DIRT_CLOCK_CPU);
+    log_text[0] = '\0';
+    fg_add_pass_times(g, names, 3, ms, &clock);
+    CHECK(clock == DIRT_CLOCK_CPU && ms[0] == 1.5 && ms[1] == 1.0);
+    CHECK(logged("pass 'draw' measured by the gpu clock, the others by the cpu clock"));
+    fg_destroy(g);
+}
+
 int main(void)
 {
     dirt_log_set_callback(capture, NULL);
@@ -519,6 +583,7 @@ int main(void)
     test_alias_bits();
     test_execute();
     test_alias_validation();
+    test_timing();
     dirt_log_set_callback(NULL, NULL);
     return check_finish();
 }

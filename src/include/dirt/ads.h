@@ -17,6 +17,7 @@
 
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
+#include "dirt/stats.h"
 #include "dirt/tracer.h"
 #include "dirt/views.h"
 
@@ -33,7 +34,6 @@ typedef struct dirt_ads_opts {
     int buckets;              /* B >= 1 (default 16) */
     size_t initial_nodes;     /* first node capacity (0 = automatic) */
     bool force_emulation;     /* ignore GL_NV_conservative_raster */
-    bool cpu_timing;          /* time passes with glFinish + CPU clock too */
 } dirt_ads_opts;
 
 enum { DIRT_ADS_PASS_CLEAR, DIRT_ADS_PASS_DEPTH, DIRT_ADS_PASS_MIP, DIRT_ADS_PASS_FILL,
@@ -56,9 +56,11 @@ typedef struct dirt_ads_stats {
     /* DIRT paper Table 3 per tile: 8 B * 1.33 (depth + mips) + 4 B * B
      * (heads) + 8 B * c * n_p / tiles (nodes), times the tiles. */
     double bytes_table3;
-    /* Pass times of the last build, ms (-1 unavailable). */
-    double gpu_ms[DIRT_ADS_NUM_PASSES];
-    double cpu_ms[DIRT_ADS_NUM_PASSES];
+    /* Pass times of the last build, ms, summed over the runs of each pass
+     * (0 for a pass that did not run), measured by `clock` (the GPU's one
+     * clock, dirt_gpu_clock); all -1 and DIRT_CLOCK_NONE when not measured. */
+    double ms[DIRT_ADS_NUM_PASSES];
+    enum dirt_clock clock;
 } dirt_ads_stats;
 
 extern const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES];
@@ -100,7 +102,8 @@ typedef struct dirt_trace_opts {
 typedef struct dirt_trace_stats {
     uint64_t rays;
     uint64_t aborted; /* rays whose march ran out of steps (their hit may be wrong) */
-    double gpu_ms, cpu_ms; /* -1 when unavailable */
+    double ms;        /* the trace dispatch; -1 when not measured */
+    enum dirt_clock clock; /* what measured ms (dirt_gpu_clock; NONE when not measured) */
 } dirt_trace_stats;
 
 /* Traces `count` rays through the structure of the last dirt_ads_build

@@ -12,6 +12,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dirt/stats.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -28,6 +30,8 @@ typedef struct dirt_gpu_opts {
     bool no_debug;           /* no debug context / debug output */
     bool force_device_platform; /* headless: skip Mesa surfaceless, use EGL devices */
     bool disable_conservative;  /* report GL_NV_conservative_raster as absent */
+    bool cpu_timing;         /* time every pass with glFinish + the CPU clock, even
+                                where GL timer queries work (dirt_gpu_clock) */
 } dirt_gpu_opts;
 
 typedef struct dirt_gpu_caps {
@@ -55,6 +59,16 @@ void dirt_gpu_destroy(dirt_gpu *gpu);
 const dirt_gpu_caps *dirt_gpu_get_caps(const dirt_gpu *gpu);
 /* One line: "OpenGL 4.5 (Core Profile) Mesa ... | llvmpipe ... | conservative raster: no". */
 void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size);
+
+/* The one timing rule: the clock every pass on this GPU is measured with.
+ * DIRT_CLOCK_CPU (glFinish before and after, CPU wall clock) when the GPU
+ * was created with opts.cpu_timing, when the renderer is software
+ * (caps.software: llvmpipe's GL_TIME_ELAPSED does not time rasterization)
+ * or when it has no timer queries; else DIRT_CLOCK_GPU (GL_TIME_ELAPSED
+ * queries, no glFinish). Fixed for the GPU's lifetime. Every timer (the
+ * gl layer's gl_timer, the frame graph's GL backend) asks this function;
+ * nothing else decides, and every reported time carries this clock. */
+enum dirt_clock dirt_gpu_clock(const dirt_gpu *gpu);
 
 /* Waits for all GPU work (glFinish). */
 void dirt_gpu_finish(dirt_gpu *gpu);

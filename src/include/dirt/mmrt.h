@@ -30,6 +30,7 @@
 #include "dirt/tracer.h"
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
+#include "dirt/stats.h"
 #include "dirt/views.h"
 
 #ifdef __cplusplus
@@ -54,7 +55,6 @@ typedef struct dirt_mmrt_opts {
     int buckets;              /* B >= 1 (default 4) */
     size_t initial_nodes;     /* first node capacity (0 = automatic: 2 per pixel) */
     enum dirt_mmrt_sort sort;
-    bool cpu_timing;          /* time passes with glFinish + CPU clock too */
 } dirt_mmrt_opts;
 
 enum { DIRT_MMRT_PASS_CLEAR, DIRT_MMRT_PASS_DEPTH, DIRT_MMRT_PASS_MIP, DIRT_MMRT_PASS_STORE,
@@ -88,10 +88,11 @@ typedef struct dirt_mmrt_stats {
     /* MMRT paper Table 2 (DLLB): pixels * (8 + 8 B) + fragments * (12 +
      * data), data = 32 B here; without the Hi-Z pyramid levels above 0. */
     double bytes_paper;
-    /* Pass times of the last build, ms (-1 unavailable). The store entry
-     * adds up every run of the store pass. */
-    double gpu_ms[DIRT_MMRT_NUM_PASSES];
-    double cpu_ms[DIRT_MMRT_NUM_PASSES];
+    /* Pass times of the last build, ms, measured by `clock` (the GPU's one
+     * clock, dirt_gpu_clock); all -1 and DIRT_CLOCK_NONE when not measured.
+     * The store entry adds up every run of the store pass. */
+    double ms[DIRT_MMRT_NUM_PASSES];
+    enum dirt_clock clock;
 } dirt_mmrt_stats;
 
 /* Compiles the programs. NULL on failure (logged). */
@@ -177,7 +178,8 @@ typedef struct dirt_mmrt_trace_stats {
     uint64_t nodes_visited;   /* id nodes read */
     uint64_t aborted;         /* rays whose Hi-Z walk ran out of steps */
     float thickness;          /* the thickness used */
-    double gpu_ms, cpu_ms;    /* -1 when unavailable */
+    double ms;                /* the trace dispatch; -1 when not measured */
+    enum dirt_clock clock;    /* what measured ms (dirt_gpu_clock; NONE when not measured) */
 } dirt_mmrt_trace_stats;
 
 /* Traces `count` rays through the structure of the last dirt_mmrt_build

@@ -49,7 +49,6 @@ typedef struct dirt_pt_opts {
     /* G_1 from a visibility buffer of the camera view instead of traced
      * camera rays (pixel centres: no pixel jitter, no depth of field). */
     bool direct_visibility;   /* needs a tracer with a visibility function */
-    bool cpu_timing;          /* glFinish + CPU clock per pass */
     /* Called after every sample of a call (done/total of that call; may be NULL). */
     void (*progress)(void *user, int done, int total);
     void *progress_user;
@@ -73,7 +72,9 @@ extern const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES];
 /* Figures of one dirt_pt_add_samples call (or one dirt_pt_render). */
 typedef struct dirt_pt_stats {
     double pass_ms[DIRT_PT_NUM_PASSES]; /* summed over samples and events */
-    enum dirt_clock clock;    /* what measured them */
+    enum dirt_clock clock;    /* what measured them: the clock of the frame graph's
+                                 stats (the GPU's one clock, dirt_gpu_clock);
+                                 DIRT_CLOCK_NONE when nothing was measured */
     double trace_ms;          /* trace + shadow trace */
     double fetch_ms;
     double visibility_ms;     /* direct visibility */

@@ -9,6 +9,7 @@
 
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
+#include "dirt/stats.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -19,7 +20,6 @@ typedef struct dirt_raster dirt_raster;
 /* Zero-initialised = defaults. */
 typedef struct dirt_raster_opts {
     float ambient;        /* ambient factor times albedo; 0 = default 0.02, <0 = none */
-    bool cpu_timing;      /* time with glFinish + CPU clock as well */
 } dirt_raster_opts;
 
 /* Most passes the preview's frame graph runs (dirt_raster_stats.passes). */
@@ -28,16 +28,15 @@ typedef struct dirt_raster_opts {
 /* One pass of the preview's frame graph, from the graph's own stats. */
 typedef struct dirt_raster_pass_stats {
     char name[32];        /* "preview draw", "preview readback" */
-    double gpu_ms;        /* GL_TIME_ELAPSED of the pass (-1 unavailable, e.g. llvmpipe) */
-    double cpu_ms;        /* glFinish wall time of the pass (-1 unless cpu_timing) */
+    double ms;            /* the pass's time; -1 when not measured */
+    enum dirt_clock clock; /* what measured ms (the GPU's one clock, dirt_gpu_clock) */
     unsigned barrier;     /* glMemoryBarrier bits issued before it (GL values; 0 = none) */
 } dirt_raster_pass_stats;
 
 typedef struct dirt_raster_stats {
-    double gpu_ms;        /* sum of the passes' GL_TIME_ELAPSED (draw + readback;
-                             -1 when any is unavailable) */
-    double cpu_ms;        /* sum of the passes' glFinish wall times (-1 unless
-                             cpu_timing) */
+    double ms;            /* sum of the passes' times (draw + readback); -1 when
+                             any was not measured */
+    enum dirt_clock clock; /* what measured them; DIRT_CLOCK_NONE when ms is -1 */
     int num_lights;       /* punctual + lumped emitters */
     /* Frame graph (src/graph/), filled by a successful render: */
     int num_passes;       /* passes executed, at most DIRT_RASTER_MAX_PASSES */

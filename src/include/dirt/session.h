@@ -81,7 +81,9 @@ typedef struct dirt_session_opts {
     float aperture;             /* thin-lens radius (0 = pinhole) */
     float focus;                /* focus distance (0 = distance to the scene centre) */
     int threads;                /* embree: CPU threads (0 = all) */
-    bool cpu_timing;            /* CPU clock around every pass even on a GPU */
+    /* Times: the GPU engines' come with the GPU's one clock (dirt_gpu_clock;
+     * the CPU clock on a GPU needs dirt_gpu_opts.cpu_timing); Embree's are
+     * CPU times. */
 } dirt_session_opts;
 
 /* True when `opts` are valid (the checks dirt_session_create and
