@@ -298,20 +298,19 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
     if (!check_opts(&n, s->gpu != NULL))
         return false;
     dirt_session_opts old = s->opts;
-    /* What the structure is made of, what only its tracer reads, and what
-     * only changes how the work is spread (threads). */
-    bool layout = old.engine != n.engine || old.width != n.width || old.height != n.height ||
+    /* What the structure is made of and what only its tracer reads; threads
+     * only change how the work is spread. */
+    bool structure = old.engine != n.engine || old.width != n.width || old.height != n.height ||
                   old.views != n.views || old.face_size != n.face_size ||
                   old.tile_size != n.tile_size || old.buckets != n.buckets ||
                   old.force_emulation != n.force_emulation;
-    bool structure = layout;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||
                   old.aperture != n.aperture || old.focus != n.focus;
-    /* Embree and raster keep their accumulation in the image. */
-    bool image_changes = layout || tracer || (structure && !traced(n.engine)) || old.mode != n.mode || old.bounces != n.bounces ||
-                         old.seed != n.seed || old.ao_distance != n.ao_distance ||
+    bool image_changes = structure || tracer || old.mode != n.mode ||
+                         old.bounces != n.bounces || old.seed != n.seed ||
+                         old.ao_distance != n.ao_distance ||
                          memcmp(old.background, n.background, sizeof(n.background)) != 0;
     s->opts = n;
     if (structure) {
