@@ -4,6 +4,8 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -11,14 +13,90 @@
 
 #include "dirt/log.h"
 
-#define TEMP_SUFFIX ".tmp.XXXXXX"
 #define DEFAULT_MODE 0644
 
 struct dirt_atomic_file {
     char *path; /* target */
     char *temp; /* mkstemp result */
     FILE *fp;   /* stream on the temp file, NULL once closed */
+    int cleanup; /* slot in the signal cleanup list, -1 none */
 };
+
+/* ---- files removed when a signal ends the process ---- */
+
+#define CLEANUP_SLOTS 32
+#define CLEANUP_PATH 4352
+static char cleanup_path[CLEANUP_SLOTS][CLEANUP_PATH];
+static volatile sig_atomic_t cleanup_used[CLEANUP_SLOTS];
+
+int dirt_cleanup_add(const char *path)
+{
+    size_t len = path ? strlen(path) : 0;
+    if (!len || len >= CLEANUP_PATH)
+        return -1;
+    for (int i = 0; i < CLEANUP_SLOTS; i++) {
+        if (cleanup_used[i])
+            continue;
+        memcpy(cleanup_path[i], path, len + 1);
+        cleanup_used[i] = 1; /* after the copy: the handler reads only used slots */
+        return i;
+    }
+    DIRT_WARN("more than %d files to remove on a signal: '%s' is not covered", CLEANUP_SLOTS,
+              path);
+    return -1;
+}
+
+void dirt_cleanup_remove(int slot)
+{
+    if (slot >= 0 && slot < CLEANUP_SLOTS)
+        cleanup_used[slot] = 0;
+}
+
+static void on_signal(int sig)
+{
+    /* unlink, signal and raise are async-signal-safe. */
+    for (int i = 0; i < CLEANUP_SLOTS; i++) {
+        if (cleanup_used[i])
+            unlink(cleanup_path[i]);
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+bool dirt_cleanup_on_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+    for (size_t i = 0; i < sizeof(sigs) / sizeof(sigs[0]); i++) {
+        if (sigaction(sigs[i], &sa, NULL) != 0) {
+            DIRT_ERROR("cannot install the handler of signal %d: %s", sigs[i], strerror(errno));
+            return false;
+        }
+    }
+    return true;
+}
+
+/* "<path>.tmp.<host>.<pid>.XXXXXX": the writer's host and process, so a
+ * later run can tell a dead writer's leftovers from a live one's. */
+static char *temp_name(const char *path)
+{
+    char host[65] = "host";
+    if (gethostname(host, sizeof(host)) != 0)
+        snprintf(host, sizeof(host), "host");
+    host[sizeof(host) - 1] = '\0';
+    for (char *c = host; *c; c++) {
+        if (*c == '/' || *c == '.')
+            *c = '-';
+    }
+    size_t size = strlen(path) + strlen(host) + 40;
+    char *t = malloc(size);
+    if (t)
+        snprintf(t, size, "%s.tmp.%s.%ld.XXXXXX", path, host, (long)getpid());
+    return t;
+}
 
 /* Directory part of `path` as a new string ("." when there is none);
  * NULL when out of memory. */
@@ -43,6 +121,7 @@ static void discard(dirt_atomic_file *f, bool remove_temp)
 {
     if (f->fp)
         fclose(f->fp);
+    dirt_cleanup_remove(f->cleanup);
     if (remove_temp && unlink(f->temp) != 0 && errno != ENOENT)
         DIRT_WARN("cannot remove temporary file '%s': %s", f->temp,
                   strerror(errno));
@@ -61,8 +140,7 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
         DIRT_ERROR("atomic write: empty output path");
         return NULL;
     }
-    size_t len = strlen(path);
-    if (path[len - 1] == '/') {
+    if (path[strlen(path) - 1] == '/') {
         DIRT_ERROR("atomic write: output path '%s' names a directory", path);
         return NULL;
     }
@@ -81,12 +159,11 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
     f = calloc(1, sizeof(*f));
     if (!f)
         goto oom;
+    f->cleanup = -1;
     f->path = strdup(path);
-    f->temp = malloc(len + sizeof(TEMP_SUFFIX));
+    f->temp = temp_name(path);
     if (!f->path || !f->temp)
         goto oom;
-    memcpy(f->temp, path, len);
-    memcpy(f->temp + len, TEMP_SUFFIX, sizeof(TEMP_SUFFIX));
 
     fd = mkstemp(f->temp);
     if (fd < 0) {
@@ -107,6 +184,7 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
         unlink(f->temp);
         goto error;
     }
+    f->cleanup = dirt_cleanup_add(f->temp);
     return f;
 
 oom:

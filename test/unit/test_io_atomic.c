@@ -5,7 +5,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "check.h"
@@ -250,6 +252,60 @@ static void test_bad_extension(dirt_image *img)
     CHECK(count_entries(g_dir, &temps) == 0);
 }
 
+/* A writer killed by SIGTERM (or SIGINT) mid-write leaves neither its
+ * temporary file nor the target, nor a claim it registered; the temporary
+ * file names its host and process. */
+static void test_signal_cleanup(int sig)
+{
+    char target[256], claim[256];
+    snprintf(target, sizeof(target), "%s/killed_%d.exr", g_dir, sig);
+    snprintf(claim, sizeof(claim), "%s/killed_%d.exr.claim.0", g_dir, sig);
+    int fds[2];
+    CHECK(pipe(fds) == 0);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        if (!dirt_cleanup_on_signals())
+            _exit(2);
+        dirt_atomic_file *f = dirt_atomic_open(target);
+        if (!f || !write_text(claim, "claim") || dirt_cleanup_add(claim) < 0)
+            _exit(3);
+        fputs("partial", dirt_atomic_stream(f));
+        fflush(dirt_atomic_stream(f));
+        char msg[4096];
+        snprintf(msg, sizeof(msg), "%s", dirt_atomic_temp_path(f));
+        if (write(fds[1], msg, strlen(msg) + 1) < 0)
+            _exit(4);
+        for (;;)
+            pause();
+    }
+    close(fds[1]);
+    char temp[4096] = "";
+    ssize_t n = read(fds[0], temp, sizeof(temp) - 1);
+    close(fds[0]);
+    CHECK(n > 0);
+    temp[n > 0 ? n : 0] = '\0';
+    CHECK_MSG(exists(temp) && exists(claim), "the writer's files exist before the signal");
+    char host[65] = "";
+    gethostname(host, sizeof(host) - 1);
+    char expect[512];
+    snprintf(expect, sizeof(expect), ".tmp.%.*s", 20, host);
+    for (char *c = expect + 5; *c; c++)
+        if (*c == '.' || *c == '/')
+            *c = '-';
+    CHECK_MSG(strstr(temp, expect) != NULL, "temp name '%s' lacks '%s'", temp, expect);
+    char pidpart[32];
+    snprintf(pidpart, sizeof(pidpart), ".%ld.", (long)pid);
+    CHECK_MSG(strstr(temp, pidpart) != NULL, "temp name '%s' lacks the pid", temp);
+    kill(pid, sig);
+    int status = 0;
+    CHECK(waitpid(pid, &status, 0) == pid);
+    CHECK(WIFSIGNALED(status) && WTERMSIG(status) == sig);
+    CHECK_MSG(!exists(temp), "signal %d left '%s'", sig, temp);
+    CHECK_MSG(!exists(claim), "signal %d left the claim", sig);
+    CHECK(!exists(target));
+}
+
 int main(void)
 {
     if (!mkdtemp(g_dir)) {
@@ -264,6 +320,8 @@ int main(void)
         test_overwrite(img);
         test_stream_api();
         test_bad_extension(img);
+        test_signal_cleanup(SIGTERM);
+        test_signal_cleanup(SIGINT);
     }
     dirt_image_destroy(img);
     remove_tree(g_dir);

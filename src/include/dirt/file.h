@@ -1,8 +1,9 @@
 /* DIRT engine: atomic file output.
  *
  * Every file the engine writes (images, JSON stats, ...) goes through an
- * atomic file: the bytes go to a temporary file `<path>.tmp.XXXXXX` created
- * with mkstemp(3) in the same directory as `path`; commit flushes, fsyncs and
+ * atomic file: the bytes go to a temporary file `<path>.tmp.HOST.PID.XXXXXX`
+ * (the writer's host name and process id; mkstemp(3)) in the same directory
+ * as `path`; commit flushes, fsyncs and
  * rename(2)s it over `path`. Readers therefore see either the previous file
  * (or no file) or the complete new one, never a partial write. On any failure
  * and on abort the temporary file is removed and `path` is left untouched.
@@ -12,7 +13,10 @@
  *     fprintf(dirt_atomic_stream(f), "{...}\n");
  *     if (!dirt_atomic_commit(f)) return false; // f is freed either way
  *
- * A dirt_atomic_file is used by one thread at a time. */
+ * A dirt_atomic_file is used by one thread at a time. With
+ * dirt_cleanup_on_signals installed, SIGINT, SIGTERM, SIGHUP and SIGQUIT
+ * remove every temporary file still open (and the paths added with
+ * dirt_cleanup_add) before the process ends as the signal says. */
 #ifndef DIRT_FILE_H
 #define DIRT_FILE_H
 
@@ -50,6 +54,18 @@ bool dirt_atomic_commit(dirt_atomic_file *f);
 /* Discards the write: closes and removes the temporary file and frees `f`.
  * The target path is untouched. Accepts NULL. */
 void dirt_atomic_abort(dirt_atomic_file *f);
+
+/* Files to remove when a signal ends the process: the open temporary files
+ * are added and removed by the functions above; a program adds its own (a
+ * claim file). dirt_cleanup_add returns a slot (-1 when the list of 32 is
+ * full or the path too long: logged); dirt_cleanup_remove forgets it. Main
+ * thread only. */
+int dirt_cleanup_add(const char *path);
+void dirt_cleanup_remove(int slot);
+/* Installs the handlers (SIGINT, SIGTERM, SIGHUP, SIGQUIT) that remove
+ * those files, then end the process with the signal's default action.
+ * False after logging. */
+bool dirt_cleanup_on_signals(void);
 
 /* Convenience: atomically replaces `path` with `size` bytes from `data`.
  * Returns false after logging why; nothing is left behind on failure. */
