@@ -59,33 +59,6 @@ bool cli_has_ext(const char *path, const char *ext)
     return n > e && strcasecmp(path + n - e, ext) == 0;
 }
 
-bool cli_output_dir_ok(const char *prog, const char *path)
-{
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (!slash) {
-        snprintf(dir, sizeof(dir), ".");
-    } else if (slash == path) {
-        snprintf(dir, sizeof(dir), "/");
-    } else {
-        snprintf(dir, sizeof(dir), "%.*s", (int)(slash - path), path);
-    }
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        cli_error(prog, "cannot write '%s': directory '%s' does not exist", path, dir);
-        return false;
-    }
-    if (access(dir, W_OK) != 0) {
-        cli_error(prog, "cannot write '%s': directory '%s' is not writable", path, dir);
-        return false;
-    }
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error(prog, "cannot write '%s': it is a directory", path);
-        return false;
-    }
-    return true;
-}
-
 bool cli_value(const char *prog, const char *option, const char *val, char kind, void *dst,
                double lo, double hi, const char *const *names)
 {
@@ -159,41 +132,10 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
     }
 }
 
-bool cli_frame_pattern_ok(const char *pattern)
+bool cli_write_image(const char *prog, const dirt_image *img, const char *path,
+                     const dirt_image_write_options *wo, bool png_preview, bool quiet)
 {
-    int conversions = 0;
-    for (const char *p = pattern; *p; p++) {
-        if (*p != '%')
-            continue;
-        if (p[1] == '%') {
-            p++;
-            continue;
-        }
-        p++;
-        if (*p == '0')
-            p++;
-        while (*p >= '0' && *p <= '9')
-            p++;
-        if (*p != 'd')
-            return false;
-        conversions++;
-    }
-    return conversions == 1;
-}
-
-void cli_frame_path(const char *pattern, long frame, char *buf, size_t size)
-{
-    if (strchr(pattern, '%'))
-        snprintf(buf, size, pattern, (int)frame);
-    else
-        snprintf(buf, size, "%s", pattern);
-}
-
-bool cli_write_image(const char *prog, const dirt_image *img, const char *path, double exposure,
-                     bool png_preview, bool quiet)
-{
-    dirt_image_write_options wo = {.png = {.exposure = (float)exposure}};
-    if (!dirt_image_write(img, path, &wo)) {
+    if (!dirt_image_write(img, path, wo)) {
         cli_error(prog, "could not write '%s'", path);
         return false;
     }
@@ -202,7 +144,7 @@ bool cli_write_image(const char *prog, const dirt_image *img, const char *path, 
     if (png_preview) {
         char png[4200];
         snprintf(png, sizeof(png), "%.*s.png", (int)(strlen(path) - 4), path);
-        if (!dirt_image_write_png(img, png, &wo.png)) {
+        if (!dirt_image_write_png(img, png, &wo->png)) {
             cli_error(prog, "could not write '%s'", png);
             return false;
         }

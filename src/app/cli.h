@@ -42,21 +42,12 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
 /* True when `path` ends with `ext` (case-insensitive, ext includes the dot). */
 bool cli_has_ext(const char *path, const char *ext);
 
-/* True when the directory that would hold `path` exists and is writable.
- * Prints the reason when not. */
-bool cli_output_dir_ok(const char *prog, const char *path);
-
-/* Output names of frame sequences: a pattern with exactly one integer
- * conversion (%d, %04d, ...) and no other '%' except "%%". */
-bool cli_frame_pattern_ok(const char *pattern);
-/* The file of `frame`: the pattern formatted, or the path itself without '%'. */
-void cli_frame_path(const char *pattern, long frame, char *buf, size_t size);
 
 /* Writes `img` to `path` (.exr or .png, atomically) and, with `png_preview`,
  * a PNG beside it (path with .png for its 4-letter extension); prints each
  * file written unless `quiet`. False after printing why. */
-bool cli_write_image(const char *prog, const dirt_image *img, const char *path, double exposure,
-                     bool png_preview, bool quiet);
+bool cli_write_image(const char *prog, const dirt_image *img, const char *path,
+                     const dirt_image_write_options *wo, bool png_preview, bool quiet);
 
 /* Progress of a frame's samples on stderr, at most once a second (and at
  * the end): a callback for dirt_session_add_samples with a cli_progress. */

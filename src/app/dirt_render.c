@@ -1,11 +1,15 @@
 /* dirt-render: renders one frame or a frame range of a glTF scene headless,
  * on the render session (dirt/session.h). */
+#include <cjson/cJSON.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app/cli.h"
+#include "app/sequence.h"
 #include "dirt/clock.h"
+#include "dirt/file.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 
@@ -14,13 +18,14 @@
 typedef struct options {
     dirt_session_opts s;
     const char *scene_path;   /* NULL = embedded default scene */
-    const char *output, *stats_path, *graph_dot, *debug_ads;
-    double time, fps, exposure;
+    const char *output, *stats_path, *graph_dot, *debug_ads, *log_path, *mse_ref, *chunk;
+    double time, fps, exposure, claim_timeout;
     int camera;               /* -1 default, -2 automatic, else scene camera */
-    int clip;
-    bool loop, png_preview, quiet, info, frames_set;
+    int clip, tonemap;
+    bool loop, png_preview, quiet, info, time_set, exposure_set, tonemap_set;
+    bool skip_existing, placeholders, animated_seed;
     bool cpu_timing;          /* dirt_gpu_opts.cpu_timing */
-    long frame_first, frame_last;
+    seq_frames frames;        /* empty: one frame at --time */
     int spp;
 } options;
 
@@ -34,20 +39,25 @@ static void usage(FILE *out)
 "Without SCENE, renders the embedded default scene (a Cornell-style room).\n"
 "\n"
 "Output:\n"
-"  -o, --output PATH     image to write: .exr (float RGBA) or .png (8-bit sRGB).\n"
-"                        With --frames, PATH holds one printf integer pattern\n"
-"                        such as out/frame_%%04d.exr.\n"
+"  -o, --output PATH     image to write: .exr (float RGBA + albedo, N, Z) or .png\n"
+"                        (8-bit sRGB). With --frames, PATH holds one frame field:\n"
+"                        a run of # (f_####.exr: the frame zero-padded to 4) or a\n"
+"                        printf integer (f_%%04d.exr). Missing directories are made.\n"
 "  -W, --width N         image width in pixels (default 640)\n"
 "  -H, --height N        image height (default: width / the camera's aspect,\n"
 "                        4:3 for the automatic camera)\n"
 "      --png             with an .exr output, also write a .png preview beside it\n"
 "      --exposure STOPS  exposure of PNG output (default 0)\n"
+"      --tonemap OP      PNG tone map: clamp (default), reinhard or aces\n"
+"      --mse-reference FILE.exr  print and record each frame's MSE and relative\n"
+"                        MSE against this image (it may hold a frame field)\n"
 "      --info            print the scene's cameras, clips, lights, emitters and\n"
 "                        counts, and exit\n"
 "\n"
 "Scene and camera:\n"
 "  -t, --time T          animation time in seconds (default 0)\n"
-"      --frames A:B      render frames A..B (inclusive) at time frame/fps\n"
+"      --frames LIST     frames A:B[:step] (A..B inclusive) or a list such as\n"
+"                        1,5,10-20, each at time frame/fps\n"
 "      --fps F           frames per second for --frames (default 24)\n"
 "      --clip I          animation clip index (default 0; -1 = rest pose)\n"
 "      --loop            wrap time into the clip instead of clamping\n"
@@ -106,6 +116,20 @@ static void usage(FILE *out)
 "                        bounding-box diagonal); rays start 3 T off surfaces\n"
 "      --hiz-top L       as for dirt: highest Hi-Z level of the walk\n"
 "\n"
+"Sequences and farms:\n"
+"      --skip-existing   leave frames whose files are complete alone\n"
+"      --placeholders    claim each frame (FILE.claim.N) before rendering it, so\n"
+"                        any number of workers can share one output directory;\n"
+"                        implies --skip-existing\n"
+"      --claim-timeout S a claim not refreshed for S seconds belongs to a dead\n"
+"                        worker and is taken over (default 600)\n"
+"      --chunk K/N       render the K-th of N contiguous shares of the frames;\n"
+"                        --chunk slurm takes K and N from the Slurm job array\n"
+"      --animated-seed   a different seed per frame (seed mixed with the frame\n"
+"                        number; default: the same noise on every frame)\n"
+"      --log FILE.jsonl  append one JSON record per frame as it finishes, then a\n"
+"                        summary record\n"
+"\n"
 "Other:\n"
 "  -q, --quiet           print only errors\n"
 "  -v, --verbose         print debug messages\n"
@@ -121,43 +145,39 @@ static const char *const views[] = {"", "single", "cube", "cube+camera", NULL};
 static const char *const fetches[] = {"compute", "raster", NULL};
 static const char *const marches[] = {"hiz", "linear", NULL};
 
+static const char *const tonemaps[] = {"clamp", "reinhard", "aces", NULL};
+
 static bool parse_frames(const char *text, options *o)
 {
-    const char *colon = strchr(text, ':');
-    if (!colon) {
-        cli_error(PROG, "--frames expects A:B, got '%s'", text);
+    char why[256];
+    seq_frames_free(&o->frames);
+    if (!seq_frames_parse(text, &o->frames, why, sizeof(why))) {
+        cli_error(PROG, "--frames %s", why);
         return false;
     }
-    char first[32];
-    snprintf(first, sizeof(first), "%.*s", (int)(colon - text), text);
-    if (!cli_int(PROG, "--frames (first)", first, 0, 10000000, &o->frame_first) ||
-        !cli_int(PROG, "--frames (last)", colon + 1, 0, 10000000, &o->frame_last))
-        return false;
-    if (o->frame_last < o->frame_first) {
-        cli_error(PROG, "--frames %s: last frame before first", text);
-        return false;
-    }
-    o->frames_set = true;
     return true;
 }
 
-/* The checks across options; false after printing why. */
+/* The checks across options; false after printing why. Warns about
+ * options that do nothing here. */
 static bool check_options(const options *o)
 {
     const dirt_session_opts *s = &o->s;
-    bool many = o->frames_set && o->frame_last > o->frame_first;
+    bool many = o->frames.count > 1;
     char why[256];
     if (o->info)
         return true;
+    int fields = o->output ? seq_pattern_fields(o->output) : 0;
+    bool png_out = o->output && (cli_has_ext(o->output, ".png") || o->png_preview);
     if (!o->output) {
         cli_error(PROG, "no output given: use -o OUT.exr or -o OUT.png (see --help)");
     } else if (!cli_has_ext(o->output, ".exr") && !cli_has_ext(o->output, ".png")) {
         cli_error(PROG, "output '%s' must end in .exr or .png", o->output);
-    } else if (many && !cli_frame_pattern_ok(o->output)) {
-        cli_error(PROG, "--frames renders several images: the output '%s' needs one "
-                  "integer pattern such as frame_%%04d.exr", o->output);
-    } else if (!many && strchr(o->output, '%') && !cli_frame_pattern_ok(o->output)) {
-        cli_error(PROG, "output '%s' has a stray '%%'", o->output);
+    } else if (fields < 0) {
+        cli_error(PROG, "output '%s' has more than one frame field or a stray '%%'", o->output);
+    } else if (many && fields != 1) {
+        cli_error(PROG, "--frames renders several images: the output '%s' needs one frame "
+                  "field such as frame_####.exr or frame_%%04d.exr", o->output);
     } else if (!dirt_session_check_opts(s, why, sizeof(why))) {
         cli_error(PROG, "%s", why);
     } else if (o->debug_ads && many) {
@@ -166,7 +186,26 @@ static bool check_options(const options *o)
         cli_error(PROG, "--png needs an .exr output (the output is already a PNG)");
     } else if (o->graph_dot && s->engine != DIRT_ENGINE_DIRT && s->engine != DIRT_ENGINE_MMRT) {
         cli_error(PROG, "--graph-dot needs a path-tracing engine (dirt or mmrt)");
+    } else if (o->log_path && !cli_has_ext(o->log_path, ".jsonl")) {
+        cli_error(PROG, "--log file '%s' must end in .jsonl", o->log_path);
+    } else if ((o->chunk || o->placeholders) && !o->frames.count) {
+        cli_error(PROG, "--chunk and --placeholders share out --frames: give a frame list");
     } else {
+        const struct { bool idle; const char *what; } warn[] = {
+            {(o->exposure_set || o->tonemap_set) && !png_out,
+             "--exposure and --tonemap only change PNG output"},
+            {o->time_set && o->frames.count, "-t is ignored with --frames (time = frame / fps)"},
+            {s->threads && s->engine != DIRT_ENGINE_EMBREE, "--threads is for --engine embree"},
+            {(s->march || s->march_samples || s->thickness > 0) && s->engine != DIRT_ENGINE_MMRT,
+             "--march, --samples and --thickness are MMRT's"},
+            {s->ao_distance > 0 && s->mode != DIRT_PT_AO, "--ao-distance needs --mode ao"},
+            {s->focus > 0 && !(s->aperture > 0), "--focus needs --aperture"},
+            {o->animated_seed && !o->frames.count, "--animated-seed needs --frames"},
+        };
+        for (size_t i = 0; i < sizeof(warn) / sizeof(warn[0]); i++) {
+            if (warn[i].idle && !o->quiet)
+                fprintf(stderr, "%s: warning: %s\n", PROG, warn[i].what);
+        }
         return true;
     }
     return false;
@@ -175,7 +214,8 @@ static bool check_options(const options *o)
 /* Returns DIRT_EXIT_OK, or DIRT_EXIT_USAGE after printing why; -1 for --help. */
 static int parse_args(int argc, char **argv, options *o)
 {
-    *o = (options){.s = {.width = 640}, .fps = 24, .camera = -1, .spp = 16};
+    *o = (options){.s = {.width = 640}, .fps = 24, .camera = -1, .spp = 16,
+                   .claim_timeout = 600};
     long hiz_top = -1;
     const char *engines[DIRT_NUM_ENGINES + 1] = {0};
     for (int e = 0; e < DIRT_NUM_ENGINES; e++)
@@ -216,12 +256,19 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--background", NULL, 'b', o->s.background, 0, 0, NULL},
         {NULL, "--stats", NULL, 'j', &o->stats_path, 0, 0, NULL},
         {NULL, "--graph-dot", NULL, 'g', &o->graph_dot, 0, 0, NULL},
+        {NULL, "--log", NULL, 's', &o->log_path, 0, 0, NULL},
+        {NULL, "--mse-reference", NULL, 's', &o->mse_ref, 0, 0, NULL},
+        {NULL, "--chunk", NULL, 's', &o->chunk, 0, 0, NULL},
+        {NULL, "--claim-timeout", NULL, 'd', &o->claim_timeout, 1, 1e7, NULL},
+        {NULL, "--tonemap", NULL, 'c', &o->tonemap, 0, 0, tonemaps},
     };
     const struct { const char *s, *l; bool *dst; } flags[] = {
         {NULL, "--loop", &o->loop}, {NULL, "--png", &o->png_preview},
         {NULL, "--info", &o->info}, {NULL, "--direct-visibility", &o->s.direct_visibility},
         {NULL, "--no-conservative-raster", &o->s.force_emulation},
         {NULL, "--cpu-timing", &o->cpu_timing}, {"-q", "--quiet", &o->quiet},
+        {NULL, "--skip-existing", &o->skip_existing}, {NULL, "--placeholders", &o->placeholders},
+        {NULL, "--animated-seed", &o->animated_seed},
     };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -245,6 +292,9 @@ static int parse_args(int argc, char **argv, options *o)
                 return DIRT_EXIT_USAGE;
             if (opts[k].kind == 'F' && !parse_frames(val, o))
                 return DIRT_EXIT_USAGE;
+            o->time_set |= opts[k].dst == &o->time;
+            o->exposure_set |= opts[k].dst == &o->exposure;
+            o->tonemap_set |= opts[k].dst == &o->tonemap;
         }
         if (done)
             continue;
@@ -271,17 +321,52 @@ static int parse_args(int argc, char **argv, options *o)
     return check_options(o) ? DIRT_EXIT_OK : DIRT_EXIT_USAGE;
 }
 
-/* Checks every output location before any expensive work. */
-static bool outputs_ok(const options *o)
+/* A file of the run, made creatable now: its directories are created and
+ * its temporary file is made and removed (proof that the write will not
+ * fail for permissions or a missing directory, unlike access(2) as root). */
+static bool creatable(const char *path)
 {
-    char path[4200];
-    cli_frame_path(o->output, o->frames_set ? o->frame_first : 0, path, sizeof(path));
-    if (!cli_output_dir_ok(PROG, path) ||
-        (o->stats_path && !cli_output_dir_ok(PROG, o->stats_path)) ||
-        (o->graph_dot && !cli_output_dir_ok(PROG, o->graph_dot)))
+    char why[512];
+    if (!seq_make_parent_dirs(path, why, sizeof(why))) {
+        cli_error(PROG, "%s", why);
         return false;
-    snprintf(path, sizeof(path), "%s/ads.png", o->debug_ads ? o->debug_ads : ".");
-    return !o->debug_ads || cli_output_dir_ok(PROG, path);
+    }
+    dirt_atomic_file *f = dirt_atomic_open(path);
+    if (!f) {
+        cli_error(PROG, "cannot write '%s' (see the error above)", path);
+        return false;
+    }
+    dirt_atomic_abort(f);
+    return true;
+}
+
+/* The files of `frame`: the image, and its PNG preview with --png. */
+static int frame_files(const options *o, long frame, char files[2][4200])
+{
+    seq_frame_path(o->output, frame, files[0], sizeof(files[0]));
+    if (!o->png_preview)
+        return 1;
+    size_t stem = strlen(files[0]) - 4; /* without ".exr" */
+    memcpy(files[1], files[0], stem);
+    memcpy(files[1] + stem, ".png", 5);
+    return 2;
+}
+
+/* Checks every output location before any expensive work. */
+static bool outputs_ok(const options *o, long first_frame)
+{
+    char files[2][4200];
+    int n = frame_files(o, first_frame, files);
+    for (int i = 0; i < n; i++) {
+        if (!creatable(files[i]))
+            return false;
+    }
+    if ((o->stats_path && !creatable(o->stats_path)) ||
+        (o->graph_dot && !creatable(o->graph_dot)) || (o->log_path && !creatable(o->log_path)))
+        return false;
+    char probe[4200];
+    snprintf(probe, sizeof(probe), "%s/ads.png", o->debug_ads ? o->debug_ads : ".");
+    return !o->debug_ads || creatable(probe);
 }
 
 /* The structure's pictures of the frame just rendered (a DIRT session). */
@@ -296,23 +381,101 @@ static bool write_debug_ads(const options *o, dirt_session *s)
     return dirt_ads_write_debug(ads, o->debug_ads, o->quiet);
 }
 
+/* A frame's seed with --animated-seed: the seed and the frame number mixed
+ * (a fixed integer hash), so every frame's noise differs and reruns agree. */
+static uint32_t frame_seed(uint32_t seed, long frame)
+{
+    uint32_t h = seed ^ (uint32_t)frame * 0x9E3779B1u;
+    h ^= h >> 16;
+    h *= 0x7FEB352Du;
+    h ^= h >> 15;
+    h *= 0x846CA68Bu;
+    return h ^ (h >> 16);
+}
+
+typedef struct progress {
+    cli_progress cli;
+    seq_claim *claim;
+} progress;
+
+static void on_sample(void *user, int done, int total)
+{
+    progress *p = user;
+    cli_progress_sample(&p->cli, done, total);
+    seq_claim_touch(p->claim);
+}
+
+/* Appends one line to the JSON Lines log (one write(2): lines of workers
+ * sharing a log do not interleave). */
+static bool log_line(FILE *log, cJSON *rec)
+{
+    char *text = rec ? cJSON_PrintUnformatted(rec) : NULL;
+    bool ok = text && fprintf(log, "%s\n", text) > 0 && fflush(log) == 0;
+    free(text);
+    return ok;
+}
+
+/* MSE and relative MSE of the beauty against the reference of `frame`. */
+static bool compare_reference(const options *o, long frame, const dirt_image *img,
+                              dirt_image_error *e)
+{
+    char path[4200];
+    seq_frame_path(o->mse_ref, frame, path, sizeof(path));
+    dirt_image *ref = dirt_image_read_exr(path);
+    bool ok = ref && dirt_image_compare(img, ref, e);
+    if (!ok)
+        cli_error(PROG, "cannot compare with the reference '%s' (see above)", path);
+    dirt_image_destroy(ref);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    setvbuf(stderr, NULL, _IOLBF, 0);
     options o;
     int rc = parse_args(argc, argv, &o);
     if (rc < 0) {
         usage(stdout);
         return DIRT_EXIT_OK;
     }
-    if (rc != DIRT_EXIT_OK)
+    if (rc != DIRT_EXIT_OK) {
+        seq_frames_free(&o.frames);
         return rc;
+    }
     dirt_scene *scene = NULL;
     dirt_gpu *gpu = NULL;
     dirt_session *session = NULL, *debug = NULL;
     dirt_session_stats *fstats = NULL;
+    FILE *log = NULL;
+    seq_claim claim = {0};
+    char why[512];
     rc = DIRT_EXIT_USAGE;
-    if (!o.info && !outputs_ok(&o))
+    /* The frames: the list, or one frame at --time (numbered 0). */
+    bool sequence = o.frames.count > 0;
+    if (!sequence && !(o.frames.frames = malloc(sizeof(long))))
         goto done;
+    if (!sequence)
+        o.frames.frames[o.frames.count++] = 0;
+    if (o.chunk) {
+        long k = 0, n = 0;
+        bool ok = !strcmp(o.chunk, "slurm") ? seq_slurm_share(&k, &n, why, sizeof(why))
+                                            : sscanf(o.chunk, "%ld/%ld", &k, &n) == 2;
+        if (!ok || !seq_frames_chunk(&o.frames, k, n, why, sizeof(why))) {
+            cli_error(PROG, "--chunk %s: %s", o.chunk, ok ? why : "expects K/N or slurm");
+            goto done;
+        }
+        if (!o.quiet)
+            fprintf(stderr, "%s: share %ld of %ld: %zu frame(s)\n", PROG, k, n, o.frames.count);
+    }
+    if (!o.info && !dirt_cleanup_on_signals())
+        goto done;
+    if (!o.info && !outputs_ok(&o, o.frames.count ? o.frames.frames[0] : 0))
+        goto done;
+    if (o.log_path && !(log = fopen(o.log_path, "a"))) {
+        cli_error(PROG, "cannot append to '%s'", o.log_path);
+        goto done;
+    }
     scene = o.scene_path ? dirt_scene_load(o.scene_path, NULL) : dirt_scene_create_default();
     if (!scene) {
         cli_error(PROG, "cannot load scene '%s' (see the error above)",
@@ -355,8 +518,7 @@ int main(int argc, char **argv)
     if (o.debug_ads && o.s.engine != DIRT_ENGINE_DIRT &&
         (!debug || !dirt_session_set_camera(debug, choice, o.camera, NULL)))
         goto done;
-    long first = o.frames_set ? o.frame_first : 0, last = o.frames_set ? o.frame_last : 0;
-    fstats = calloc((size_t)(last - first + 1), sizeof(*fstats));
+    fstats = calloc(o.frames.count ? o.frames.count : 1, sizeof(*fstats));
     if (!fstats)
         goto done;
     if (!o.quiet) {
@@ -367,45 +529,127 @@ int main(int argc, char **argv)
                 o.scene_path ? o.scene_path : "default scene", dirt_scene_num_triangles(scene),
                 dirt_engine_names[o.s.engine], desc);
     }
+    bool shared = o.skip_existing || o.placeholders;
+    size_t rendered = 0, skipped = 0, total = o.frames.count;
     double t0 = dirt_clock_ms();
-    for (long fi = first; fi <= last; fi++) {
-        double t = o.frames_set ? fi / o.fps : o.time;
-        if (!dirt_session_set_time(session, t, &eval) ||
+    for (size_t i = 0; i < total; i++) {
+        long fi = o.frames.frames[i];
+        char files[2][4200];
+        int nfiles = frame_files(&o, fi, files);
+        const char *paths[2] = {files[0], files[1]};
+        seq_clean_stale_temps(files[0], o.claim_timeout);
+        if (shared && seq_complete(paths, nfiles)) {
+            skipped++;
+            continue;
+        }
+        if (o.placeholders) {
+            if (!seq_claim_take(files[0], o.claim_timeout, &claim, why, sizeof(why))) {
+                if (why[0]) {
+                    cli_error(PROG, "%s", why);
+                    rc = DIRT_EXIT_USAGE;
+                    goto done;
+                }
+                skipped++; /* another worker's */
+                continue;
+            }
+            if (seq_complete(paths, nfiles)) { /* finished while we looked */
+                seq_claim_release(&claim, files[0], true);
+                skipped++;
+                continue;
+            }
+        }
+        double t = sequence ? fi / o.fps : o.time;
+        uint32_t seed = o.animated_seed ? frame_seed(o.s.seed, fi) : o.s.seed;
+        dirt_session_opts so = *dirt_session_get_opts(session);
+        so.seed = seed;
+        if (!seq_make_parent_dirs(files[0], why, sizeof(why))) {
+            cli_error(PROG, "%s", why);
+            rc = DIRT_EXIT_USAGE;
+            goto done;
+        }
+        if (!dirt_session_set_opts(session, &so, NULL) ||
+            !dirt_session_set_time(session, t, &eval) ||
             (debug && !dirt_session_set_time(debug, t, &eval)))
             goto done;
         double f0 = dirt_clock_ms();
-        cli_progress prog = {.prog = PROG, .start = f0, .last = f0, .frame = fi, .quiet = o.quiet};
-        if (!dirt_session_add_samples(session, o.spp, cli_progress_sample, &prog))
+        progress prog = {{.prog = PROG, .start = f0, .last = f0, .frame = fi, .quiet = o.quiet},
+                         &claim};
+        if (!dirt_session_add_samples(session, o.spp, on_sample, &prog))
             goto done;
         if (o.debug_ads && !write_debug_ads(&o, debug ? debug : session)) {
             rc = DIRT_EXIT_USAGE;
             goto done;
         }
         const dirt_image *img = dirt_session_image(session);
-        if (!img)
+        dirt_image_error err = {0};
+        if (!img || (o.mse_ref && !compare_reference(&o, fi, img, &err)))
             goto done;
-        dirt_session_stats *fs = &fstats[fi - first];
+        dirt_session_stats *fs = &fstats[rendered++];
         *fs = *dirt_session_get_stats(session);
-        char path[4200];
-        cli_frame_path(o.output, fi, path, sizeof(path));
-        if (!cli_write_image(PROG, img, path, o.exposure, o.png_preview, o.quiet)) {
+        dirt_image_write_options wo = {.png = {.exposure = (float)o.exposure,
+                                               .tonemap = (enum dirt_tonemap)o.tonemap}};
+        if (!cli_write_image(PROG, img, files[0], &wo, o.png_preview, o.quiet)) {
             rc = DIRT_EXIT_USAGE; /* unwritable output */
             goto done;
         }
+        seq_claim_release(&claim, files[0], true);
         if (!o.quiet && o.s.engine != DIRT_ENGINE_RASTER)
             fprintf(stderr, "%s: frame %ld: build %.1f ms, trace %.1f ms, fetch %.1f ms, shade "
                     "%.1f ms, %llu rays (%.2f Mrays/s)%s\n", PROG, fi, fs->build_ms, fs->trace_ms,
                     fs->fetch_ms, fs->shade_ms, (unsigned long long)fs->rays, fs->mrays_per_s,
                     fs->aborted ? ", SOME RAYS ABORTED" : "");
-        if (!o.quiet && last > first) {
+        if (o.mse_ref && !o.quiet)
+            fprintf(stderr, "%s: frame %ld: MSE %.6g, relative MSE %.6g against the reference\n",
+                    PROG, fi, err.mse, err.rel_mse);
+        if (log) {
+            cJSON *rec = dirt_session_stats_json(fs);
+            const dirt_camera *cam = dirt_session_camera(session);
+            cJSON_AddNumberToObject(rec, "frame", (double)fi);
+            cJSON_AddNumberToObject(rec, "seed", seed);
+            cJSON_AddStringToObject(rec, "file", files[0]);
+            cJSON *c = cJSON_AddObjectToObject(rec, "camera");
+            cJSON_AddItemToObject(c, "eye", cJSON_CreateFloatArray(cam->eye, 3));
+            cJSON_AddItemToObject(c, "forward", cJSON_CreateFloatArray(cam->forward, 3));
+            cJSON_AddNumberToObject(c, "yfov", cam->yfov);
+            if (o.mse_ref) {
+                cJSON_AddNumberToObject(rec, "mse", err.mse);
+                cJSON_AddNumberToObject(rec, "rel_mse", err.rel_mse);
+            }
+            bool ok = log_line(log, rec);
+            cJSON_Delete(rec);
+            if (!ok) {
+                cli_error(PROG, "cannot append to '%s'", o.log_path);
+                rc = DIRT_EXIT_USAGE;
+                goto done;
+            }
+        }
+        if (!o.quiet && total > 1) {
             double el = (dirt_clock_ms() - t0) / 1000.0;
-            long n = fi - first + 1, total = last - first + 1;
-            fprintf(stderr, "%s: frame %ld/%ld (t=%.3fs) elapsed %.1fs, ETA %.1fs\n", PROG, n,
-                    total, t, el, el / n * (total - n));
+            size_t left = total - i - 1;
+            fprintf(stderr, "%s: frame %ld done (%zu of %zu; %zu rendered, %zu skipped), "
+                    "elapsed %.1fs, ETA %.1fs\n", PROG, fi, i + 1, total, rendered, skipped, el,
+                    el / rendered * (double)left);
         }
     }
     rc = DIRT_EXIT_USAGE; /* from here on, only writes can fail */
-    if (o.graph_dot) {
+    if (log) {
+        cJSON *sum = cJSON_CreateObject();
+        cJSON *in = cJSON_AddObjectToObject(sum, "summary");
+        cJSON_AddNumberToObject(in, "frames", (double)total);
+        cJSON_AddNumberToObject(in, "rendered", (double)rendered);
+        cJSON_AddNumberToObject(in, "skipped", (double)skipped);
+        cJSON_AddNumberToObject(in, "wall_ms", dirt_clock_ms() - t0);
+        bool ok = log_line(log, sum);
+        cJSON_Delete(sum);
+        if (!ok) {
+            cli_error(PROG, "cannot append to '%s'", o.log_path);
+            goto done;
+        }
+    }
+    if (!o.quiet && skipped)
+        fprintf(stderr, "%s: %zu frame(s) rendered, %zu skipped (complete or claimed)\n", PROG,
+                rendered, skipped);
+    if (o.graph_dot && rendered) {
         if (!dirt_session_write_graph_dot(session, o.graph_dot)) {
             cli_error(PROG, "could not write '%s'", o.graph_dot);
             goto done;
@@ -413,8 +657,8 @@ int main(int argc, char **argv)
         if (!o.quiet)
             printf("wrote %s\n", o.graph_dot);
     }
-    if (o.stats_path) {
-        if (!dirt_session_write_stats(o.stats_path, fstats, (size_t)(last - first + 1))) {
+    if (o.stats_path && rendered) {
+        if (!dirt_session_write_stats(o.stats_path, fstats, rendered)) {
             cli_error(PROG, "could not write '%s'", o.stats_path);
             goto done;
         }
@@ -423,7 +667,12 @@ int main(int argc, char **argv)
     }
     rc = DIRT_EXIT_OK;
 done:
+    if (claim.held)
+        seq_claim_release(&claim, "", false);
+    if (log)
+        fclose(log);
     free(fstats);
+    seq_frames_free(&o.frames);
     dirt_session_destroy(debug);
     dirt_session_destroy(session);
     dirt_gpu_destroy(gpu);

@@ -253,6 +253,23 @@ static void restart(dirt_session *s)
     memset(&s->stats, 0, sizeof(s->stats));
 }
 
+/* Warns when nothing can light the image: no punctual light, no emissive
+ * material and a black background (path tracing and the preview). */
+static void warn_unlit(const dirt_scene *scene, const dirt_session_opts *o)
+{
+    if (o->mode == DIRT_PT_AO || o->background[0] > 0 || o->background[1] > 0 ||
+        o->background[2] > 0 || dirt_scene_num_lights(scene) > 0)
+        return;
+    const dirt_material *m = dirt_scene_materials(scene);
+    for (size_t i = 0; i < dirt_scene_num_materials(scene); i++) {
+        if ((m[i].emissive[0] > 0 || m[i].emissive[1] > 0 || m[i].emissive[2] > 0) &&
+            m[i].emissive_strength > 0)
+            return;
+    }
+    DIRT_WARN("the scene has no light and no emissive material and the background is black: "
+              "the image will be black (give a --background, or render AO)");
+}
+
 dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
                                   const dirt_session_opts *opts)
 {
@@ -267,6 +284,7 @@ dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
     s->gpu = gpu;
     s->scene = scene;
     s->opts = o;
+    warn_unlit(scene, &o);
     s->frame = dirt_scene_evaluate(scene, 0, &s->eval);
     if (!s->frame)
         goto error;

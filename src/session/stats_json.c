@@ -75,6 +75,21 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
     }
 }
 
+struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
+{
+    cJSON *f = cJSON_CreateObject();
+    if (!f)
+        return NULL;
+    cJSON_AddStringToObject(f, "engine", dirt_engine_names[st->engine]);
+    cJSON_AddNumberToObject(f, "width", st->width);
+    cJSON_AddNumberToObject(f, "height", st->height);
+    cJSON_AddNumberToObject(f, "time", st->time);
+    cJSON_AddNumberToObject(f, "samples", st->samples);
+    add_figures(f, st);
+    add_details(f, st);
+    return f;
+}
+
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count)
 {
     if (!count) {
@@ -122,13 +137,9 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     add_details(root, last);
     cJSON *list = cJSON_AddArrayToObject(root, "frames");
     for (size_t i = 0; list && i < count; i++) {
-        cJSON *f = cJSON_CreateObject();
+        cJSON *f = dirt_session_stats_json(&frames[i]);
         if (!f)
             goto oom;
-        cJSON_AddNumberToObject(f, "time", frames[i].time);
-        cJSON_AddNumberToObject(f, "samples", frames[i].samples);
-        add_figures(f, &frames[i]);
-        add_details(f, &frames[i]);
         cJSON_AddItemToArray(list, f);
     }
     char *text = cJSON_Print(root);

@@ -83,7 +83,19 @@ expect_rc 2 "short background" -- -o "$out/a.png" --background 1,2
 expect_rc 2 "bad fetch" -- -o "$out/a.png" --fetch magic
 expect_rc 2 "bad tile size" -- -o "$out/a.png" --tile 3
 expect_rc 2 "direct visibility without camera view" -- -o "$out/a.png" --views cube --direct-visibility
-expect_rc 2 "stats dir missing" -- -o "$out/a.png" --stats "$tmp/no/dir/s.json"
+# Directories are made, but not under a file; every output is proven
+# creatable (a temp file is made) before any work, so nothing is left.
+: >"$tmp/plainfile"
+expect_rc 2 "stats dir under a file" -- -o "$out/a.png" --stats "$tmp/plainfile/dir/s.json"
+no_leftovers "$out"
+expect_rc 2 "stats in /proc (even as root)" -- -o "$out/a.png" --stats /proc/s.json
+no_leftovers "$out"
+expect_rc 2 "log not jsonl" -- -o "$out/a.png" --log "$out/l.txt"
+expect_rc 2 "bad frame list" -- -o "$out/a_####.png" --frames 1,x
+expect_rc 2 "two frame fields" -- -o "$out/a_##_%d.png" --frames 1:2
+expect_rc 2 "chunk without frames" -- -o "$out/a.png" --chunk 1/2
+expect_rc 2 "chunk out of range" -- -o "$out/a_#.png" --frames 1:4 --chunk 3/2
+expect_rc 2 "slurm chunk outside slurm" -- -o "$out/a_#.png" --frames 1:4 --chunk slurm
 no_leftovers "$out"
 
 # bad files
@@ -95,7 +107,7 @@ expect_rc 2 "NaN position" -- "$tmp/nan.gltf" -o "$out/a.png"
 no_leftovers "$out"
 
 # unwritable outputs
-expect_rc 2 "missing output directory" -- -o "$tmp/no/such/dir/a.png"
+expect_rc 2 "output directory under a file" -- -o "$tmp/plainfile/dir/a.png"
 mkdir -p "$tmp/isdir.png"
 expect_rc 2 "output is a directory" -- -o "$tmp/isdir.png"
 expect_rc 2 "camera out of range" -- -o "$out/a.png" --camera 99

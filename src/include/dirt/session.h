@@ -190,6 +190,12 @@ const dirt_session_stats *dirt_session_get_stats(const dirt_session *s);
  * when the file cannot be written. */
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count);
 
+/* One stats record as a cJSON object (the "frames" entries of
+ * dirt_session_write_stats), owned by the caller (cJSON_Delete). NULL when
+ * out of memory. */
+struct cJSON;
+struct cJSON *dirt_session_stats_json(const dirt_session_stats *stats);
+
 /* Frame graph DOT of the path tracer (dirt, mmrt) or of the raster preview.
  * False (logged) before the first samples or for the embree engine. */
 bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);

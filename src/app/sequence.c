@@ -1,0 +1,429 @@
+/* Frame sequences: lists, names, shares, claims and stale temp files. */
+#include "app/sequence.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "dirt/file.h"
+
+#define MAX_FRAME 10000000L
+#define MAX_FRAMES 1000000L
+
+/* A whole non-negative integer at *p, advancing it. */
+static bool number(const char **p, long *out)
+{
+    const char *s = *p;
+    if (*s < '0' || *s > '9')
+        return false;
+    long v = 0;
+    while (*s >= '0' && *s <= '9') {
+        v = v * 10 + (*s - '0');
+        if (v > MAX_FRAME)
+            return false;
+        s++;
+    }
+    *p = s;
+    *out = v;
+    return true;
+}
+
+static int cmp_long(const void *a, const void *b)
+{
+    long x = *(const long *)a, y = *(const long *)b;
+    return x < y ? -1 : x > y;
+}
+
+static bool add_range(seq_frames *f, size_t *cap, long a, long b, long step)
+{
+    for (long v = a; v <= b; v += step) {
+        if (f->count >= (size_t)MAX_FRAMES)
+            return false;
+        if (f->count == *cap) {
+            size_t n = *cap ? 2 * *cap : 64;
+            long *grown = realloc(f->frames, n * sizeof(*grown));
+            if (!grown)
+                return false;
+            f->frames = grown;
+            *cap = n;
+        }
+        f->frames[f->count++] = v;
+    }
+    return true;
+}
+
+bool seq_frames_parse(const char *text, seq_frames *out, char *why, size_t size)
+{
+    *out = (seq_frames){0};
+    size_t cap = 0;
+    const char *p = text ? text : "";
+    long a, b, step = 1;
+    if (strchr(p, ':')) {
+        /* A:B[:step] */
+        if (!number(&p, &a) || *p++ != ':' || !number(&p, &b) ||
+            (*p == ':' && (p++, !number(&p, &step) || step < 1)) || *p) {
+            snprintf(why, size, "expects A:B[:step] or a list such as 1,5,10-20, got '%s'",
+                     text);
+            return false;
+        }
+        if (b < a) {
+            snprintf(why, size, "'%s': last frame before first", text);
+            return false;
+        }
+        if (!add_range(out, &cap, a, b, step))
+            goto too_many;
+        return true;
+    }
+    while (*p) {
+        if (!number(&p, &a)) {
+            snprintf(why, size, "expects A:B[:step] or a list such as 1,5,10-20, got '%s'", text);
+            goto error;
+        }
+        b = a;
+        if (*p == '-') {
+            p++;
+            if (!number(&p, &b) || b < a) {
+                snprintf(why, size, "'%s': a range must read A-B with A <= B", text);
+                goto error;
+            }
+        }
+        if (!add_range(out, &cap, a, b, 1))
+            goto too_many;
+        if (*p == ',' && p[1])
+            p++;
+        else if (*p) {
+            snprintf(why, size, "expects A:B[:step] or a list such as 1,5,10-20, got '%s'", text);
+            goto error;
+        }
+    }
+    if (!out->count) {
+        snprintf(why, size, "no frames in '%s'", text);
+        goto error;
+    }
+    qsort(out->frames, out->count, sizeof(long), cmp_long);
+    size_t n = 1;
+    for (size_t i = 1; i < out->count; i++) {
+        if (out->frames[i] != out->frames[n - 1])
+            out->frames[n++] = out->frames[i];
+    }
+    out->count = n;
+    return true;
+too_many:
+    snprintf(why, size, "'%s': more than %ld frames (or out of memory)", text, MAX_FRAMES);
+error:
+    seq_frames_free(out);
+    return false;
+}
+
+void seq_frames_free(seq_frames *f)
+{
+    free(f->frames);
+    *f = (seq_frames){0};
+}
+
+bool seq_frames_chunk(seq_frames *f, long k, long n, char *why, size_t size)
+{
+    if (n < 1 || k < 1 || k > n) {
+        snprintf(why, size, "share %ld of %ld: expects K/N with 1 <= K <= N", k, n);
+        return false;
+    }
+    /* Share k covers [floor((k-1) c / n), floor(k c / n)). */
+    size_t c = f->count;
+    size_t first = (size_t)((unsigned long long)(k - 1) * c / (unsigned long long)n);
+    size_t last = (size_t)((unsigned long long)k * c / (unsigned long long)n);
+    memmove(f->frames, f->frames + first, (last - first) * sizeof(long));
+    f->count = last - first;
+    return true;
+}
+
+static bool env_long(const char *name, long *out)
+{
+    const char *v = getenv(name);
+    if (!v || !*v)
+        return false;
+    char *end;
+    errno = 0;
+    long x = strtol(v, &end, 10);
+    if (errno || *end)
+        return false;
+    *out = x;
+    return true;
+}
+
+bool seq_slurm_share(long *k, long *n, char *why, size_t size)
+{
+    long id, count, min = 0;
+    if (!env_long("SLURM_ARRAY_TASK_ID", &id) || !env_long("SLURM_ARRAY_TASK_COUNT", &count)) {
+        snprintf(why, size, "SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT are not set "
+                            "(not inside a Slurm job array?)");
+        return false;
+    }
+    env_long("SLURM_ARRAY_TASK_MIN", &min);
+    long step = 1;
+    env_long("SLURM_ARRAY_TASK_STEP", &step);
+    if (step < 1)
+        step = 1;
+    *k = (id - min) / step + 1;
+    *n = count;
+    if (*k < 1 || *k > *n) {
+        snprintf(why, size, "Slurm task %ld (min %ld, step %ld) is not one of %ld tasks", id, min,
+                 step, count);
+        return false;
+    }
+    return true;
+}
+
+/* ---- names ---- */
+
+int seq_pattern_fields(const char *pattern)
+{
+    int fields = 0;
+    for (const char *p = pattern; *p; p++) {
+        if (*p == '#') {
+            while (p[1] == '#')
+                p++;
+            fields++;
+        } else if (*p == '%') {
+            if (p[1] == '%') {
+                p++;
+                continue;
+            }
+            p++;
+            if (*p == '0')
+                p++;
+            while (*p >= '0' && *p <= '9')
+                p++;
+            if (*p != 'd')
+                return -1;
+            fields++;
+        }
+    }
+    return fields > 1 ? -1 : fields;
+}
+
+void seq_frame_path(const char *pattern, long frame, char *buf, size_t size)
+{
+    size_t o = 0;
+    for (const char *p = pattern; *p && o + 1 < size; p++) {
+        if (*p == '#') {
+            int width = 0;
+            while (p[width] == '#')
+                width++;
+            int n = snprintf(buf + o, size - o, "%0*ld", width, frame);
+            o += n > 0 ? (size_t)n : 0;
+            p += width - 1;
+        } else if (*p == '%' && p[1] == '%') {
+            buf[o++] = '%';
+            p++;
+        } else if (*p == '%') {
+            /* %[0][width]d */
+            const char *q = p + 1;
+            bool zero = *q == '0';
+            if (zero)
+                q++;
+            int width = 0;
+            while (*q >= '0' && *q <= '9')
+                width = width * 10 + (*q++ - '0');
+            int n = snprintf(buf + o, size - o, zero ? "%0*ld" : "%*ld", width, frame);
+            o += n > 0 ? (size_t)n : 0;
+            p = q; /* at the 'd' */
+        } else {
+            buf[o++] = *p;
+        }
+        if (o >= size)
+            o = size - 1;
+    }
+    buf[o < size ? o : size - 1] = '\0';
+}
+
+bool seq_make_parent_dirs(const char *path, char *why, size_t size)
+{
+    char dir[4200];
+    snprintf(dir, sizeof(dir), "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (!slash || slash == dir)
+        return true;
+    *slash = '\0';
+    for (char *p = dir + 1;; p++) {
+        bool end = *p == '\0';
+        if (*p == '/' || end) {
+            *p = '\0';
+            if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+                snprintf(why, size, "cannot create directory '%s': %s", dir, strerror(errno));
+                return false;
+            }
+            struct stat st;
+            if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+                snprintf(why, size, "'%s' is not a directory", dir);
+                return false;
+            }
+            if (end)
+                break;
+            *p = '/';
+        }
+    }
+    return true;
+}
+
+bool seq_complete(const char *const *paths, int count)
+{
+    for (int i = 0; i < count; i++) {
+        struct stat st;
+        if (stat(paths[i], &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0)
+            return false;
+    }
+    return count > 0;
+}
+
+/* ---- claims ---- */
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_REALTIME, &t);
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+/* The newest claim generation of `frame_file` (-1 when none) and its age. */
+static long newest_claim(const char *frame_file, double *age)
+{
+    long g = -1;
+    char path[4300];
+    for (long i = 0; i < 1000000; i++) {
+        snprintf(path, sizeof(path), "%s.claim.%ld", frame_file, i);
+        struct stat st;
+        if (stat(path, &st) != 0)
+            break;
+        g = i;
+        *age = now_s() - ((double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9);
+    }
+    return g;
+}
+
+static int claim_slot = -1;
+
+bool seq_claim_take(const char *frame_file, double timeout_s, seq_claim *c, char *why,
+                    size_t size)
+{
+    *c = (seq_claim){0};
+    why[0] = '\0';
+    for (int attempt = 0; attempt < 16; attempt++) {
+        double age = 0;
+        long g = newest_claim(frame_file, &age);
+        if (g >= 0 && age < timeout_s)
+            return false; /* another worker holds it */
+        /* No claim, or the newest is stale: make the next generation. */
+        snprintf(c->path, sizeof(c->path), "%s.claim.%ld", frame_file, g + 1);
+        int fd = open(c->path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+        if (fd < 0) {
+            if (errno == EEXIST)
+                continue; /* another worker made it first: look again */
+            snprintf(why, size, "cannot claim '%s': %s", frame_file, strerror(errno));
+            return false;
+        }
+        char host[128] = "?";
+        gethostname(host, sizeof(host) - 1);
+        char line[256];
+        int n = snprintf(line, sizeof(line), "%s %ld\n", host, (long)getpid());
+        bool ok = write(fd, line, (size_t)n) == n;
+        close(fd);
+        if (!ok) {
+            unlink(c->path);
+            snprintf(why, size, "cannot write the claim '%s'", c->path);
+            return false;
+        }
+        c->held = true;
+        claim_slot = dirt_cleanup_add(c->path);
+        return true;
+    }
+    snprintf(why, size, "cannot claim '%s': too many workers racing", frame_file);
+    return false;
+}
+
+void seq_claim_touch(seq_claim *c)
+{
+    static double last;
+    double t = now_s();
+    if (!c || !c->held || t - last < 1.0)
+        return;
+    last = t;
+    utimensat(AT_FDCWD, c->path, NULL, 0);
+}
+
+void seq_claim_release(seq_claim *c, const char *frame_file, bool frame_done)
+{
+    if (!c->held)
+        return;
+    dirt_cleanup_remove(claim_slot);
+    claim_slot = -1;
+    if (frame_done) {
+        double age;
+        long g = newest_claim(frame_file, &age);
+        char path[4300];
+        for (long i = 0; i <= g; i++) {
+            snprintf(path, sizeof(path), "%s.claim.%ld", frame_file, i);
+            unlink(path);
+        }
+    } else {
+        unlink(c->path);
+    }
+    c->held = false;
+}
+
+/* ---- stale temporary files ---- */
+
+int seq_clean_stale_temps(const char *frame_file, double timeout_s)
+{
+    char dir[4200];
+    snprintf(dir, sizeof(dir), "%s", frame_file);
+    char *slash = strrchr(dir, '/');
+    const char *base = slash ? slash + 1 : frame_file;
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof(dir), ".");
+    char prefix[4300];
+    snprintf(prefix, sizeof(prefix), "%s.tmp.", base);
+    size_t plen = strlen(prefix);
+    char host[65] = "host";
+    gethostname(host, sizeof(host) - 1);
+    for (char *h = host; *h; h++) {
+        if (*h == '/' || *h == '.')
+            *h = '-';
+    }
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    int removed = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (strncmp(e->d_name, prefix, plen) != 0)
+            continue;
+        char path[8600];
+        snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
+        /* HOST.PID.XXXXXX after the prefix */
+        const char *rest = e->d_name + plen;
+        const char *dot = strchr(rest, '.');
+        bool dead = false;
+        if (dot && (size_t)(dot - rest) == strlen(host) && !strncmp(rest, host, strlen(host))) {
+            long pid = strtol(dot + 1, NULL, 10);
+            dead = pid > 0 && kill((pid_t)pid, 0) != 0 && errno == ESRCH;
+        } else {
+            struct stat st;
+            dead = stat(path, &st) == 0 &&
+                   now_s() - ((double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9) > timeout_s;
+        }
+        if (dead && unlink(path) == 0)
+            removed++;
+    }
+    closedir(d);
+    return removed;
+}
