@@ -62,6 +62,9 @@ bool gl_buffer_ensure(dirt_gpu *gpu, GLuint *buf, size_t *cap, size_t size, bool
                       const char *label);
 /* Copies `size` bytes from offset 0 of `buf` into `out` (glGetNamedBufferSubData). */
 bool gl_buffer_read(GLuint buf, size_t offset, size_t size, void *out);
+/* Replaces `size` bytes at `offset` of `buf` (a GL_DYNAMIC_STORAGE_BIT
+ * buffer) with `data` (glNamedBufferSubData; ordered by GL itself). */
+bool gl_buffer_write(GLuint buf, size_t offset, size_t size, const void *data);
 
 /* 2D texture with immutable storage. levels >= 1. */
 GLuint gl_texture_2d(GLenum internal_format, int width, int height, int levels,

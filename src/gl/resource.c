@@ -111,3 +111,9 @@ bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba)
                       (GLsizei)((size_t)width * (size_t)height * 4 * sizeof(float)), rgba);
     return gl_check("texture read");
 }
+
+bool gl_buffer_write(GLuint buf, size_t offset, size_t size, const void *data)
+{
+    glNamedBufferSubData(buf, (GLintptr)offset, (GLsizeiptr)size, data);
+    return gl_check("buffer write");
+}

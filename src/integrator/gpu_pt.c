@@ -14,6 +14,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gl/graph_gl.h"
+#include "integrator/depth.h"
 
 const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
     [DIRT_PT_PASS_RAYGEN] = "raygen",
@@ -57,6 +58,9 @@ struct dirt_pt {
     GLuint display;
     int display_w, display_h;
     uint32_t display_samples; /* samples it shows; ~0 = stale */
+    /* the Z AOV of the accumulation (depth.c), made with its first samples */
+    float *depth;
+    size_t depth_pixels;
     /* state read by the pass bodies during dirt_pt_add_samples */
     const dirt_tracer *tech;
     dirt_gpu_model_tables tables;
@@ -97,6 +101,9 @@ static void release_buffers(dirt_pt *pt)
     for (size_t i = 0; i < sizeof(b) / sizeof(b[0]); i++)
         gl_buffer_destroy(b[i]);
     gl_texture_destroy(&pt->display);
+    free(pt->depth);
+    pt->depth = NULL;
+    pt->depth_pixels = 0;
     pt->pixels = 0;
     pt->accum_valid = false;
 }
@@ -449,8 +456,18 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
         if (!make_graph(pt, events))
             goto done;
     }
-    if (pt->samples == 0 && tech->restart)
-        tech->restart(tech->self);
+    if (pt->samples == 0) {
+        /* The depth first: a tracer's per-trace randomness restarts below. */
+        if (pt->depth_pixels != pixels) {
+            free(pt->depth);
+            pt->depth = malloc(pixels * sizeof(float));
+            pt->depth_pixels = pt->depth ? pixels : 0;
+        }
+        if (!pt->depth || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, pt->depth))
+            goto done;
+        if (tech->restart)
+            tech->restart(tech->self);
+    }
     tech->reset_counts(tech->self);
     fg_exec_opts eo = {.validate = true};
     for (int s = 0; s < count; s++) {
@@ -502,6 +519,9 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
                         dirt_image_find_channel(out, "albedo.B")};
     float *normal[3] = {dirt_image_find_channel(out, "N.X"), dirt_image_find_channel(out, "N.Y"),
                         dirt_image_find_channel(out, "N.Z")};
+    float *z = dirt_image_find_channel(out, "Z");
+    if (z && pt->depth_pixels == pixels)
+        memcpy(z, pt->depth, pixels * sizeof(float));
     /* The display pass multiplies by the same float (glsl/integrator/display.comp). */
     float inv = 1.0f / (float)pt->samples;
     uint64_t invalid = 0;

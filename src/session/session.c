@@ -586,8 +586,8 @@ static bool build(dirt_session *s)
 static dirt_image *new_image(const dirt_session *s, bool aovs)
 {
     dirt_image *img = dirt_image_create(s->width, s->height);
-    static const char *extra[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"};
-    for (int i = 0; img && aovs && i < 6; i++) {
+    static const char *extra[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
+    for (int i = 0; img && aovs && i < 7; i++) {
         if (!dirt_image_add_channel(img, extra[i])) {
             dirt_image_destroy(img);
             return NULL;

@@ -112,7 +112,10 @@ int dirt_pt_samples(const dirt_pt *pt);
 
 /* The mean of the accumulation into `out` (of the accumulation's size):
  * beauty in RGBA (alpha 1) and, when `out` has them, the channels
- * "albedo.R/G/B" and "N.X/Y/Z" (first-hit means). `invalid_samples` (may be
+ * "albedo.R/G/B" and "N.X/Y/Z" (first-hit means) and "Z" (the depth along
+ * the camera's forward axis of the first hit of the pinhole ray through the
+ * pixel centre, INFINITY where it misses: the Embree reference's Z, traced
+ * once per accumulation through the tracer). `invalid_samples` (may be
  * NULL) gets the non-finite samples dropped. Blocking readback. False
  * (logged) with no samples or a size mismatch. */
 bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples);

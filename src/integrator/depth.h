@@ -1,0 +1,19 @@
+/* The Z AOV of the GPU path tracer (depth.c). */
+#ifndef DIRT_INTEGRATOR_DEPTH_H
+#define DIRT_INTEGRATOR_DEPTH_H
+
+#include <stdbool.h>
+
+#include "dirt/gpu.h"
+#include "dirt/scene.h"
+#include "dirt/tracer.h"
+
+/* Writes width x height depths (row 0 = top) into `depth`: the distance
+ * along the camera's forward axis to the first hit of the pinhole ray
+ * through each pixel centre, INFINITY where it misses; the reference's
+ * "Z" (src/ref/render.c). Traces through `tracer` in batches that fit one
+ * storage block. Blocking. False after logging. */
+bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
+                     int height, float *depth);
+
+#endif
