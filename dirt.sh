@@ -14,7 +14,7 @@ PACKAGES=(
   libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libembree-dev glslang-tools libcjson-dev python3
   xvfb xauth
-  slurm-wlm munge
+  slurm-wlm munge openimageio-tools
 )
 
 say() { printf '%s\n' "dirt.sh: $*" >&2; }

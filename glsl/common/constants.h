@@ -271,6 +271,7 @@
 #define DIRT_LOC_PREVIEW_MATERIAL 2    /* int */
 #define DIRT_LOC_PREVIEW_NUM_LIGHTS 3  /* int */
 #define DIRT_LOC_PREVIEW_AMBIENT 4     /* float */
+#define DIRT_LOC_PREVIEW_FORWARD 5     /* vec3: unit camera axis (the Z AOV) */
 
 /* glsl/test/rng.comp */
 #define DIRT_LOC_TEST_RNG_COUNT 0      /* uint */

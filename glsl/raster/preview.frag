@@ -12,6 +12,7 @@ layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec2 v_uv;
 
 layout(location = DIRT_LOC_PREVIEW_EYE) uniform vec3 u_eye;
+layout(location = DIRT_LOC_PREVIEW_FORWARD) uniform vec3 u_forward; // unit camera axis
 layout(location = DIRT_LOC_PREVIEW_MATERIAL) uniform int u_material;
 layout(location = DIRT_LOC_PREVIEW_NUM_LIGHTS) uniform int u_num_lights;
 layout(location = DIRT_LOC_PREVIEW_AMBIENT) uniform float u_ambient;
@@ -27,6 +28,7 @@ layout(std430, binding = DIRT_BIND_PREVIEW_LIGHTS) readonly buffer Lights {
 };
 
 layout(location = 0) out vec4 out_color;
+layout(location = 1) out vec4 out_aov; // xyz shading normal facing the camera, w depth
 
 // Radiance-like factor (irradiance / pi times pi cancels) arriving at p with
 // normal n from light l.
@@ -77,4 +79,5 @@ void main()
         e += light_contribution(lights[i], v_position, n);
     vec3 albedo = base.rgb * (1.0 - 0.5 * m.pbr.x);
     out_color = vec4(emission + albedo / PI * e + u_ambient * albedo, 1.0);
+    out_aov = vec4(n, dot(v_position - u_eye, u_forward));
 }

@@ -65,15 +65,17 @@ struct dirt_raster {
     /* frame graph: declared at create, compiled for graph_width x graph_height
      * (0 x 0 = not compiled yet, or the last compile failed) */
     fg_graph *graph;
-    fg_res res_vertices, res_materials, res_lights, res_color, res_depth;
+    fg_res res_vertices, res_materials, res_lights, res_color, res_aov, res_depth;
     int graph_width, graph_height;
     /* what the pass bodies of the current render need */
     struct {
         float view_proj[16];
         const float *eye;
+        float forward[3]; /* unit camera axis (the Z AOV) */
         int num_lights;
         float ambient;
         float *rgba;      /* caller's width*height*4 floats */
+        float *aov;       /* caller's width*height*4 floats (N.xyz, Z) or NULL */
         int width, height;
     } frame;
     /* CPU staging, reused between frames */
@@ -161,11 +163,14 @@ static bool exec_draw(fg_ctx *ctx, void *user)
     glDisable(GL_CULL_FACE);
     static const float clear_color[4] = {0, 0, 0, 1};
     static const float clear_depth = 1.0f;
+    const float clear_aov[4] = {0, 0, 0, INFINITY}; /* misses: no normal, Z infinite */
     glClearBufferfv(GL_COLOR, 0, clear_color);
+    glClearBufferfv(GL_COLOR, 1, clear_aov);
     glClearBufferfv(GL_DEPTH, 0, &clear_depth);
     glUseProgram(r->program);
     glUniformMatrix4fv(DIRT_LOC_PREVIEW_VIEW_PROJ, 1, GL_FALSE, r->frame.view_proj);
     glUniform3fv(DIRT_LOC_PREVIEW_EYE, 1, r->frame.eye);
+    glUniform3fv(DIRT_LOC_PREVIEW_FORWARD, 1, r->frame.forward);
     glUniform1i(DIRT_LOC_PREVIEW_NUM_LIGHTS, r->frame.num_lights);
     glUniform1f(DIRT_LOC_PREVIEW_AMBIENT, r->frame.ambient);
     glBindVertexArray(r->vao);
@@ -188,24 +193,22 @@ static bool exec_draw(fg_ctx *ctx, void *user)
     return true;
 }
 
-/* Pass body of "preview readback": copies the colour target (bottom-up) into
- * the caller's buffer, then flips the rows so row 0 is the top. */
-static bool exec_readback(fg_ctx *ctx, void *user)
+/* Reads RGBA32F target `res` (bottom-up) into `out` and flips the rows so
+ * row 0 is the top. */
+static bool read_flipped(fg_ctx *ctx, const dirt_raster *r, fg_res res, float *out)
 {
-    dirt_raster *r = user;
     int w = 0, h = 0;
-    fg_texture_size(ctx, r->res_color, &w, &h, NULL, NULL);
+    fg_texture_size(ctx, res, &w, &h, NULL, NULL);
     if (w != r->frame.width || h != r->frame.height) {
-        DIRT_ERROR("raster preview: colour target is %dx%d, the image %dx%d", w, h,
-                   r->frame.width, r->frame.height);
+        DIRT_ERROR("raster preview: target is %dx%d, the image %dx%d", w, h, r->frame.width,
+                   r->frame.height);
         return false;
     }
     size_t row = (size_t)w * 4;
-    float *rgba = r->frame.rgba;
-    if (!fg_gl_read_texture(ctx, r->res_color, 0, rgba, row * (size_t)h * sizeof(float)))
+    if (!fg_gl_read_texture(ctx, res, 0, out, row * (size_t)h * sizeof(float)))
         return false;
     for (int y = 0; y < h / 2; y++) {
-        float *a = rgba + (size_t)y * row, *b = rgba + (size_t)(h - 1 - y) * row;
+        float *a = out + (size_t)y * row, *b = out + (size_t)(h - 1 - y) * row;
         for (size_t i = 0; i < row; i++) {
             float tmp = a[i];
             a[i] = b[i];
@@ -213,6 +216,15 @@ static bool exec_readback(fg_ctx *ctx, void *user)
         }
     }
     return true;
+}
+
+/* Pass body of "preview readback": the colour target, and the AOV target
+ * when the caller wants it, into the caller's buffers (row 0 = top). */
+static bool exec_readback(fg_ctx *ctx, void *user)
+{
+    dirt_raster *r = user;
+    return read_flipped(ctx, r, r->res_color, r->frame.rgba) &&
+           (!r->frame.aov || read_flipped(ctx, r, r->res_aov, r->frame.aov));
 }
 
 /* Scene textures a material samples (base colour or emissive), imported so
@@ -277,12 +289,13 @@ static bool build_graph(dirt_raster *r)
     r->res_lights = fg_import_buffer(g, "preview lights", r->lights,
                                      r->lights_capacity * sizeof(struct dirt_gpu_light));
     r->res_color = fg_texture(g, "preview color", &(fg_tex_desc){.format = FG_RGBA32F});
+    r->res_aov = fg_texture(g, "preview normal and depth", &(fg_tex_desc){.format = FG_RGBA32F});
     r->res_depth = fg_texture(g, "preview depth", &(fg_tex_desc){.format = FG_DEPTH32F});
 
     fg_pass *draw = fg_add_pass(g, PASS_DRAW, FG_RASTER, exec_draw, r);
     fg_pass *rb = fg_add_pass(g, PASS_READBACK, FG_COMPUTE, exec_readback, r);
     if (!r->res_vertices.id || !r->res_materials.id || !r->res_lights.id ||
-        !r->res_color.id || !r->res_depth.id || !draw || !rb)
+        !r->res_color.id || !r->res_aov.id || !r->res_depth.id || !draw || !rb)
         return false;
     fg_read(draw, r->res_vertices, FG_VERTEX);
     fg_use(draw, r->res_materials, FG_SSBO_READ,
@@ -292,9 +305,11 @@ static bool build_graph(dirt_raster *r)
     if (!declare_textures(r, draw))
         return false;
     fg_use(draw, r->res_color, FG_COLOR, &(fg_use_opts){.binding = 0});
+    fg_use(draw, r->res_aov, FG_COLOR, &(fg_use_opts){.binding = 1});
     fg_write(draw, r->res_depth, FG_DEPTH);
 
     fg_read(rb, r->res_color, FG_TRANSFER_READ);
+    fg_read(rb, r->res_aov, FG_TRANSFER_READ);
     fg_keep(rb);
     return true;
 }
@@ -606,7 +621,7 @@ static void fill_stats(const dirt_raster *r, int num_lights, dirt_raster_stats *
 
 bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *cam,
                         int width, int height, const dirt_raster_opts *opts_in,
-                        float *rgba, dirt_raster_stats *stats)
+                        float *rgba, float *aov, dirt_raster_stats *stats)
 {
     dirt_raster_opts opts = opts_in ? *opts_in : (dirt_raster_opts){0};
     float ambient = opts.ambient == 0 ? 0.02f : (opts.ambient < 0 ? 0 : opts.ambient);
@@ -652,15 +667,21 @@ bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *
         }
     }
     r->frame.eye = cam->eye;
+    float len = sqrtf(cam->forward[0] * cam->forward[0] + cam->forward[1] * cam->forward[1] +
+                      cam->forward[2] * cam->forward[2]);
+    for (int k = 0; k < 3; k++)
+        r->frame.forward[k] = len > 0 ? cam->forward[k] / len : 0.0f;
     r->frame.num_lights = num_lights;
     r->frame.ambient = ambient;
     r->frame.rgba = rgba;
+    r->frame.aov = aov;
     r->frame.width = width;
     r->frame.height = height;
 
     /* Validation is always on: it only compares bookkeeping (no GL queries). */
     ok = fg_execute(r->graph, &(fg_exec_opts){.validate = true});
     r->frame.rgba = NULL;
+    r->frame.aov = NULL;
     r->frame.eye = NULL;
     if (!ok) {
         DIRT_ERROR("raster preview: executing the frame graph failed");

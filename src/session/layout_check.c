@@ -317,7 +317,8 @@ static inline int distinct_locations(int program, int loc)
     case 6:
         switch (loc) {
             L(DIRT_LOC_PREVIEW_VIEW_PROJ) L(DIRT_LOC_PREVIEW_EYE) L(DIRT_LOC_PREVIEW_MATERIAL)
-            L(DIRT_LOC_PREVIEW_NUM_LIGHTS) L(DIRT_LOC_PREVIEW_AMBIENT) return 1;
+            L(DIRT_LOC_PREVIEW_NUM_LIGHTS) L(DIRT_LOC_PREVIEW_AMBIENT)
+            L(DIRT_LOC_PREVIEW_FORWARD) return 1;
         }
         break;
     case 7:
@@ -377,7 +378,7 @@ static const dirt_layout_uniform u_to_gpoint[] = {
 static const dirt_layout_uniform u_preview[] = {
     U("u_view_proj", DIRT_LOC_PREVIEW_VIEW_PROJ), U("u_eye", DIRT_LOC_PREVIEW_EYE),
     U("u_material", DIRT_LOC_PREVIEW_MATERIAL),   U("u_num_lights", DIRT_LOC_PREVIEW_NUM_LIGHTS),
-    U("u_ambient", DIRT_LOC_PREVIEW_AMBIENT)};
+    U("u_ambient", DIRT_LOC_PREVIEW_AMBIENT), U("u_forward", DIRT_LOC_PREVIEW_FORWARD)};
 static const dirt_layout_uniform u_rng[] = {
     U("u_count", DIRT_LOC_TEST_RNG_COUNT), U("u_seed", DIRT_LOC_TEST_RNG_SEED)};
 static const dirt_layout_uniform u_fill[] = {

@@ -735,12 +735,27 @@ bool dirt_session_add_samples(dirt_session *s, int count,
     case DIRT_ENGINE_RASTER: {
         if (!s->img) {
             s->img = new_image(s, false);
+            static const char *aovs[] = {"N.X", "N.Y", "N.Z", "Z"};
+            for (int c = 0; s->img && c < 4; c++) {
+                if (!dirt_image_add_channel(s->img, aovs[c])) {
+                    dirt_image_destroy(s->img);
+                    s->img = NULL;
+                }
+            }
             if (!s->img)
                 return false;
         }
+        size_t n = (size_t)s->width * (size_t)s->height;
+        float *aov = malloc(4 * n * sizeof(float));
         dirt_raster_stats rs;
-        ok = dirt_raster_render(s->raster, s->frame, &s->cam, s->width, s->height, NULL,
-                                s->img->rgba, &rs);
+        ok = aov && dirt_raster_render(s->raster, s->frame, &s->cam, s->width, s->height, NULL,
+                                       s->img->rgba, aov, &rs);
+        /* N.X, N.Y, N.Z, Z: the channels in the order added above. */
+        for (size_t i = 0; ok && i < n; i++) {
+            for (int c = 0; c < 4; c++)
+                s->img->channels[c].data[i] = aov[4 * i + (size_t)c];
+        }
+        free(aov);
         if (ok) {
             st->num_passes = 0;
             for (int i = 0; i < rs.num_passes; i++) {

@@ -59,7 +59,7 @@ int main(void)
     float *img = calloc((size_t)W * H * 4, sizeof(float));
     const dirt_camera *cam = &f->cameras[0];
     dirt_raster_stats st;
-    CHECK(dirt_raster_render(r, f, cam, W, H, NULL, img, &st));
+    CHECK(dirt_raster_render(r, f, cam, W, H, NULL, img, NULL, &st));
     CHECK(st.num_lights >= 1);
 
     /* Projected bounding box of the emissive triangles. */

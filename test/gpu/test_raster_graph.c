@@ -49,7 +49,7 @@ static void check_stats(const dirt_raster_stats *st, int w, int h, enum dirt_clo
     CHECK(strcmp(st->passes[1].name, "preview readback") == 0);
     CHECK(st->passes[0].barrier == 0 && st->passes[1].barrier == 0);
     CHECK(st->validation_errors == 0);
-    CHECK_MSG(st->transient_bytes == (size_t)w * (size_t)h * (16 + 4),
+    CHECK_MSG(st->transient_bytes == (size_t)w * (size_t)h * (16 + 16 + 4),
               "transient %zu bytes at %dx%d", st->transient_bytes, w, h);
     CHECK(st->imported_bytes > 0);
     for (int i = 0; i < 2; i++) {
@@ -112,26 +112,26 @@ int main(void)
     part.num_lights = 0;
     dirt_raster_stats st1, st;
     memset(&st1, 0xff, sizeof(st1));
-    CHECK(dirt_raster_render(r, &part, cam, W1, H1, NULL, small, &st1));
+    CHECK(dirt_raster_render(r, &part, cam, W1, H1, NULL, small, NULL, &st1));
     check_stats(&st1, W1, H1, clock);
 
     /* 2. The whole frame at W2 x H2: recompile, vertex and light buffers grow
      *    (their imports are repointed). */
-    CHECK(dirt_raster_render(r, f, cam, W2, H2, NULL, a, &st));
+    CHECK(dirt_raster_render(r, f, cam, W2, H2, NULL, a, NULL, &st));
     check_stats(&st, W2, H2, clock);
     CHECK(st.num_lights >= 1);
     CHECK_MSG(st.imported_bytes > st1.imported_bytes, "imported %zu then %zu bytes",
               st1.imported_bytes, st.imported_bytes);
 
     /* 3. Same render again: same pixels. */
-    CHECK(dirt_raster_render(r, f, cam, W2, H2, NULL, b, &st));
+    CHECK(dirt_raster_render(r, f, cam, W2, H2, NULL, b, NULL, &st));
     check_stats(&st, W2, H2, clock);
     CHECK(memcmp(a, b, (size_t)W2 * H2 * 4 * sizeof(float)) == 0);
 
     /* 4. Resize down and back: still clean, still the same pixels. */
-    CHECK(dirt_raster_render(r, f, cam, W1, H1, NULL, small, &st));
+    CHECK(dirt_raster_render(r, f, cam, W1, H1, NULL, small, NULL, &st));
     check_stats(&st, W1, H1, clock);
-    CHECK(dirt_raster_render(r, f, cam, W2, H2, NULL, c, &st));
+    CHECK(dirt_raster_render(r, f, cam, W2, H2, NULL, c, NULL, &st));
     check_stats(&st, W2, H2, clock);
     CHECK(memcmp(a, c, (size_t)W2 * H2 * 4 * sizeof(float)) == 0);
     size_t lit = 0;

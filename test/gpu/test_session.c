@@ -185,6 +185,18 @@ static void check_aovs(dirt_gpu *gpu, const dirt_scene *scene)
     CHECK_MSG(hits > W * H / 2 && bad_d == 0, "DIRT Z differs from Embree's at %d of %d", bad_d,
               hits);
     CHECK_MSG(bad_m <= hits / 50, "MMRT Z far from Embree's at %d of %d", bad_m, hits);
+    /* The raster preview: beauty, N and Z (rasterized depth at pixel centres). */
+    dirt_session *r = dirt_session_create(
+        gpu, scene, &(dirt_session_opts){.engine = DIRT_ENGINE_RASTER, .width = W, .height = H});
+    CHECK(r && dirt_session_add_samples(r, 1, NULL, NULL));
+    const dirt_image *ri = r ? dirt_session_image(r) : NULL;
+    const float *zp = ri ? dirt_image_find_channel(ri, "Z") : NULL;
+    CHECK(zp && dirt_image_find_channel(ri, "N.X") && dirt_image_find_channel(ri, "N.Z"));
+    int bad_r = 0;
+    for (int i = 0; zp && zr && i < W * H; i++)
+        bad_r += isinf(zr[i]) ? !isinf(zp[i]) : !(fabsf(zp[i] - zr[i]) <= 1e-4f * zr[i]);
+    CHECK_MSG(bad_r == 0, "raster Z differs from Embree's at %d pixels", bad_r);
+    dirt_session_destroy(r);
     fprintf(stderr, "AOVs: one channel set; Z: DIRT == Embree on %d hit pixels, MMRT off at %d\n",
             hits, bad_m);
     for (int e = 0; e < 3; e++)

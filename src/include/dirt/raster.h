@@ -41,7 +41,7 @@ typedef struct dirt_raster_stats {
     /* Frame graph (src/graph/), filled by a successful render: */
     int num_passes;       /* passes executed, at most DIRT_RASTER_MAX_PASSES */
     dirt_raster_pass_stats passes[DIRT_RASTER_MAX_PASSES]; /* in execution order */
-    size_t transient_bytes;   /* graph-owned targets: colour RGBA32F + depth32f */
+    size_t transient_bytes;   /* graph-owned targets: colour and AOV RGBA32F + depth32f */
     size_t imported_bytes;    /* vertex/material/light buffers and sampled textures */
     unsigned long long validation_errors; /* missing barriers found by the graph's
                                              validation since create (always 0 in a
@@ -54,12 +54,16 @@ dirt_raster *dirt_raster_create(dirt_gpu *gpu, const dirt_scene *scene);
 void dirt_raster_destroy(dirt_raster *r);
 
 /* Renders `frame` (of the scene given at create) from `cam` into `rgba`,
- * width*height*4 linear floats, row 0 = top. `opts`/`stats` may be NULL.
+ * width*height*4 linear floats, row 0 = top, and, when `aov` is not NULL,
+ * into `aov` (width*height*4 floats): the world-space shading normal facing
+ * the camera (xyz; 0 where nothing is hit) and Z (w), the depth along the
+ * camera's forward axis (INFINITY where nothing is hit), the engine's "N"
+ * and "Z" AOVs at pixel centres. `opts`/`stats` may be NULL.
  * Runs on a frame graph (doc/frame-graph.md section 7) executed with barrier
  * validation on; a change of size recompiles it. */
 bool dirt_raster_render(dirt_raster *r, const dirt_frame *frame, const dirt_camera *cam,
                         int width, int height, const dirt_raster_opts *opts,
-                        float *rgba, dirt_raster_stats *stats);
+                        float *rgba, float *aov, dirt_raster_stats *stats);
 
 /* Writes the GraphViz DOT of the preview's frame graph, as compiled for the
  * latest render's size, to `path` (render with `dot -Tsvg`). False after
