@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app/cli.h"
 #include "app/sequence.h"
@@ -450,6 +451,8 @@ int main(int argc, char **argv)
     FILE *log = NULL;
     seq_claim claim = {0};
     char why[512];
+    char written[2][4200]; /* a single frame's files, removed if the run fails later */
+    int num_written = 0;
     rc = DIRT_EXIT_USAGE;
     /* The frames: the list, or one frame at --time (numbered 0). */
     bool sequence = o.frames.count > 0;
@@ -593,6 +596,8 @@ int main(int argc, char **argv)
             goto done;
         }
         seq_claim_release(&claim, files[0], true);
+        for (int k = 0; !sequence && k < nfiles; k++)
+            memcpy(written[num_written++], files[k], sizeof(files[k]));
         if (!o.quiet && o.s.engine != DIRT_ENGINE_RASTER)
             fprintf(stderr, "%s: frame %ld: build %.1f ms, trace %.1f ms, fetch %.1f ms, shade "
                     "%.1f ms, %llu rays (%.2f Mrays/s)%s\n", PROG, fi, fs->build_ms, fs->trace_ms,
@@ -667,6 +672,10 @@ int main(int argc, char **argv)
     }
     rc = DIRT_EXIT_OK;
 done:
+    /* A one-frame run is all or nothing (a sequence keeps its complete
+     * frames: they are what --skip-existing resumes from). */
+    for (int k = 0; rc != DIRT_EXIT_OK && k < num_written; k++)
+        unlink(written[k]);
     if (claim.held)
         seq_claim_release(&claim, "", false);
     if (log)
