@@ -533,6 +533,22 @@ int main(int argc, char **argv)
                 dirt_engine_names[o.s.engine], desc);
     }
     bool shared = o.skip_existing || o.placeholders;
+    /* Dead writers' temporary files, once per output directory. */
+    char png_pattern[4200], last_dir[4200] = "";
+    snprintf(png_pattern, sizeof(png_pattern), "%.*s.png", (int)strlen(o.output) - 4, o.output);
+    for (size_t i = 0; i < o.frames.count; i++) {
+        char f[4200];
+        seq_frame_path(o.output, o.frames.frames[i], f, sizeof(f));
+        char *slash = strrchr(f, '/');
+        if (slash)
+            *slash = '\0';
+        if (!strcmp(f, last_dir) && i)
+            continue;
+        snprintf(last_dir, sizeof(last_dir), "%s", f);
+        seq_clean_stale_temps(o.output, o.frames.frames[i], o.claim_timeout);
+        if (o.png_preview)
+            seq_clean_stale_temps(png_pattern, o.frames.frames[i], o.claim_timeout);
+    }
     size_t rendered = 0, skipped = 0, total = o.frames.count;
     double t0 = dirt_clock_ms();
     for (size_t i = 0; i < total; i++) {
@@ -540,7 +556,6 @@ int main(int argc, char **argv)
         char files[2][4200];
         int nfiles = frame_files(&o, fi, files);
         const char *paths[2] = {files[0], files[1]};
-        seq_clean_stale_temps(files[0], o.claim_timeout);
         if (shared && seq_complete(paths, nfiles)) {
             skipped++;
             continue;

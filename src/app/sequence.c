@@ -380,19 +380,43 @@ void seq_claim_release(seq_claim *c, const char *frame_file, bool frame_done)
 
 /* ---- stale temporary files ---- */
 
-int seq_clean_stale_temps(const char *frame_file, double timeout_s)
+/* Length of the constant text of `base` (a file name) before and after its
+ * frame field. */
+static void field_bounds(const char *base, size_t *before, size_t *after)
 {
-    char dir[4200];
-    snprintf(dir, sizeof(dir), "%s", frame_file);
+    size_t n = strlen(base), i = 0;
+    while (i < n && base[i] != '#' && !(base[i] == '%' && base[i + 1] != '%'))
+        i++;
+    *before = i;
+    *after = 0;
+    if (i == n)
+        return;
+    size_t j = i + 1;
+    if (base[i] == '#') {
+        while (base[j] == '#')
+            j++;
+    } else {
+        while (base[j] && base[j] != 'd')
+            j++;
+        j += base[j] == 'd';
+    }
+    *after = n - j;
+}
+
+int seq_clean_stale_temps(const char *pattern, long frame, double timeout_s)
+{
+    char file[4200], dir[4200];
+    seq_frame_path(pattern, frame, file, sizeof(file));
+    snprintf(dir, sizeof(dir), "%s", file);
     char *slash = strrchr(dir, '/');
-    const char *base = slash ? slash + 1 : frame_file;
     if (slash)
         *slash = '\0';
     else
         snprintf(dir, sizeof(dir), ".");
-    char prefix[4300];
-    snprintf(prefix, sizeof(prefix), "%s.tmp.", base);
-    size_t plen = strlen(prefix);
+    const char *pbase = strrchr(pattern, '/') ? strrchr(pattern, '/') + 1 : pattern;
+    size_t before, after;
+    field_bounds(pbase, &before, &after);
+    size_t plen = strlen(pbase);
     char host[65] = "host";
     gethostname(host, sizeof(host) - 1);
     for (char *h = host; *h; h++) {
@@ -405,12 +429,21 @@ int seq_clean_stale_temps(const char *frame_file, double timeout_s)
     int removed = 0;
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
-        if (strncmp(e->d_name, prefix, plen) != 0)
+        /* NAME.tmp.HOST.PID.XXXXXX where NAME is a file the pattern makes:
+         * its constant text before and after the frame field (or, for a
+         * pattern without one, the name itself). */
+        const char *tmp = strstr(e->d_name, ".tmp.");
+        if (!tmp)
+            continue;
+        size_t name = (size_t)(tmp - e->d_name);
+        if (name < before + after || strncmp(e->d_name, pbase, before) != 0 ||
+            strncmp(e->d_name + name - after, pbase + plen - after, after) != 0 ||
+            (before == plen && name != plen))
             continue;
         char path[8600];
         snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
-        /* HOST.PID.XXXXXX after the prefix */
-        const char *rest = e->d_name + plen;
+        /* HOST.PID.XXXXXX after ".tmp." */
+        const char *rest = tmp + 5;
         const char *dot = strchr(rest, '.');
         bool dead = false;
         if (dot && (size_t)(dot - rest) == strlen(host) && !strncmp(rest, host, strlen(host))) {

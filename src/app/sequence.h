@@ -66,10 +66,11 @@ void seq_claim_touch(seq_claim *c);
  * only this worker's (when it gives the frame up). */
 void seq_claim_release(seq_claim *c, const char *frame_file, bool frame_done);
 
-/* Removes the temporary files an atomic writer left beside `frame_file`
+/* Removes the temporary files an atomic writer left in the directory of
+ * `frame`'s file for any file the output `pattern` makes
  * (F.tmp.HOST.PID.XXXXXX) whose writer is gone: on this host when the
  * process no longer exists, from elsewhere when older than `timeout_s`.
- * Returns how many were removed. */
-int seq_clean_stale_temps(const char *frame_file, double timeout_s);
+ * One directory scan; returns how many were removed. */
+int seq_clean_stale_temps(const char *pattern, long frame, double timeout_s);
 
 #endif
