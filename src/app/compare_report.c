@@ -316,9 +316,12 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
             if (isnan(dirt))
                 dirt = jd(p, "dirt.rel_mse");
         }
-        bprintf(&b, "| %s | %.0fx%.0f | %.0f | %.4g | %.4g | %.4g | %.4g | %.3g |\n",
+        char dt[32] = "not swept (add 0)", de[32] = "";
+        if (!isnan(def))
+            snprintf(dt, sizeof(dt), "%.4g", def_t), snprintf(de, sizeof(de), "%.4g", def);
+        bprintf(&b, "| %s | %.0fx%.0f | %.0f | %s | %s | %.4g | %.4g | %.3g |\n",
                 js(a, "scene.name"), jd(a, "settings.width"), jd(a, "settings.height"),
-                jd(a, "settings.spp"), def_t, def, best_t, best, dirt);
+                jd(a, "settings.spp"), dt, de, best_t, best, dirt);
     }
     return write_buf(prog, dir, "table.md", &b);
 }
