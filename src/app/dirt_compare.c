@@ -31,7 +31,7 @@ typedef struct options {
     const char *dir;
     int_list w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
     dbl_list thickness, time;
-    int warmup, repeat, agree_w, agree_h;
+    int warmup, repeat, agree_w, agree_h, face;
     bool quality, images, quiet;
     uint32_t seed;
 } options;
@@ -59,7 +59,8 @@ static void usage(FILE *out)
 "  --mmrt-buckets LIST    MMRT buckets (default 4)\n"
 "  --thickness LIST       MMRT thickness, world units (0 = its default, 0.2%% of\n"
 "                         the scene's diagonal; default 0)\n"
-"  --thickness-rel LIST   MMRT thickness as fractions of the diagonal\n"
+"  --thickness-rel LIST   MMRT thickness as fractions of the diagonal (added to\n"
+"                         the --thickness list)\n"
 "  --march LIST           MMRT march: hiz, linear (default hiz)\n"
 "  --spp LIST             samples per pixel of the path-traced image (default 1)\n"
 "  --bounces LIST         path events (default 4)\n"
@@ -69,6 +70,7 @@ static void usage(FILE *out)
 "Measurement:\n"
 "      --warmup N         unmeasured runs before the repeats (default 1)\n"
 "      --repeat N         measured runs; min, median and max per pass (default 3)\n"
+"      --face N           cube face size (default max(W, H) / 2)\n"
 "      --agree-res WxH    camera G-buffer of the hit-agreement rays (default:\n"
 "                         the image size)\n"
 "      --no-quality       skip hit agreement and relMSE against Embree\n"
@@ -106,9 +108,9 @@ static bool parse_ints(const char *opt, const char *v, int_list *l, long lo, lon
     return l->n > 0;
 }
 
+/* Appends to `l` (--thickness and --thickness-rel share one list). */
 static bool parse_dbls(const char *opt, const char *v, dbl_list *l, double lo, double hi)
 {
-    l->n = 0;
     char buf[512];
     snprintf(buf, sizeof(buf), "%s", v);
     for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
@@ -121,9 +123,7 @@ static bool parse_dbls(const char *opt, const char *v, dbl_list *l, double lo, d
             return false;
         l->n++;
     }
-    if (!l->n)
-        cli_error(PROG, "%s expects a list", opt);
-    return l->n > 0;
+    return true;
 }
 
 static bool parse_size(const char *opt, const char *tok, int *w, int *h)
@@ -262,8 +262,9 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
         } else if (!strcmp(a, "--thickness")) {
             ok = parse_dbls(a, v, &o->thickness, 0, 1e30);
         } else if (!strcmp(a, "--thickness-rel")) {
+            int first = o->thickness.n;
             ok = parse_dbls(a, v, &o->thickness, 1e-9, 1);
-            for (int k = 0; ok && k < o->thickness.n; k++)
+            for (int k = first; ok && k < o->thickness.n; k++)
                 o->thickness.v[k] = -o->thickness.v[k]; /* resolved per scene */
         } else if (!strcmp(a, "--march")) {
             ok = parse_ints(a, v, &o->march, 0, 0, march_names);
@@ -272,6 +273,7 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
         } else if (!strcmp(a, "--bounces")) {
             ok = parse_ints(a, v, &o->bounces, 1, 64, NULL);
         } else if (!strcmp(a, "--time")) {
+            o->time.n = 0;
             ok = parse_dbls(a, v, &o->time, -1e9, 1e9);
         } else if (!strcmp(a, "--frames")) {
             ok = parse_frames(v, &o->time);
@@ -279,6 +281,8 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
             ok = cli_value(PROG, a, v, 'i', &o->warmup, 0, 100, NULL);
         } else if (!strcmp(a, "--repeat")) {
             ok = cli_value(PROG, a, v, 'i', &o->repeat, 1, MAX_REPEAT, NULL);
+        } else if (!strcmp(a, "--face")) {
+            ok = cli_value(PROG, a, v, 'i', &o->face, 1, 8192, NULL);
         } else if (!strcmp(a, "--agree-res")) {
             ok = parse_size(a, v, &o->agree_w, &o->agree_h);
         } else if (!strcmp(a, "--seed")) {
@@ -346,10 +350,12 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
     return o;
 }
 
+static int g_face; /* --face: one value for the whole sweep */
+
 static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float thickness,
                                       uint32_t seed)
 {
-    return (dirt_session_opts){
+    return (dirt_session_opts){.face_size = g_face,
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
@@ -527,8 +533,8 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
 static void config_id(const options *o, const scene_info *si, const config *c, char *buf,
                       size_t n)
 {
-    snprintf(buf, n, "%s|%dx%d|%s|t%g|spp%d|k%d|S%d|Bd%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
-             si->path, c->w, c->h, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
+    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
+             si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
              c->dbuckets, c->mbuckets, c->thickness, march_names[c->march], o->warmup,
              o->repeat, o->quality ? 1 : 0, o->seed);
 }
@@ -587,6 +593,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON *set = cJSON_AddObjectToObject(row, "settings");
     cJSON_AddNumberToObject(set, "width", c->w);
     cJSON_AddNumberToObject(set, "height", c->h);
+    cJSON_AddNumberToObject(set, "face_size", o->face);
     cJSON_AddStringToObject(set, "views", view_names[c->views]);
     cJSON_AddNumberToObject(set, "time", c->time);
     cJSON_AddNumberToObject(set, "spp", c->spp);
@@ -681,6 +688,7 @@ int main(int argc, char **argv)
     options o = {.warmup = 1, .repeat = 3, .quality = true, .seed = 7};
     if (!parse_args(argc, argv, &o, 0))
         return DIRT_EXIT_USAGE;
+    g_face = o.face;
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
         return DIRT_EXIT_USAGE;
