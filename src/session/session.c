@@ -845,3 +845,8 @@ bool dirt_session_write_graph_dot(const dirt_session *s, const char *path)
     }
     return dirt_pt_write_dot(s->pt, path);
 }
+
+const dirt_scene *dirt_session_scene(const dirt_session *s)
+{
+    return s->scene;
+}

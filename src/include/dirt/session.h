@@ -28,6 +28,7 @@
 #include "dirt/image.h"
 #include "dirt/mmrt.h"
 #include "dirt/pathtrace.h"
+#include "dirt/raytypes.h"
 #include "dirt/scene.h"
 #include "dirt/stats.h"
 
@@ -204,6 +205,32 @@ bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
  * engines or before a build): for pictures and checks. */
 dirt_ads *dirt_session_ads(dirt_session *s);
 dirt_mmrt *dirt_session_mmrt(dirt_session *s);
+
+/* The scene the session renders (borrowed). */
+const dirt_scene *dirt_session_scene(const dirt_session *s);
+
+/* Hit agreement with Embree per ray type (dirt/raytypes.h) of the DIRT
+ * structure or MMRT A-buffer of the session's last build, on the rays of a
+ * width x height camera G-buffer of the session's frame and camera (seed).
+ * The rays and the criteria are those of the tests gpu/dirt_hits (DIRT: the
+ * same primitive, or the same t within 1e-4 relative, or both missing;
+ * visibility: both hit or both miss) and gpu/mmrt_hits (MMRT: secondary rays
+ * start, and visibility rays end, 3 thicknesses off the surface; the same
+ * primitive or both missing; visibility against Embree's occlusion). Also
+ * the trace time per ray type (one batch each, the GPU's clock). */
+typedef struct dirt_session_agreement {
+    uint64_t rays[DIRT_RAY_TYPES];
+    uint64_t same[DIRT_RAY_TYPES];
+    double fraction[DIRT_RAY_TYPES];  /* same / rays (NAN without rays) */
+    double ms[DIRT_RAY_TYPES];        /* the trace of the batch (-1 unmeasured) */
+    enum dirt_clock clock;
+    uint64_t aborted;                 /* rays whose march ran out of steps */
+    float thickness;                  /* mmrt: the thickness used (else 0) */
+} dirt_session_agreement;
+
+/* False after logging (not built, not dirt/mmrt, out of memory, GL). */
+bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t seed,
+                                dirt_session_agreement *out);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,885 @@
+/* dirt-compare: memory, time and quality of DIRT against the fragment
+ * A-buffer (MMRT) over sweeps of settings, on the render session
+ * (dirt/session.h). Outputs in DIR (app/compare.h, doc/compare.md). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include "app/cli.h"
+#include "app/compare.h"
+#include "app/compare_version.h"
+#include "dirt/clock.h"
+#include "dirt/log.h"
+#include "dirt/session.h"
+
+#define PROG "dirt-compare"
+#define MAX_LIST 16
+#define MAX_SCENES 16
+#define MAX_REPEAT 64
+
+typedef struct int_list { int n; int v[MAX_LIST]; } int_list;
+typedef struct dbl_list { int n; double v[MAX_LIST]; } dbl_list;
+
+typedef struct options {
+    const char *scenes[MAX_SCENES];
+    int num_scenes;
+    const char *dir;
+    int_list w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
+    dbl_list thickness, time;
+    int warmup, repeat, agree_w, agree_h, face;
+    bool quality, images, quiet;
+    uint32_t seed;
+} options;
+
+static const char *const view_names[] = {"default", "single", "cube", "cube+camera", NULL};
+static const char *const march_names[] = {"hiz", "linear", NULL};
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+"Usage: " PROG " SCENE... -o DIR [options]\n"
+"\n"
+"Measures DIRT against the MMRT fragment A-buffer on each configuration of a\n"
+"sweep (every combination of the lists below, per SCENE; \"default\" is the\n"
+"embedded scene) and writes DIR/table.md (the DIRT paper's Table 2 layout),\n"
+"DIR/results.csv, DIR/results.json (doc/compare.md) and plots (SVG + PNG,\n"
+"gnuplot). A rerun with the same DIR skips the configurations already done.\n"
+"\n"
+"Sweeps (comma-separated lists):\n"
+"  --res WxH,...          image sizes (default 256x128)\n"
+"  --views LIST           single, cube, cube+camera (default cube+camera)\n"
+"  --tile LIST            DIRT tile size S in 1,2,4,8 (default 1: the paper's\n"
+"                         Table 2 compares at 1x1 tiles)\n"
+"  --dirt-buckets LIST    DIRT buckets B (default 4, MMRT's)\n"
+"  --mmrt-buckets LIST    MMRT buckets (default 4)\n"
+"  --thickness LIST       MMRT thickness, world units (0 = its default, 0.2%% of\n"
+"                         the scene's diagonal; default 0)\n"
+"  --thickness-rel LIST   MMRT thickness as fractions of the diagonal (added to\n"
+"                         the --thickness list)\n"
+"  --march LIST           MMRT march: hiz, linear (default hiz)\n"
+"  --spp LIST             samples per pixel of the path-traced image (default 1)\n"
+"  --bounces LIST         path events (default 4)\n"
+"  --time LIST            animation times in seconds (default 0)\n"
+"  --frames A:B[:FPS]     times frame/FPS for frames A..B (default FPS 24)\n"
+"\n"
+"Measurement:\n"
+"      --warmup N         unmeasured runs before the repeats (default 1)\n"
+"      --repeat N         measured runs; min, median and max per pass (default 3)\n"
+"      --face N           cube face size (default max(W, H) / 2)\n"
+"      --agree-res WxH    camera G-buffer of the hit-agreement rays (default:\n"
+"                         the image size)\n"
+"      --no-quality       skip hit agreement and relMSE against Embree\n"
+"      --images           write each configuration's images into DIR/images\n"
+"      --seed N           (default 7)\n"
+"      --preset FILE      read options from FILE (one or more per line, # comments;\n"
+"                         data/compare-table*.txt)\n"
+"  -q, --quiet            no progress\n"
+"  -h, --help\n"
+"\n"
+"Exit status: 0 all done, 1 a configuration failed (recorded with its reason)\n"
+"or an output could not be written, 2 bad option or input, 3 no OpenGL 4.5.\n");
+}
+
+static bool parse_ints(const char *opt, const char *v, int_list *l, long lo, long hi,
+                       const char *const *names)
+{
+    l->n = 0;
+    char buf[512];
+    snprintf(buf, sizeof(buf), "%s", v);
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        if (l->n == MAX_LIST) {
+            cli_error(PROG, "%s: at most %d values", opt, MAX_LIST);
+            return false;
+        }
+        int x;
+        if (names ? !cli_value(PROG, opt, tok, 'c', &x, 0, 0, names)
+                  : !cli_value(PROG, opt, tok, 'i', &x, lo, hi, NULL))
+            return false;
+        l->v[l->n++] = x;
+    }
+    if (!l->n)
+        cli_error(PROG, "%s expects a list", opt);
+    return l->n > 0;
+}
+
+/* Appends to `l` (--thickness and --thickness-rel share one list). */
+static bool parse_dbls(const char *opt, const char *v, dbl_list *l, double lo, double hi)
+{
+    char buf[512];
+    snprintf(buf, sizeof(buf), "%s", v);
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        if (l->n == MAX_LIST) {
+            cli_error(PROG, "%s: at most %d values", opt, MAX_LIST);
+            return false;
+        }
+        if (!cli_float(PROG, opt, tok, lo, hi, &l->v[l->n]))
+            return false;
+        l->n++;
+    }
+    return true;
+}
+
+static bool parse_size(const char *opt, const char *tok, int *w, int *h)
+{
+    char *x = strchr(tok, 'x');
+    char a[32], b[32];
+    if (!x || x == tok || (size_t)(x - tok) >= sizeof(a) || strlen(x + 1) >= sizeof(b)) {
+        cli_error(PROG, "%s expects WxH, not '%s'", opt, tok);
+        return false;
+    }
+    memcpy(a, tok, (size_t)(x - tok));
+    a[x - tok] = 0;
+    snprintf(b, sizeof(b), "%s", x + 1);
+    long lw, lh;
+    if (!cli_int(PROG, opt, a, 1, 16384, &lw) || !cli_int(PROG, opt, b, 1, 16384, &lh))
+        return false;
+    *w = (int)lw, *h = (int)lh;
+    return true;
+}
+
+static bool parse_res(const char *opt, const char *v, options *o)
+{
+    o->w.n = o->h.n = 0;
+    char buf[512];
+    snprintf(buf, sizeof(buf), "%s", v);
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        if (o->w.n == MAX_LIST) {
+            cli_error(PROG, "%s: at most %d sizes", opt, MAX_LIST);
+            return false;
+        }
+        if (!parse_size(opt, tok, &o->w.v[o->w.n], &o->h.v[o->h.n]))
+            return false;
+        o->w.n++, o->h.n++;
+    }
+    return o->w.n > 0;
+}
+
+static bool parse_frames(const char *v, dbl_list *l)
+{
+    long a, b;
+    double fps = 24;
+    char buf[128];
+    snprintf(buf, sizeof(buf), "%s", v);
+    char *c1 = strchr(buf, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
+    if (!c1) {
+        cli_error(PROG, "--frames expects A:B[:FPS]");
+        return false;
+    }
+    *c1 = 0;
+    if (c2)
+        *c2 = 0;
+    if (!cli_int(PROG, "--frames", buf, 0, 1000000, &a) ||
+        !cli_int(PROG, "--frames", c1 + 1, a, a + MAX_LIST - 1, &b) ||
+        (c2 && !cli_float(PROG, "--frames", c2 + 1, 1e-3, 1e4, &fps)))
+        return false;
+    l->n = 0;
+    for (long f = a; f <= b; f++)
+        l->v[l->n++] = (double)f / fps;
+    return true;
+}
+
+static bool parse_args(int argc, char **argv, options *o, int depth);
+
+/* --preset FILE: whitespace-separated options, '#' starts a comment. */
+static bool read_preset(const char *path, options *o, int depth)
+{
+    if (depth > 4) {
+        cli_error(PROG, "--preset nested too deeply");
+        return false;
+    }
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        cli_error(PROG, "--preset %s: %s", path, strerror(errno));
+        return false;
+    }
+    static char store[8192];
+    static size_t used;
+    char *argv[128];
+    int argc = 1;
+    argv[0] = PROG;
+    char line[1024];
+    while (fgets(line, sizeof(line), f)) {
+        char *hash = strchr(line, '#');
+        if (hash)
+            *hash = 0;
+        for (char *save = NULL, *tok = strtok_r(line, " \t\r\n", &save); tok;
+             tok = strtok_r(NULL, " \t\r\n", &save)) {
+            size_t n = strlen(tok) + 1;
+            if (argc == 128 || used + n > sizeof(store)) {
+                fclose(f);
+                cli_error(PROG, "--preset %s: too long", path);
+                return false;
+            }
+            memcpy(store + used, tok, n);
+            argv[argc++] = store + used;
+            used += n;
+        }
+    }
+    fclose(f);
+    return parse_args(argc, argv, o, depth + 1);
+}
+
+static bool parse_args(int argc, char **argv, options *o, int depth)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        bool takes = a[0] == '-' && strcmp(a, "--no-quality") && strcmp(a, "--images") &&
+                     strcmp(a, "-q") && strcmp(a, "--quiet") && strcmp(a, "-h") &&
+                     strcmp(a, "--help");
+        if (takes && !v) {
+            cli_error(PROG, "%s expects a value", a);
+            return false;
+        }
+        bool ok = true;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            exit(DIRT_EXIT_OK);
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            o->dir = v;
+        } else if (!strcmp(a, "--res")) {
+            ok = parse_res(a, v, o);
+        } else if (!strcmp(a, "--views")) {
+            ok = parse_ints(a, v, &o->views, 0, 0, view_names);
+        } else if (!strcmp(a, "--tile")) {
+            ok = parse_ints(a, v, &o->tile, 1, 8, NULL);
+            for (int k = 0; ok && k < o->tile.n; k++)
+                if (o->tile.v[k] & (o->tile.v[k] - 1)) {
+                    cli_error(PROG, "--tile expects 1, 2, 4 or 8");
+                    ok = false;
+                }
+        } else if (!strcmp(a, "--dirt-buckets")) {
+            ok = parse_ints(a, v, &o->dbuckets, 1, 256, NULL);
+        } else if (!strcmp(a, "--mmrt-buckets")) {
+            ok = parse_ints(a, v, &o->mbuckets, 1, 256, NULL);
+        } else if (!strcmp(a, "--thickness")) {
+            ok = parse_dbls(a, v, &o->thickness, 0, 1e30);
+        } else if (!strcmp(a, "--thickness-rel")) {
+            int first = o->thickness.n;
+            ok = parse_dbls(a, v, &o->thickness, 1e-9, 1);
+            for (int k = first; ok && k < o->thickness.n; k++)
+                o->thickness.v[k] = -o->thickness.v[k]; /* resolved per scene */
+        } else if (!strcmp(a, "--march")) {
+            ok = parse_ints(a, v, &o->march, 0, 0, march_names);
+        } else if (!strcmp(a, "--spp")) {
+            ok = parse_ints(a, v, &o->spp, 1, 1 << 16, NULL);
+        } else if (!strcmp(a, "--bounces")) {
+            ok = parse_ints(a, v, &o->bounces, 1, 64, NULL);
+        } else if (!strcmp(a, "--time")) {
+            o->time.n = 0;
+            ok = parse_dbls(a, v, &o->time, -1e9, 1e9);
+        } else if (!strcmp(a, "--frames")) {
+            ok = parse_frames(v, &o->time);
+        } else if (!strcmp(a, "--warmup")) {
+            ok = cli_value(PROG, a, v, 'i', &o->warmup, 0, 100, NULL);
+        } else if (!strcmp(a, "--repeat")) {
+            ok = cli_value(PROG, a, v, 'i', &o->repeat, 1, MAX_REPEAT, NULL);
+        } else if (!strcmp(a, "--face")) {
+            ok = cli_value(PROG, a, v, 'i', &o->face, 1, 8192, NULL);
+        } else if (!strcmp(a, "--agree-res")) {
+            ok = parse_size(a, v, &o->agree_w, &o->agree_h);
+        } else if (!strcmp(a, "--seed")) {
+            ok = cli_value(PROG, a, v, 'u', &o->seed, 0, 4294967295.0, NULL);
+        } else if (!strcmp(a, "--preset")) {
+            ok = read_preset(v, o, depth);
+        } else if (!strcmp(a, "--no-quality")) {
+            o->quality = false;
+        } else if (!strcmp(a, "--images")) {
+            o->images = true;
+        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+            o->quiet = true;
+        } else if (a[0] == '-') {
+            cli_error(PROG, "unknown option %s (see --help)", a);
+            return false;
+        } else {
+            if (o->num_scenes == MAX_SCENES) {
+                cli_error(PROG, "at most %d scenes", MAX_SCENES);
+                return false;
+            }
+            o->scenes[o->num_scenes++] = a;
+            continue;
+        }
+        if (!ok)
+            return false;
+        if (takes)
+            i++;
+    }
+    return true;
+}
+
+/* ---- one configuration ---- */
+
+typedef struct config {
+    int scene, w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
+    double thickness, time; /* thickness < 0: a fraction of the diagonal */
+} config;
+
+typedef struct scene_info {
+    const char *path, *name;
+    dirt_scene *scene;
+    uint64_t triangles;
+    double diagonal;
+} scene_info;
+
+static double median3(double *v, int n, double *mn, double *mx)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            double t = v[j];
+            v[j] = v[j - 1], v[j - 1] = t;
+        }
+    *mn = v[0], *mx = v[n - 1];
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
+{
+    double mn, mx, md = median3(v, n, &mn, &mx);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "clock", dirt_clock_names[clock]);
+    cJSON_AddNumberToObject(o, "min_ms", mn);
+    cJSON_AddNumberToObject(o, "median_ms", md);
+    cJSON_AddNumberToObject(o, "max_ms", mx);
+    return o;
+}
+
+static int g_face; /* --face: one value for the whole sweep */
+
+static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float thickness,
+                                      uint32_t seed)
+{
+    return (dirt_session_opts){.face_size = g_face,
+        .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
+        .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
+        .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
+        .march = (enum dirt_mmrt_march)c->march, .thickness = thickness,
+        .bounces = c->bounces, .seed = seed, .background = {1, 1, 1}};
+}
+
+static const char *ray_key(int t)
+{
+    return dirt_ray_type_names[t];
+}
+
+/* Measures one technique; NULL with `why` on failure. */
+static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum dirt_engine e,
+                      float thickness, const options *o, const dirt_image *ref, char *why,
+                      size_t whysz, const char *image_path)
+{
+    dirt_session_opts so = session_opts(c, e, thickness, o->seed);
+    dirt_session *s = dirt_session_create(gpu, si->scene, &so);
+    if (!s) {
+        snprintf(why, whysz, "%s: the session could not be made", dirt_engine_names[e]);
+        return NULL;
+    }
+    bool ok = true;
+    for (int r = 0; ok && r < o->warmup; r++)
+        ok = dirt_session_set_time(s, c->time, NULL) &&
+             dirt_session_add_samples(s, c->spp, NULL, NULL);
+    static double pass_ms[32][MAX_REPEAT], build[MAX_REPEAT], trace[MAX_REPEAT],
+        total[MAX_REPEAT];
+    dirt_session_stats st;
+    memset(&st, 0, sizeof(st));
+    enum dirt_clock pass_clock[32] = {0};
+    for (int r = 0; ok && r < o->repeat; r++) {
+        /* set_time restarts the accumulation and marks the frame changed:
+         * every repeat rebuilds the structure and traces spp samples. */
+        ok = dirt_session_set_time(s, c->time, NULL) &&
+             dirt_session_add_samples(s, c->spp, NULL, NULL);
+        if (!ok)
+            break;
+        st = *dirt_session_get_stats(s);
+        for (int p = 0; p < st.num_passes && p < 32; p++) {
+            pass_ms[p][r] = st.passes[p].ms;
+            if (r && pass_clock[p] != st.passes[p].clock) {
+                snprintf(why, whysz, "%s: pass %s changed clock between repeats",
+                         dirt_engine_names[e], st.passes[p].name);
+                ok = false;
+            }
+            pass_clock[p] = st.passes[p].clock;
+        }
+        build[r] = st.build_ms, trace[r] = st.trace_ms, total[r] = st.total_ms;
+    }
+    const dirt_image *img = ok ? dirt_session_image(s) : NULL;
+    if (!ok || !img) {
+        if (!why[0])
+            snprintf(why, whysz, "%s: build or render failed (see the log)",
+                     dirt_engine_names[e]);
+        dirt_session_destroy(s);
+        return NULL;
+    }
+    if (st.aborted)
+        DIRT_WARN("%s: %llu rays aborted", dirt_engine_names[e], (unsigned long long)st.aborted);
+    cJSON *j = cJSON_CreateObject();
+    cJSON *passes = cJSON_AddArrayToObject(j, "passes");
+    enum dirt_clock clock = DIRT_CLOCK_NONE;
+    for (int p = 0; p < st.num_passes && p < 32; p++) {
+        cJSON *pj = stat_json(pass_ms[p], o->repeat, pass_clock[p]);
+        cJSON_AddStringToObject(pj, "name", st.passes[p].name);
+        cJSON_AddItemToArray(passes, pj);
+        if (pass_clock[p] != DIRT_CLOCK_NONE)
+            clock = pass_clock[p];
+    }
+    /* The build and trace sums are in the passes' one clock (the session
+     * never mixes: dirt_gpu_clock). */
+    cJSON_AddItemToObject(j, "build", stat_json(build, o->repeat, clock));
+    cJSON_AddItemToObject(j, "trace", stat_json(trace, o->repeat, clock));
+    cJSON_AddItemToObject(j, "total", stat_json(total, o->repeat, DIRT_CLOCK_CPU));
+    cJSON_AddNumberToObject(j, "rays", (double)st.rays);
+    cJSON_AddNumberToObject(j, "aborted", (double)st.aborted);
+    cJSON_AddNumberToObject(j, "mrays_per_s", st.mrays_per_s);
+    cJSON *mem = cJSON_AddObjectToObject(j, "memory");
+    cJSON *bufs = cJSON_AddArrayToObject(mem, "buffers");
+    for (int b = 0; b < st.num_buffers; b++) {
+        cJSON *bj = cJSON_CreateObject();
+        cJSON_AddStringToObject(bj, "name", st.buffers[b].name);
+        cJSON_AddNumberToObject(bj, "used", (double)st.buffers[b].used);
+        cJSON_AddNumberToObject(bj, "allocated", (double)st.buffers[b].allocated);
+        cJSON_AddItemToArray(bufs, bj);
+    }
+    cJSON_AddNumberToObject(mem, "session_used", (double)st.bytes_total_used);
+    cJSON_AddNumberToObject(mem, "session_allocated", (double)st.bytes_total_allocated);
+    /* The structure's bytes and the paper's formula for them. */
+    double formula = 0, exact_formula = 0, exact_measured = 0, extra = 0;
+    const char *formula_name, *note;
+    if (st.has_ads) {
+        const dirt_ads_stats *a = &st.ads;
+        int tiles = dirt_ads_views(dirt_session_ads(s))->num_tiles;
+        formula_name = "dirt_table3";
+        formula = a->bytes_table3;
+        /* Table 3 = tiles (8 B x 1.33 + 4 B x B) + 8 B x c n_p: heads and
+         * nodes are exact; the 1.33 stands for the pyramid's real levels. */
+        exact_formula = formula - 8.0 * 1.33 * tiles;
+        exact_measured = (double)(a->bytes_heads + a->bytes_nodes_used);
+        extra = (double)a->bytes_depth - 8.0 * 1.33 * tiles;
+        note = "heads + id nodes equal 4 B x B x tiles + 8 B x c x n_p exactly; the depth "
+               "bounds are the real pyramid levels (the formula estimates them as 1.33 x "
+               "8 B per tile; depth_extra = measured - estimate); the vertex buffer is not "
+               "in the formula";
+        cJSON_AddStringToObject(j, "records_kind", "id_nodes");
+        cJSON_AddNumberToObject(j, "records", (double)a->nodes);
+        cJSON_AddNumberToObject(j, "samples_np", (double)a->samples);
+        cJSON_AddNumberToObject(j, "buckets_per_sample", a->buckets_per_sample);
+        cJSON_AddNumberToObject(mem, "structure_used", (double)a->bytes_total_used);
+        cJSON_AddNumberToObject(mem, "structure_allocated", (double)a->bytes_total_allocated);
+        cJSON_AddNumberToObject(mem, "tiles", tiles);
+    } else {
+        const dirt_mmrt_stats *m = &st.mmrt;
+        formula_name = "mmrt_dllb";
+        formula = m->bytes_paper;
+        /* pixels (8 B depth + 8 B x B heads/tails) + fragments (12 + 32 B):
+         * level 0 of the depth bounds, heads, id and data nodes. */
+        exact_formula = formula;
+        exact_measured = 8.0 * (double)m->pixels + (double)(m->bytes_heads +
+                         m->bytes_id_nodes_used + m->bytes_data_nodes_used);
+        extra = (double)m->bytes_depth - 8.0 * (double)m->pixels;
+        note = "level 0 of the depth bounds + heads/tails + id and data nodes equal pixels x "
+               "(8 + 8 B) + fragments x (12 + 32) B exactly; the Hi-Z levels above 0 "
+               "(depth_extra) and the vertex buffer are not in the formula";
+        cJSON_AddStringToObject(j, "records_kind", "fragments");
+        cJSON_AddNumberToObject(j, "records", (double)m->fragments);
+        cJSON_AddNumberToObject(j, "max_layers", m->max_layers);
+        cJSON_AddNumberToObject(mem, "structure_used", (double)m->bytes_total_used);
+        cJSON_AddNumberToObject(mem, "structure_allocated", (double)m->bytes_total_allocated);
+        cJSON_AddNumberToObject(mem, "tiles", (double)m->pixels);
+    }
+    cJSON *fj = cJSON_AddObjectToObject(mem, "formula");
+    cJSON_AddStringToObject(fj, "name", formula_name);
+    cJSON_AddNumberToObject(fj, "bytes", formula);
+    cJSON_AddNumberToObject(fj, "exact_part_formula", exact_formula);
+    cJSON_AddNumberToObject(fj, "exact_part_measured", exact_measured);
+    cJSON_AddBoolToObject(fj, "equal", fabs(exact_formula - exact_measured) < 0.5);
+    cJSON_AddNumberToObject(fj, "depth_extra", extra);
+    cJSON_AddStringToObject(fj, "note", note);
+    cJSON_AddNumberToObject(j, "rel_mse", ref ? dirt_image_rel_mse(img, ref) : NAN);
+    if (image_path)
+        cli_write_image(PROG, img, image_path, 0, false, true);
+    if (o->quality) {
+        dirt_session_agreement ag;
+        int aw = o->agree_w ? o->agree_w : c->w, ah = o->agree_h ? o->agree_h : c->h;
+        if (!dirt_session_hit_agreement(s, aw, ah, o->seed, &ag)) {
+            snprintf(why, whysz, "%s: hit agreement failed (see the log)", dirt_engine_names[e]);
+            cJSON_Delete(j);
+            dirt_session_destroy(s);
+            return NULL;
+        }
+        cJSON *aj = cJSON_AddObjectToObject(j, "agreement");
+        cJSON *fr = cJSON_AddObjectToObject(aj, "fraction");
+        cJSON *rj = cJSON_AddObjectToObject(aj, "rays");
+        cJSON *mj = cJSON_AddObjectToObject(aj, "trace_ms");
+        for (int t = 0; t < DIRT_RAY_TYPES; t++) {
+            cJSON_AddNumberToObject(fr, ray_key(t), ag.fraction[t]);
+            cJSON_AddNumberToObject(rj, ray_key(t), (double)ag.rays[t]);
+            cJSON_AddNumberToObject(mj, ray_key(t), ag.ms[t]);
+        }
+        cJSON_AddStringToObject(aj, "clock", dirt_clock_names[ag.clock]);
+        cJSON_AddNumberToObject(aj, "aborted", (double)ag.aborted);
+        cJSON_AddNumberToObject(aj, "gbuffer_width", aw);
+        cJSON_AddNumberToObject(aj, "gbuffer_height", ah);
+        if (e == DIRT_ENGINE_MMRT)
+            cJSON_AddNumberToObject(j, "thickness_used", ag.thickness);
+    }
+    dirt_session_destroy(s);
+    return j;
+}
+
+static void config_id(const options *o, const scene_info *si, const config *c, char *buf,
+                      size_t n)
+{
+    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
+             si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
+             c->dbuckets, c->mbuckets, c->thickness, march_names[c->march], o->warmup,
+             o->repeat, o->quality ? 1 : 0, o->seed);
+}
+
+static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
+{
+    cJSON_AddNumberToObject(to, name, mmrt > 0 ? dirt / mmrt : NAN);
+}
+
+static double jnum(const cJSON *o, const char *a, const char *b)
+{
+    const cJSON *x = cJSON_GetObjectItemCaseSensitive(o, a);
+    if (b)
+        x = cJSON_GetObjectItemCaseSensitive(x, b);
+    return cJSON_IsNumber(x) ? x->valuedouble : NAN;
+}
+
+typedef struct env {
+    char machine[256], renderer[512], clock[8];
+} env;
+
+static void machine_string(char *buf, size_t n)
+{
+    struct utsname u;
+    char cpu[160] = "unknown CPU";
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[256];
+    while (f && fgets(line, sizeof(line), f)) {
+        if (!strncmp(line, "model name", 10) && strchr(line, ':')) {
+            snprintf(cpu, sizeof(cpu), "%s", strchr(line, ':') + 2);
+            cpu[strcspn(cpu, "\n")] = 0;
+            break;
+        }
+    }
+    if (f)
+        fclose(f);
+    uname(&u);
+    snprintf(buf, n, "%s %s %s, %s, %ld CPUs", u.sysname, u.release, u.machine, cpu,
+             sysconf(_SC_NPROCESSORS_ONLN));
+}
+
+/* One configuration: DIRT, MMRT and the Embree reference; the row. */
+static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
+                         const options *o, const env *ev, const char *id, int index)
+{
+    char why[512] = "";
+    double t0 = dirt_clock_ms();
+    float th = (float)(c->thickness < 0 ? -c->thickness * si->diagonal : c->thickness);
+    cJSON *row = cJSON_CreateObject();
+    cJSON_AddStringToObject(row, "id", id);
+    cJSON *sj = cJSON_AddObjectToObject(row, "scene");
+    cJSON_AddStringToObject(sj, "path", si->path);
+    cJSON_AddStringToObject(sj, "name", si->name);
+    cJSON_AddNumberToObject(sj, "triangles", (double)si->triangles);
+    cJSON_AddNumberToObject(sj, "diagonal", si->diagonal);
+    cJSON *set = cJSON_AddObjectToObject(row, "settings");
+    cJSON_AddNumberToObject(set, "width", c->w);
+    cJSON_AddNumberToObject(set, "height", c->h);
+    cJSON_AddNumberToObject(set, "face_size", o->face);
+    cJSON_AddStringToObject(set, "views", view_names[c->views]);
+    cJSON_AddNumberToObject(set, "time", c->time);
+    cJSON_AddNumberToObject(set, "spp", c->spp);
+    cJSON_AddNumberToObject(set, "bounces", c->bounces);
+    cJSON_AddNumberToObject(set, "dirt_tile_size", c->tile);
+    cJSON_AddNumberToObject(set, "dirt_buckets", c->dbuckets);
+    cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
+    cJSON_AddNumberToObject(set, "mmrt_thickness", th);
+    cJSON_AddBoolToObject(set, "mmrt_thickness_default", th == 0);
+    cJSON_AddStringToObject(set, "mmrt_march", march_names[c->march]);
+    cJSON_AddNumberToObject(set, "warmup", o->warmup);
+    cJSON_AddNumberToObject(set, "repeat", o->repeat);
+    cJSON_AddNumberToObject(set, "seed", o->seed);
+    cJSON *ej = cJSON_AddObjectToObject(row, "environment");
+    cJSON_AddStringToObject(ej, "machine", ev->machine);
+    cJSON_AddStringToObject(ej, "renderer", ev->renderer);
+    cJSON_AddStringToObject(ej, "clock", ev->clock);
+    cJSON_AddStringToObject(ej, "commit", DIRT_COMPARE_COMMIT);
+    /* The reference: Embree with the same seed, camera and settings. */
+    const dirt_image *ref = NULL;
+    dirt_session *rs = NULL;
+    if (o->quality) {
+        dirt_session_opts ro = session_opts(c, DIRT_ENGINE_EMBREE, 0, o->seed);
+        rs = dirt_session_create(gpu, si->scene, &ro);
+        ref = rs && dirt_session_set_time(rs, c->time, NULL) &&
+                      dirt_session_add_samples(rs, c->spp, NULL, NULL)
+                  ? dirt_session_image(rs)
+                  : NULL;
+        if (!ref)
+            snprintf(why, sizeof(why), "embree reference failed (see the log)");
+        else
+            cJSON_AddNumberToObject(cJSON_AddObjectToObject(row, "embree"), "total_ms",
+                                    dirt_session_get_stats(rs)->total_ms);
+    }
+    char ipath[3][1024];
+    if (o->images)
+        for (int k = 0; k < 3; k++)
+            snprintf(ipath[k], sizeof(ipath[k]), "%s/images/%04d_%s.png", o->dir, index,
+                     k == 0 ? "dirt" : k == 1 ? "mmrt" : "embree");
+    if (ref && o->images)
+        cli_write_image(PROG, ref, ipath[2], 0, false, true);
+    cJSON *dj = why[0] ? NULL
+                       : measure(gpu, si, c, DIRT_ENGINE_DIRT, 0, o, ref, why, sizeof(why),
+                                 o->images ? ipath[0] : NULL);
+    cJSON *mj = why[0] ? NULL
+                       : measure(gpu, si, c, DIRT_ENGINE_MMRT, th, o, ref, why, sizeof(why),
+                                 o->images ? ipath[1] : NULL);
+    dirt_session_destroy(rs);
+    if (dj && mj) {
+        cJSON_AddItemToObject(row, "dirt", dj);
+        cJSON_AddItemToObject(row, "mmrt", mj);
+        cJSON *r = cJSON_AddObjectToObject(row, "ratios");
+        ratio(r, "records", jnum(dj, "records", NULL), jnum(mj, "records", NULL));
+        ratio(r, "memory", jnum(dj, "memory", "structure_used"),
+              jnum(mj, "memory", "structure_used"));
+        ratio(r, "build", jnum(dj, "build", "median_ms"), jnum(mj, "build", "median_ms"));
+        ratio(r, "trace", jnum(dj, "trace", "median_ms"), jnum(mj, "trace", "median_ms"));
+        cJSON_AddStringToObject(row, "status", "ok");
+        cJSON_AddNullToObject(row, "reason");
+    } else {
+        cJSON_Delete(dj);
+        cJSON_Delete(mj);
+        cJSON_AddStringToObject(row, "status", "failed");
+        cJSON_AddStringToObject(row, "reason", why[0] ? why : "unknown failure");
+    }
+    cJSON_AddNumberToObject(row, "seconds", (dirt_clock_ms() - t0) / 1000.0);
+    return row;
+}
+
+static bool dir_ok(const char *dir)
+{
+    struct stat sb;
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+        cli_error(PROG, "cannot create %s: %s", dir, strerror(errno));
+        return false;
+    }
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+        cli_error(PROG, "%s is not a writable directory", dir);
+        return false;
+    }
+    return true;
+}
+
+static void set_default(int_list *l, int v)
+{
+    if (!l->n)
+        l->v[l->n++] = v;
+}
+
+int main(int argc, char **argv)
+{
+    options o = {.warmup = 1, .repeat = 3, .quality = true, .seed = 7};
+    if (!parse_args(argc, argv, &o, 0))
+        return DIRT_EXIT_USAGE;
+    g_face = o.face;
+    if (!o.num_scenes || !o.dir) {
+        cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
+        return DIRT_EXIT_USAGE;
+    }
+    if (!o.w.n) {
+        o.w.v[o.w.n++] = 256;
+        o.h.v[o.h.n++] = 128;
+    }
+    set_default(&o.views, DIRT_SESSION_VIEWS_CUBE_CAMERA);
+    set_default(&o.tile, 1);
+    set_default(&o.dbuckets, 4);
+    set_default(&o.mbuckets, 4);
+    set_default(&o.march, 0);
+    set_default(&o.spp, 1);
+    set_default(&o.bounces, 4);
+    if (!o.thickness.n)
+        o.thickness.v[o.thickness.n++] = 0;
+    if (!o.time.n)
+        o.time.v[o.time.n++] = 0;
+    /* Bad input up front: scenes, DIR, configurations. */
+    scene_info si[MAX_SCENES];
+    memset(si, 0, sizeof(si));
+    int rc = DIRT_EXIT_OK;
+    for (int i = 0; i < o.num_scenes && rc == DIRT_EXIT_OK; i++) {
+        si[i].path = o.scenes[i];
+        bool def = !strcmp(o.scenes[i], "default");
+        si[i].name = def ? "default" : strrchr(o.scenes[i], '/') ? strrchr(o.scenes[i], '/') + 1
+                                                               : o.scenes[i];
+        if (!def && access(o.scenes[i], R_OK) != 0) {
+            cli_error(PROG, "cannot read scene %s: %s", o.scenes[i], strerror(errno));
+            rc = DIRT_EXIT_USAGE;
+            break;
+        }
+        si[i].scene = def ? dirt_scene_create_default() : dirt_scene_load(o.scenes[i], NULL);
+        if (!si[i].scene) {
+            cli_error(PROG, "%s is not a loadable glTF scene (see above)", o.scenes[i]);
+            rc = DIRT_EXIT_USAGE;
+            break;
+        }
+        dirt_frame *f = dirt_scene_evaluate(si[i].scene, 0, NULL);
+        if (f) {
+            si[i].triangles = f->num_triangles;
+            double d2 = 0;
+            for (int k = 0; k < 3; k++)
+                d2 += (double)(f->bounds_max[k] - f->bounds_min[k]) *
+                      (f->bounds_max[k] - f->bounds_min[k]);
+            si[i].diagonal = sqrt(d2);
+            dirt_frame_destroy(f);
+        }
+    }
+    if (rc == DIRT_EXIT_OK && !dir_ok(o.dir))
+        rc = DIRT_EXIT_USAGE;
+    if (rc == DIRT_EXIT_OK && o.images) {
+        char p[1024];
+        snprintf(p, sizeof(p), "%s/images", o.dir);
+        if (!dir_ok(p))
+            rc = DIRT_EXIT_USAGE;
+    }
+    /* The sweep, MMRT's settings innermost. */
+    size_t total = (size_t)o.num_scenes * o.w.n * o.views.n * o.time.n * o.spp.n *
+                   o.bounces.n * o.tile.n * o.dbuckets.n * o.mbuckets.n * o.march.n *
+                   o.thickness.n;
+    config *cfg = rc == DIRT_EXIT_OK ? calloc(total ? total : 1, sizeof(*cfg)) : NULL;
+    size_t n = 0;
+    if (rc == DIRT_EXIT_OK && !cfg)
+        rc = DIRT_EXIT_FAILURE;
+    for (int a = 0; cfg && a < o.num_scenes; a++)
+        for (int b = 0; b < o.w.n; b++)
+            for (int c = 0; c < o.views.n; c++)
+                for (int d = 0; d < o.time.n; d++)
+                    for (int e = 0; e < o.spp.n; e++)
+                        for (int f = 0; f < o.bounces.n; f++)
+                            for (int g = 0; g < o.tile.n; g++)
+                                for (int h = 0; h < o.dbuckets.n; h++)
+                                    for (int i = 0; i < o.mbuckets.n; i++)
+                                        for (int j = 0; j < o.march.n; j++)
+                                            for (int k = 0; k < o.thickness.n; k++)
+                                                cfg[n++] = (config){
+                                                    a, o.w.v[b], o.h.v[b], o.views.v[c],
+                                                    o.tile.v[g], o.dbuckets.v[h],
+                                                    o.mbuckets.v[i], o.march.v[j], o.spp.v[e],
+                                                    o.bounces.v[f], o.thickness.v[k],
+                                                    o.time.v[d]};
+    dirt_gpu *gpu = NULL;
+    if (rc == DIRT_EXIT_OK) {
+        gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
+        if (!gpu) {
+            cli_error(PROG, "no OpenGL 4.5 context");
+            rc = DIRT_EXIT_NO_GPU;
+        }
+    }
+    env ev;
+    if (gpu) {
+        machine_string(ev.machine, sizeof(ev.machine));
+        dirt_gpu_describe(gpu, ev.renderer, sizeof(ev.renderer));
+        snprintf(ev.clock, sizeof(ev.clock), "%s", dirt_clock_names[dirt_gpu_clock(gpu)]);
+        const dirt_gpu_caps *caps = dirt_gpu_get_caps(gpu);
+        for (size_t i = 0; i < n && rc == DIRT_EXIT_OK; i++) {
+            char why[256];
+            for (int e = 0; e < 2 && rc == DIRT_EXIT_OK; e++) {
+                dirt_session_opts so = session_opts(&cfg[i], e ? DIRT_ENGINE_MMRT
+                                                               : DIRT_ENGINE_DIRT, 0, o.seed);
+                if (!dirt_session_check_opts(&so, why, sizeof(why))) {
+                    cli_error(PROG, "impossible configuration %dx%d (%s): %s", cfg[i].w,
+                              cfg[i].h, dirt_engine_names[so.engine], why);
+                    rc = DIRT_EXIT_USAGE;
+                }
+            }
+            /* The views share one raster atlas of the views side by side. */
+            long atlas = (long)cfg[i].w + 6L * ((cfg[i].w > cfg[i].h ? cfg[i].w : cfg[i].h) / 2);
+            if (rc == DIRT_EXIT_OK && (atlas > caps->max_texture_size ||
+                                       cfg[i].h > caps->max_texture_size)) {
+                cli_error(PROG, "impossible configuration %dx%d: the views' raster atlas "
+                          "(%ld px wide) exceeds the GPU's %d", cfg[i].w, cfg[i].h, atlas,
+                          caps->max_texture_size);
+                rc = DIRT_EXIT_USAGE;
+            }
+        }
+    }
+    /* Resume: rows of an earlier run with the same id and status ok. */
+    cJSON *doc = NULL, *rows = NULL, *old = NULL;
+    if (rc == DIRT_EXIT_OK) {
+        old = compare_read_results(o.dir);
+        doc = cJSON_CreateObject();
+        cJSON_AddStringToObject(doc, "tool", PROG);
+        cJSON_AddNumberToObject(doc, "schema_version", 1);
+        rows = cJSON_AddArrayToObject(doc, "configurations");
+    }
+    size_t done = 0, skipped = 0, failed = 0;
+    double measured_s = 0;
+    int measured = 0;
+    double start = dirt_clock_ms();
+    for (size_t i = 0; rc == DIRT_EXIT_OK && i < n; i++) {
+        char id[1400];
+        config_id(&o, &si[cfg[i].scene], &cfg[i], id, sizeof(id));
+        cJSON *row = NULL, *it;
+        cJSON_ArrayForEach(it, old)
+        {
+            const cJSON *oid = cJSON_GetObjectItemCaseSensitive(it, "id");
+            const cJSON *st = cJSON_GetObjectItemCaseSensitive(it, "status");
+            if (cJSON_IsString(oid) && !strcmp(oid->valuestring, id) && cJSON_IsString(st) &&
+                !strcmp(st->valuestring, "ok")) {
+                row = cJSON_Duplicate(it, 1);
+                break;
+            }
+        }
+        if (row) {
+            skipped++;
+        } else {
+            if (!o.quiet) {
+                double eta = measured ? measured_s / measured * (double)(n - i - skipped * 0) : -1;
+                (void)eta;
+                size_t left = n - i;
+                if (measured)
+                    fprintf(stderr, PROG ": [%zu/%zu] %s; %.0f s elapsed, ETA %.0f s\n", i + 1, n,
+                            id, (dirt_clock_ms() - start) / 1000.0,
+                            measured_s / measured * (double)left);
+                else
+                    fprintf(stderr, PROG ": [%zu/%zu] %s; ETA unknown\n", i + 1, n, id);
+            }
+            row = run_config(gpu, &si[cfg[i].scene], &cfg[i], &o, &ev, id, (int)i);
+            measured_s += jnum(row, "seconds", NULL);
+            measured++;
+            const cJSON *st = cJSON_GetObjectItemCaseSensitive(row, "status");
+            if (strcmp(st->valuestring, "ok")) {
+                failed++;
+                cli_error(PROG, "configuration %zu failed: %s", i + 1,
+                          cJSON_GetObjectItemCaseSensitive(row, "reason")->valuestring);
+            }
+        }
+        cJSON_AddItemToArray(rows, row);
+        done++;
+        /* Written as each configuration finishes. */
+        if (!compare_write_results(PROG, o.dir, doc))
+            rc = DIRT_EXIT_FAILURE;
+    }
+    if (rc == DIRT_EXIT_OK) {
+        if (!compare_write_table(PROG, o.dir, doc) || !compare_write_plots(PROG, o.dir, doc))
+            rc = DIRT_EXIT_FAILURE;
+        if (!o.quiet)
+            fprintf(stderr, PROG ": %zu configurations (%zu measured, %zu from the earlier run, "
+                    "%zu failed) in %.1f s; results in %s\n", done, done - skipped, skipped,
+                    failed, (dirt_clock_ms() - start) / 1000.0, o.dir);
+        if (failed)
+            rc = DIRT_EXIT_FAILURE;
+    }
+    cJSON_Delete(doc);
+    cJSON_Delete(old);
+    free(cfg);
+    dirt_gpu_destroy(gpu);
+    for (int i = 0; i < o.num_scenes; i++)
+        dirt_scene_destroy(si[i].scene);
+    return rc;
+}
