@@ -417,14 +417,18 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
             bprintf(&g, "%c", *c == ' ' || *c == '\'' || *c == '_' ? '-' : *c);
         last = js(r, "scene.name");
     }
-    bprintf(&g, "'\nset key outside right\nset grid\nset datafile missing 'NaN'\n"
-                "set termoption noenhanced\n");
+    bprintf(&g, "'\nset key outside right\nset grid\nset datafile missing 'NaN'\n");
     for (size_t p = 0; p < sizeof(plots) / sizeof(plots[0]); p++) {
         for (int f = 0; f < 2; f++) {
-            bprintf(&g, "set terminal %s size 900,500\nset output '%s/%s.%s'\n",
+            /* noenhanced: names with '_' are not subscripts */
+            bprintf(&g, "set terminal %s noenhanced size 900,500\nset output '%s/%s.%s'\n",
                     f ? "pngcairo" : "svg", dir, plots[p].name, f ? "png" : "svg");
+            char title[64];
+            snprintf(title, sizeof(title), "%s", plots[p].name);
+            for (char *c = title; *c; c++)
+                *c = *c == '_' ? ' ' : *c;
             bprintf(&g, "set title '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s\n%s\nset output\n",
-                    plots[p].name, plots[p].xlabel, plots[p].ylabel,
+                    title, plots[p].xlabel, plots[p].ylabel,
                     plots[p].logx ? "set logscale x" : "unset logscale x", plots[p].body);
         }
     }
