@@ -234,6 +234,38 @@ static bool check_skinned_instances(const dirt_scene *s)
     return true;
 }
 
+/* Warns when the scene shows nothing: no triangles at all, or only
+ * triangles of zero area in the rest pose (morphs or skins may still give
+ * them area later; the images are then black or background only). */
+static void warn_degenerate(dirt_scene *s)
+{
+    size_t zero = 0;
+    for (size_t k = 0; k < s->num_instances; k++) {
+        const scene_mesh *m = &s->meshes[s->instances[k].mesh];
+        for (size_t p = 0; p < m->num_prims; p++) {
+            const scene_prim *pr = &m->prims[p];
+            for (size_t t = 0; t < pr->num_triangles; t++) {
+                const float *a = pr->position[pr->indices[3 * t]];
+                const float *b = pr->position[pr->indices[3 * t + 1]];
+                const float *c = pr->position[pr->indices[3 * t + 2]];
+                float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                              e1[0] * e2[1] - e1[1] * e2[0]};
+                zero += n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f;
+            }
+        }
+    }
+    s->stats.zero_area = zero;
+    if (s->num_triangles == 0)
+        DIRT_WARN("scene '%s' has no triangles to show: every image will be background only",
+                  s->name);
+    else if (zero == s->num_triangles)
+        DIRT_WARN("scene '%s': all %zu triangles have zero area (in the rest pose): the "
+                  "images will be background only",
+                  s->name, s->num_triangles);
+}
+
 bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
 {
     int *stack = NULL;
@@ -355,6 +387,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
 
     if (!check_skinned_instances(s))
         goto error;
+    warn_degenerate(s);
 
     free(stack);
     free(seen);

@@ -127,6 +127,8 @@ typedef struct scene_load_stats {
                                     farther than 1e-6 from 1 */
     size_t textures_failed;      /* referenced images missing/undecodable */
     size_t prims_skipped;        /* point/line primitives, or no POSITION */
+    size_t zero_area;            /* instanced triangles of zero area in the rest
+                                    pose (scene_finalize) */
 } scene_load_stats;
 
 struct dirt_scene {

@@ -454,6 +454,49 @@ static void test_textures(void)
 
 /* Well-formed edge cases that must load: strips and fans become triangle
  * lists, points are skipped, a scene without triangles is empty. */
+/* Degenerate scenes load but warn: no triangles at all, or only triangles
+ * of zero area; the reference quad does not warn. */
+static void test_degenerate(void)
+{
+    const char *empty = "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],"
+                        "\"nodes\":[{}]}";
+    log_capture_start();
+    dirt_scene *s = dirt_scene_load_memory(empty, strlen(empty), "no_triangles.gltf", NULL);
+    CHECK(s != NULL && dirt_scene_num_triangles(s) == 0);
+    CHECK_MSG(log_warnings_ == 1, "no triangles: %d warnings", log_warnings_);
+    dirt_scene_destroy(s);
+
+    /* The quad with every position at the origin: 2 zero-area triangles. */
+    uint8_t buf[60];
+    quad_buffer(buf, &VARIANT(0));
+    memset(buf, 0, 48);
+    char *uri = data_uri(buf, sizeof(buf));
+    char *bj = strf("{\"byteLength\":60,\"uri\":\"%s\"}", uri);
+    char *json = quad_json(&VARIANT(0), bj);
+    log_capture_start();
+    s = dirt_scene_load_memory(json, strlen(json), "zero_area.gltf", NULL);
+    CHECK(s != NULL && dirt_scene_num_triangles(s) == 2);
+    CHECK(s && s->stats.zero_area == 2);
+    CHECK_MSG(log_warnings_ == 1, "zero-area triangles: %d warnings", log_warnings_);
+    dirt_scene_destroy(s);
+    free(json);
+    free(bj);
+    free(uri);
+
+    quad_buffer(buf, &VARIANT(0));
+    uri = data_uri(buf, sizeof(buf));
+    bj = strf("{\"byteLength\":60,\"uri\":\"%s\"}", uri);
+    json = quad_json(&VARIANT(0), bj);
+    log_capture_start();
+    s = dirt_scene_load_memory(json, strlen(json), "quad.gltf", NULL);
+    CHECK(s != NULL && s->stats.zero_area == 0);
+    CHECK_MSG(log_warnings_ == 0, "the reference quad: %d warnings", log_warnings_);
+    dirt_scene_destroy(s);
+    free(json);
+    free(bj);
+    free(uri);
+}
+
 static void test_topologies(void)
 {
     /* 5 vertices on a zig-zag; strip: (0,1,2) (2,1,3) (2,3,4); fan: (1,2,0)
@@ -661,6 +704,7 @@ static void test_limits(void)
 int main(void)
 {
     test_limits();
+    test_degenerate();
     test_reference_loads();
     test_malformed();
     test_missing_files();
