@@ -272,9 +272,10 @@ const char *dirt_layout_binding_name(int binding)
 /* ---- Uniform locations ---- */
 
 /* Distinct locations within each program: a switch per program, one case
- * per location (duplicates do not compile). Never called. */
+ * per location (duplicates do not compile). Never called (hence unused:
+ * clang warns of an unused static inline function in a .c file). */
 #define L(name) case name:
-static inline int distinct_locations(int program, int loc)
+__attribute__((unused)) static inline int distinct_locations(int program, int loc)
 {
     switch (program) {
     case 0:
