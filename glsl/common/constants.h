@@ -214,7 +214,7 @@
  * block below) are distinct, names of different programs may share values. */
 
 /* glsl/integrator/pt_common.glsl: raygen.comp, shade.comp (and its AO variant). */
-#define DIRT_LOC_PT_PIXELS 0         /* uint: pixels of the image */
+#define DIRT_LOC_PT_PIXELS 0         /* uint: pixels of this chunk (wavefront) */
 #define DIRT_LOC_PT_WIDTH 1          /* int */
 #define DIRT_LOC_PT_HEIGHT 2         /* int */
 #define DIRT_LOC_PT_SEED 3           /* uint */
@@ -224,14 +224,16 @@
 #define DIRT_LOC_PT_SLOT 7           /* uint: ring slot of G_k (k mod 3) */
 #define DIRT_LOC_PT_BACKGROUND 8     /* vec3 */
 #define DIRT_LOC_PT_AO_DISTANCE 9    /* float */
+#define DIRT_LOC_PT_PIXEL_OFFSET 10  /* uint: image pixel of the chunk's record 0 */
 /* glsl/integrator/resolve.comp */
-#define DIRT_LOC_RESOLVE_PIXELS 0    /* uint */
+#define DIRT_LOC_RESOLVE_PIXELS 0    /* uint: pixels of this chunk */
 /* glsl/integrator/accumulate.comp */
-#define DIRT_LOC_ACCUM_PIXELS 0      /* uint */
+#define DIRT_LOC_ACCUM_PIXELS 0      /* uint: pixels of this chunk */
 /* glsl/integrator/display.comp */
-#define DIRT_LOC_DISPLAY_PIXELS 0    /* uint */
+#define DIRT_LOC_DISPLAY_PIXELS 0    /* uint: pixels of this chunk */
 #define DIRT_LOC_DISPLAY_WIDTH 1     /* int: image width */
 #define DIRT_LOC_DISPLAY_INV_SAMPLES 2 /* float: 1 / samples accumulated */
+#define DIRT_LOC_DISPLAY_PIXEL_OFFSET 3 /* uint: image pixel of the chunk's record 0 */
 /* glsl/integrator/test_model.comp */
 #define DIRT_LOC_TEST_MODEL_MODE 0   /* int */
 #define DIRT_LOC_TEST_MODEL_COUNT 1  /* uint */
@@ -257,6 +259,7 @@
 #define DIRT_LOC_MMRT_TRACE_SEED 5       /* uint */
 #define DIRT_LOC_MMRT_TRACE_STATS 6      /* int: count pixels / nodes visited */
 #define DIRT_LOC_MMRT_TRACE_ALL_VIEWS 7  /* int: every view over the whole segment */
+#define DIRT_LOC_MMRT_TRACE_FIRST_RAY 8  /* uint: wavefront index of the batch's ray 0 */
 /* glsl/mmrt/pt_rays.comp */
 #define DIRT_LOC_MMRT_PT_RAYS_COUNT 0    /* uint: rays */
 #define DIRT_LOC_MMRT_PT_RAYS_OFFSET 1   /* float: origin offset */

@@ -24,6 +24,10 @@ layout(location = DIRT_LOC_PT_BOUNCES) uniform uint u_bounces;   // K: scatterin
 layout(location = DIRT_LOC_PT_SLOT) uniform uint u_slot;      // ring slot of G_k
 layout(location = DIRT_LOC_PT_BACKGROUND) uniform vec3 u_background;
 layout(location = DIRT_LOC_PT_AO_DISTANCE) uniform float u_ao_distance;
+// The image is worked through in chunks (wavefronts) of u_pixels records:
+// record p of the per-pixel buffers is image pixel u_pixel_offset + p, which
+// keys the random numbers and gives the pixel's coordinates.
+layout(location = DIRT_LOC_PT_PIXEL_OFFSET) uniform uint u_pixel_offset;
 
 #define SHADOW_SHORTEN 1e-4
 

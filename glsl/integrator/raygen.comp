@@ -18,8 +18,9 @@ void main()
     uint p = gl_GlobalInvocationID.x;
     if (p >= u_pixels)
         return;
-    uint x = p % uint(u_width), y = p / uint(u_width);
-    uint key = dirt_rng_key(u_seed, p, u_sample, 0u);
+    uint pixel = u_pixel_offset + p;
+    uint x = pixel % uint(u_width), y = pixel / uint(u_width);
+    uint key = dirt_rng_key(u_seed, pixel, u_sample, 0u);
     float px = float(x) + dirt_rng_next_float(key, DIRT_RNG_DIM_PIXEL_X);
     float py = float(y) + dirt_rng_next_float(key, DIRT_RNG_DIM_PIXEL_Y);
     vec3 org, dir;

@@ -130,7 +130,7 @@ void main()
         flags |= DIRT_PATH_FIRST_HIT;
     }
 #ifdef DIRT_AO
-    uint akey = dirt_rng_key(u_seed, p, u_sample, 1u);
+    uint akey = dirt_rng_key(u_seed, u_pixel_offset + p, u_sample, 1u);
     vec3 awl = dirt_sample_cosine_g(dirt_rng_next_float(akey, DIRT_RNG_DIM_BSDF_U),
                                     dirt_rng_next_float(akey, DIRT_RNG_DIM_BSDF_V));
     vec3 awi = dirt_normalize_g(from_local(awl, v.t, v.b, v.n));
@@ -153,7 +153,7 @@ void main()
         paths[p] = s;
         return;
     }
-    uint key = dirt_rng_key(u_seed, p, u_sample, u_bounce);
+    uint key = dirt_rng_key(u_seed, u_pixel_offset + p, u_sample, u_bounce);
     vec3 contrib, lwi;
     float ltmax;
     if (sample_light(v, key, contrib, lwi, ltmax)) {

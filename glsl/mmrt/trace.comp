@@ -67,6 +67,8 @@ layout(location = DIRT_LOC_MMRT_TRACE_SAMPLES) uniform int u_samples;    // line
 layout(location = DIRT_LOC_MMRT_TRACE_TOP_LEVEL) uniform int u_top_level;  // Hi-Z: highest level used
 layout(location = DIRT_LOC_MMRT_TRACE_THICKNESS) uniform float u_thickness;
 layout(location = DIRT_LOC_MMRT_TRACE_SEED) uniform uint u_seed;
+// Ray i of this batch is ray u_first_ray + i of its wavefront (jitter key).
+layout(location = DIRT_LOC_MMRT_TRACE_FIRST_RAY) uniform uint u_first_ray;
 layout(location = DIRT_LOC_MMRT_TRACE_STATS) uniform int u_stats;      // count pixels / nodes visited
 layout(location = DIRT_LOC_MMRT_TRACE_ALL_VIEWS) uniform int u_all_views;  // every view over the whole segment
 
@@ -213,7 +215,8 @@ void march_linear(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1,
 {
     int N = max(u_samples, 1);
     float w0 = co.w + t0 * cd.w, w1 = co.w + t1 * cd.w;
-    uint key = dirt_mmrt_hash(dirt_mmrt_hash(u_seed ^ 0x6d6d7274u) ^ ray) ^ uint(vi);
+    uint key = dirt_mmrt_hash(dirt_mmrt_hash(u_seed ^ 0x6d6d7274u) ^ (u_first_ray + ray)) ^
+               uint(vi);
     float j = float(dirt_mmrt_hash(key) >> 8) * (1.0 / 16777216.0);
     for (int i = 0; i < N; i++) {
         g_steps++;

@@ -35,13 +35,29 @@ typedef struct pass_ctx {
 
 #define MAX_PASSES 512
 
+/* The image is worked through in chunks (wavefronts) of at most `chunk`
+ * pixels: every per-pixel buffer but the accumulation holds one chunk, and
+ * one sample runs the whole frame graph once per chunk, in pixel order.
+ * Record p of a chunk is image pixel offset + p, which keys the random
+ * numbers (glsl/integrator/pt_common.glsl), so the image does not depend on
+ * the chunk size. The accumulation (and the display pass) is split into one
+ * buffer per chunk, since the whole image's sums can outgrow one storage
+ * block too. */
+
 struct dirt_pt {
     dirt_gpu *gpu;
     const dirt_scene *scene;
     GLuint prog_raygen, prog_shade, prog_ao, prog_resolve, prog_accum, prog_display;
-    /* per-pixel buffers */
-    GLuint rays, hits, shadow_rays, shadow_hits, gpoints, paths, accum;
-    size_t pixels;
+    /* per-pixel buffers of one chunk */
+    GLuint rays, hits, shadow_rays, shadow_hits, gpoints, paths;
+    /* accumulation: one buffer per chunk (accum[c] = pixels c*chunk ...) */
+    GLuint *accum;
+    size_t pixels;     /* of the image */
+    size_t chunk;      /* pixels per chunk (the last may hold fewer) */
+    size_t num_chunks;
+    size_t chunk_limit; /* dirt_pt_set_chunk_limit; 0 = the GPU's limits only */
+    /* the chunk the graph's passes work on during dirt_pt_add_samples */
+    size_t cur_chunk, cur_offset, cur_count;
     /* graph (rebuilt when the configuration changes) */
     fg_graph *graph;
     size_t g_pixels;
@@ -79,6 +95,10 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
     }
     pt->gpu = gpu;
     pt->scene = scene;
+    /* Test hook: DIRT_PT_CHUNK_PIXELS=n forces chunks of at most n pixels. */
+    const char *hook = getenv("DIRT_PT_CHUNK_PIXELS");
+    if (hook && *hook)
+        dirt_pt_set_chunk_limit(pt, (size_t)strtoull(hook, NULL, 10));
     glsl_define ao = {"DIRT_AO", "1"};
     pt->prog_raygen = gl_program_compute("integrator/raygen.comp", NULL, 0);
     pt->prog_shade = gl_program_compute("integrator/shade.comp", NULL, 0);
@@ -97,15 +117,63 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
 static void release_buffers(dirt_pt *pt)
 {
     GLuint *b[] = {&pt->rays, &pt->hits, &pt->shadow_rays, &pt->shadow_hits,
-                   &pt->gpoints, &pt->paths, &pt->accum};
+                   &pt->gpoints, &pt->paths};
     for (size_t i = 0; i < sizeof(b) / sizeof(b[0]); i++)
         gl_buffer_destroy(b[i]);
+    for (size_t c = 0; c < pt->num_chunks && pt->accum; c++)
+        gl_buffer_destroy(&pt->accum[c]);
+    free(pt->accum);
+    pt->accum = NULL;
+    pt->num_chunks = 0;
+    pt->chunk = 0;
     gl_texture_destroy(&pt->display);
     free(pt->depth);
     pt->depth = NULL;
     pt->depth_pixels = 0;
     pt->pixels = 0;
     pt->accum_valid = false;
+    pt->g_pixels = 0; /* the graph imports these buffers: remake it */
+}
+
+/* Pixels of chunk c. */
+static size_t chunk_pixels(const dirt_pt *pt, size_t c)
+{
+    size_t first = c * pt->chunk;
+    return pt->pixels - first < pt->chunk ? pt->pixels - first : pt->chunk;
+}
+
+/* The largest record per pixel of one chunk's buffers (the shading ring's
+ * three shading points): every buffer must fit one storage block. */
+static size_t largest_per_pixel(void)
+{
+    size_t m = 3 * sizeof(struct dirt_gpu_gpoint);
+    size_t others[] = {sizeof(struct dirt_gpu_ray), sizeof(struct dirt_gpu_hit),
+                       sizeof(struct dirt_gpu_path), sizeof(struct dirt_gpu_accum)};
+    for (size_t i = 0; i < sizeof(others) / sizeof(others[0]); i++)
+        m = others[i] > m ? others[i] : m;
+    return m;
+}
+
+void dirt_pt_set_chunk_limit(dirt_pt *pt, size_t pixels)
+{
+    if (pt->chunk_limit == pixels)
+        return;
+    pt->chunk_limit = pixels;
+    release_buffers(pt); /* the next reset remakes them (and restarts) */
+}
+
+size_t dirt_pt_chunk_pixels(const dirt_gpu *gpu, size_t pixels, size_t limit)
+{
+    int64_t max = dirt_gpu_get_caps(gpu)->max_ssbo_size;
+    size_t c = max > 0 ? (size_t)max / largest_per_pixel() : pixels;
+    if (limit > 0 && limit < c)
+        c = limit;
+    /* Whole work groups per chunk (except the image's last). */
+    if (c > DIRT_GROUP_SIZE)
+        c -= c % DIRT_GROUP_SIZE;
+    if (c < 1)
+        c = 1;
+    return c < pixels ? c : pixels;
 }
 
 void dirt_pt_destroy(dirt_pt *pt)
@@ -124,29 +192,45 @@ void dirt_pt_destroy(dirt_pt *pt)
 
 static bool ensure_buffers(dirt_pt *pt, size_t pixels)
 {
-    if (pt->pixels == pixels)
+    if (pt->pixels == pixels && pt->accum)
         return true;
     release_buffers(pt);
-    pt->rays = gl_buffer_create(pt->gpu, pixels * sizeof(struct dirt_gpu_ray), NULL, false,
+    size_t chunk = dirt_pt_chunk_pixels(pt->gpu, pixels, pt->chunk_limit);
+    size_t n = (pixels + chunk - 1) / chunk;
+    pt->accum = calloc(n, sizeof(*pt->accum));
+    if (!pt->accum) {
+        DIRT_ERROR("out of memory");
+        return false;
+    }
+    pt->num_chunks = n;
+    pt->chunk = chunk;
+    pt->pixels = pixels;
+    if (n > 1)
+        DIRT_INFO("path tracer: %zu pixels in %zu chunks of %zu (storage blocks of %.1f MB)",
+                  pixels, n, chunk, dirt_gpu_get_caps(pt->gpu)->max_ssbo_size / 1e6);
+    pt->rays = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_ray), NULL, false,
                                 "pt rays");
-    pt->hits = gl_buffer_create(pt->gpu, pixels * sizeof(struct dirt_gpu_hit), NULL, false,
+    pt->hits = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_hit), NULL, false,
                                 "pt hits");
-    pt->shadow_rays = gl_buffer_create(pt->gpu, pixels * sizeof(struct dirt_gpu_ray), NULL,
+    pt->shadow_rays = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_ray), NULL,
                                        false, "pt shadow rays");
-    pt->shadow_hits = gl_buffer_create(pt->gpu, pixels * sizeof(struct dirt_gpu_hit), NULL,
+    pt->shadow_hits = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_hit), NULL,
                                        false, "pt shadow hits");
-    pt->gpoints = gl_buffer_create(pt->gpu, 3 * pixels * sizeof(struct dirt_gpu_gpoint), NULL,
+    pt->gpoints = gl_buffer_create(pt->gpu, 3 * chunk * sizeof(struct dirt_gpu_gpoint), NULL,
                                    false, "pt shading ring");
-    pt->paths = gl_buffer_create(pt->gpu, pixels * sizeof(struct dirt_gpu_path), NULL, false,
+    pt->paths = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_path), NULL, false,
                                  "pt paths");
-    pt->accum = gl_buffer_create(pt->gpu, pixels * sizeof(struct dirt_gpu_accum), NULL, true,
-                                 "pt accumulation");
-    if (!pt->rays || !pt->hits || !pt->shadow_rays || !pt->shadow_hits || !pt->gpoints ||
-        !pt->paths || !pt->accum) {
+    bool ok = pt->rays && pt->hits && pt->shadow_rays && pt->shadow_hits && pt->gpoints &&
+              pt->paths;
+    for (size_t c = 0; ok && c < n; c++) {
+        pt->accum[c] = gl_buffer_create(pt->gpu, chunk_pixels(pt, c) * sizeof(struct dirt_gpu_accum),
+                                        NULL, true, "pt accumulation");
+        ok = pt->accum[c] != 0;
+    }
+    if (!ok) {
         release_buffers(pt);
         return false;
     }
-    pt->pixels = pixels;
     return true;
 }
 
@@ -155,7 +239,8 @@ static bool ensure_buffers(dirt_pt *pt, size_t pixels)
 static void set_common(dirt_pt *pt, GLuint prog, int k)
 {
     glUseProgram(prog);
-    glUniform1ui(DIRT_LOC_PT_PIXELS, (GLuint)pt->pixels);
+    glUniform1ui(DIRT_LOC_PT_PIXELS, (GLuint)pt->cur_count);
+    glUniform1ui(DIRT_LOC_PT_PIXEL_OFFSET, (GLuint)pt->cur_offset);
     glUniform1i(DIRT_LOC_PT_WIDTH, pt->width);
     glUniform1i(DIRT_LOC_PT_HEIGHT, pt->height);
     glUniform1ui(DIRT_LOC_PT_SEED, pt->opts->seed);
@@ -189,14 +274,14 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         set_common(pt, pt->prog_raygen, 0);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_RAYS, pt->rays);
-        glDispatchCompute(groups(pt->pixels), 1, 1);
+        glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     case DIRT_PT_PASS_VISIBILITY:
         return pt->tech->visibility(pt->tech->self, pt->rays, pt->hits);
     case DIRT_PT_PASS_TRACE:
-        return pt->tech->trace(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->pixels, false);
+        return pt->tech->trace(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->cur_count, false);
     case DIRT_PT_PASS_FETCH:
-        return pt->tech->fetch(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->pixels,
+        return pt->tech->fetch(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->cur_count,
                                pt->gpoints, (uint32_t)(c->k % 3));
     case DIRT_PT_PASS_SHADE:
         set_common(pt, pt->g_mode == DIRT_PT_AO ? pt->prog_ao : pt->prog_shade, c->k);
@@ -205,35 +290,37 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         bind(DIRT_BIND_HITS, pt->hits);
         bind(DIRT_BIND_RAYS, pt->rays);
         bind(DIRT_BIND_SHADOW_RAYS, pt->shadow_rays);
-        glDispatchCompute(groups(pt->pixels), 1, 1);
+        glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     case DIRT_PT_PASS_SHADOW:
         return pt->tech->trace(pt->tech->self, pt->shadow_rays, pt->shadow_hits,
-                               (uint32_t)pt->pixels, true);
+                               (uint32_t)pt->cur_count, true);
     case DIRT_PT_PASS_RESOLVE:
         glUseProgram(pt->prog_resolve);
-        glUniform1ui(DIRT_LOC_RESOLVE_PIXELS, (GLuint)pt->pixels);
+        glUniform1ui(DIRT_LOC_RESOLVE_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_HITS, pt->shadow_hits);
-        glDispatchCompute(groups(pt->pixels), 1, 1);
+        glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     case DIRT_PT_PASS_ACCUMULATE:
     case DIRT_PT_NUM_PASSES:
         glUseProgram(pt->prog_accum);
-        glUniform1ui(DIRT_LOC_ACCUM_PIXELS, (GLuint)pt->pixels);
+        glUniform1ui(DIRT_LOC_ACCUM_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_PATHS, pt->paths);
-        bind(DIRT_BIND_ACCUM, pt->accum);
-        glDispatchCompute(groups(pt->pixels), 1, 1);
+        bind(DIRT_BIND_ACCUM, pt->accum[pt->cur_chunk]);
+        glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     }
     glUseProgram(0);
     return true;
 }
 
-/* One graph of a sample: raygen, then per event k = 1..events trace, fetch,
- * shade, shadow trace, resolve; then accumulate. All buffers are imported
- * (they persist across samples); the structure's buffers are the
- * technique's and not declared. */
+/* One graph of a sample's chunk: raygen, then per event k = 1..events trace,
+ * fetch, shade, shadow trace, resolve; then accumulate. All buffers are
+ * imported (they persist across samples); the structure's buffers are the
+ * technique's and not declared. The accumulation resource stands for the
+ * current chunk's buffer (the pass binds pt->accum[cur_chunk]; GL barriers
+ * are not per buffer). */
 static bool make_graph(dirt_pt *pt, int events)
 {
     fg_destroy(pt->graph);
@@ -241,14 +328,15 @@ static bool make_graph(dirt_pt *pt, int events)
     if (!pt->graph)
         return false;
     fg_graph *g = pt->graph;
-    size_t px = pt->pixels;
+    size_t px = pt->chunk;
     fg_res rays = fg_import_buffer(g, "rays", pt->rays, px * sizeof(struct dirt_gpu_ray));
     fg_res hits = fg_import_buffer(g, "hits", pt->hits, px * sizeof(struct dirt_gpu_hit));
     fg_res srays = fg_import_buffer(g, "shadow rays", pt->shadow_rays, px * sizeof(struct dirt_gpu_ray));
     fg_res shits = fg_import_buffer(g, "shadow hits", pt->shadow_hits, px * sizeof(struct dirt_gpu_hit));
     fg_res gpts = fg_import_buffer(g, "shading ring", pt->gpoints, 3 * px * sizeof(struct dirt_gpu_gpoint));
     fg_res paths = fg_import_buffer(g, "paths", pt->paths, px * sizeof(struct dirt_gpu_path));
-    fg_res accum = fg_import_buffer(g, "accumulation", pt->accum, px * sizeof(struct dirt_gpu_accum));
+    fg_res accum = fg_import_buffer(g, "accumulation", pt->accum[0],
+                                    chunk_pixels(pt, 0) * sizeof(struct dirt_gpu_accum));
     pt->num_ctx = 0;
 #define ADD(kind_, k_)                                                                   \
     (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_)},                                \
@@ -328,17 +416,25 @@ static void add_times(dirt_pt *pt, dirt_pt_stats *st)
                    st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
 }
 
-static size_t bytes_per_pixel(void)
+/* Bytes per pixel of one chunk's buffers (the accumulation aside). */
+static size_t chunk_bytes_per_pixel(void)
 {
     return 2 * sizeof(struct dirt_gpu_ray) + 2 * sizeof(struct dirt_gpu_hit) +
-           3 * sizeof(struct dirt_gpu_gpoint) + sizeof(struct dirt_gpu_path) +
-           sizeof(struct dirt_gpu_accum);
+           3 * sizeof(struct dirt_gpu_gpoint) + sizeof(struct dirt_gpu_path);
+}
+
+/* Bytes of the integrator's buffers: the chunk's, then the whole image's
+ * sums (448 B per pixel while the image is one chunk). */
+static uint64_t integrator_bytes(const dirt_pt *pt)
+{
+    return (uint64_t)pt->chunk * chunk_bytes_per_pixel() +
+           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum);
 }
 
 int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
                     int max)
 {
-    size_t px = pt->pixels;
+    size_t px = pt->chunk;
     const dirt_buffer_bytes all[] = {
         {"pt rays", px * sizeof(struct dirt_gpu_ray), 0},
         {"pt hits", px * sizeof(struct dirt_gpu_hit), 0},
@@ -346,7 +442,7 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt shadow hits", px * sizeof(struct dirt_gpu_hit), 0},
         {"pt shading ring", 3 * px * sizeof(struct dirt_gpu_gpoint), 0},
         {"pt paths", px * sizeof(struct dirt_gpu_path), 0},
-        {"pt accumulation", px * sizeof(struct dirt_gpu_accum), 0},
+        {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
     };
     int n = 0;
@@ -370,7 +466,8 @@ bool dirt_pt_reset(dirt_pt *pt, int width, int height)
     if (!ensure_buffers(pt, pixels))
         return false;
     static const float zero = 0.0f;
-    glClearNamedBufferData(pt->accum, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    for (size_t c = 0; c < pt->num_chunks; c++)
+        glClearNamedBufferData(pt->accum[c], GL_R32F, GL_RED, GL_FLOAT, &zero);
     pt->width = width;
     pt->height = height;
     pt->samples = 0;
@@ -415,7 +512,6 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     pt->opts = &opts;
     pt->bounces = opts.bounces;
     pt->ao_distance = opts.ao_distance > 0 ? opts.ao_distance : INFINITY;
-    size_t pixels = pt->pixels;
     bool ok = false;
     dirt_area_lights area = {0};
     gl_group_push("dirt path tracer");
@@ -448,8 +544,15 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
                        pt->width, pt->height);
             goto done;
         }
+        if (pt->num_chunks > 1) {
+            DIRT_ERROR("direct visibility resolves the whole camera view at once: %dx%d is "
+                       "%zu pixels, more than one chunk of this GPU's storage blocks holds "
+                       "(%zu); render a smaller image or without direct visibility",
+                       pt->width, pt->height, pt->pixels, pt->chunk);
+            goto done;
+        }
     }
-    if (!pt->graph || pt->g_pixels != pixels || pt->g_events != events ||
+    if (!pt->graph || pt->g_pixels != pt->chunk || pt->g_events != events ||
         pt->g_mode != opts.mode || pt->g_direct != opts.direct_visibility) {
         pt->g_mode = opts.mode;
         pt->g_direct = opts.direct_visibility;
@@ -472,10 +575,17 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     fg_exec_opts eo = {.validate = true};
     for (int s = 0; s < count; s++) {
         pt->sample = pt->samples;
-        if (!fg_execute(pt->graph, &eo))
-            goto done;
+        for (size_t c = 0; c < pt->num_chunks; c++) {
+            pt->cur_chunk = c;
+            pt->cur_offset = c * pt->chunk;
+            pt->cur_count = chunk_pixels(pt, c);
+            if (tech->begin_chunk)
+                tech->begin_chunk(tech->self, (uint32_t)pt->cur_offset);
+            if (!fg_execute(pt->graph, &eo))
+                goto done;
+            add_times(pt, st);
+        }
         pt->samples++;
-        add_times(pt, st);
         if (opts.progress)
             opts.progress(opts.progress_user, s + 1, count);
     }
@@ -484,7 +594,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     if (st->aborted)
         DIRT_WARN("%llu rays ran out of march steps", (unsigned long long)st->aborted);
     st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
-    st->bytes_integrator = pixels * bytes_per_pixel() + tech->bytes_extra;
+    st->bytes_integrator = integrator_bytes(pt) + tech->bytes_extra;
     ok = gl_check("dirt path tracer");
 done:
     st->total_ms = dirt_clock_ms() - t0;
@@ -509,7 +619,11 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
     size_t pixels = pt->pixels;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
-    if (!sums || !gl_buffer_read(pt->accum, 0, pixels * sizeof(*sums), sums)) {
+    bool got = sums != NULL;
+    for (size_t c = 0; got && c < pt->num_chunks; c++)
+        got = gl_buffer_read(pt->accum[c], 0, chunk_pixels(pt, c) * sizeof(*sums),
+                             sums + c * pt->chunk);
+    if (!got) {
         free(sums);
         DIRT_ERROR("could not read the image back");
         return false;
@@ -567,12 +681,15 @@ uint32_t dirt_pt_display_texture(dirt_pt *pt)
     /* The accumulation was written by shader stores. */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(pt->prog_display);
-    glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)pt->pixels);
     glUniform1i(DIRT_LOC_DISPLAY_WIDTH, pt->width);
     glUniform1f(DIRT_LOC_DISPLAY_INV_SAMPLES, 1.0f / (float)pt->samples);
-    bind(DIRT_BIND_ACCUM, pt->accum);
     glBindImageTexture(DIRT_UNIT_DISPLAY, pt->display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(groups(pt->pixels), 1, 1);
+    for (size_t c = 0; c < pt->num_chunks; c++) {
+        glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)chunk_pixels(pt, c));
+        glUniform1ui(DIRT_LOC_DISPLAY_PIXEL_OFFSET, (GLuint)(c * pt->chunk));
+        bind(DIRT_BIND_ACCUM, pt->accum[c]);
+        glDispatchCompute(groups(chunk_pixels(pt, c)), 1, 1);
+    }
     glUseProgram(0);
     /* Readers sample, fetch or copy it. */
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

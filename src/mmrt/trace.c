@@ -56,6 +56,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glUniform1i(DIRT_LOC_MMRT_TRACE_TOP_LEVEL, top);
     glUniform1f(DIRT_LOC_MMRT_TRACE_THICKNESS, thickness);
     glUniform1ui(DIRT_LOC_MMRT_TRACE_SEED, o.seed);
+    glUniform1ui(DIRT_LOC_MMRT_TRACE_FIRST_RAY, o.first_ray);
     glUniform1i(DIRT_LOC_MMRT_TRACE_STATS, o.count ? 1 : 0);
     glUniform1i(DIRT_LOC_MMRT_TRACE_ALL_VIEWS, o.all_views ? 1 : 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

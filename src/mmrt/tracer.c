@@ -26,6 +26,8 @@ struct mmrt_tracer {
     dirt_mmrt *mmrt;
     dirt_mmrt_trace_opts opts;
     uint32_t calls;           /* traces since the last restart (jitter seed) */
+    uint32_t sample_calls;    /* `calls` when the sample's first chunk began */
+    uint32_t first_ray;       /* begin_chunk: pixel of the chunk's ray 0 */
     float offset;             /* world distance */
     dirt_tracer tracer;
 };
@@ -107,6 +109,7 @@ static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t c
     /* Any hit: MMRT's closest hit answers "something in [tmin, tmax]" too. */
     dirt_mmrt_trace_opts o = s->opts;
     o.seed = s->opts.seed + s->calls++ * 0x9E3779B9u;
+    o.first_ray = s->first_ray;
     return dirt_mmrt_trace(s->mmrt, s->rays, hits, count, &o, NULL);
 }
 
@@ -162,6 +165,20 @@ static void mmrt_tech_restart(void *self)
 {
     pt_mmrt *s = self;
     s->calls = 0;
+    s->sample_calls = 0;
+    s->first_ray = 0;
+}
+
+/* Every chunk of a sample replays the sample's seed sequence (from the
+ * `calls` of its first chunk), with its rays keyed by pixel. */
+static void mmrt_tech_begin_chunk(void *self, uint32_t first)
+{
+    pt_mmrt *s = self;
+    if (first == 0)
+        s->sample_calls = s->calls;
+    else
+        s->calls = s->sample_calls;
+    s->first_ray = first;
 }
 
 static bool mmrt_tech_read_counts(void *self, uint64_t *rays, uint64_t *aborted)
@@ -202,6 +219,7 @@ const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts 
         .reset_counts = mmrt_tech_reset_counts,
         .read_counts = mmrt_tech_read_counts,
         .restart = mmrt_tech_restart,
+        .begin_chunk = mmrt_tech_begin_chunk,
         .views = &mmrt->set,
         .bytes_extra = s->tracer.bytes_extra,
     };

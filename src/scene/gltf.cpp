@@ -45,6 +45,57 @@ struct Loader {
     uint32_t default_material = 0;
 };
 
+/* The expanded-size budget of the load in progress on this thread
+ * (dirt_load_opts.max_bytes): every array the loader makes from an accessor
+ * is charged before it is allocated. Thread-local because the accessor
+ * readers see only the model; set by the entry points below. */
+thread_local size_t budget_left = 0;
+
+/* Charges `bytes` (`count` x `each`, overflow-safe) to the budget; false
+ * (logged, TOO_LARGE) when they do not fit. */
+bool charge(size_t count, size_t each, const char *what)
+{
+    if (each != 0 && count > budget_left / each) {
+        SCENE_FAIL(TOO_LARGE,
+                   "%s: %zu elements of %zu bytes exceed what is left of the load budget "
+                   "(%zu bytes; dirt_load_opts.max_bytes)",
+                   what, count, each, budget_left);
+        return false;
+    }
+    budget_left -= count * each;
+    return true;
+}
+
+/* Deepest nesting of JSON objects and arrays in `n` bytes, counting brackets
+ * outside strings (escaped quotes inside strings skipped); stops scanning
+ * once the depth passes `limit`. Only bounds the nesting: whether the bytes
+ * are valid JSON is the parser's business. */
+int json_depth(const unsigned char *p, size_t n, int limit)
+{
+    int depth = 0, deepest = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = p[i];
+        if (in_string) {
+            if (c == '\\')
+                i++;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > deepest) {
+                deepest = depth;
+                if (deepest > limit)
+                    break;
+            }
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            depth--;
+        }
+    }
+    return deepest;
+}
+
 int num_components(int type, int *rows)
 {
     switch (type) {
@@ -106,6 +157,7 @@ bool buffer_view_bytes(const tinygltf::Model &m, int index, const char *what,
     const char *why = buffer_view_problem(m, index, data, length, stride);
     if (!why)
         return true;
+    scene_set_error(strstr(why, "exceeds") ? DIRT_SCENE_ERR_TRUNCATED : DIRT_SCENE_ERR_REFERENCE);
     const tinygltf::BufferView *bv =
         index >= 0 && (size_t)index < m.bufferViews.size() ? &m.bufferViews[(size_t)index]
                                                            : nullptr;
@@ -125,7 +177,7 @@ bool view_accessor(const tinygltf::Model &m, int index, const char *what,
                    AccessorView *v)
 {
     if (index < 0 || (size_t)index >= m.accessors.size()) {
-        DIRT_ERROR("%s: accessor %d out of range (%zu accessors)", what, index,
+        SCENE_FAIL(REFERENCE, "%s: accessor %d out of range (%zu accessors)", what, index,
                    m.accessors.size());
         return false;
     }
@@ -133,7 +185,7 @@ bool view_accessor(const tinygltf::Model &m, int index, const char *what,
     v->ncomp = num_components(a.type, &v->rows);
     v->comp_size = component_size(a.componentType);
     if (v->ncomp == 0 || v->comp_size == 0) {
-        DIRT_ERROR("%s: accessor %d has an invalid type %d / component type %d", what,
+        SCENE_FAIL(TYPE, "%s: accessor %d has an invalid type %d / component type %d", what,
                    index, a.type, a.componentType);
         return false;
     }
@@ -141,7 +193,7 @@ bool view_accessor(const tinygltf::Model &m, int index, const char *what,
     v->normalized = a.normalized;
     v->count = a.count;
     if (v->count > SCENE_MAX_COUNT) {
-        DIRT_ERROR("%s: accessor %d has too many elements (%zu)", what, index, v->count);
+        SCENE_FAIL(TOO_LARGE, "%s: accessor %d has too many elements (%zu)", what, index, v->count);
         return false;
     }
     /* Matrix columns start on 4-byte boundaries. */
@@ -164,7 +216,7 @@ bool view_accessor(const tinygltf::Model &m, int index, const char *what,
     if (stride == 0)
         stride = v->elem_size;
     if (stride < v->elem_size) {
-        DIRT_ERROR("%s: byteStride %zu is smaller than the element size %zu", ctx, stride,
+        SCENE_FAIL(RANGE, "%s: byteStride %zu is smaller than the element size %zu", ctx, stride,
                    v->elem_size);
         return false;
     }
@@ -173,7 +225,7 @@ bool view_accessor(const tinygltf::Model &m, int index, const char *what,
         bool ok = a.byteOffset <= length && v->elem_size <= length - a.byteOffset &&
                   (v->count - 1) <= (length - a.byteOffset - v->elem_size) / stride;
         if (!ok) {
-            DIRT_ERROR("%s: %zu elements of %zu bytes (stride %zu) from offset %zu exceed "
+            SCENE_FAIL(RANGE, "%s: %zu elements of %zu bytes (stride %zu) from offset %zu exceed "
                        "buffer view %d of %zu bytes",
                        ctx, v->count, v->elem_size, stride, a.byteOffset, a.bufferView,
                        length);
@@ -261,7 +313,7 @@ bool apply_sparse(const tinygltf::Model &m, int index, const AccessorView &v,
     char ctx[160];
     snprintf(ctx, sizeof(ctx), "%s: sparse accessor %d", what, index);
     if (a.sparse.count < 0 || (size_t)a.sparse.count > v.count) {
-        DIRT_ERROR("%s: sparse count %d out of range (accessor count %zu)", ctx,
+        SCENE_FAIL(RANGE, "%s: sparse count %d out of range (accessor count %zu)", ctx,
                    a.sparse.count, v.count);
         return false;
     }
@@ -273,7 +325,7 @@ bool apply_sparse(const tinygltf::Model &m, int index, const AccessorView &v,
         a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
         a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
         a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0) {
-        DIRT_ERROR("%s: invalid sparse indices", ctx);
+        SCENE_FAIL(TYPE, "%s: invalid sparse indices", ctx);
         return false;
     }
     const unsigned char *ib = nullptr, *vb = nullptr;
@@ -283,7 +335,7 @@ bool apply_sparse(const tinygltf::Model &m, int index, const AccessorView &v,
         return false;
     if (!range_ok((size_t)a.sparse.indices.byteOffset, n * isz, ilen) ||
         !range_ok((size_t)a.sparse.values.byteOffset, n * v.elem_size, vlen)) {
-        DIRT_ERROR("%s: sparse indices/values exceed their buffer views", ctx);
+        SCENE_FAIL(RANGE, "%s: sparse indices/values exceed their buffer views", ctx);
         return false;
     }
     ib += a.sparse.indices.byteOffset;
@@ -291,7 +343,7 @@ bool apply_sparse(const tinygltf::Model &m, int index, const AccessorView &v,
     for (size_t k = 0; k < n; k++) {
         uint32_t dst = read_uint(ib + k * isz, a.sparse.indices.componentType);
         if (dst >= v.count) {
-            DIRT_ERROR("%s: sparse index %u >= count %zu", ctx, dst, v.count);
+            SCENE_FAIL(RANGE, "%s: sparse index %u >= count %zu", ctx, dst, v.count);
             return false;
         }
         const unsigned char *elem = vb + k * v.elem_size;
@@ -315,10 +367,12 @@ bool read_floats(const tinygltf::Model &m, int index, const char *what, int want
     if (!view_accessor(m, index, what, &v))
         return false;
     if (want_ncomp > 0 && v.ncomp != want_ncomp) {
-        DIRT_ERROR("%s: accessor %d has %d components per element, expected %d", what,
+        SCENE_FAIL(TYPE, "%s: accessor %d has %d components per element, expected %d", what,
                    index, v.ncomp, want_ncomp);
         return false;
     }
+    if (!charge(v.count, (size_t)v.ncomp * sizeof(float), what))
+        return false;
     out->assign(v.count * (size_t)v.ncomp, 0.0f);
     if (v.data) {
         if (v.comp_type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
@@ -346,17 +400,19 @@ bool read_uints(const tinygltf::Model &m, int index, const char *what, int want_
     if (!view_accessor(m, index, what, &v))
         return false;
     if (v.ncomp != want_ncomp || v.ncomp != v.rows) {
-        DIRT_ERROR("%s: accessor %d has %d components per element, expected %d", what,
+        SCENE_FAIL(TYPE, "%s: accessor %d has %d components per element, expected %d", what,
                    index, v.ncomp, want_ncomp);
         return false;
     }
     if (v.comp_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
         v.comp_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         v.comp_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-        DIRT_ERROR("%s: accessor %d must hold unsigned integers (component type %d)", what,
+        SCENE_FAIL(TYPE, "%s: accessor %d must hold unsigned integers (component type %d)", what,
                    index, v.comp_type);
         return false;
     }
+    if (!charge(v.count, (size_t)v.ncomp * sizeof(uint32_t), what))
+        return false;
     out->assign(v.count * (size_t)v.ncomp, 0u);
     if (v.data) {
         for (size_t i = 0; i < v.count; i++) {
@@ -619,7 +675,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
     }
     if (src.material < -1 ||
         (src.material >= 0 && (size_t)src.material >= m.materials.size())) {
-        DIRT_ERROR("%s: material %d out of range (%zu materials)", what, src.material,
+        SCENE_FAIL(REFERENCE, "%s: material %d out of range (%zu materials)", what, src.material,
                    m.materials.size());
         return false;
     }
@@ -630,7 +686,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
     if (!read_floats(m, a_pos, ctx.c_str(), 3, &pos))
         return false;
     if (!all_finite(pos)) {
-        DIRT_ERROR("%s: non-finite (NaN/Inf) vertex position", what);
+        SCENE_FAIL(NOT_FINITE, "%s: non-finite (NaN/Inf) vertex position", what);
         return false;
     }
     size_t nv = pos.size() / 3;
@@ -644,7 +700,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
         if (!read_floats(m, a_nrm, ctx.c_str(), 3, &nrm))
             return false;
         if (nrm.size() != pos.size()) {
-            DIRT_ERROR("%s: NORMAL has %zu elements, POSITION %zu", what, nrm.size() / 3, nv);
+            SCENE_FAIL(RANGE, "%s: NORMAL has %zu elements, POSITION %zu", what, nrm.size() / 3, nv);
             return false;
         }
         if (!all_finite(nrm))
@@ -660,7 +716,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
         if (!read_floats(m, a_uv, ctx.c_str(), 2, &uv))
             return false;
         if (uv.size() / 2 != nv) {
-            DIRT_ERROR("%s: TEXCOORD_0 has %zu elements, POSITION %zu", what, uv.size() / 2,
+            SCENE_FAIL(RANGE, "%s: TEXCOORD_0 has %zu elements, POSITION %zu", what, uv.size() / 2,
                        nv);
             return false;
         }
@@ -686,7 +742,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
         if (!read_floats(m, a_w, ctx.c_str(), 4, &weights))
             return false;
         if (joints.size() / 4 != nv || weights.size() / 4 != nv) {
-            DIRT_ERROR("%s: JOINTS_0/WEIGHTS_0 counts (%zu/%zu) differ from POSITION (%zu)",
+            SCENE_FAIL(RANGE, "%s: JOINTS_0/WEIGHTS_0 counts (%zu/%zu) differ from POSITION (%zu)",
                        what, joints.size() / 4, weights.size() / 4, nv);
             return false;
         }
@@ -699,12 +755,12 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
                 float w = weights[4 * v + k];
                 uint32_t j = joints[4 * v + k];
                 if (!std::isfinite(w) || w < 0.0f) {
-                    DIRT_ERROR("%s: vertex %zu has an invalid skin weight %g", what, v,
+                    SCENE_FAIL(INVALID, "%s: vertex %zu has an invalid skin weight %g", what, v,
                                (double)w);
                     return false;
                 }
                 if (j > UINT16_MAX) {
-                    DIRT_ERROR("%s: vertex %zu joint %u out of range", what, v, j);
+                    SCENE_FAIL(INDEX, "%s: vertex %zu joint %u out of range", what, v, j);
                     return false;
                 }
                 dst->joints[v][k] = (uint16_t)j;
@@ -738,9 +794,11 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
             any_nrm |= t.count("NORMAL") > 0;
         }
         if (nv > SCENE_MAX_COUNT / (nt ? nt : 1)) {
-            DIRT_ERROR("%s: too many morph target vertices", what);
+            SCENE_FAIL(TOO_LARGE, "%s: too many morph target vertices", what);
             return false;
         }
+        if (!charge(nt * nv, (any_pos + any_nrm) * sizeof(float[3]), what))
+            return false;
         if (any_pos)
             dst->target_position = alloc_zeroed<float[3]>(nt * nv);
         if (any_nrm)
@@ -756,12 +814,12 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
                 if (!read_floats(m, it->second, ctx.c_str(), 3, &d))
                     return false;
                 if (d.size() != pos.size()) {
-                    DIRT_ERROR("%s: %zu elements, POSITION has %zu", ctx.c_str(),
+                    SCENE_FAIL(RANGE, "%s: %zu elements, POSITION has %zu", ctx.c_str(),
                                d.size() / 3, nv);
                     return false;
                 }
                 if (!all_finite(d)) {
-                    DIRT_ERROR("%s: non-finite (NaN/Inf) morph target delta", ctx.c_str());
+                    SCENE_FAIL(NOT_FINITE, "%s: non-finite (NaN/Inf) morph target delta", ctx.c_str());
                     return false;
                 }
                 float(*out)[3] = which == 0 ? dst->target_position : dst->target_normal;
@@ -778,16 +836,21 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
             return false;
         for (size_t i = 0; i < idx.size(); i++) {
             if (idx[i] >= nv) {
-                DIRT_ERROR("%s: index %zu is %u but there are only %zu vertices", what, i,
+                SCENE_FAIL(INDEX, "%s: index %zu is %u but there are only %zu vertices", what, i,
                            idx[i], nv);
                 return false;
             }
         }
     } else {
+        if (!charge(nv, sizeof(uint32_t), what))
+            return false;
         idx.resize(nv);
         for (size_t i = 0; i < nv; i++)
             idx[i] = (uint32_t)i;
     }
+    /* A strip or fan of n indices makes up to 3n triangle indices. */
+    if (!charge(idx.size(), 3 * sizeof(uint32_t), what))
+        return false;
     std::vector<uint32_t> tris;
     convert_triangles(idx, mode, what, &tris);
     dst->num_triangles = tris.size() / 3;
@@ -888,7 +951,7 @@ bool convert_nodes(Loader &L)
             }
         }
         if (!finite) {
-            DIRT_ERROR("%s: node %zu has a non-finite transform", L.path.c_str(), i);
+            SCENE_FAIL(NOT_FINITE, "%s: node %zu has a non-finite transform", L.path.c_str(), i);
             return false;
         }
         float q2 = d->rotation[0] * d->rotation[0] + d->rotation[1] * d->rotation[1] +
@@ -917,7 +980,7 @@ bool convert_nodes(Loader &L)
             if (v.IsNumber())
                 d->light = v.GetNumberAsInt();
             if (d->light < 0) {
-                DIRT_ERROR("%s: node %zu: invalid KHR_lights_punctual light", L.path.c_str(), i);
+                SCENE_FAIL(REFERENCE, "%s: node %zu: invalid KHR_lights_punctual light", L.path.c_str(), i);
                 return false;
             }
         }
@@ -948,11 +1011,11 @@ bool convert_skins(Loader &L)
             if (!read_floats(m, src.inverseBindMatrices, what, 16, &ibm))
                 return false;
             if (ibm.size() / 16 < nj) {
-                DIRT_ERROR("%s: %zu matrices for %zu joints", what, ibm.size() / 16, nj);
+                SCENE_FAIL(RANGE, "%s: %zu matrices for %zu joints", what, ibm.size() / 16, nj);
                 return false;
             }
             if (!all_finite(ibm)) {
-                DIRT_ERROR("%s: non-finite values", what);
+                SCENE_FAIL(NOT_FINITE, "%s: non-finite values", what);
                 return false;
             }
             memcpy(d->inverse_bind, ibm.data(), nj * 16 * sizeof(float));
@@ -1044,22 +1107,22 @@ bool convert_sampler(Loader &L, const tinygltf::AnimationSampler &src, size_t wi
     if (!read_floats(m, src.output, ctx.c_str(), 0, &values))
         return false;
     if (times.empty()) {
-        DIRT_ERROR("%s: no keyframes", what);
+        SCENE_FAIL(INVALID, "%s: no keyframes", what);
         return false;
     }
     for (size_t k = 0; k < times.size(); k++) {
         if (!std::isfinite(times[k]) || (k > 0 && times[k] < times[k - 1])) {
-            DIRT_ERROR("%s: key times must be finite and increasing (key %zu)", what, k);
+            SCENE_FAIL(INVALID, "%s: key times must be finite and increasing (key %zu)", what, k);
             return false;
         }
     }
     if (!all_finite(values)) {
-        DIRT_ERROR("%s: non-finite output values", what);
+        SCENE_FAIL(NOT_FINITE, "%s: non-finite output values", what);
         return false;
     }
     size_t per_key = width * (d->interp == SCENE_INTERP_CUBIC ? 3 : 1);
     if (values.size() / per_key < times.size()) {
-        DIRT_ERROR("%s: %zu output values for %zu keys of %zu values", what, values.size(),
+        SCENE_FAIL(RANGE, "%s: %zu output values for %zu keys of %zu values", what, values.size(),
                    times.size(), per_key);
         return false;
     }
@@ -1108,12 +1171,12 @@ bool convert_animations(Loader &L)
                 continue;
             }
             if ((size_t)ch.target_node >= s->num_nodes) {
-                DIRT_ERROR("%s: target node %d out of range (%zu nodes)", what,
+                SCENE_FAIL(REFERENCE, "%s: target node %d out of range (%zu nodes)", what,
                            ch.target_node, s->num_nodes);
                 return false;
             }
             if (ch.sampler < 0 || (size_t)ch.sampler >= src.samplers.size()) {
-                DIRT_ERROR("%s: sampler %d out of range (%zu samplers)", what, ch.sampler,
+                SCENE_FAIL(REFERENCE, "%s: sampler %d out of range (%zu samplers)", what, ch.sampler,
                            src.samplers.size());
                 return false;
             }
@@ -1170,7 +1233,7 @@ bool read_file(const char *path, std::vector<unsigned char> *out)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
-        DIRT_ERROR("cannot open '%s': %s", path, strerror(errno));
+        SCENE_FAIL(IO, "cannot open '%s': %s", path, strerror(errno));
         return false;
     }
     unsigned char buf[1 << 16];
@@ -1180,7 +1243,7 @@ bool read_file(const char *path, std::vector<unsigned char> *out)
     bool err = ferror(f) != 0;
     fclose(f);
     if (err) {
-        DIRT_ERROR("cannot read '%s'", path);
+        SCENE_FAIL(IO, "cannot read '%s'", path);
         return false;
     }
     return true;
@@ -1265,16 +1328,30 @@ bool no_write_file(std::string *err, const std::string &, const std::vector<unsi
 /* Parses `size` bytes of .gltf JSON or .glb (told apart by the "glTF" magic)
  * into `model`. `label` names the data in messages. External URIs resolve
  * against `base_dir`, or always fail when `base_dir` is NULL. */
+/* Fails (TOO_DEEP, logged) when `n` bytes of JSON nest deeper than
+ * `limit`: tinygltf and nlohmann recurse once per level, so this runs
+ * before either sees the bytes. */
+bool depth_ok(const unsigned char *json, size_t n, int limit, const char *path)
+{
+    int d = json_depth(json, n, limit);
+    if (d <= limit)
+        return true;
+    SCENE_FAIL(TOO_DEEP,
+               "'%s': JSON nested deeper than %d levels (dirt_load_opts.max_depth)", path,
+               limit);
+    return false;
+}
+
 bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
-                 const char *base_dir, tinygltf::Model *model)
+                 const char *base_dir, const dirt_load_opts *opts, tinygltf::Model *model)
 {
     const char *path = label;
     if (size == 0) {
-        DIRT_ERROR("'%s' is empty", path);
+        SCENE_FAIL(EMPTY, "'%s' is empty", path);
         return false;
     }
     if (size > UINT32_MAX) {
-        DIRT_ERROR("'%s' is larger than 4 GiB", path);
+        SCENE_FAIL(TOO_LARGE, "'%s' is larger than 4 GiB", path);
         return false;
     }
 
@@ -1295,31 +1372,35 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
     bool binary = size >= 4 && memcmp(bytes, "glTF", 4) == 0;
     if (binary) {
         if (size < 20) {
-            DIRT_ERROR("'%s': truncated .glb (%zu bytes, header needs 20)", path, size);
+            SCENE_FAIL(TRUNCATED, "'%s': truncated .glb (%zu bytes, header needs 20)", path, size);
             return false;
         }
         uint32_t length = le32(&bytes[8]);
         uint32_t json_len = le32(&bytes[12]);
         if (length > size) {
-            DIRT_ERROR("'%s': truncated .glb: header says %u bytes, file has %zu", path,
+            SCENE_FAIL(TRUNCATED, "'%s': truncated .glb: header says %u bytes, file has %zu", path,
                        length, size);
             return false;
         }
         if ((uint64_t)json_len + 20u > length) {
-            DIRT_ERROR("'%s': truncated .glb: JSON chunk of %u bytes exceeds the file", path,
+            SCENE_FAIL(TRUNCATED, "'%s': truncated .glb: JSON chunk of %u bytes exceeds the file", path,
                        json_len);
             return false;
         }
         if (length >= (uint64_t)json_len + 28u) {
             uint32_t bin_len = le32(&bytes[20 + json_len]);
             if ((uint64_t)json_len + 28u + bin_len > length) {
-                DIRT_ERROR("'%s': truncated .glb: BIN chunk of %u bytes exceeds the file",
+                SCENE_FAIL(TRUNCATED, "'%s': truncated .glb: BIN chunk of %u bytes exceeds the file",
                            path, bin_len);
                 return false;
             }
         }
+        if (!depth_ok(bytes + 20, json_len, opts->max_depth, path))
+            return false;
         ok = gltf.LoadBinaryFromMemory(model, &err, &warn, bytes, (unsigned int)size, dir);
     } else {
+        if (!depth_ok(bytes, size, opts->max_depth, path))
+            return false;
         ok = gltf.LoadASCIIFromString(model, &err, &warn, (const char *)bytes,
                                       (unsigned int)size, dir);
     }
@@ -1327,6 +1408,20 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
     if (!ok) {
         if (err.empty())
             err = "tinygltf could not parse the file";
+        /* tinygltf's messages are all the id can come from here. */
+        if (err.find("external file") != std::string::npos ||
+            err.find("not found") != std::string::npos ||
+            err.find("Failed to load external") != std::string::npos ||
+            err.find("File read error") != std::string::npos)
+            scene_set_error(DIRT_SCENE_ERR_EXTERNAL);
+        else if (err.find("ize mismatch") != std::string::npos ||
+                 err.find("binary size") != std::string::npos ||
+                 err.find("Invalid binary data") != std::string::npos)
+            scene_set_error(DIRT_SCENE_ERR_TRUNCATED);
+        else if (err.find("invalid bufferView") != std::string::npos)
+            scene_set_error(DIRT_SCENE_ERR_REFERENCE);
+        else
+            scene_set_error(DIRT_SCENE_ERR_SYNTAX);
         log_lines(true, path, err);
         DIRT_ERROR("cannot load '%s'", path);
         return false;
@@ -1334,7 +1429,7 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
     return true;
 }
 
-bool parse_model(const char *path, tinygltf::Model *model)
+bool parse_model(const char *path, const dirt_load_opts *opts, tinygltf::Model *model)
 {
     std::vector<unsigned char> bytes;
     if (!read_file(path, &bytes))
@@ -1344,7 +1439,7 @@ bool parse_model(const char *path, tinygltf::Model *model)
     std::string base_dir = slash == std::string::npos ? "." : p.substr(0, slash);
     if (base_dir.empty())
         base_dir = "/";
-    return parse_bytes(bytes.data(), bytes.size(), path, base_dir.c_str(), model);
+    return parse_bytes(bytes.data(), bytes.size(), path, base_dir.c_str(), opts, model);
 }
 
 /* Destroys the scene under construction unless released (also when a
@@ -1375,7 +1470,7 @@ bool convert(Loader &L, const tinygltf::Model &model, const char *path)
     if (!model.scenes.empty()) {
         int sc = model.defaultScene;
         if (sc >= 0 && (size_t)sc >= model.scenes.size()) {
-            DIRT_ERROR("%s: default scene %d out of range (%zu scenes)", path, sc,
+            SCENE_FAIL(REFERENCE, "%s: default scene %d out of range (%zu scenes)", path, sc,
                        model.scenes.size());
             return false;
         }
@@ -1391,7 +1486,12 @@ bool convert(Loader &L, const tinygltf::Model &model, const char *path)
     convert_cameras_lights(L);
     if (!convert_animations(L))
         return false;
-    return scene_finalize(L.s, roots_ptr, roots.size());
+    if (!scene_finalize(L.s, roots_ptr, roots.size()))
+        return false;
+    /* One evaluated frame: 3 corners x (position, normal, uv) + material and
+     * instance per triangle (dirt_frame), for every instanced triangle. */
+    const size_t frame_bytes = 3 * (sizeof(float[3]) * 2 + sizeof(float[2])) + 2 * sizeof(uint32_t);
+    return charge(L.s->num_triangles, frame_bytes, "the evaluated frame's triangles");
 }
 
 /* Converts a parsed model into a finalized scene named `name`; `label`
@@ -1412,30 +1512,32 @@ dirt_scene *convert_model(const tinygltf::Model &model, const char *label, const
     return guard.release();
 }
 
-dirt_scene *load(const char *path)
+dirt_scene *load(const char *path, const dirt_load_opts *opts)
 {
     tinygltf::Model model;
-    if (!parse_model(path, &model))
+    if (!parse_model(path, opts, &model))
         return nullptr;
     return convert_model(model, path, file_stem(path).c_str());
 }
 
-dirt_scene *load_memory(const void *data, size_t size, const char *label)
+dirt_scene *load_memory(const void *data, size_t size, const char *label,
+                        const dirt_load_opts *opts)
 {
     tinygltf::Model model;
-    if (!parse_bytes((const unsigned char *)data, size, label, nullptr, &model))
+    if (!parse_bytes((const unsigned char *)data, size, label, nullptr, opts, &model))
         return nullptr;
     return convert_model(model, label, file_stem(label).c_str());
 }
 
 } // namespace
 
-extern "C" dirt_scene *scene_load_gltf(const char *path)
+extern "C" dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *opts)
 {
+    budget_left = opts->max_bytes;
     try {
-        return load(path);
+        return load(path, opts);
     } catch (const std::bad_alloc &) {
-        DIRT_ERROR("out of memory loading '%s'", path);
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory loading '%s'", path);
     } catch (const std::exception &e) {
         DIRT_ERROR("cannot load '%s': %s", path, e.what());
     } catch (...) {
@@ -1444,12 +1546,14 @@ extern "C" dirt_scene *scene_load_gltf(const char *path)
     return nullptr;
 }
 
-extern "C" dirt_scene *scene_load_gltf_memory(const void *data, size_t size, const char *label)
+extern "C" dirt_scene *scene_load_gltf_memory(const void *data, size_t size, const char *label,
+                                              const dirt_load_opts *opts)
 {
+    budget_left = opts->max_bytes;
     try {
-        return load_memory(data, size, label);
+        return load_memory(data, size, label, opts);
     } catch (const std::bad_alloc &) {
-        DIRT_ERROR("out of memory loading '%s'", label);
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory loading '%s'", label);
     } catch (const std::exception &e) {
         DIRT_ERROR("cannot load '%s': %s", label, e.what());
     } catch (...) {

@@ -24,7 +24,7 @@ dirt_scene *scene_new(const char *name)
 {
     dirt_scene *s = calloc(1, sizeof(*s));
     if (!s) {
-        DIRT_ERROR("out of memory allocating a scene");
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory allocating a scene");
         return NULL;
     }
     scene_copy_name(s->name, sizeof(s->name), name);
@@ -80,23 +80,23 @@ static bool check_node_refs(const dirt_scene *s)
     for (size_t i = 0; i < s->num_nodes; i++) {
         const scene_node *n = &s->nodes[i];
         if (n->mesh < -1 || (n->mesh >= 0 && (size_t)n->mesh >= s->num_meshes)) {
-            DIRT_ERROR("node %zu: mesh %d out of range (%zu meshes)", i, n->mesh,
+            SCENE_FAIL(REFERENCE, "node %zu: mesh %d out of range (%zu meshes)", i, n->mesh,
                        s->num_meshes);
             return false;
         }
         if (n->skin < -1 || (n->skin >= 0 && (size_t)n->skin >= s->num_skins)) {
-            DIRT_ERROR("node %zu: skin %d out of range (%zu skins)", i, n->skin,
+            SCENE_FAIL(REFERENCE, "node %zu: skin %d out of range (%zu skins)", i, n->skin,
                        s->num_skins);
             return false;
         }
         if (n->camera < -1 ||
             (n->camera >= 0 && (size_t)n->camera >= s->num_camera_protos)) {
-            DIRT_ERROR("node %zu: camera %d out of range (%zu cameras)", i, n->camera,
+            SCENE_FAIL(REFERENCE, "node %zu: camera %d out of range (%zu cameras)", i, n->camera,
                        s->num_camera_protos);
             return false;
         }
         if (n->light < -1 || (n->light >= 0 && (size_t)n->light >= s->num_light_protos)) {
-            DIRT_ERROR("node %zu: light %d out of range (%zu lights)", i, n->light,
+            SCENE_FAIL(REFERENCE, "node %zu: light %d out of range (%zu lights)", i, n->light,
                        s->num_light_protos);
             return false;
         }
@@ -105,7 +105,7 @@ static bool check_node_refs(const dirt_scene *s)
         const scene_skin *sk = &s->skins[k];
         for (size_t j = 0; j < sk->num_joints; j++) {
             if (sk->joints[j] < 0 || (size_t)sk->joints[j] >= s->num_nodes) {
-                DIRT_ERROR("skin %zu: joint %zu is node %d, out of range (%zu nodes)", k, j,
+                SCENE_FAIL(REFERENCE, "skin %zu: joint %zu is node %d, out of range (%zu nodes)", k, j,
                            sk->joints[j], s->num_nodes);
                 return false;
             }
@@ -125,16 +125,16 @@ static bool link_parents(dirt_scene *s)
         for (size_t c = 0; c < n->num_children; c++) {
             int ch = n->children[c];
             if (ch < 0 || (size_t)ch >= s->num_nodes) {
-                DIRT_ERROR("node %zu: child %d out of range (%zu nodes)", i, ch,
+                SCENE_FAIL(REFERENCE, "node %zu: child %d out of range (%zu nodes)", i, ch,
                            s->num_nodes);
                 return false;
             }
             if ((size_t)ch == i) {
-                DIRT_ERROR("node %zu is its own child (node cycle)", i);
+                SCENE_FAIL(HIERARCHY, "node %zu is its own child (node cycle)", i);
                 return false;
             }
             if (s->nodes[ch].parent != -1) {
-                DIRT_ERROR("node %d has more than one parent (%d and %zu)", ch,
+                SCENE_FAIL(HIERARCHY, "node %d has more than one parent (%d and %zu)", ch,
                            s->nodes[ch].parent, i);
                 return false;
             }
@@ -221,7 +221,7 @@ static bool check_skinned_instances(const dirt_scene *s)
             for (size_t v = 0; v < pr->num_vertices; v++) {
                 for (int k = 0; k < 4; k++) {
                     if (pr->weights[v][k] != 0.0f && pr->joints[v][k] >= sk->num_joints) {
-                        DIRT_ERROR("node %d: mesh %d primitive %zu vertex %zu uses joint %u "
+                        SCENE_FAIL(INDEX, "node %d: mesh %d primitive %zu vertex %zu uses joint %u "
                                    "but skin %d has %zu joints",
                                    in->node, in->mesh, p, v, (unsigned)pr->joints[v][k],
                                    in->skin, sk->num_joints);
@@ -232,6 +232,38 @@ static bool check_skinned_instances(const dirt_scene *s)
         }
     }
     return true;
+}
+
+/* Warns when the scene shows nothing: no triangles at all, or only
+ * triangles of zero area in the rest pose (morphs or skins may still give
+ * them area later; the images are then black or background only). */
+static void warn_degenerate(dirt_scene *s)
+{
+    size_t zero = 0;
+    for (size_t k = 0; k < s->num_instances; k++) {
+        const scene_mesh *m = &s->meshes[s->instances[k].mesh];
+        for (size_t p = 0; p < m->num_prims; p++) {
+            const scene_prim *pr = &m->prims[p];
+            for (size_t t = 0; t < pr->num_triangles; t++) {
+                const float *a = pr->position[pr->indices[3 * t]];
+                const float *b = pr->position[pr->indices[3 * t + 1]];
+                const float *c = pr->position[pr->indices[3 * t + 2]];
+                float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                              e1[0] * e2[1] - e1[1] * e2[0]};
+                zero += n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f;
+            }
+        }
+    }
+    s->stats.zero_area = zero;
+    if (s->num_triangles == 0)
+        DIRT_WARN("scene '%s' has no triangles to show: every image will be background only",
+                  s->name);
+    else if (zero == s->num_triangles)
+        DIRT_WARN("scene '%s': all %zu triangles have zero area (in the rest pose): the "
+                  "images will be background only",
+                  s->name, s->num_triangles);
 }
 
 bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
@@ -247,7 +279,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
     seen = calloc(n ? n : 1, sizeof(*seen));
     s->eval_order = malloc((n ? n : 1) * sizeof(*s->eval_order));
     if (!stack || !seen || !s->eval_order) {
-        DIRT_ERROR("out of memory finalizing scene '%s'", s->name);
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory finalizing scene '%s'", s->name);
         goto error;
     }
 
@@ -259,7 +291,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
             walk(s, (int)i, stack, visit_order, &count);
     }
     if (count != n) {
-        DIRT_ERROR("scene '%s': node cycle (%zu of %zu nodes unreachable from a root)",
+        SCENE_FAIL(HIERARCHY, "scene '%s': node cycle (%zu of %zu nodes unreachable from a root)",
                    s->name, n - count, n);
         goto error;
     }
@@ -271,7 +303,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
     }
     s->roots = malloc((num_roots ? num_roots : 1) * sizeof(*s->roots));
     if (!s->roots) {
-        DIRT_ERROR("out of memory finalizing scene '%s'", s->name);
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory finalizing scene '%s'", s->name);
         goto error;
     }
     if (!roots) {
@@ -283,7 +315,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
         for (size_t i = 0; i < num_roots; i++) {
             int r = roots[i];
             if (r < 0 || (size_t)r >= n) {
-                DIRT_ERROR("scene '%s': root node %d out of range (%zu nodes)", s->name, r,
+                SCENE_FAIL(REFERENCE, "scene '%s': root node %d out of range (%zu nodes)", s->name, r,
                            n);
                 goto error;
             }
@@ -338,7 +370,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
     s->cameras = calloc(g.num_cameras ? g.num_cameras : 1, sizeof(*s->cameras));
     s->lights = calloc(g.num_lights ? g.num_lights : 1, sizeof(*s->lights));
     if (!s->instances || !s->cameras || !s->lights) {
-        DIRT_ERROR("out of memory finalizing scene '%s'", s->name);
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory finalizing scene '%s'", s->name);
         goto error;
     }
     s->num_instances = g.num_instances;
@@ -349,12 +381,13 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
     for (size_t r = 0; r < s->num_roots; r++)
         walk(s, s->roots[r], stack, visit_gather, &g);
     if (s->num_triangles > UINT32_MAX / 3) {
-        DIRT_ERROR("scene '%s': %zu triangles is too many", s->name, s->num_triangles);
+        SCENE_FAIL(TOO_LARGE, "scene '%s': %zu triangles is too many", s->name, s->num_triangles);
         goto error;
     }
 
     if (!check_skinned_instances(s))
         goto error;
+    warn_degenerate(s);
 
     free(stack);
     free(seen);
@@ -422,27 +455,97 @@ void dirt_scene_destroy(dirt_scene *s)
     free(s);
 }
 
+/* ---- load errors -------------------------------------------------------- */
+
+static _Thread_local enum dirt_scene_error load_error;
+
+void scene_set_error(enum dirt_scene_error e)
+{
+    if (load_error == DIRT_SCENE_ERR_OK)
+        load_error = e;
+}
+
+void scene_error_reset(void)
+{
+    load_error = DIRT_SCENE_ERR_OK;
+}
+
+enum dirt_scene_error scene_error_get(void)
+{
+    return load_error;
+}
+
+enum dirt_scene_error dirt_scene_last_error(void)
+{
+    return load_error;
+}
+
+const char *dirt_scene_error_str(enum dirt_scene_error e)
+{
+    static const char *const msg[] = {
+#define DIRT_SCENE_ERR_MSG_(id, text) text,
+        DIRT_SCENE_ERRORS(DIRT_SCENE_ERR_MSG_)
+#undef DIRT_SCENE_ERR_MSG_
+    };
+    return (unsigned)e < DIRT_SCENE_NUM_ERRORS ? msg[e] : "?";
+}
+
+const char *dirt_scene_error_name(enum dirt_scene_error e)
+{
+    static const char *const name[] = {
+#define DIRT_SCENE_ERR_NAME_(id, text) #id,
+        DIRT_SCENE_ERRORS(DIRT_SCENE_ERR_NAME_)
+#undef DIRT_SCENE_ERR_NAME_
+    };
+    return (unsigned)e < DIRT_SCENE_NUM_ERRORS ? name[e] : "?";
+}
+
+/* The options with their defaults filled in. */
+static dirt_load_opts resolve_load_opts(const dirt_load_opts *opts)
+{
+    dirt_load_opts o = opts ? *opts : (dirt_load_opts){0};
+    if (o.max_bytes == 0)
+        o.max_bytes = DIRT_LOAD_DEFAULT_MAX_BYTES;
+    if (o.max_depth <= 0)
+        o.max_depth = DIRT_LOAD_DEFAULT_MAX_DEPTH;
+    return o;
+}
+
+/* A failed load always has an id: INVALID when no site named one. */
+static dirt_scene *load_done(dirt_scene *s)
+{
+    if (!s)
+        scene_set_error(DIRT_SCENE_ERR_INVALID);
+    else
+        scene_error_reset();
+    return s;
+}
+
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
 {
-    (void)opts;
+    scene_error_reset();
     if (!path || !*path) {
         DIRT_ERROR("dirt_scene_load: no path given");
+        scene_set_error(DIRT_SCENE_ERR_ARGUMENT);
         return NULL;
     }
-    return scene_load_gltf(path);
+    dirt_load_opts o = resolve_load_opts(opts);
+    return load_done(scene_load_gltf(path, &o));
 }
 
 dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
                                    const dirt_load_opts *opts)
 {
-    (void)opts;
+    scene_error_reset();
     if (!name || !*name)
         name = "memory";
     if (!data && size > 0) {
         DIRT_ERROR("dirt_scene_load_memory: '%s': no data given", name);
+        scene_set_error(DIRT_SCENE_ERR_ARGUMENT);
         return NULL;
     }
-    return scene_load_gltf_memory(data ? data : "", size, name);
+    dirt_load_opts o = resolve_load_opts(opts);
+    return load_done(scene_load_gltf_memory(data ? data : "", size, name, &o));
 }
 
 const char *dirt_scene_name(const dirt_scene *s)

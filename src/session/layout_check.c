@@ -272,16 +272,18 @@ const char *dirt_layout_binding_name(int binding)
 /* ---- Uniform locations ---- */
 
 /* Distinct locations within each program: a switch per program, one case
- * per location (duplicates do not compile). Never called. */
+ * per location (duplicates do not compile). Never called (hence unused:
+ * clang warns of an unused static inline function in a .c file). */
 #define L(name) case name:
-static inline int distinct_locations(int program, int loc)
+__attribute__((unused)) static inline int distinct_locations(int program, int loc)
 {
     switch (program) {
     case 0:
         switch (loc) {
             L(DIRT_LOC_PT_PIXELS) L(DIRT_LOC_PT_WIDTH) L(DIRT_LOC_PT_HEIGHT) L(DIRT_LOC_PT_SEED)
             L(DIRT_LOC_PT_SAMPLE) L(DIRT_LOC_PT_BOUNCE) L(DIRT_LOC_PT_BOUNCES) L(DIRT_LOC_PT_SLOT)
-            L(DIRT_LOC_PT_BACKGROUND) L(DIRT_LOC_PT_AO_DISTANCE) return 1;
+            L(DIRT_LOC_PT_BACKGROUND) L(DIRT_LOC_PT_AO_DISTANCE) L(DIRT_LOC_PT_PIXEL_OFFSET)
+            return 1;
         }
         break;
     case 1:
@@ -300,7 +302,7 @@ static inline int distinct_locations(int program, int loc)
             L(DIRT_LOC_MMRT_TRACE_COUNT) L(DIRT_LOC_MMRT_TRACE_MARCH) L(DIRT_LOC_MMRT_TRACE_SAMPLES)
             L(DIRT_LOC_MMRT_TRACE_TOP_LEVEL) L(DIRT_LOC_MMRT_TRACE_THICKNESS)
             L(DIRT_LOC_MMRT_TRACE_SEED) L(DIRT_LOC_MMRT_TRACE_STATS)
-            L(DIRT_LOC_MMRT_TRACE_ALL_VIEWS) return 1;
+            L(DIRT_LOC_MMRT_TRACE_ALL_VIEWS) L(DIRT_LOC_MMRT_TRACE_FIRST_RAY) return 1;
         }
         break;
     case 4:
@@ -334,7 +336,7 @@ static inline int distinct_locations(int program, int loc)
     case 9:
         switch (loc) {
             L(DIRT_LOC_DISPLAY_PIXELS) L(DIRT_LOC_DISPLAY_WIDTH) L(DIRT_LOC_DISPLAY_INV_SAMPLES)
-            return 1;
+            L(DIRT_LOC_DISPLAY_PIXEL_OFFSET) return 1;
         }
         break;
     }
@@ -351,12 +353,14 @@ static const dirt_layout_uniform u_pt[] = {
     U("u_sample", DIRT_LOC_PT_SAMPLE),   U("u_bounce", DIRT_LOC_PT_BOUNCE),
     U("u_bounces", DIRT_LOC_PT_BOUNCES), U("u_slot", DIRT_LOC_PT_SLOT),
     U("u_background", DIRT_LOC_PT_BACKGROUND), U("u_ao_distance", DIRT_LOC_PT_AO_DISTANCE),
+    U("u_pixel_offset", DIRT_LOC_PT_PIXEL_OFFSET),
 };
 static const dirt_layout_uniform u_resolve[] = {U("u_pixels", DIRT_LOC_RESOLVE_PIXELS)};
 static const dirt_layout_uniform u_accum[] = {U("u_pixels", DIRT_LOC_ACCUM_PIXELS)};
 static const dirt_layout_uniform u_display[] = {U("u_pixels", DIRT_LOC_DISPLAY_PIXELS),
                                                U("u_width", DIRT_LOC_DISPLAY_WIDTH),
-                                               U("u_inv_samples", DIRT_LOC_DISPLAY_INV_SAMPLES)};
+                                               U("u_inv_samples", DIRT_LOC_DISPLAY_INV_SAMPLES),
+                                               U("u_pixel_offset", DIRT_LOC_DISPLAY_PIXEL_OFFSET)};
 static const dirt_layout_uniform u_test_model[] = {
     U("u_mode", DIRT_LOC_TEST_MODEL_MODE), U("u_count", DIRT_LOC_TEST_MODEL_COUNT)};
 static const dirt_layout_uniform u_trace[] = {
@@ -369,7 +373,8 @@ static const dirt_layout_uniform u_mmrt_trace[] = {
     U("u_count", DIRT_LOC_MMRT_TRACE_COUNT),         U("u_march", DIRT_LOC_MMRT_TRACE_MARCH),
     U("u_samples", DIRT_LOC_MMRT_TRACE_SAMPLES),     U("u_top_level", DIRT_LOC_MMRT_TRACE_TOP_LEVEL),
     U("u_thickness", DIRT_LOC_MMRT_TRACE_THICKNESS), U("u_seed", DIRT_LOC_MMRT_TRACE_SEED),
-    U("u_stats", DIRT_LOC_MMRT_TRACE_STATS),         U("u_all_views", DIRT_LOC_MMRT_TRACE_ALL_VIEWS)};
+    U("u_stats", DIRT_LOC_MMRT_TRACE_STATS),         U("u_all_views", DIRT_LOC_MMRT_TRACE_ALL_VIEWS),
+    U("u_first_ray", DIRT_LOC_MMRT_TRACE_FIRST_RAY)};
 static const dirt_layout_uniform u_pt_rays[] = {
     U("u_count", DIRT_LOC_MMRT_PT_RAYS_COUNT), U("u_offset", DIRT_LOC_MMRT_PT_RAYS_OFFSET),
     U("u_shadow", DIRT_LOC_MMRT_PT_RAYS_SHADOW)};

@@ -204,16 +204,55 @@ static void release_engine(dirt_session *s)
     s->img_current = false;
 }
 
+/* DIRT's tile size when the options leave it open (tile_size 0): S = 2, or
+ * the smallest of 4 and 8 whose list heads (buckets x tiles of every view)
+ * take at most a quarter of one storage block, so that large images work
+ * out of the box: the primitive-list nodes, a few per head and known only
+ * after the first fill, must fit one block too (the default scene at
+ * 3840x2160 needs 17.5 M nodes, 140 MB, at S = 4 and about a quarter of
+ * that at S = 8). The tile count does not depend on the camera, so a unit
+ * box's views tell it. An explicit S is kept (its error, if any, advises
+ * larger tiles). */
+static int auto_tile_size(dirt_session *s, dirt_view_opts vo, int buckets)
+{
+    int64_t max = dirt_gpu_get_caps(s->gpu)->max_ssbo_size;
+    static const float bmin[3] = {-1, -1, -1}, bmax[3] = {1, 1, 1};
+    dirt_camera cam;
+    dirt_camera_auto_bounds(bmin, bmax, &cam);
+    static const int sizes[] = {2, 4, 8};
+    uint64_t heads2 = 0;
+    for (size_t i = 0; i < sizeof(sizes) / sizeof(sizes[0]); i++) {
+        vo.tile_size = sizes[i];
+        dirt_view_set set;
+        if (!dirt_views_setup(&set, &cam, bmin, bmax, &vo, 0))
+            return 2; /* the build reports the bad size */
+        uint64_t heads = (uint64_t)buckets * (uint64_t)set.num_tiles * DIRT_HEAD_BYTES;
+        if (i == 0)
+            heads2 = heads;
+        if (max <= 0 || heads <= (uint64_t)max / 4) {
+            if (sizes[i] != 2)
+                DIRT_INFO("tile size %d (the list heads of tile size 2 would need %.1f MB, "
+                          "more than a quarter of this GPU's largest storage buffer, %.1f MB)",
+                          sizes[i], heads2 / 1e6, max / 1e6);
+            return sizes[i];
+        }
+    }
+    return 8;
+}
+
 static bool make_engine(dirt_session *s)
 {
     const dirt_session_opts *o = &s->opts;
     dirt_view_opts vo = {.mode = view_mode(o->views), .width = s->width, .height = s->height,
                          .face_size = o->face_size, .tile_size = o->tile_size ? o->tile_size : 2};
+    int buckets = o->buckets ? o->buckets : 16;
     switch (o->engine) {
     case DIRT_ENGINE_DIRT:
+        if (!o->tile_size)
+            vo.tile_size = auto_tile_size(s, vo, buckets);
         s->ads = dirt_ads_create(s->gpu, &(dirt_ads_opts){
                                              .views = vo,
-                                             .buckets = o->buckets ? o->buckets : 16,
+                                             .buckets = buckets,
                                              .force_emulation = o->force_emulation,
                                          });
         if (!s->ads)

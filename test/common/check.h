@@ -1,7 +1,9 @@
 /* Minimal test helpers shared by every test executable.
  * A failed CHECK prints file:line and the expression, counts the failure and
  * continues; tests end with `return check_finish();` (0 = pass, 1 = fail).
- * Tests that cannot run (no GL context, no ../shared) return TEST_SKIP. */
+ * Tests that cannot run (no GL context, no ../shared) return TEST_SKIP,
+ * except in CI (CI=true), where both are failures: a CI run must not stay
+ * green with the GPU tests or the shared-asset cases silently left out. */
 #ifndef DIRT_TEST_CHECK_H
 #define DIRT_TEST_CHECK_H
 
@@ -10,6 +12,13 @@
 #include <stdlib.h>
 
 #define TEST_SKIP 77
+
+/* CI=true (what CI services set): missing prerequisites fail. */
+static inline int test_in_ci(void)
+{
+    const char *ci = getenv("CI");
+    return ci && ci[0] == 't' && ci[1] == 'r' && ci[2] == 'u' && ci[3] == 'e' && !ci[4];
+}
 
 static int check_failures_;
 static int check_count_;
@@ -32,18 +41,25 @@ static inline int check_finish(void)
     return check_failures_ ? 1 : 0;
 }
 
-/* Directory of the shared assets (../shared), or NULL when absent. */
+/* Directory of the shared assets (../shared), or NULL when absent; in CI
+ * (test_in_ci) an absent directory ends the test as a failure (exit 1). */
 static inline const char *test_shared_dir(void)
 {
     const char *d = getenv("DIRT_SHARED_DIR");
-    if (!d || !*d)
-        return NULL;
-    FILE *f;
+    FILE *f = NULL;
     char probe[4096];
-    snprintf(probe, sizeof(probe), "%s/scenes/CREDITS.md", d);
-    f = fopen(probe, "rb");
-    if (!f)
+    if (d && *d) {
+        snprintf(probe, sizeof(probe), "%s/scenes/CREDITS.md", d);
+        f = fopen(probe, "rb");
+    }
+    if (!f) {
+        if (test_in_ci()) {
+            fprintf(stderr, "CI=true: the shared assets are missing (DIRT_SHARED_DIR=%s): "
+                            "failing instead of skipping their cases\n", d ? d : "(unset)");
+            exit(1);
+        }
         return NULL;
+    }
     fclose(f);
     return d;
 }

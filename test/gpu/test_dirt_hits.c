@@ -100,13 +100,17 @@ static void run(dirt_gpu *gpu, const char *label, dirt_scene *scene)
                     for (size_t i = 0; i < n; i++) {
                         if (agree(&hits[i], &ref[t][i], t == DIRT_RAY_VISIBILITY)) {
                             same++;
-                        } else if (getenv("DIRT_TEST_VERBOSE")) {
+                            continue;
+                        }
+                        /* Verbose only prints: the classification below runs
+                         * either way (it used to be skipped when verbose). */
+                        if (getenv("DIRT_TEST_VERBOSE"))
                             fprintf(stderr, "\n  ray %zu: dirt prim %u t %.7g view %u, embree prim %u t %.7g, "
                                     "org %.6g %.6g %.6g dir %.6g %.6g %.6g\n", i, hits[i].prim, hits[i].t,
                                     hits[i].view, ref[t][i].prim, ref[t][i].t, rays[t][i].org[0],
                                     rays[t][i].org[1], rays[t][i].org[2], rays[t][i].dir[0],
                                     rays[t][i].dir[1], rays[t][i].dir[2]);
-                        } else if (mode == 1) {
+                        if (mode == 1) {
                             double te = ref[t][i].prim == DIRT_REF_MISS ? rays[t][i].tmax : ref[t][i].t;
                             if (leaves_view(cv, &rays[t][i], te))
                                 outside++;

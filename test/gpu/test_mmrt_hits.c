@@ -3,11 +3,16 @@
  * (Hi-Z march, cube+camera views, B = 4) and by Embree on the default scene,
  * for two thicknesses (secondary rays start 3 thicknesses off the surface,
  * as in the path tracer). It prints MMRT's agreement per ray type and thickness
- * (expected below DIRT's 100 %: MMRT's hits are approximate) and asserts only
- * what MMRT guarantees:
+ * (expected below DIRT's 100 %: MMRT's hits are approximate) and asserts:
  *  - every hit lies within the thickness (in the eye depth of the view it was
  *    found in) of the stored fragment it reports;
  *  - camera rays through pixel centres find the visible surface (>= 99 %);
+ *  - each secondary ray type agrees with Embree at least as often as
+ *    measured when the floors were set (llvmpipe, Mesa 22.3.6; the test is
+ *    deterministic): thickness 0.2 %: visibility 61.2, specular 76.4,
+ *    glossy 65.1, diffuse 42.1 %; thickness 1 %: 75.0, 78.0, 72.6, 60.9 %.
+ *    Each floor sits about one point below (MIN_AGREE), so a regression in
+ *    the march or the views shows while rounding on another GPU does not;
  *  - no march aborted. */
 #include <math.h>
 #include <stdlib.h>
@@ -17,6 +22,14 @@
 #include "dirt/raytypes.h"
 #include "dirt/ref.h"
 #include "gpu.h"
+
+/* Agreement floors in percent, per thickness and ray type (see above). */
+static const double MIN_AGREE[2][DIRT_RAY_TYPES] = {
+    [0] = {[DIRT_RAY_PRIMARY] = 99.0, [DIRT_RAY_VISIBILITY] = 60.0, [DIRT_RAY_SPECULAR] = 75.0,
+           [DIRT_RAY_GLOSSY] = 64.0, [DIRT_RAY_DIFFUSE] = 41.0},
+    [1] = {[DIRT_RAY_PRIMARY] = 99.0, [DIRT_RAY_VISIBILITY] = 74.0, [DIRT_RAY_SPECULAR] = 77.0,
+           [DIRT_RAY_GLOSSY] = 71.5, [DIRT_RAY_DIFFUSE] = 60.0},
+};
 
 int main(void)
 {
@@ -90,8 +103,9 @@ int main(void)
             fprintf(stderr, " %s %.1f%%", dirt_ray_type_names[t], 100.0 * same / n);
             CHECK_MSG(beyond == 0, "%zu %s hits farther than the thickness from their fragment",
                       beyond, dirt_ray_type_names[t]);
-            if (t == DIRT_RAY_PRIMARY)
-                CHECK(same >= 0.99 * n);
+            CHECK_MSG(100.0 * same >= MIN_AGREE[k][t] * n,
+                      "thickness %d: %s rays agree %.1f%%, floor %.1f%%", k,
+                      dirt_ray_type_names[t], 100.0 * same / n, MIN_AGREE[k][t]);
         }
         fputc('\n', stderr);
     }

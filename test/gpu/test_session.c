@@ -257,6 +257,43 @@ static void check_auto_camera(dirt_gpu *gpu)
     dirt_scene_destroy(scene);
 }
 
+/* Chunks (wavefronts): with the path tracer forced to chunks of 200 pixels
+ * (192 after rounding to work groups: 9 chunks of the 48x36 image, the last
+ * partial), 1 + 1 + 2 samples give the unchunked 4-sample image bit for bit,
+ * the display texture covers the whole image, and the bytes are one chunk's
+ * buffers (400 B per pixel) plus the whole image's sums (48 B per pixel). */
+static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_opts o,
+                         const char *what)
+{
+    dirt_session *whole = dirt_session_create(gpu, scene, &o);
+    CHECK(whole && dirt_session_add_samples(whole, 4, NULL, NULL));
+    const dirt_image *ref = whole ? dirt_session_image(whole) : NULL;
+    CHECK(ref != NULL);
+    setenv("DIRT_PT_CHUNK_PIXELS", "200", 1);
+    dirt_session *s = dirt_session_create(gpu, scene, &o);
+    unsetenv("DIRT_PT_CHUNK_PIXELS");
+    CHECK(s && dirt_session_add_samples(s, 1, NULL, NULL));
+    CHECK(s && dirt_session_add_samples(s, 1, NULL, NULL));
+    CHECK(s && dirt_session_add_samples(s, 2, NULL, NULL));
+    const dirt_image *img = s ? dirt_session_image(s) : NULL;
+    CHECK_MSG(img && ref && same_image(ref, img), "%s: chunked 1+1+2 differs from unchunked 4",
+              what);
+    GLuint tex = s ? dirt_session_display_texture(s) : 0;
+    float *px = malloc(sizeof(float) * 4 * W * H);
+    CHECK(tex && px && gl_texture_read_rgba32f(tex, W, H, px));
+    CHECK_MSG(img && px && memcmp(px, img->rgba, sizeof(float) * 4 * W * H) == 0,
+              "%s: chunked display texture differs from the image", what);
+    free(px);
+    const dirt_session_stats *st = s ? dirt_session_get_stats(s) : NULL;
+    if (st && st->has_ads)
+        CHECK(st->bytes_total_used - st->ads.bytes_total_used ==
+              (uint64_t)192 * 400 + (uint64_t)W * H * 48);
+    fprintf(stderr, "%s: chunks of 192 pixels, 1+1+2 == unchunked 4, display == image\n",
+            what);
+    dirt_session_destroy(s);
+    dirt_session_destroy(whole);
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -272,6 +309,9 @@ int main(void)
     dirt_session_opts mmrt = {.engine = DIRT_ENGINE_MMRT, .width = W, .height = H,
                               .bounces = 2, .march = DIRT_MMRT_MARCH_LINEAR, .seed = 5};
     check_progressive(gpu, scene, mmrt, "mmrt, linear march");
+    check_chunks(gpu, scene, (dirt_session_opts){.width = W, .height = H, .bounces = 2, .seed = 3},
+                 "dirt");
+    check_chunks(gpu, scene, mmrt, "mmrt, linear march");
     check_restarts(gpu, scene);
     check_stats(gpu, scene);
     check_auto_camera(gpu);

@@ -164,6 +164,9 @@ typedef struct dirt_mmrt_trace_opts {
     int hiz_levels;   /* Hi-Z: 0 = every level; n > 0: levels 0 .. n-1 */
     float thickness;  /* eye-space depth units; 0 = default; < 0 = exactly 0 */
     uint32_t seed;    /* jitter of linear marching */
+    uint32_t first_ray; /* ray i of this batch is ray first_ray + i of the
+                           wavefront it was cut from (keys the jitter, so
+                           that cutting a batch into chunks changes nothing) */
     bool all_views;   /* march every view over the whole ray, keep the closest
                          hit (default: each part of the ray in one view, the
                          first of camera, faces whose frustum holds it) */

@@ -84,7 +84,8 @@ typedef struct dirt_pt_stats {
     uint64_t aborted;         /* rays whose march gave up (see dirt_trace_stats) */
     double mrays_per_s;       /* rays / trace time */
     uint64_t invalid_samples; /* non-finite samples dropped (dirt_pt_render only) */
-    uint64_t bytes_integrator; /* rays, hits, shading ring, paths, sums, the tracer's own */
+    uint64_t bytes_integrator; /* one chunk's rays, hits, shading ring and paths, the
+                                * image's sums, the tracer's own */
 } dirt_pt_stats;
 
 /* Compiles the programs. The scene must outlive it; its materials and
@@ -93,9 +94,23 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene);
 /* Accepts NULL. */
 void dirt_pt_destroy(dirt_pt *pt);
 
-/* Starts a new accumulation of width x height pixels (0 samples). False
- * (logged) when the per-pixel buffers exceed the GPU's limits. */
+/* Starts a new accumulation of width x height pixels (0 samples). The image
+ * is worked through in chunks (wavefronts) of dirt_pt_chunk_pixels pixels,
+ * so any size fits the GPU's storage blocks; the pixels do not depend on the
+ * chunk size (the random numbers are keyed by image pixel). False (logged)
+ * when the buffers cannot be allocated. */
 bool dirt_pt_reset(dirt_pt *pt, int width, int height);
+
+/* Pixels per chunk for an image of `pixels` on `gpu`: as many as one storage
+ * block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) holds of the largest per-pixel
+ * record (the 3-slot shading ring), at most `limit` when limit > 0, whole
+ * work groups, at most `pixels`. */
+size_t dirt_pt_chunk_pixels(const dirt_gpu *gpu, size_t pixels, size_t limit);
+
+/* Test hook: chunks of at most `pixels` (0 = the GPU's limits only; the
+ * environment variable DIRT_PT_CHUNK_PIXELS sets it at create). Takes effect
+ * at the next dirt_pt_reset, which it requires. */
+void dirt_pt_set_chunk_limit(dirt_pt *pt, size_t pixels);
 
 /* Adds `count` samples of `frame` seen from `cam`, traced through `tracer`
  * (the technique's structure built for this frame and camera; borrowed for

@@ -76,15 +76,69 @@ typedef struct dirt_light_def {
     int node;
 } dirt_light_def;
 
+/* Why a load failed: one X-macro list gives the enum (DIRT_SCENE_ERR_<id>),
+ * the message table (dirt_scene_error_str) and the tests' expectations. */
+#define DIRT_SCENE_ERRORS(X)                                                          \
+    X(OK, "ok")                                                                       \
+    X(ARGUMENT, "no path or data given")                                              \
+    X(IO, "the file cannot be opened or read")                                        \
+    X(EMPTY, "the file is empty")                                                     \
+    X(TRUNCATED, "the data ends early (a .glb chunk, a buffer or a buffer view)")     \
+    X(TOO_DEEP, "JSON nested deeper than the limit")                                  \
+    X(SYNTAX, "not a glTF 2.0 file (JSON syntax or required members)")                \
+    X(EXTERNAL, "an external file cannot be used (missing, or loading from memory)")  \
+    X(RANGE, "an accessor's elements lie outside its buffer view")                    \
+    X(TYPE, "an accessor of the wrong type or component type")                        \
+    X(REFERENCE, "a reference to an object that does not exist")                      \
+    X(INDEX, "a vertex index or joint past its range")                                \
+    X(NOT_FINITE, "a non-finite position")                                            \
+    X(HIERARCHY, "a node cycle or a node with two parents")                           \
+    X(TOO_LARGE, "the scene needs more memory than the load budget")                  \
+    X(OUT_OF_MEMORY, "out of memory")                                                 \
+    X(INVALID, "other invalid content")
+
+enum dirt_scene_error {
+#define DIRT_SCENE_ERR_ENUM_(id, msg) DIRT_SCENE_ERR_##id,
+    DIRT_SCENE_ERRORS(DIRT_SCENE_ERR_ENUM_)
+#undef DIRT_SCENE_ERR_ENUM_
+    DIRT_SCENE_NUM_ERRORS
+};
+
+/* "ok", "JSON nested deeper than the limit", ...; "?" out of range. */
+const char *dirt_scene_error_str(enum dirt_scene_error e);
+/* "OK", "TOO_DEEP", ...: the id's name (for messages and tests). */
+const char *dirt_scene_error_name(enum dirt_scene_error e);
+
+/* The outcome of this thread's last dirt_scene_load / dirt_scene_load_memory:
+ * DIRT_SCENE_ERR_OK after a success, else the first reason the load met
+ * (the log says more). */
+enum dirt_scene_error dirt_scene_last_error(void);
+
+/* Default of dirt_load_opts.max_bytes: 512 MiB of expanded scene data
+ * (about 3 million triangles with their vertex arrays; an accessor of 2^27
+ * floats with no bufferView is already past it). */
+#define DIRT_LOAD_DEFAULT_MAX_BYTES ((size_t)512 << 20)
+/* Default of dirt_load_opts.max_depth: JSON nesting of objects and arrays. */
+#define DIRT_LOAD_DEFAULT_MAX_DEPTH 128
+
 /* Options for dirt_scene_load. Zero-initialised = defaults. */
 typedef struct dirt_load_opts {
-    /* Reserved for later use; keep zero. */
-    int reserved;
+    /* Budget of the expanded scene: the bytes the loader's arrays would hold
+     * (every accessor read as floats or indices, the triangles made of them).
+     * A file that needs more fails with DIRT_SCENE_ERR_TOO_LARGE before the
+     * memory is allocated. 0 = DIRT_LOAD_DEFAULT_MAX_BYTES. (The file's own
+     * bytes and its decoded buffers are bounded by the file's size.) */
+    size_t max_bytes;
+    /* Deepest nesting of JSON objects/arrays accepted (checked on the bytes
+     * before any parser sees them): deeper fails with
+     * DIRT_SCENE_ERR_TOO_DEEP. 0 = DIRT_LOAD_DEFAULT_MAX_DEPTH. */
+    int max_depth;
 } dirt_load_opts;
 
 /* Loads a .gltf or .glb file. Returns NULL on failure (unreadable or
  * malformed file: truncated data, out-of-range indices, non-finite
- * positions...) after logging the reason. Missing or undecodable textures
+ * positions, nesting or size past the opts' limits...) after logging the
+ * reason; dirt_scene_last_error() tells the reason's id. Missing or undecodable textures
  * only warn: the material falls back to its factor (a white default texture).
  * `opts` may be NULL. */
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);

@@ -52,6 +52,13 @@ typedef struct dirt_tracer {
     /* A new accumulation begins (sample 0): a technique whose traces are
      * randomised per call restarts its sequence. NULL when there is none. */
     void (*restart)(void *self);
+    /* The integrator works through the image in chunks (wavefronts): before
+     * the traces of each chunk of one sample it calls begin_chunk with the
+     * chunk's first pixel (0 starts a sample); the chunk's ray i is pixel
+     * first + i. A technique whose traces are randomised per call and per
+     * ray keys them by (call of the sample, pixel), so that the chunking
+     * changes no result. NULL when there is nothing to key. */
+    void (*begin_chunk)(void *self, uint32_t first);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
 } dirt_tracer;
