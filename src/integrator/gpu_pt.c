@@ -561,10 +561,10 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     }
     if (pt->samples == 0) {
         /* The depth first: a tracer's per-trace randomness restarts below. */
-        if (pt->depth_pixels != pixels) {
+        if (pt->depth_pixels != pt->pixels) {
             free(pt->depth);
-            pt->depth = malloc(pixels * sizeof(float));
-            pt->depth_pixels = pt->depth ? pixels : 0;
+            pt->depth = malloc(pt->pixels * sizeof(float));
+            pt->depth_pixels = pt->depth ? pt->pixels : 0;
         }
         if (!pt->depth || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, pt->depth))
             goto done;
