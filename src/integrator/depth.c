@@ -14,13 +14,11 @@
 #include "gl/gl.h"
 
 bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
-                     int height, float *depth)
+                     int height, size_t batch, float *depth)
 {
     size_t pixels = (size_t)width * (size_t)height;
-    int64_t max_block = dirt_gpu_get_caps(gpu)->max_ssbo_size;
-    size_t batch = pixels;
-    if (max_block > 0 && batch * sizeof(struct dirt_gpu_hit) > (uint64_t)max_block)
-        batch = (size_t)max_block / sizeof(struct dirt_gpu_hit);
+    if (!batch || batch > pixels)
+        batch = pixels;
     dirt_ray *rays = malloc(batch * sizeof(*rays));
     dirt_hit *hits = malloc(batch * sizeof(*hits));
     GLuint rbuf = gl_buffer_create(gpu, batch * sizeof(*rays), NULL, false, "pt depth rays");

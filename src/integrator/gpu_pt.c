@@ -566,7 +566,8 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             pt->depth = malloc(pt->pixels * sizeof(float));
             pt->depth_pixels = pt->depth ? pt->pixels : 0;
         }
-        if (!pt->depth || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, pt->depth))
+        if (!pt->depth || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, pt->chunk,
+                                           pt->depth))
             goto done;
         if (tech->restart)
             tech->restart(tech->self);
