@@ -70,7 +70,7 @@ run_tests() {
       skipped=$(python3 -c 'import json,sys
 for l in open(sys.argv[1]):
     t = json.loads(l)
-    if t.get("result") == "SKIP": print(t["name"])' "$dir/meson-logs/testlog.json")
+    if t.get("result") == "SKIP": print(t["name"].split(" / ")[-1])' "$dir/meson-logs/testlog.json")
       for name in $skipped; do
         allowed=0
         for a in "${CI_MAY_SKIP[@]}"; do [ "$name" = "$a" ] && allowed=1; done
