@@ -123,7 +123,7 @@ case "${1:-}" in
     grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-clang/fuzz.log >&2 || true
     ;;
   *)
-    sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
     [ -z "${1:-}" ] || exit 2
     ;;
 esac
