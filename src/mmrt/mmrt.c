@@ -512,11 +512,14 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
     glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_fb_h);
     dirt_view_opts vo = m->opts.views;
     vo.tile_size = 1;
-    if (!dirt_views_setup(&m->set, cam, f->bounds_min, f->bounds_max, &vo, max_fb_w))
+    /* The raster limits are checked here rather than by dirt_views_setup,
+     * whose advice names tiles: MMRT is per pixel, its advice is the views. */
+    if (!dirt_views_setup(&m->set, cam, f->bounds_min, f->bounds_max, &vo, 0))
         return false;
-    if (m->set.atlas_height > max_fb_h) {
-        DIRT_ERROR("views need a raster %d pixels high, more than this GPU's %d",
-                   m->set.atlas_height, max_fb_h);
+    if (m->set.atlas_width > max_fb_w || m->set.atlas_height > max_fb_h) {
+        DIRT_ERROR("the views need a raster of %dx%d pixels, more than this GPU's %dx%d: "
+                   "use smaller views (-W/-H, --face-size) or fewer views (--views)",
+                   m->set.atlas_width, m->set.atlas_height, max_fb_w, max_fb_h);
         return false;
     }
     float d2 = 0;
