@@ -94,7 +94,7 @@ case "${1:-}" in
     # Path traced through the DIRT structure (GPU, or Mesa llvmpipe on the CPU:
     # a modest size and sample count keep that to about a minute).
     ./build/src/app/dirt-render -o out/default.exr --png -W 320 -H 240 --spp 8
-    say "images: $(pwd)/out/default.exr (float RGBA + albedo/normal) and $(pwd)/out/default.png (preview)"
+    say "images: $(pwd)/out/default.exr (float RGBA + albedo, normal, depth) and $(pwd)/out/default.png (preview)"
     ;;
   test)
     build build
