@@ -132,6 +132,12 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
     }
 }
 
+void cli_png_beside(const char *path, char *buf, size_t size)
+{
+    size_t len = strlen(path);
+    snprintf(buf, size, "%.*s.png", (int)(len >= 4 ? len - 4 : len), path);
+}
+
 bool cli_write_image(const char *prog, const dirt_image *img, const char *path,
                      const dirt_image_write_options *wo, bool png_preview, bool quiet)
 {
@@ -143,7 +149,7 @@ bool cli_write_image(const char *prog, const dirt_image *img, const char *path,
         printf("wrote %s\n", path);
     if (png_preview) {
         char png[4200];
-        snprintf(png, sizeof(png), "%.*s.png", (int)(strlen(path) - 4), path);
+        cli_png_beside(path, png, sizeof(png));
         if (!dirt_image_write_png(img, png, &wo->png)) {
             cli_error(prog, "could not write '%s'", png);
             return false;

@@ -43,6 +43,10 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
 bool cli_has_ext(const char *path, const char *ext);
 
 
+/* The PNG preview's name beside `path`: its 4-letter extension (".exr")
+ * replaced by ".png". */
+void cli_png_beside(const char *path, char *buf, size_t size);
+
 /* Writes `img` to `path` (.exr or .png, atomically) and, with `png_preview`,
  * a PNG beside it (path with .png for its 4-letter extension); prints each
  * file written unless `quiet`. False after printing why. */

@@ -348,9 +348,7 @@ static int frame_files(const options *o, long frame, char files[2][4200])
     seq_frame_path(o->output, frame, files[0], sizeof(files[0]));
     if (!o->png_preview)
         return 1;
-    size_t stem = strlen(files[0]) - 4; /* without ".exr" */
-    memcpy(files[1], files[0], stem);
-    memcpy(files[1] + stem, ".png", 5);
+    cli_png_beside(files[0], files[1], sizeof(files[1]));
     return 2;
 }
 
@@ -536,7 +534,7 @@ int main(int argc, char **argv)
     bool shared = o.skip_existing || o.placeholders;
     /* Dead writers' temporary files, once per output directory. */
     char png_pattern[4200], last_dir[4200] = "";
-    snprintf(png_pattern, sizeof(png_pattern), "%.*s.png", (int)strlen(o.output) - 4, o.output);
+    cli_png_beside(o.output, png_pattern, sizeof(png_pattern));
     for (size_t i = 0; i < o.frames.count; i++) {
         char f[4200];
         seq_frame_path(o.output, o.frames.frames[i], f, sizeof(f));

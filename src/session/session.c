@@ -16,6 +16,7 @@ const char *const dirt_engine_names[DIRT_NUM_ENGINES] = {"dirt", "mmrt", "embree
 
 struct dirt_session {
     dirt_gpu *gpu;
+    char gpu_desc[256];       /* dirt_gpu_describe, made once */
     const dirt_scene *scene;
     dirt_session_opts opts;
     /* frame and camera */
@@ -321,6 +322,8 @@ dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
         return NULL;
     }
     s->gpu = gpu;
+    if (gpu)
+        dirt_gpu_describe(gpu, s->gpu_desc, sizeof(s->gpu_desc));
     s->scene = scene;
     s->opts = o;
     warn_unlit(scene, &o);
@@ -555,8 +558,6 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
         add_buffer(st, "id nodes", m->bytes_id_nodes_used, m->bytes_id_nodes_allocated);
         add_buffer(st, "data nodes", m->bytes_data_nodes_used, m->bytes_data_nodes_allocated);
     } else if (s->accel) {
-        dirt_ref_build_stats b;
-        dirt_ref_accel_stats(s->accel, &b);
         st->build_ms = s->build_ms;
         add_pass(st, "bvh build", s->build_ms, DIRT_CLOCK_CPU);
     }
@@ -565,10 +566,8 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
 static void fill_common(dirt_session *s, dirt_session_stats *st)
 {
     st->engine = s->opts.engine;
-    if (s->gpu && gpu_engine(s->opts.engine))
-        dirt_gpu_describe(s->gpu, st->device, sizeof(st->device));
-    else
-        snprintf(st->device, sizeof(st->device), "CPU");
+    snprintf(st->device, sizeof(st->device), "%s",
+             s->gpu && gpu_engine(s->opts.engine) ? s->gpu_desc : "CPU");
     st->width = s->width;
     st->height = s->height;
     st->samples = s->samples;
