@@ -17,7 +17,7 @@ PACKAGES=(
   libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libembree-dev glslang-tools libcjson-dev python3 gnuplot-nox
   xvfb xauth
-  slurm-wlm munge openimageio-tools
+  slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
 )
 
