@@ -127,6 +127,16 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
             cli_error(prog, "%s expects R,G,B (non-negative), got '%s'", option, val);
         return ok;
     }
+    case 'v': {
+        float *xyz = dst;
+        char extra;
+        bool ok = sscanf(val, "%f,%f,%f%c", &xyz[0], &xyz[1], &xyz[2], &extra) == 3;
+        for (int k = 0; ok && k < 3; k++)
+            ok = isfinite(xyz[k]);
+        if (!ok)
+            cli_error(prog, "%s expects X,Y,Z (finite numbers), got '%s'", option, val);
+        return ok;
+    }
     default:
         return true; /* the caller parses the rest */
     }

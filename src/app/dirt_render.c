@@ -22,6 +22,8 @@ typedef struct options {
     const char *output, *stats_path, *graph_dot, *debug_ads, *log_path, *mse_ref, *chunk;
     double time, fps, exposure, claim_timeout;
     int camera;               /* -1 default, -2 automatic, else scene camera */
+    dirt_camera_look look;    /* --eye, --look-at, ... */
+    bool eye_set, target_set, look_set; /* --eye, --look-at, any look option */
     int clip, tonemap;
     bool loop, png_preview, quiet, info, time_set, exposure_set, tonemap_set;
     bool skip_existing, placeholders, animated_seed;
@@ -67,6 +69,13 @@ static void usage(FILE *out)
 "                        automatic camera framing the scene when it has none)\n"
 "      --auto-camera     ignore the scene's cameras: frame the whole animation\n"
 "                        clip (the same camera at every frame)\n"
+"      --eye X,Y,Z       a camera of its own: its position (with --look-at; the\n"
+"                        numbers dirt-view prints for its camera)\n"
+"      --look-at X,Y,Z   the point that camera looks at\n"
+"      --up X,Y,Z        its up direction (default 0,1,0)\n"
+"      --fov DEG         its vertical field of view (default 45)\n"
+"      --znear Z, --zfar Z  its depth range (default: 1/1000 of the distance to\n"
+"                        the --look-at point; infinite)\n"
 "      --aperture R      thin-lens aperture radius (default 0: pinhole)\n"
 "      --focus D         focus distance with --aperture (default: distance to the\n"
 "                        scene centre)\n"
@@ -182,6 +191,13 @@ static bool check_options(const options *o)
                   "field such as frame_####.exr or frame_%%04d.exr", o->output);
     } else if (!dirt_session_check_opts(s, why, sizeof(why))) {
         cli_error(PROG, "%s", why);
+    } else if (o->look_set && !(o->eye_set && o->target_set)) {
+        cli_error(PROG, "a camera of its own needs both --eye and --look-at");
+    } else if (o->look_set && o->camera != -1) {
+        cli_error(PROG, "--eye/--look-at and --camera/--auto-camera choose different cameras");
+    } else if (o->look_set && o->look.zfar > 0 && o->look.znear > 0 &&
+               !(o->look.zfar > o->look.znear)) {
+        cli_error(PROG, "--zfar must be beyond --znear");
     } else if (o->debug_ads && many) {
         cli_error(PROG, "--debug-ads works on a single frame, not with --frames");
     } else if (o->png_preview && !cli_has_ext(o->output, ".exr")) {
@@ -217,7 +233,7 @@ static bool check_options(const options *o)
 static int parse_args(int argc, char **argv, options *o)
 {
     *o = (options){.s = {.width = 640}, .fps = 24, .camera = -1, .spp = 16,
-                   .claim_timeout = 600};
+                   .claim_timeout = 600, .look = {.up = {0, 1, 0}}};
     long hiz_top = -1;
     const char *engines[DIRT_NUM_ENGINES + 1] = {0};
     for (int e = 0; e < DIRT_NUM_ENGINES; e++)
@@ -239,6 +255,12 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--seed", NULL, 'u', &o->s.seed, 0, 4294967295.0, NULL},
         {NULL, "--ao-distance", NULL, 'f', &o->s.ao_distance, 0, 1e30, NULL},
         {NULL, "--threads", NULL, 'i', &o->s.threads, 1, 4096, NULL},
+        {NULL, "--eye", NULL, 'v', o->look.eye, 0, 0, NULL},
+        {NULL, "--look-at", NULL, 'v', o->look.target, 0, 0, NULL},
+        {NULL, "--up", NULL, 'v', o->look.up, 0, 0, NULL},
+        {NULL, "--fov", NULL, 'f', &o->look.fov_deg, 1e-3, 179.9, NULL},
+        {NULL, "--znear", NULL, 'f', &o->look.znear, 1e-12, 1e30, NULL},
+        {NULL, "--zfar", NULL, 'f', &o->look.zfar, 1e-12, 1e30, NULL},
         {NULL, "--aperture", NULL, 'f', &o->s.aperture, 0, 1e6, NULL},
         {NULL, "--focus", NULL, 'f', &o->s.focus, 1e-6, 1e9, NULL},
         {NULL, "--exposure", NULL, 'd', &o->exposure, -64, 64, NULL},
@@ -297,6 +319,10 @@ static int parse_args(int argc, char **argv, options *o)
             o->time_set |= opts[k].dst == &o->time;
             o->exposure_set |= opts[k].dst == &o->exposure;
             o->tonemap_set |= opts[k].dst == &o->tonemap;
+            o->eye_set |= opts[k].dst == o->look.eye;
+            o->target_set |= opts[k].dst == o->look.target;
+            o->look_set |= opts[k].kind == 'v' || opts[k].dst == &o->look.fov_deg ||
+                           opts[k].dst == &o->look.znear || opts[k].dst == &o->look.zfar;
         }
         if (done)
             continue;
@@ -508,17 +534,20 @@ int main(int argc, char **argv)
     rc = DIRT_EXIT_FAILURE;
     dirt_session_opts dbg_opts = o.s;
     dbg_opts.engine = DIRT_ENGINE_DIRT;
-    enum dirt_camera_choice choice = o.camera >= 0    ? DIRT_CAMERA_SCENE
+    enum dirt_camera_choice choice = o.look_set       ? DIRT_CAMERA_EXPLICIT
+                                     : o.camera >= 0  ? DIRT_CAMERA_SCENE
                                      : o.camera == -2 ? DIRT_CAMERA_AUTO
                                                       : DIRT_CAMERA_DEFAULT;
+    dirt_camera look_cam;
+    dirt_camera_from_look(&o.look, &look_cam);
     dirt_eval_opts eval = {.clip = o.clip, .loop = o.loop};
     session = dirt_session_create(gpu, scene, &o.s);
-    if (!session || !dirt_session_set_camera(session, choice, o.camera, NULL))
+    if (!session || !dirt_session_set_camera(session, choice, o.camera, &look_cam))
         goto done;
     debug = o.debug_ads && o.s.engine != DIRT_ENGINE_DIRT
                 ? dirt_session_create(gpu, scene, &dbg_opts) : NULL;
     if (o.debug_ads && o.s.engine != DIRT_ENGINE_DIRT &&
-        (!debug || !dirt_session_set_camera(debug, choice, o.camera, NULL)))
+        (!debug || !dirt_session_set_camera(debug, choice, o.camera, &look_cam)))
         goto done;
     fstats = calloc(o.frames.count ? o.frames.count : 1, sizeof(*fstats));
     if (!fstats)

@@ -14,7 +14,7 @@
 #include "gl/gl.h"
 
 bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
-                     int height, size_t batch, float *depth)
+                     int height, size_t batch, float *depth, float *ids)
 {
     size_t pixels = (size_t)width * (size_t)height;
     if (!batch || batch > pixels)
@@ -42,6 +42,8 @@ bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         ok = ok && gl_buffer_read(hbuf, 0, n * sizeof(*hits), hits);
         for (size_t i = 0; ok && i < n; i++) {
+            if (ids)
+                ids[first + i] = hits[i].prim == DIRT_HIT_NONE ? -1.0f : (float)hits[i].prim;
             if (hits[i].prim == DIRT_HIT_NONE) {
                 depth[first + i] = INFINITY;
                 continue;

@@ -11,10 +11,12 @@
 /* Writes width x height depths (row 0 = top) into `depth`: the distance
  * along the camera's forward axis to the first hit of the pinhole ray
  * through each pixel centre, INFINITY where it misses; the reference's
- * "Z" (src/ref/render.c). Traces through `tracer` in batches of at most
+ * "Z" (src/ref/render.c), and into `ids` (may be NULL) the primitive of
+ * that hit as a float (exact below 2^24 triangles), -1 where it misses: the
+ * reference's "ID". Traces through `tracer` in batches of at most
  * `batch` rays (the path tracer's chunk: they fit one storage block and one
  * dispatch). Blocking. False after logging. */
 bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
-                     int height, size_t batch, float *depth);
+                     int height, size_t batch, float *depth, float *ids);
 
 #endif

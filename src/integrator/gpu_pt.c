@@ -75,7 +75,7 @@ struct dirt_pt {
     int display_w, display_h;
     uint32_t display_samples; /* samples it shows; ~0 = stale */
     /* the Z AOV of the accumulation (depth.c), made with its first samples */
-    float *depth;
+    float *depth, *ids;   /* and the "ID" AOV */
     size_t depth_pixels;
     /* state read by the pass bodies during dirt_pt_add_samples */
     const dirt_tracer *tech;
@@ -128,7 +128,8 @@ static void release_buffers(dirt_pt *pt)
     pt->chunk = 0;
     gl_texture_destroy(&pt->display);
     free(pt->depth);
-    pt->depth = NULL;
+    free(pt->ids);
+    pt->depth = pt->ids = NULL;
     pt->depth_pixels = 0;
     pt->pixels = 0;
     pt->accum_valid = false;
@@ -563,11 +564,13 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
         /* The depth first: a tracer's per-trace randomness restarts below. */
         if (pt->depth_pixels != pt->pixels) {
             free(pt->depth);
+            free(pt->ids);
             pt->depth = malloc(pt->pixels * sizeof(float));
-            pt->depth_pixels = pt->depth ? pt->pixels : 0;
+            pt->ids = malloc(pt->pixels * sizeof(float));
+            pt->depth_pixels = pt->depth && pt->ids ? pt->pixels : 0;
         }
-        if (!pt->depth || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, pt->chunk,
-                                           pt->depth))
+        if (!pt->depth_pixels || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height,
+                                                  pt->chunk, pt->depth, pt->ids))
             goto done;
         if (tech->restart)
             tech->restart(tech->self);
@@ -637,6 +640,9 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
     float *z = dirt_image_find_channel(out, "Z");
     if (z && pt->depth_pixels == pixels)
         memcpy(z, pt->depth, pixels * sizeof(float));
+    float *ids = dirt_image_find_channel(out, "ID");
+    if (ids && pt->depth_pixels == pixels)
+        memcpy(ids, pt->ids, pixels * sizeof(float));
     /* The display pass multiplies by the same float (glsl/integrator/display.comp). */
     float inv = 1.0f / (float)pt->samples;
     uint64_t invalid = 0;

@@ -40,7 +40,7 @@ typedef struct render_ctx {
     dirt_vec3 background;
     int tiles_x, tiles_y;
 
-    float *rgba, *albedo[3], *normal[3], *depth;
+    float *rgba, *albedo[3], *normal[3], *depth, *ids;
 
     atomic_uint_fast64_t rays, invalid;
     pthread_mutex_t progress_lock;
@@ -391,8 +391,10 @@ static void render_pixel(render_ctx *c, uint64_t *rays, int x, int y)
     if (trace(c, rays, org, dir, INFINITY, &h)) {
         dirt_vec3 p = v3_mad(org, dir, h.t);
         c->depth[i] = v3_dot(v3_sub(p, v3_load(c->cam->eye)), v3_normalize(v3_load(c->cam->forward)));
+        c->ids[i] = (float)h.prim;
     } else {
         c->depth[i] = INFINITY;
+        c->ids[i] = -1.0f;
     }
     if (bad)
         atomic_fetch_add(&c->invalid, bad);
@@ -556,7 +558,8 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
             goto error;
     }
     c.depth = dirt_image_add_channel(img, "Z");
-    if (!c.depth)
+    c.ids = dirt_image_add_channel(img, "ID");
+    if (!c.depth || !c.ids)
         goto error;
     c.rgba = img->rgba;
     if (pthread_mutex_init(&c.progress_lock, NULL) != 0) {

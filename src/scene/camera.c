@@ -83,6 +83,20 @@ void dirt_camera_look_at(dirt_camera *cam, const float eye[3], const float targe
     scene_camera_set_basis(cam, f, up);
 }
 
+void dirt_camera_from_look(const dirt_camera_look *look, dirt_camera *out)
+{
+    memset(out, 0, sizeof(*out));
+    dirt_camera_look_at(out, look->eye, look->target, look->up);
+    float d[3] = {look->target[0] - look->eye[0], look->target[1] - look->eye[1],
+                  look->target[2] - look->eye[2]};
+    float dist = sqrtf(dot3(d, d));
+    out->type = DIRT_CAMERA_PERSPECTIVE;
+    out->yfov = (look->fov_deg > 0.0f ? look->fov_deg : 45.0f) * 0.0174532925f;
+    out->znear = look->znear > 0.0f ? look->znear : fmaxf(dist * 1e-3f, 1e-6f);
+    out->zfar = look->zfar > out->znear ? look->zfar : 0.0f;
+    out->focus_distance = dist > 0.0f ? dist : 1.0f;
+}
+
 void dirt_camera_auto_bounds(const float min[3], const float max[3], dirt_camera *out)
 {
     static const float yfov = 0.785398163f; /* 45 degrees */

@@ -624,8 +624,9 @@ static bool build(dirt_session *s)
 static dirt_image *new_image(const dirt_session *s, bool aovs)
 {
     dirt_image *img = dirt_image_create(s->width, s->height);
-    static const char *extra[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
-    for (int i = 0; img && aovs && i < 7; i++) {
+    static const char *extra[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z",
+                                  "Z", "ID"};
+    for (int i = 0; img && aovs && i < 8; i++) {
         if (!dirt_image_add_channel(img, extra[i])) {
             dirt_image_destroy(img);
             return NULL;
@@ -679,8 +680,8 @@ static bool add_embree(dirt_session *s, int count, ref_progress *prog, dirt_sess
         dirt_image_destroy(s->img);
         s->img = r;
     } else {
-        /* Mean of means, weighted by their samples ("Z" is per pixel centre:
-         * the same every time). */
+        /* Mean of means, weighted by their samples ("Z" and "ID" are per
+         * pixel centre: the same every time). */
         double a = s->samples, b = count, inv = 1.0 / (a + b);
         size_t n = (size_t)s->width * s->height;
         for (size_t i = 0; i < 4 * n; i++)
@@ -688,7 +689,8 @@ static bool add_embree(dirt_session *s, int count, ref_progress *prog, dirt_sess
         for (int c = 0; c < s->img->channel_count; c++) {
             float *dst = s->img->channels[c].data;
             const float *src = dirt_image_find_channel(r, s->img->channels[c].name);
-            if (!src || !strcmp(s->img->channels[c].name, "Z"))
+            if (!src || !strcmp(s->img->channels[c].name, "Z") ||
+                !strcmp(s->img->channels[c].name, "ID"))
                 continue;
             for (size_t i = 0; i < n; i++)
                 dst[i] = (float)((dst[i] * a + src[i] * b) * inv);

@@ -185,6 +185,17 @@ static void check_aovs(dirt_gpu *gpu, const dirt_scene *scene)
     CHECK_MSG(hits > W * H / 2 && bad_d == 0, "DIRT Z differs from Embree's at %d of %d", bad_d,
               hits);
     CHECK_MSG(bad_m <= hits / 50, "MMRT Z far from Embree's at %d of %d", bad_m, hits);
+    /* ID: DIRT's first hits are Embree's (exact), primitive for primitive. */
+    const float *ir = dirt_image_find_channel(img[2], "ID");
+    const float *id = dirt_image_find_channel(img[0], "ID");
+    int bad_id = 0, id_hits = 0;
+    for (int i = 0; ir && id && i < W * H; i++) {
+        bad_id += id[i] != ir[i];
+        id_hits += ir[i] >= 0;
+    }
+    CHECK(ir && id);
+    CHECK_MSG(bad_id == 0 && id_hits == hits, "DIRT ID differs from Embree's at %d pixels "
+              "(%d hits, %d by Z)", bad_id, id_hits, hits);
     /* The raster preview: beauty, N and Z (rasterized depth at pixel centres). */
     dirt_session *r = dirt_session_create(
         gpu, scene, &(dirt_session_opts){.engine = DIRT_ENGINE_RASTER, .width = W, .height = H});

@@ -130,7 +130,8 @@ int dirt_pt_samples(const dirt_pt *pt);
  * "albedo.R/G/B" and "N.X/Y/Z" (first-hit means) and "Z" (the depth along
  * the camera's forward axis of the first hit of the pinhole ray through the
  * pixel centre, INFINITY where it misses: the Embree reference's Z, traced
- * once per accumulation through the tracer). `invalid_samples` (may be
+ * once per accumulation through the tracer) and "ID" (that hit's primitive
+ * as a float, -1 where it misses). `invalid_samples` (may be
  * NULL) gets the non-finite samples dropped. Blocking readback. False
  * (logged) with no samples or a size mismatch. */
 bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples);

@@ -161,7 +161,8 @@ typedef struct dirt_ref_materials {
  * (0 for samples that miss): "albedo.R/G/B" (textured base colour),
  * "N.X/Y/Z" (world-space shading normal facing the camera); and "Z": the
  * distance along camera forward to the first hit of the ray through the
- * pixel centre (pinhole), INFINITY where it misses.
+ * pixel centre (pinhole), INFINITY where it misses, and "ID": that hit's
+ * primitive as a float (exact below 2^24 triangles), -1 where it misses.
  * `opts` and `stats` may be NULL. NULL after logging on failure (invalid
  * options, material index out of range, out of memory, Embree error). */
 dirt_image *dirt_ref_render(const dirt_scene *scene, const dirt_frame *frame,

@@ -307,6 +307,18 @@ void dirt_camera_default(const dirt_frame *frame, dirt_camera *out);
 void dirt_camera_look_at(dirt_camera *cam, const float eye[3],
                          const float target[3], const float up[3]);
 
+/* A perspective camera given by its pose and lens, as dirt-render's
+ * --eye/--look-at/--up/--fov/--znear/--zfar and dirt-view's free camera
+ * spell it: the same numbers give the same camera in both. */
+typedef struct dirt_camera_look {
+    float eye[3], target[3], up[3];
+    float fov_deg;              /* vertical field of view in degrees (0 = 45) */
+    float znear, zfar;          /* 0 = 1e-3 of |target - eye| / infinite */
+} dirt_camera_look;
+
+/* The camera of `look` (pinhole, aspect from the image). */
+void dirt_camera_from_look(const dirt_camera_look *look, dirt_camera *out);
+
 /* Column-major projection matrix (OpenGL clip space, -1..1 depth) of the
  * camera for an image of the given aspect (width / height) when the camera
  * has none. Infinite far plane when zfar is 0. */

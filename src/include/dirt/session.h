@@ -173,7 +173,9 @@ bool dirt_session_add_samples(dirt_session *s, int count,
 int dirt_session_samples(const dirt_session *s);
 
 /* The accumulated image: RGBA beauty (the mean) and the engine's AOVs
- * (dirt, mmrt, embree: "albedo.R/G/B", "N.X/Y/Z"; embree also "Z"). Owned by
+ * (dirt, mmrt, embree: "albedo.R/G/B", "N.X/Y/Z", "Z" and "ID": the depth
+ * and primitive of the pinhole ray through the pixel centre, -1 on a miss;
+ * raster: "N.X/Y/Z", "Z"). Owned by
  * the session, valid until the next call that changes it. NULL (logged)
  * before any sample or on a readback failure. */
 const dirt_image *dirt_session_image(dirt_session *s);
