@@ -305,6 +305,55 @@ static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_op
     dirt_session_destroy(whole);
 }
 
+/* Structure pictures: every DIRT id node and every MMRT fragment is counted
+ * once in the list-length picture (sum == the build's own count), bucket
+ * occupancy never exceeds the buckets, and zmin <= zmax in every cell. */
+static void check_pictures(dirt_gpu *gpu, const dirt_scene *scene)
+{
+    const enum dirt_engine engines[] = {DIRT_ENGINE_DIRT, DIRT_ENGINE_MMRT};
+    for (int e = 0; e < 2; e++) {
+        dirt_session *s = dirt_session_create(
+            gpu, scene, &(dirt_session_opts){.engine = engines[e], .width = W, .height = H});
+        CHECK(s && dirt_session_build(s));
+        if (!s)
+            continue;
+        float top[4] = {0};
+        dirt_image *pic[4];
+        for (int k = 0; k < 4; k++)
+            pic[k] = dirt_session_picture(s, (enum dirt_session_picture)k, &top[k]);
+        CHECK(pic[0] && pic[1] && pic[2] && pic[3]);
+        if (!pic[0] || !pic[1] || !pic[2] || !pic[3])
+            continue;
+        const dirt_session_stats *st = dirt_session_get_stats(s);
+        int buckets = e == 0 ? 16 : 4; /* the defaults (dirt_session_opts.buckets) */
+        uint64_t want = e == 0 ? st->ads.nodes : st->mmrt.fragments;
+        double sum = 0;
+        int over = 0, order = 0, cells = 0;
+        size_t n = (size_t)pic[0]->width * pic[0]->height;
+        for (size_t i = 0; i < n; i++) {
+            if (pic[0]->rgba[4 * i + 3] == 0)
+                continue;
+            cells++;
+            sum += pic[0]->rgba[4 * i];
+            over += pic[1]->rgba[4 * i] > (float)buckets ||
+                    pic[1]->rgba[4 * i] > pic[0]->rgba[4 * i];
+            float zmin = pic[2]->rgba[4 * i], zmax = pic[3]->rgba[4 * i];
+            order += !isnan(zmin) && !(zmin <= zmax);
+        }
+        CHECK_MSG(sum == (double)want && want > 0, "%s: list picture sums to %.0f, build %llu",
+                  dirt_engine_names[engines[e]], sum, (unsigned long long)want);
+        CHECK(over == 0 && order == 0 && cells > 0 && top[1] == (float)buckets && top[0] >= 1);
+        for (int k = 0; k < 4; k++)
+            dirt_image_destroy(pic[k]);
+        dirt_session_destroy(s);
+    }
+    dirt_session *r = dirt_session_create(
+        NULL, scene, &(dirt_session_opts){.engine = DIRT_ENGINE_EMBREE, .width = W, .height = H});
+    CHECK(r && !dirt_session_picture(r, DIRT_PICTURE_LISTS, NULL));
+    dirt_session_destroy(r);
+    fprintf(stderr, "pictures: DIRT nodes and MMRT fragments counted once each\n");
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -327,6 +376,7 @@ int main(void)
     check_stats(gpu, scene);
     check_auto_camera(gpu);
     check_aovs(gpu, scene);
+    check_pictures(gpu, scene);
     CHECK(dirt_gpu_error_count(gpu) == 0);
     dirt_scene_destroy(scene);
     dirt_gpu_destroy(gpu);

@@ -208,6 +208,22 @@ bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
 dirt_ads *dirt_session_ads(dirt_session *s);
 dirt_mmrt *dirt_session_mmrt(dirt_session *s);
 
+/* Pictures of the last build's structure, one value per DIRT tile or MMRT
+ * pixel in R (A = 1 where a view covers the picture, else 0; G = B = 0),
+ * every view in one image: the cube faces unfolded as a cross (+Y above;
+ * -X, +Z, +X, -Z across; -Y below), the camera view right of it. */
+enum dirt_session_picture {
+    DIRT_PICTURE_LISTS = 0,   /* list length summed over the buckets (MMRT:
+                                 fragments per pixel) */
+    DIRT_PICTURE_BUCKETS,     /* buckets holding at least one entry */
+    DIRT_PICTURE_ZMIN,        /* depth bounds, 0 at the view's near plane, 1 at */
+    DIRT_PICTURE_ZMAX,        /*   its far plane; NaN for empty cells */
+};
+/* A new image (caller destroys it); *max (may be NULL) gets the range's
+ * top: the longest list, the number of buckets, or 1 for depths. Blocking
+ * readback. NULL (logged) before a build or for embree and raster. */
+dirt_image *dirt_session_picture(dirt_session *s, enum dirt_session_picture what, float *max);
+
 /* The scene the session renders (borrowed). */
 const dirt_scene *dirt_session_scene(const dirt_session *s);
 
