@@ -1,6 +1,8 @@
 #include "app/cli.h"
 
+#include "app/sequence.h"
 #include "dirt/clock.h"
+#include "dirt/file.h"
 
 #include <errno.h>
 #include <math.h>
@@ -180,4 +182,20 @@ void cli_progress_sample(void *user, int done, int total)
     double el = (now - p->start) / 1000.0;
     fprintf(stderr, "%s: frame %ld: sample %d/%d, %.1fs elapsed, ETA %.1fs\n", p->prog, p->frame,
             done, total, el, done ? el / done * (total - done) : 0.0);
+}
+
+bool cli_creatable(const char *prog, const char *path)
+{
+    char why[512];
+    if (!seq_make_parent_dirs(path, why, sizeof(why))) {
+        cli_error(prog, "%s", why);
+        return false;
+    }
+    dirt_atomic_file *f = dirt_atomic_open(path);
+    if (!f) {
+        cli_error(prog, "cannot write '%s' (see the error above)", path);
+        return false;
+    }
+    dirt_atomic_abort(f);
+    return true;
 }

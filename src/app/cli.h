@@ -64,4 +64,10 @@ typedef struct cli_progress {
 } cli_progress;
 void cli_progress_sample(void *user, int done, int total);
 
+/* Makes `path` creatable now: its directories are created and its
+ * temporary file is made and removed (proof that the write will not fail
+ * for permissions or a missing directory, unlike access(2) as root). False
+ * after printing why. */
+bool cli_creatable(const char *prog, const char *path);
+
 #endif

@@ -349,25 +349,6 @@ static int parse_args(int argc, char **argv, options *o)
     return check_options(o) ? DIRT_EXIT_OK : DIRT_EXIT_USAGE;
 }
 
-/* A file of the run, made creatable now: its directories are created and
- * its temporary file is made and removed (proof that the write will not
- * fail for permissions or a missing directory, unlike access(2) as root). */
-static bool creatable(const char *path)
-{
-    char why[512];
-    if (!seq_make_parent_dirs(path, why, sizeof(why))) {
-        cli_error(PROG, "%s", why);
-        return false;
-    }
-    dirt_atomic_file *f = dirt_atomic_open(path);
-    if (!f) {
-        cli_error(PROG, "cannot write '%s' (see the error above)", path);
-        return false;
-    }
-    dirt_atomic_abort(f);
-    return true;
-}
-
 /* The files of `frame`: the image, and its PNG preview with --png. */
 static int frame_files(const options *o, long frame, char files[2][4200])
 {
@@ -384,15 +365,15 @@ static bool outputs_ok(const options *o, long first_frame)
     char files[2][4200];
     int n = frame_files(o, first_frame, files);
     for (int i = 0; i < n; i++) {
-        if (!creatable(files[i]))
+        if (!cli_creatable(PROG, files[i]))
             return false;
     }
-    if ((o->stats_path && !creatable(o->stats_path)) ||
-        (o->graph_dot && !creatable(o->graph_dot)) || (o->log_path && !creatable(o->log_path)))
+    if ((o->stats_path && !cli_creatable(PROG, o->stats_path)) ||
+        (o->graph_dot && !cli_creatable(PROG, o->graph_dot)) || (o->log_path && !cli_creatable(PROG, o->log_path)))
         return false;
     char probe[4200];
     snprintf(probe, sizeof(probe), "%s/ads.png", o->debug_ads ? o->debug_ads : ".");
-    return !o->debug_ads || creatable(probe);
+    return !o->debug_ads || cli_creatable(PROG, probe);
 }
 
 /* The structure's pictures of the frame just rendered (a DIRT session). */

@@ -133,3 +133,28 @@ error:
     free(pixels);
     return false;
 }
+
+bool dirt_write_png_rgba8(const char *path, int width, int height, const uint8_t *rgba)
+{
+    if (!path || !rgba || width <= 0 || height <= 0 ||
+        (size_t)width * (size_t)height * 4 > (size_t)INT32_MAX / 2) {
+        DIRT_ERROR("PNG write: bad arguments (%dx%d)", width, height);
+        return false;
+    }
+    dirt_atomic_file *af = dirt_atomic_open(path);
+    if (!af)
+        return false;
+    png_sink sink = {dirt_atomic_stream(af), false, 0};
+    if (!stbi_write_png_to_func(png_write, &sink, width, height, 4, rgba, width * 4)) {
+        DIRT_ERROR("PNG write '%s': encoding failed", path);
+        dirt_atomic_abort(af);
+        return false;
+    }
+    if (sink.failed) {
+        DIRT_ERROR("PNG write '%s': writing '%s' failed: %s", path, dirt_atomic_temp_path(af),
+                   strerror(sink.err));
+        dirt_atomic_abort(af);
+        return false;
+    }
+    return dirt_atomic_commit(af);
+}

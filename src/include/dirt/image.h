@@ -12,6 +12,7 @@
 #define DIRT_IMAGE_H
 
 #include <stdbool.h>
+#include <stdint.h>
 #include <stddef.h>
 
 #include "dirt/file.h"
@@ -100,6 +101,10 @@ typedef struct dirt_png_options {
  * NULL. Atomic; false after logging on failure. */
 bool dirt_image_write_png(const dirt_image *img, const char *path,
                           const dirt_png_options *opts);
+
+/* Writes 8-bit RGBA pixels (row 0 = top, width * height * 4 bytes) as
+ * they are (a window's screenshot). Atomic; false after logging. */
+bool dirt_write_png_rgba8(const char *path, int width, int height, const uint8_t *rgba);
 
 /* The 8-bit value the PNG writer stores for a linear value that has already
  * been exposed and tonemapped: round(255 * srgb(clamp(v, 0, 1))). */
