@@ -73,7 +73,7 @@ void vcam_orbit(dirt_camera_look *look, float yaw, float pitch)
     float next = fmaxf(1.0f * DEG, fminf(179.0f * DEG, polar - pitch * DEG));
     dirt_vec3 right = v3_cross(up, v);
     if (v3_length(right) > 0)
-        v = rotate(v, v3_normalize(right), polar - next);
+        v = rotate(v, v3_normalize(right), next - polar); /* about up x v: away from up */
     v3_store(look->eye, v3_add(target, v));
 }
 
