@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cjson/cJSON.h>
 
@@ -180,7 +181,7 @@ static void usage(FILE *f)
 "\n"
 "Scripted mode (tests, reproducible demos):\n"
 "      --script FILE     timed actions (doc/viewer.md: wait-frames, wait-samples,\n"
-"                        orbit, pan, dolly, fly, camera, key, click, set, resize,\n"
+"                        wait-file, orbit, pan, dolly, fly, camera, key, click, set, resize,\n"
 "                        screenshot, save-image, report, print-camera, quit)\n"
 "      --test-frames N   quit after N frames\n"
 "      --screenshot FILE.png  at exit: the window, panels included\n"
@@ -398,6 +399,7 @@ typedef struct viewer {
     size_t next_action;
     long wait_frames;
     int wait_samples;
+    char wait_file[4096];
     bool click_pending;
     double click_x, click_y;
     long frame;
@@ -853,6 +855,11 @@ static bool run_script(viewer *v)
         v->wait_frames--;
         return true;
     }
+    if (v->wait_file[0]) {
+        if (access(v->wait_file, F_OK) != 0)
+            return true;
+        v->wait_file[0] = '\0';
+    }
     if (v->wait_samples > 0) {
         int target = v->wait_samples;
         if (dirt_session_samples(v->s) < target &&
@@ -872,6 +879,9 @@ static bool run_script(viewer *v)
             break;
         case VS_WAIT_SAMPLES:
             v->wait_samples = (int)a->num[0];
+            return true;
+        case VS_WAIT_FILE:
+            snprintf(v->wait_file, sizeof(v->wait_file), "%s", a->text);
             return true;
         case VS_ORBIT:
             to_look(v);

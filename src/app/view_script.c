@@ -15,6 +15,7 @@ static const struct {
     bool text;       /* a path or value follows */
 } verbs[] = {
     {"wait-frames", VS_WAIT_FRAMES, 1, 1, false}, {"wait-samples", VS_WAIT_SAMPLES, 1, 1, false},
+    {"wait-file", VS_WAIT_FILE, 0, 0, true},
     {"orbit", VS_ORBIT, 2, 2, false}, {"pan", VS_PAN, 2, 2, false},
     {"dolly", VS_DOLLY, 1, 1, false}, {"fly", VS_FLY, 3, 3, false},
     {"camera", VS_CAMERA, 0, 0, false}, {"key", VS_KEY, 1, 0, false},
@@ -105,12 +106,13 @@ static bool parse_line(char *line, int no, vs_action *a, char *why, size_t size)
         snprintf(a->name, sizeof(a->name), "%s", w[1]);
         snprintf(a->text, sizeof(a->text), "%s", w[2]);
         return true;
-    case VS_SCREENSHOT: case VS_SAVE_IMAGE: case VS_REPORT: {
-        const char *ext = a->kind == VS_SCREENSHOT ? ".png" : a->kind == VS_REPORT ? ".json" : NULL;
+    case VS_WAIT_FILE: case VS_SCREENSHOT: case VS_SAVE_IMAGE: case VS_REPORT: {
+        const char *ext = a->kind == VS_SCREENSHOT ? ".png" : a->kind == VS_REPORT ? ".json"
+                          : a->kind == VS_WAIT_FILE ? "" : NULL;
         if (args != 1 || (ext && !ends_with(w[1], ext)) ||
             (!ext && !ends_with(w[1], ".exr") && !ends_with(w[1], ".png"))) {
-            snprintf(why, size, "line %d: %s takes one %s path", no, verbs[v].word,
-                     ext ? ext : ".exr or .png");
+            snprintf(why, size, "line %d: %s takes one %s%spath", no, verbs[v].word,
+                     ext ? ext : ".exr or .png", ext && !*ext ? "" : " ");
             return false;
         }
         if (strlen(w[1]) >= sizeof(a->text)) {

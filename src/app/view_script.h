@@ -4,6 +4,7 @@
  *   # comment                       blank lines and comments are skipped
  *   wait-frames N                   let N frames pass
  *   wait-samples N                  until the image holds N samples
+ *   wait-file PATH                  until PATH exists (another program's cue)
  *   orbit YAW PITCH                 degrees about the target
  *   pan DX DY                       view heights
  *   dolly FACTOR                    distance to the target times FACTOR
@@ -27,7 +28,7 @@
 #include <stddef.h>
 
 enum vs_kind {
-    VS_WAIT_FRAMES, VS_WAIT_SAMPLES, VS_ORBIT, VS_PAN, VS_DOLLY, VS_FLY, VS_CAMERA,
+    VS_WAIT_FRAMES, VS_WAIT_SAMPLES, VS_WAIT_FILE, VS_ORBIT, VS_PAN, VS_DOLLY, VS_FLY, VS_CAMERA,
     VS_KEY, VS_CLICK, VS_SET, VS_RESIZE, VS_SCREENSHOT, VS_SAVE_IMAGE, VS_REPORT,
     VS_PRINT_CAMERA, VS_QUIT,
 };
@@ -37,7 +38,7 @@ typedef struct vs_action {
     int line;            /* 1-based line in the file */
     double num[3];       /* numbers of the action */
     char name[64];       /* set: option; key: key name; camera: "auto"/"default"/"" */
-    char text[4096];     /* set: value; screenshot, save-image, report: path */
+    char text[4096];     /* set: value; wait-file, screenshot, save-image, report: path */
 } vs_action;
 
 typedef struct view_script {

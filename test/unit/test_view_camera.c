@@ -88,18 +88,18 @@ static void check_script(void)
                        "pan 0.1 0\ndolly 0.5\nfly 1 0 0\ncamera 0\ncamera auto\n"
                        "key W 5\nkey Shift\nclick 10 20\nset engine mmrt\nresize 320 240\n"
                        "screenshot a.png\nsave-image b.exr\nreport c.json\nprint-camera\n"
-                       "wait-frames 2\nquit\n";
+                       "wait-frames 2\nwait-file /tmp/go\nquit\n";
     view_script s;
     char why[256] = "";
     CHECK_MSG(vs_parse(good, &s, why, sizeof(why)), "%s", why);
-    CHECK(s.count == 18);
+    CHECK(s.count == 19);
     const enum vs_kind kinds[] = {VS_WAIT_SAMPLES, VS_ORBIT, VS_PAN, VS_DOLLY, VS_FLY, VS_CAMERA,
                                   VS_CAMERA, VS_KEY, VS_KEY, VS_CLICK, VS_SET, VS_RESIZE,
                                   VS_SCREENSHOT, VS_SAVE_IMAGE, VS_REPORT, VS_PRINT_CAMERA,
-                                  VS_WAIT_FRAMES, VS_QUIT};
-    for (size_t i = 0; i < s.count && i < 18; i++)
+                                  VS_WAIT_FRAMES, VS_WAIT_FILE, VS_QUIT};
+    for (size_t i = 0; i < s.count && i < 19; i++)
         CHECK_MSG(s.actions[i].kind == kinds[i], "action %zu", i);
-    if (s.count == 18) {
+    if (s.count == 19) {
         CHECK(s.actions[1].num[0] == 30 && s.actions[1].num[1] == -10 && s.actions[1].line == 3);
         CHECK(!strcmp(s.actions[6].name, "auto") && s.actions[5].num[0] == 0);
         CHECK(s.actions[7].num[0] == 5 && s.actions[8].num[0] == 1);

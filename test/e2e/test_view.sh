@@ -1,0 +1,149 @@
+#!/usr/bin/env bash
+# dirt-view as a person uses it, in a real window under xvfb-run:
+#  - after N samples --save-image equals dirt-render's image with the same
+#    scene, size, camera, seed and settings (dirt and mmrt), bit for bit;
+#  - a window screenshot holds the panels (different from the render there)
+#    and the render (equal to the saved image where no panel covers it);
+#  - real X input (xdotool: a left drag, the wheel, a held key) moves the
+#    camera, and dirt-render from the camera the viewer reports gives the
+#    viewer's image; the script's orbit does the same;
+#  - a resize changes the render size and the render follows;
+#  - a bad scene, option, script or output path exits 2 before a window.
+#   test_view.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK DOC/VIEWER.MD
+set -u
+view=$1 render=$2 check=$3 doc=$4
+tmp=$(mktemp -d /tmp/dirt-view-XXXXXX)
+trap 'rm -rf "$tmp"; [ -n "${xvfb_pid:-}" ] && kill "$xvfb_pid" 2>/dev/null' EXIT
+fails=0 passes=0
+ok()   { passes=$((passes + 1)); }
+fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
+
+for tool in xvfb-run Xvfb xdotool; do
+  if ! command -v "$tool" >/dev/null 2>&1; then
+    [ "${CI:-}" = true ] && { echo "CI=true: $tool missing is a failure"; exit 1; }
+    echo "$tool missing: skipping"; exit 77
+  fi
+done
+
+# One X server for the whole test (xdotool talks to it too).
+for n in $(seq 90 140); do
+  [ -e /tmp/.X11-unix/X$n ] || [ -e /tmp/.X$n-lock ] && continue
+  Xvfb :$n -screen 0 1600x1200x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
+  xvfb_pid=$!
+  export DISPLAY=:$n
+  for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+  xdotool getmouselocation >/dev/null 2>&1 && break
+  kill "$xvfb_pid" 2>/dev/null; xvfb_pid=
+done
+[ -n "${xvfb_pid:-}" ] || { echo "could not start Xvfb"; exit 1; }
+
+# run_view NAME ARGS...: dirt-view with its output in $tmp/NAME.{out,err}.
+run_view() {
+  local name=$1; shift
+  "$view" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"
+}
+json_field() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
+
+# 1. The saved image equals dirt-render's (the render follows the 160x120 window).
+for engine in dirt mmrt; do
+  printf 'wait-samples 3\nquit\n' >"$tmp/s.txt"
+  if run_view "same-$engine" --window 160x120 --no-ui --engine $engine --seed 7 --bounces 3 \
+      --script "$tmp/s.txt" --save-image "$tmp/v-$engine.exr" -q; then ok; else
+    fail "$engine: dirt-view exit $?"; cat "$tmp/same-$engine.err" >&2; fi
+  "$render" -W 160 -H 120 --engine $engine --seed 7 --bounces 3 --spp 3 -q \
+    -o "$tmp/r-$engine.exr" || fail "$engine: dirt-render failed"
+  if "$check" same "$tmp/v-$engine.exr" "$tmp/r-$engine.exr"; then ok; else
+    fail "$engine: the viewer's image is not dirt-render's"; fi
+done
+[ -s "$tmp/v-dirt.png" ] && ok || fail "--save-image X.exr wrote no PNG beside it"
+
+# 2. A screenshot holds the panels and the render.
+printf 'wait-samples 2\nscreenshot %s\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/shot.png" "$tmp/alone.png" "$tmp/rep.json" >"$tmp/s.txt"
+if run_view shot --window 900x600 --script "$tmp/s.txt" -q; then ok; else
+  fail "screenshot run: exit $?"; cat "$tmp/shot.err" >&2; fi
+if "$check" window "$tmp/shot.png" "$tmp/alone.png" "$tmp/rep.json"; then ok; else
+  fail "the screenshot is not the render plus the panels"; fi
+
+# 3. Real input moves the camera: a left drag, the wheel and a held key.
+printf 'wait-file %s\nwait-frames 3\nwait-samples 2\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/go" "$tmp/moved.exr" "$tmp/moved.json" >"$tmp/s.txt"
+"$view" --window 200x150 --no-ui --seed 3 --bounces 2 --script "$tmp/s.txt" \
+  >"$tmp/input.out" 2>"$tmp/input.err" &
+vpid=$!
+wid=
+for _ in $(seq 100); do
+  wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
+  [ -n "$wid" ] && break; sleep 0.1
+done
+if [ -z "$wid" ]; then fail "no dirt-view window appeared"; else
+  sleep 1
+  xdotool mousemove --window "$wid" 100 75; sleep 0.3
+  xdotool mousedown 1; sleep 0.3
+  for _ in 1 2 3 4 5; do xdotool mousemove_relative -- 12 4; sleep 0.15; done
+  xdotool mouseup 1; sleep 0.3
+  xdotool click 4; sleep 0.3
+  xdotool keydown d; sleep 0.4; xdotool keyup d; sleep 0.3
+fi
+touch "$tmp/go"
+if wait "$vpid"; then ok; else fail "input run: exit $?"; cat "$tmp/input.err" >&2; fi
+cam=$(json_field "$tmp/moved.json" camera_args 2>/dev/null)
+mode=$(json_field "$tmp/moved.json" camera_mode 2>/dev/null)
+[ "$mode" = look ] && ok || fail "after the drag the camera mode is '$mode', not look"
+# shellcheck disable=SC2086
+"$render" -W 200 -H 150 --seed 3 --bounces 2 --spp 2 -q $cam -o "$tmp/moved-r.exr" ||
+  fail "dirt-render $cam failed"
+if "$check" same "$tmp/moved.exr" "$tmp/moved-r.exr"; then ok; else
+  fail "dirt-render from the reported camera ($cam) is not the viewer's image"; fi
+"$render" -W 200 -H 150 --seed 3 --bounces 2 --spp 2 -q -o "$tmp/unmoved.exr"
+if "$check" same "$tmp/moved.exr" "$tmp/unmoved.exr" >/dev/null; then
+  fail "the input did not move the camera"; else ok; fi
+# The script's orbit, reported and rendered offline the same way.
+printf 'orbit 40 15\ndolly 0.8\nwait-samples 2\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/orbit.exr" "$tmp/orbit.json" >"$tmp/s.txt"
+run_view orbit --window 200x150 --no-ui --script "$tmp/s.txt" -q || fail "orbit run failed"
+cam=$(json_field "$tmp/orbit.json" camera_args 2>/dev/null)
+# shellcheck disable=SC2086
+"$render" -W 200 -H 150 --spp 2 -q $cam -o "$tmp/orbit-r.exr"
+if "$check" same "$tmp/orbit.exr" "$tmp/orbit-r.exr"; then ok; else
+  fail "script orbit: dirt-render $cam differs"; fi
+
+# 4. A resize: the render follows the window.
+printf 'wait-samples 1\nresize 300 200\nwait-frames 5\nwait-samples 1\nreport %s\nsave-image %s\nquit\n' \
+  "$tmp/rs.json" "$tmp/rs.exr" >"$tmp/s.txt"
+run_view resize --window 200x150 --no-ui --script "$tmp/s.txt" -q || fail "resize run failed"
+size=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['render'])" "$tmp/rs.json")
+[ "$size" = "[300, 200]" ] && ok || fail "after resize 300x200 the render is $size"
+"$render" -W 300 -H 200 --spp 1 -q -o "$tmp/rs-r.exr"
+if "$check" same "$tmp/rs.exr" "$tmp/rs-r.exr"; then ok; else fail "the resized render differs"; fi
+
+# 5. Bad input exits 2 with a one-line reason, before any window.
+expect2() {
+  local what=$1; shift
+  "$view" "$@" >"$tmp/bad.out" 2>"$tmp/bad.err"
+  local rc=$?
+  if [ "$rc" -eq 2 ] && tail -n 1 "$tmp/bad.err" | grep -q '^dirt-view: '; then ok; else
+    fail "$what: exit $rc, want 2 with a reason"; cat "$tmp/bad.err" >&2; fi
+}
+echo 'not a gltf' >"$tmp/bad.gltf"
+expect2 "missing scene" "$tmp/none.glb" --test-frames 1
+expect2 "malformed scene" "$tmp/bad.gltf" --test-frames 1
+expect2 "bad option" --spp -3
+expect2 "unknown option" --frobnicate
+printf 'orbit 1\n' >"$tmp/bad.txt"
+expect2 "bad script" --script "$tmp/bad.txt"
+printf 'set nonsense 1\n' >"$tmp/bad.txt"
+expect2 "bad script option" --script "$tmp/bad.txt"
+expect2 "unwritable screenshot" --screenshot /proc/nope/shot.png --test-frames 1
+expect2 "screenshot not png" --screenshot "$tmp/x.jpg" --test-frames 1
+
+# 6. doc/viewer.md lists every binding the program has.
+missing=0
+while IFS= read -r line; do
+  key=$(printf '%s' "$line" | sed 's/  .*//')
+  grep -qF "| $key |" "$doc" || { echo "doc/viewer.md lacks binding '$key'" >&2; missing=1; }
+done < <("$view" --bindings)
+[ $missing = 0 ] && ok || fail "doc/viewer.md does not list every binding"
+
+echo "test_view: $passes passed, $fails failed"
+[ "$fails" -eq 0 ]

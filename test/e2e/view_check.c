@@ -1,0 +1,148 @@
+/* dirt-view's image checks for test_view.sh.
+ *   view_check same A.exr B.exr
+ *       the RGBA and every channel of A equal B's, bit for bit
+ *   view_check window SHOT.png RENDER.png REPORT.json
+ *       SHOT (the window, panels included) equals RENDER (the render alone,
+ *       written by the same tone map) at every pixel no panel of REPORT
+ *       covers, within the one 8-bit step a GPU's and the CPU's float
+ *       pow/rounding may differ by (and exactly at 99% of them or more);
+ *       inside the panels, most pixels differ from the render.
+ * Prints what it found; exit 0 when the condition holds, 1 when it does
+ * not, 2 on unreadable input. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+#include <stb_image.h>
+
+#include "dirt/image.h"
+
+static int same(const char *a_path, const char *b_path)
+{
+    dirt_image *a = dirt_image_read_exr(a_path), *b = dirt_image_read_exr(b_path);
+    int rc = 2;
+    if (!a || !b)
+        goto done;
+    rc = 1;
+    if (a->width != b->width || a->height != b->height) {
+        printf("sizes differ: %dx%d vs %dx%d\n", a->width, a->height, b->width, b->height);
+        goto done;
+    }
+    size_t n = (size_t)a->width * a->height;
+    size_t diff = 0;
+    for (size_t i = 0; i < 4 * n; i++)
+        diff += memcmp(&a->rgba[i], &b->rgba[i], sizeof(float)) != 0;
+    int channels = 0;
+    for (int c = 0; c < b->channel_count; c++) {
+        const float *pa = dirt_image_find_channel(a, b->channels[c].name);
+        if (!pa) {
+            printf("%s lacks channel %s\n", a_path, b->channels[c].name);
+            diff++;
+            continue;
+        }
+        channels++;
+        for (size_t i = 0; i < n; i++)
+            diff += memcmp(&pa[i], &b->channels[c].data[i], sizeof(float)) != 0;
+    }
+    printf("%dx%d, RGBA + %d channels: %zu values differ\n", a->width, a->height, channels, diff);
+    rc = diff == 0 && a->channel_count == b->channel_count ? 0 : 1;
+done:
+    dirt_image_destroy(a);
+    dirt_image_destroy(b);
+    return rc;
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *t = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
+        free(t);
+        t = NULL;
+    }
+    if (t)
+        t[n] = '\0';
+    fclose(f);
+    return t;
+}
+
+static int window(const char *shot_path, const char *render_path, const char *report_path)
+{
+    int sw, sh, sc, rw, rh, rc_;
+    unsigned char *shot = stbi_load(shot_path, &sw, &sh, &sc, 4);
+    unsigned char *ren = stbi_load(render_path, &rw, &rh, &rc_, 4);
+    char *text = slurp(report_path);
+    cJSON *rep = text ? cJSON_Parse(text) : NULL;
+    int rc = 2;
+    const cJSON *panels = rep ? cJSON_GetObjectItem(rep, "panels") : NULL;
+    if (!shot || !ren || !cJSON_IsArray(panels)) {
+        printf("unreadable input\n");
+        goto done;
+    }
+    rc = 1;
+    if (sw != rw || sh != rh) {
+        printf("window %dx%d, render %dx%d: the render should fill the window\n", sw, sh, rw, rh);
+        goto done;
+    }
+    float rect[8][4];
+    int np = 0;
+    const cJSON *p;
+    cJSON_ArrayForEach(p, panels) {
+        if (np < 8 && cJSON_GetArraySize(p) == 4)
+            for (int k = 0; k < 4; k++)
+                rect[np][k] = (float)cJSON_GetArrayItem(p, k)->valuedouble;
+        np++;
+    }
+    size_t out = 0, out_exact = 0, out_off = 0, in = 0, in_diff = 0;
+    int worst = 0;
+    for (int y = 0; y < sh; y++) {
+        for (int x = 0; x < sw; x++) {
+            bool covered = false;
+            for (int i = 0; i < np && i < 8; i++)
+                covered |= x + 1 > rect[i][0] - 2 && x < rect[i][0] + rect[i][2] + 2 &&
+                           y + 1 > rect[i][1] - 2 && y < rect[i][1] + rect[i][3] + 2;
+            const unsigned char *a = shot + ((size_t)y * sw + x) * 4;
+            const unsigned char *b = ren + ((size_t)y * sw + x) * 4;
+            int d = 0;
+            for (int k = 0; k < 3; k++)
+                d = abs(a[k] - b[k]) > d ? abs(a[k] - b[k]) : d;
+            if (covered) {
+                in++;
+                in_diff += d > 0;
+            } else {
+                out++;
+                out_exact += d == 0;
+                out_off += d > 1;
+                worst = d > worst ? d : worst;
+            }
+        }
+    }
+    printf("%d panel(s); uncovered pixels: %zu, %zu exact, %zu off by more than 1 (worst %d); "
+           "covered: %zu, %zu differ\n", np, out, out_exact, out_off, worst, in, in_diff);
+    bool ok = np > 0 && out > 0 && out_off == 0 && out_exact * 100 >= out * 99 &&
+              in > 0 && in_diff * 2 > in;
+    rc = ok ? 0 : 1;
+done:
+    stbi_image_free(shot);
+    stbi_image_free(ren);
+    cJSON_Delete(rep);
+    free(text);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 4 && !strcmp(argv[1], "same"))
+        return same(argv[2], argv[3]);
+    if (argc == 5 && !strcmp(argv[1], "window"))
+        return window(argv[2], argv[3], argv[4]);
+    fprintf(stderr, "usage: view_check same A.exr B.exr | window SHOT.png RENDER.png REPORT.json\n");
+    return 2;
+}
