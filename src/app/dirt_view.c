@@ -833,6 +833,35 @@ static bool write_report(viewer *v, const char *path)
     cJSON_AddItemToObject(cj, "eye", cJSON_CreateFloatArray(c->eye, 3));
     cJSON_AddItemToObject(cj, "forward", cJSON_CreateFloatArray(c->forward, 3));
     cJSON_AddNumberToObject(cj, "yfov", c->yfov);
+    /* Displayed frames' times (the last RING frames, skipping the first
+     * one: it builds the GPU programs), ms. */
+    const float *rings[2] = {v->frame_ms, v->sample_ms};
+    const char *ring_names[2] = {"frame_ms", "samples_ms"};
+    for (int k = 0; k < 2; k++) {
+        float sorted[RING];
+        int n = 0;
+        for (int i = 0; i < v->ring_count; i++) {
+            int idx = (v->ring_count < RING ? i : (v->ring_pos + i) % RING);
+            if (v->ring_count < RING && v->frame > 1 && i == 0)
+                continue;
+            sorted[n++] = rings[k][idx];
+        }
+        for (int i = 1; i < n; i++)
+            for (int j = i; j > 0 && sorted[j - 1] > sorted[j]; j--) {
+                float t = sorted[j];
+                sorted[j] = sorted[j - 1];
+                sorted[j - 1] = t;
+            }
+        cJSON *t = cJSON_AddObjectToObject(r, ring_names[k]);
+        cJSON_AddNumberToObject(t, "count", n);
+        cJSON_AddNumberToObject(t, "min", n ? sorted[0] : 0);
+        cJSON_AddNumberToObject(t, "median", n ? sorted[n / 2] : 0);
+        cJSON_AddNumberToObject(t, "max", n ? sorted[n - 1] : 0);
+    }
+    cJSON_AddStringToObject(r, "clock", dirt_clock_names[dirt_gpu_clock(v->gpu)]);
+    char desc[256];
+    dirt_gpu_describe(v->gpu, desc, sizeof(desc));
+    cJSON_AddStringToObject(r, "device", desc);
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)
         cJSON_AddItemToArray(panels, cJSON_CreateFloatArray(v->panels[i], 4));
