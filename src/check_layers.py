@@ -36,7 +36,7 @@ PUBLIC = {
     "clock.h": "core", "log.h": "core", "stats.h": "core", "ray.h": "core", "vec.h": "core",
     "file.h": "io", "image.h": "io",
     "scene.h": "scene",
-    "gpu.h": "gl",
+    "gpu.h": "gl", "window.h": "gl", "ui.h": "gl",
     "views.h": "views", "tracer.h": "views",
     "ads.h": "dirt", "mmrt.h": "mmrt", "raster.h": "raster",
     "integrator.h": "integrator", "gpu_tables.h": "integrator", "pathtrace.h": "integrator",
