@@ -16,7 +16,7 @@ PACKAGES=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   libglfw3-dev libimgui-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libembree-dev glslang-tools libcjson-dev python3 gnuplot-nox
-  xvfb xauth
+  xvfb xauth xdotool
   slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
 )
