@@ -206,6 +206,10 @@
 #define DIRT_UNIT_TEST 0
 /* image unit of the path tracer's display texture (glsl/integrator/display.comp) */
 #define DIRT_UNIT_DISPLAY 0
+/* The window's presentation (glsl/present/present.frag): the image, and the
+ * second image of a split or a difference. */
+#define DIRT_UNIT_PRESENT_A 0
+#define DIRT_UNIT_PRESENT_B 1
 
 /* ---- Uniform locations ----
  *
@@ -275,6 +279,16 @@
 #define DIRT_LOC_PREVIEW_NUM_LIGHTS 3  /* int */
 #define DIRT_LOC_PREVIEW_AMBIENT 4     /* float */
 #define DIRT_LOC_PREVIEW_FORWARD 5     /* vec3: unit camera axis (the Z AOV) */
+
+/* glsl/present/present.vert + present.frag (one program, src/gl/present.c) */
+#define DIRT_LOC_PRESENT_RECT 0        /* ivec4: x, y (from the framebuffer's bottom), w, h */
+#define DIRT_LOC_PRESENT_MODE 1        /* int: DIRT_PRESENT_ID_* (common/display.h) */
+#define DIRT_LOC_PRESENT_SCALE 2       /* float: 2^exposure */
+#define DIRT_LOC_PRESENT_TONEMAP 3     /* int: DIRT_TONEMAP_ID_* */
+#define DIRT_LOC_PRESENT_CHANNEL 4     /* int: the heat's channel */
+#define DIRT_LOC_PRESENT_RANGE 5       /* vec2: lo, hi */
+#define DIRT_LOC_PRESENT_SPLIT 6       /* float: window x of the split, < 0 for none */
+#define DIRT_LOC_PRESENT_SPLIT_LINE 7  /* int: 1 draws the split's white column */
 
 /* glsl/test/rng.comp */
 #define DIRT_LOC_TEST_RNG_COUNT 0      /* uint */

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/display.h"
 #include "common/layout.h"
 #include "dirt/ads.h"
 #include "dirt/image.h"
@@ -17,12 +18,16 @@ static const char *view_name(const dirt_view *v)
     return v->face < 0 ? "camera" : faces[v->face];
 }
 
-/* Heat colour of x in [0, 1]: black, blue, red, yellow, white. */
+/* Heat colour of x in [0, 1]: the ramp of common/display.h (black, blue,
+ * red, yellow, white), as the window's HEAT presentation draws it. */
 static void heat(float x, float rgb[3])
 {
-    static const float keys[5][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
-    x = fminf(fmaxf(x, 0), 1) * 4;
-    int i = (int)x < 4 ? (int)x : 3;
+    static const float keys[DIRT_HEAT_KEYS][3] = {{DIRT_HEAT_KEY_0}, {DIRT_HEAT_KEY_1},
+                                                  {DIRT_HEAT_KEY_2}, {DIRT_HEAT_KEY_3},
+                                                  {DIRT_HEAT_KEY_4}};
+    const int last = DIRT_HEAT_KEYS - 1;
+    x = fminf(fmaxf(x, 0), 1) * (float)last;
+    int i = (int)x < last ? (int)x : last - 1;
     float t = x - (float)i;
     for (int k = 0; k < 3; k++)
         rgb[k] = keys[i][k] + t * (keys[i + 1][k] - keys[i][k]);

@@ -158,7 +158,8 @@ static bool glfw_create(dirt_gpu *gpu)
     glfwSwapInterval(gpu->opts.vsync ? 1 : 0);
     gpu->window = win;
     gpu->caps.platform = "glfw";
-    return true;
+    /* The input callbacks go first: a UI attached later chains to them. */
+    return gl_window_init(gpu);
 }
 
 static bool contains_ci(const char *s, const char *needle)
@@ -237,6 +238,12 @@ void dirt_gpu_destroy(dirt_gpu *gpu)
 {
     if (!gpu)
         return;
+    /* GL objects go while the context is current. */
+    if (gpu->ui) {
+        DIRT_WARN("dirt_gpu_destroy: its dirt_ui is still attached; destroying it first");
+        gl_ui_release(gpu);
+    }
+    gl_present_release(gpu);
     if (gpu->egl_display) {
         eglMakeCurrent(gpu->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (gpu->egl_context)
@@ -244,6 +251,7 @@ void dirt_gpu_destroy(dirt_gpu *gpu)
         eglTerminate(gpu->egl_display);
         eglReleaseThread();
     }
+    gl_window_release(gpu);
     if (gpu->window) {
         glfwDestroyWindow(gpu->window);
         glfwTerminate();
@@ -292,8 +300,13 @@ void dirt_gpu_window_swap(dirt_gpu *gpu)
 
 void dirt_gpu_window_poll(dirt_gpu *gpu)
 {
-    if (gpu->window)
-        glfwPollEvents();
+    if (!gpu->window)
+        return;
+    gl_window_poll_begin(gpu);
+    if (gpu->ui)
+        gl_ui_make_current(gpu);
+    glfwPollEvents();
+    gl_window_poll_end(gpu);
 }
 
 void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height)

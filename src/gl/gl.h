@@ -18,6 +18,8 @@
 #define GL_CONSERVATIVE_RASTERIZATION_NV 0x9346
 #endif
 
+struct gl_window_state; /* window.c: the input callbacks' state */
+
 struct dirt_gpu {
     dirt_gpu_caps caps;
     dirt_gpu_opts opts;
@@ -26,9 +28,38 @@ struct dirt_gpu {
     void *egl_context;
     /* GLFW (window) */
     void *window;
+    struct gl_window_state *input; /* windowed only: dirt/window.h's input */
+    GLuint present_program;        /* present.c, made by the first dirt_gpu_present */
+    GLuint present_vao;            /* the empty vertex array its draw binds */
+    void *ui;                      /* the dirt_ui attached (ui.cpp), NULL when none */
     uint64_t error_count;
     bool in_finish_timer;
 };
+
+/* ---- the window's input (window.c) ---- */
+
+/* Makes the input state of a new window and installs its GLFW callbacks
+ * (key, mouse button, cursor, scroll, drop, framebuffer size, close); the
+ * UI's callbacks, installed later, chain to these. False after logging. */
+bool gl_window_init(dirt_gpu *gpu);
+/* dirt_gpu_window_poll around glfwPollEvents: _begin drops the last poll's
+ * events (pressed, released, scroll, drops, double clicks), _end derives
+ * what the callbacks do not report (cursor motion, Shift/Ctrl/Alt). */
+void gl_window_poll_begin(dirt_gpu *gpu);
+void gl_window_poll_end(dirt_gpu *gpu);
+/* Frees the input state (before the window is destroyed). */
+void gl_window_release(dirt_gpu *gpu);
+
+/* ---- presentation (present.c) and panels (ui.cpp) ---- */
+
+/* Frees the presentation program and vertex array (context current). */
+void gl_present_release(dirt_gpu *gpu);
+/* Destroys a UI still attached when its GPU is destroyed (ui.cpp, which
+ * includes this header inside extern "C"). */
+void gl_ui_release(dirt_gpu *gpu);
+/* Makes the attached UI's ImGui context current: its GLFW callbacks, which
+ * run inside glfwPollEvents, act on the current context. */
+void gl_ui_make_current(dirt_gpu *gpu);
 
 /* ---- debug output, labels, groups (debug.c) ---- */
 

@@ -2,6 +2,8 @@
  * Contracts are documented in dirt/image.h. */
 #include "dirt/image.h"
 
+#include "common/display.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -19,14 +21,16 @@ unsigned char dirt_linear_to_srgb8(float v)
         return 0;
     if (v >= 1.0f)
         return 255;
-    float s = v <= 0.0031308f ? 12.92f * v
-                              : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f;
+    float s = v <= DIRT_SRGB_LINEAR_MAX
+                  ? DIRT_SRGB_LINEAR_SCALE * v
+                  : DIRT_SRGB_SCALE * powf(v, DIRT_SRGB_EXPONENT) - DIRT_SRGB_OFFSET;
     long q = lroundf(s * 255.0f);
     return (unsigned char)(q < 0 ? 0 : q > 255 ? 255 : q);
 }
 
 /* Tonemap curve applied to one exposed linear value; the result is clamped
- * by the sRGB step. */
+ * by the sRGB step. The constants are common/display.h's, shared with the
+ * window's presentation shader (glsl/present/present.frag). */
 static float tonemap(float x, enum dirt_tonemap op)
 {
     switch (op) {
@@ -36,7 +40,8 @@ static float tonemap(float x, enum dirt_tonemap op)
         /* Narkowicz 2015 fit of the ACES filmic curve (sRGB primaries). */
         if (!(x > 0.0f))
             return 0.0f;
-        return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+        return (x * (DIRT_ACES_A * x + DIRT_ACES_B)) /
+               (x * (DIRT_ACES_C * x + DIRT_ACES_D) + DIRT_ACES_E);
     case DIRT_TONEMAP_CLAMP:
     default:
         return x;

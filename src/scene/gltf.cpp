@@ -1,5 +1,5 @@
-/* DIRT engine: glTF 2.0 (.gltf / .glb) loader. The only C++ translation unit
- * of the project: tinygltf parses the file, this code validates every
+/* DIRT engine: glTF 2.0 (.gltf / .glb) loader. A C++ translation unit behind
+ * a C API (as src/gl/ui.cpp): tinygltf parses the file, this code validates every
  * reference and byte range and converts the model into the plain C structs of
  * scene_internal.h. Nothing here trusts the file: an accessor outside its
  * buffer, an index past the vertex count, a non-finite position or a bad

@@ -339,6 +339,13 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
             L(DIRT_LOC_DISPLAY_PIXEL_OFFSET) return 1;
         }
         break;
+    case 10:
+        switch (loc) {
+            L(DIRT_LOC_PRESENT_RECT) L(DIRT_LOC_PRESENT_MODE) L(DIRT_LOC_PRESENT_SCALE)
+            L(DIRT_LOC_PRESENT_TONEMAP) L(DIRT_LOC_PRESENT_CHANNEL) L(DIRT_LOC_PRESENT_RANGE)
+            L(DIRT_LOC_PRESENT_SPLIT) L(DIRT_LOC_PRESENT_SPLIT_LINE) return 1;
+        }
+        break;
     }
     return 0;
 }
@@ -384,6 +391,11 @@ static const dirt_layout_uniform u_preview[] = {
     U("u_view_proj", DIRT_LOC_PREVIEW_VIEW_PROJ), U("u_eye", DIRT_LOC_PREVIEW_EYE),
     U("u_material", DIRT_LOC_PREVIEW_MATERIAL),   U("u_num_lights", DIRT_LOC_PREVIEW_NUM_LIGHTS),
     U("u_ambient", DIRT_LOC_PREVIEW_AMBIENT), U("u_forward", DIRT_LOC_PREVIEW_FORWARD)};
+static const dirt_layout_uniform u_present[] = {
+    U("u_rect", DIRT_LOC_PRESENT_RECT),       U("u_mode", DIRT_LOC_PRESENT_MODE),
+    U("u_scale", DIRT_LOC_PRESENT_SCALE),     U("u_tonemap", DIRT_LOC_PRESENT_TONEMAP),
+    U("u_channel", DIRT_LOC_PRESENT_CHANNEL), U("u_range", DIRT_LOC_PRESENT_RANGE),
+    U("u_split", DIRT_LOC_PRESENT_SPLIT),     U("u_split_line", DIRT_LOC_PRESENT_SPLIT_LINE)};
 static const dirt_layout_uniform u_rng[] = {
     U("u_count", DIRT_LOC_TEST_RNG_COUNT), U("u_seed", DIRT_LOC_TEST_RNG_SEED)};
 static const dirt_layout_uniform u_fill[] = {
@@ -411,6 +423,8 @@ const dirt_layout_program dirt_layout_programs[] = {
     P("mmrt/pt_rays.comp", NULL, SH | DIRT_RANGE_MMRT | DIRT_RANGE_MMRT_PT, u_pt_rays),
     P("mmrt/to_gpoint.comp", NULL, SH | DIRT_RANGE_MMRT, u_to_gpoint),
     P("raster/preview.vert", "raster/preview.frag", DIRT_RANGE_PREVIEW, u_preview),
+    /* The window's presentation binds textures only: no storage range. */
+    P("present/present.vert", "present/present.frag", 0, u_present),
     P("test/rng.comp", NULL, DIRT_RANGE_TEST, u_rng),
     P("graph_test/fill.comp", NULL, DIRT_RANGE_TEST, u_fill),
     P("graph_test/to_image.comp", NULL, DIRT_RANGE_TEST, u_to_image),

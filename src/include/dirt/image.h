@@ -15,6 +15,7 @@
 #include <stdint.h>
 #include <stddef.h>
 
+#include "common/display.h" /* enum dirt_tonemap */
 #include "dirt/file.h"
 
 #ifdef __cplusplus
@@ -82,11 +83,10 @@ dirt_image *dirt_image_read_exr(const char *path);
 
 /* ---- PNG preview -------------------------------------------------------- */
 
-enum dirt_tonemap {
-    DIRT_TONEMAP_CLAMP = 0,    /* clamp to [0,1] */
-    DIRT_TONEMAP_REINHARD = 1, /* x / (1 + x) per channel */
-    DIRT_TONEMAP_ACES = 2,     /* Narkowicz's rational fit of the ACES curve */
-};
+/* enum dirt_tonemap (DIRT_TONEMAP_CLAMP: clamp to [0,1]; _REINHARD: x / (1 + x)
+ * per channel; _ACES: Narkowicz's rational fit of the ACES curve) is defined
+ * in common/display.h with the curves' constants, shared with the shaders
+ * and the gl layer's dirt/window.h. */
 
 /* Zero-initialised = defaults: exposure 0, clamp, RGB without alpha. */
 typedef struct dirt_png_options {

@@ -23,7 +23,8 @@ typedef struct dirt_ui dirt_ui;
  * input callbacks chain to the GPU's, so dirt_gpu_window_input keeps
  * working. NULL after logging (headless GPU, second UI). */
 dirt_ui *dirt_ui_create(dirt_gpu *gpu);
-/* Accepts NULL. */
+/* Accepts NULL. Call it before dirt_gpu_destroy (which destroys a UI
+ * still attached, with a warning). */
 void dirt_ui_destroy(dirt_ui *ui);
 
 /* Opens a frame (after dirt_gpu_window_poll). */

@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "common/display.h" /* enum dirt_tonemap (also in dirt/image.h, of the io layer) */
 #include "dirt/gpu.h"
 
 #ifdef __cplusplus
@@ -59,7 +60,8 @@ typedef struct dirt_window_input {
     bool key_pressed[DIRT_NUM_KEYS];   /* went down (or repeated) in this poll */
     int num_drops;                     /* paths dropped on the window in this poll */
     const char *drops[8];              /* owned by the GPU, valid until the next poll */
-    bool close_requested;              /* the window's close button */
+    bool close_requested;              /* the window's close button (stays true once
+                                          pressed: dirt_gpu_window_should_close) */
 } dirt_window_input;
 
 /* The input gathered by the last dirt_gpu_window_poll. */
@@ -72,11 +74,16 @@ bool dirt_gpu_window_set_size(dirt_gpu *gpu, int width, int height);
 
 /* ---- drawing images into the window ---- */
 
+/* Every mode ends as dirt_image_write_png does: clamp to [0, 1] (NaN -> 0),
+ * sRGB transfer, round to 8 bits. The heat ramp and the luminance weights
+ * are those of common/display.h. */
 enum dirt_present_mode {
     DIRT_PRESENT_COLOR = 0, /* RGB * 2^exposure, tone map, sRGB (as dirt_image_write_png) */
-    DIRT_PRESENT_HEAT,      /* channel `channel` mapped lo..hi to the heat ramp */
+    DIRT_PRESENT_HEAT,      /* channel `channel` mapped lo..hi to the heat ramp
+                               (non-finite values black) */
     DIRT_PRESENT_SIGNED,    /* RGB * 0.5 + 0.5 (normals), no tone map, sRGB */
-    DIRT_PRESENT_DIFF,      /* heat of |luminance(a) - luminance(b)| over lo..hi */
+    DIRT_PRESENT_DIFF,      /* heat of |luminance(a) - luminance(b)| over lo..hi
+                               (a = texture, b = texture_b; no split) */
 };
 
 /* One draw of an RGBA32F texture (texel (x, y) = pixel (x, y), row 0 = top)
@@ -92,13 +99,17 @@ typedef struct dirt_present_opts {
     int tonemap;                 /* COLOR: an enum dirt_tonemap (dirt/image.h) */
     int channel;                 /* HEAT: 0..3 */
     float lo, hi;                /* HEAT and DIFF range (hi > lo) */
-    float split;                 /* 0 = off; else the split's x in (0, 1) of w: left
-                                    shows texture, right texture_b, in `mode` */
-    bool split_line;             /* draw a 1-pixel white line at the split */
+    float split;                 /* 0 = off; else the split's x in (0, 1) of w: pixels
+                                    whose centre lies left of x + split * w show
+                                    texture, the others texture_b, in `mode`
+                                    (ignored by DIFF) */
+    bool split_line;             /* draw a 1-pixel white line at the split (the
+                                    column holding x + split * w) */
 } dirt_present_opts;
 
-/* Draws into the window's back buffer. False after logging (no window, no
- * texture, bad rectangle). */
+/* Draws into the window's back buffer (whatever framebuffer is bound; the
+ * GL state it changes is restored). False after logging (no window, no
+ * texture, bad rectangle, split or range). */
 bool dirt_gpu_present(dirt_gpu *gpu, const dirt_present_opts *opts);
 
 /* Clears the window's back buffer to an RGB colour. */
