@@ -67,6 +67,8 @@ typedef struct vopts {
     int tonemap;
     long hiz_top;               /* -1 = the pyramid's top */
     bool no_ui, cpu_timing, quiet, conservative_off, direct_visibility;
+    bool no_preview;            /* path trace while moving too (no raster preview) */
+    int scale;                  /* render at the window's size / scale */
     const char *script, *screenshot, *save_image, *report;
     long test_frames;
 } vopts;
@@ -129,6 +131,8 @@ static const vopt_spec specs[] = {
     {NULL, "--exposure", 'f', OFF(exposure), -64, 64, NULL, true},
     {NULL, "--tonemap", 'c', OFF(tonemap), 0, 0, tonemaps, true},
     {NULL, "--no-ui", 'B', OFF(no_ui), 0, 0, NULL, true},
+    {NULL, "--no-preview", 'B', OFF(no_preview), 0, 0, NULL, true},
+    {NULL, "--scale", 'i', OFF(scale), 1, 16, NULL, true},
     {NULL, "--cpu-timing", 'B', OFF(cpu_timing), 0, 0, NULL, false},
     {"-q", "--quiet", 'B', OFF(quiet), 0, 0, NULL, false},
     {NULL, "--script", 's', OFF(script), 0, 0, NULL, false},
@@ -165,6 +169,9 @@ static void usage(FILE *f)
 "                        dirt, mmrt, embree or raster (default none)\n"
 "      --split X         where the split is, 0..1 of the width (default 0.5)\n"
 "      --diff-range R    difference view (the D key): heat of |luminance| up to R\n"
+"      --scale N         render at the window's size / N, shown enlarged (default 1)\n"
+"      --no-preview      path trace while the camera moves (default: the raster\n"
+"                        preview until it stops)\n"
 "      --no-ui           hide the panels (H toggles them)\n"
 "\n"
 "Scene, camera and animation (as dirt-render):\n"
@@ -313,7 +320,7 @@ static bool check_paths(const vopts *o)
  * --bindings. */
 static int parse_args(int argc, char **argv, vopts *o)
 {
-    *o = (vopts){.spp = 1024, .samples_per_frame = 1, .camera = -1, .speed = 1,
+    *o = (vopts){.spp = 1024, .samples_per_frame = 1, .scale = 1, .camera = -1, .speed = 1,
                  .win_w = 1280, .win_h = 720, .split = 0.5f, .diff_range = 0.1f,
                  .hiz_top = -1, .look = {.up = {0, 1, 0}}};
     for (int i = 1; i < argc; i++) {
@@ -369,6 +376,9 @@ typedef struct viewer {
     char scene_name[4096];
     dirt_session *s, *cmp;
     int cmp_engine;             /* engine of cmp, -1 none */
+    dirt_session *pre;          /* the raster preview shown while the camera moves */
+    bool moving;                /* input moved the camera in this frame */
+    bool hold;                  /* an output was taken in this frame: no new samples */
     dirt_session_opts applied;  /* the options s has */
     int rw, rh;                 /* render size in use */
     /* camera */
@@ -497,7 +507,8 @@ static bool make_sessions(viewer *v)
 {
     dirt_session_destroy(v->s);
     dirt_session_destroy(v->cmp);
-    v->s = v->cmp = NULL;
+    dirt_session_destroy(v->pre);
+    v->s = v->cmp = v->pre = NULL;
     v->cmp_engine = -1;
     v->applied = wanted_opts(v, v->o.s.engine);
     v->s = dirt_session_create(v->gpu, v->scene, &v->applied);
@@ -516,7 +527,8 @@ static bool load_scene(viewer *v, const char *path)
         return false;
     dirt_session_destroy(v->s);
     dirt_session_destroy(v->cmp);
-    v->s = v->cmp = NULL;
+    dirt_session_destroy(v->pre);
+    v->s = v->cmp = v->pre = NULL;
     dirt_scene_destroy(v->scene);
     v->scene = sc;
     snprintf(v->scene_name, sizeof(v->scene_name), "%s", path ? path : "default scene");
@@ -538,8 +550,9 @@ static void render_size(viewer *v, int win_w, int win_h)
         v->rw = v->o.s.width;
         v->rh = v->o.s.height;
     } else {
-        v->rw = win_w > 0 ? win_w : 16;
-        v->rh = win_h > 0 ? win_h : 16;
+        int sc = v->o.scale > 0 ? v->o.scale : 1;
+        v->rw = win_w / sc >= 16 ? win_w / sc : 16;
+        v->rh = win_h / sc >= 16 ? win_h / sc : 16;
     }
 }
 
@@ -575,6 +588,8 @@ static bool sync_sessions(viewer *v)
         v->cam_dirty = true; /* an animated scene camera follows the time */
         if (v->cmp)
             dirt_session_set_time(v->cmp, v->o.time, &eval);
+        if (v->pre)
+            dirt_session_set_time(v->pre, v->o.time, &eval);
         v->generation++;
     }
     if (v->cam_dirty) {
@@ -585,6 +600,8 @@ static bool sync_sessions(viewer *v)
         }
         if (v->cmp)
             apply_camera(v, v->cmp);
+        if (v->pre)
+            apply_camera(v, v->pre);
         v->cam_dirty = false;
         v->generation++;
     }
@@ -614,6 +631,23 @@ static bool sync_sessions(viewer *v)
         dirt_session_opts co = wanted_opts(v, want_cmp);
         if (memcmp(&co, dirt_session_get_opts(v->cmp), sizeof(co)) != 0)
             dirt_session_set_opts(v->cmp, &co, NULL);
+    }
+    /* The raster preview, made the first time the camera moves. */
+    if (v->moving && !v->o.no_preview && v->applied.engine != DIRT_ENGINE_RASTER) {
+        dirt_session_opts po = wanted_opts(v, DIRT_ENGINE_RASTER);
+        dirt_eval_opts eval = {.clip = v->o.clip, .loop = v->o.loop};
+        if (!v->pre) {
+            v->pre = dirt_session_create(v->gpu, v->scene, &po);
+            if (!v->pre || !dirt_session_set_time(v->pre, v->o.time, &eval) ||
+                !apply_camera(v, v->pre)) {
+                dirt_session_destroy(v->pre);
+                v->pre = NULL;
+                v->o.no_preview = true;
+                set_status(v, "the raster preview could not be made (see the log); off");
+            }
+        } else if (memcmp(&po, dirt_session_get_opts(v->pre), sizeof(po)) != 0) {
+            dirt_session_set_opts(v->pre, &po, NULL);
+        }
     }
     return true;
 }
@@ -649,19 +683,19 @@ static void handle_input(viewer *v, const dirt_window_input *in, double dt, bool
             (in->mouse_dx != 0 || in->mouse_dy != 0)) {
             to_look(v);
             vcam_orbit(&v->look, (float)in->mouse_dx * 0.3f, (float)in->mouse_dy * 0.3f);
-            v->cam_dirty = true;
+            v->cam_dirty = v->moving = true;
         }
         if ((in->button[DIRT_MOUSE_RIGHT] || in->button[DIRT_MOUSE_MIDDLE]) &&
             (in->mouse_dx != 0 || in->mouse_dy != 0) && in->height > 0) {
             to_look(v);
             vcam_pan(&v->look, (float)(in->mouse_dx / in->height),
                      (float)(-in->mouse_dy / in->height));
-            v->cam_dirty = true;
+            v->cam_dirty = v->moving = true;
         }
         if (in->scroll != 0) {
             to_look(v);
             vcam_dolly(&v->look, powf(0.85f, (float)in->scroll));
-            v->cam_dirty = true;
+            v->cam_dirty = v->moving = true;
         }
         if (in->double_clicks > 0) {
             v->click_pending = true;
@@ -682,7 +716,7 @@ static void handle_input(viewer *v, const dirt_window_input *in, double dt, bool
     if (fw != 0 || rt != 0 || up != 0) {
         to_look(v);
         vcam_fly(&v->look, fw, rt, up);
-        v->cam_dirty = true;
+        v->cam_dirty = v->moving = true;
     }
     const bool *p = in->key_pressed;
     if (p[DIRT_KEY_ESCAPE])
@@ -986,15 +1020,18 @@ static bool run_script(viewer *v)
             dirt_gpu_window_set_size(v->gpu, (int)a->num[0], (int)a->num[1]);
             break;
         case VS_SCREENSHOT:
+            v->hold = true;
             if (!cli_creatable(PROG, a->text))
                 return false;
             screenshot(v, a->text);
             break;
         case VS_SAVE_IMAGE:
+            v->hold = true;
             if (!save_render(v, a->text))
                 return false;
             break;
         case VS_REPORT:
+            v->hold = true;
             if (!write_report(v, a->text))
                 return false;
             break;
@@ -1005,7 +1042,7 @@ static bool run_script(viewer *v)
             break;
         }
         case VS_QUIT:
-            v->quit = true;
+            v->quit = v->hold = true; /* --save-image at exit gets this image */
             return true;
         }
     }
@@ -1217,14 +1254,16 @@ static void panel_numbers(viewer *v)
         char cap[96];
         float last = v->ring_count ? v->frame_ms[(v->ring_pos + RING - 1) % RING] : 0;
         snprintf(cap, sizeof(cap), "frame %.1f ms", last);
-        dirt_ui_plot_lines("##frame", v->frame_ms, v->ring_count, v->ring_count < RING ? 0 : v->ring_pos,
+        if (v->ring_count > 0)
+            dirt_ui_plot_lines("##frame", v->frame_ms, v->ring_count, v->ring_count < RING ? 0 : v->ring_pos,
                            cap, 0, fmax, 50);
         float smax = 1;
         for (int i = 0; i < v->ring_count; i++)
             smax = fmaxf(smax, v->sample_ms[i]);
         float lasts = v->ring_count ? v->sample_ms[(v->ring_pos + RING - 1) % RING] : 0;
         snprintf(cap, sizeof(cap), "samples of the frame %.1f ms", lasts);
-        dirt_ui_plot_lines("##samples", v->sample_ms, v->ring_count,
+        if (v->ring_count > 0)
+            dirt_ui_plot_lines("##samples", v->sample_ms, v->ring_count,
                            v->ring_count < RING ? 0 : v->ring_pos, cap, 0, smax, 50);
         dirt_ui_text("%s", st->device);
         dirt_ui_text("%.2f Mrays/s, %llu rays, %llu aborted", st->mrays_per_s,
@@ -1393,10 +1432,22 @@ static void fit(const viewer *v, int w, int h, int r[4])
     r[1] = (v->win_h - r[3]) / 2;
 }
 
-static void draw(viewer *v)
+static void draw(viewer *v, bool preview)
 {
     static const float grey[3] = {0.08f, 0.08f, 0.09f};
     dirt_gpu_window_clear(v->gpu, grey);
+    bool have_pre = v->pre && dirt_session_samples(v->pre) > 0;
+    if (v->o.buffer == BUF_BEAUTY && have_pre &&
+        (preview || dirt_session_samples(v->s) == 0)) {
+        int r[4];
+        fit(v, v->rw, v->rh, r);
+        dirt_present_opts p = {.texture = dirt_session_display_texture(v->pre), .x = r[0],
+                               .y = r[1], .w = r[2], .h = r[3], .exposure = v->o.exposure,
+                               .tonemap = (enum dirt_tonemap)v->o.tonemap};
+        if (p.texture)
+            dirt_gpu_present(v->gpu, &p);
+        return;
+    }
     if (dirt_session_samples(v->s) == 0)
         return;
     int r[4];
@@ -1475,6 +1526,7 @@ static bool frame(viewer *v, double dt)
         }
     }
     dirt_ui_begin_frame(v->ui);
+    v->moving = false;
     bool ui_mouse = !v->o.no_ui && dirt_ui_wants_mouse(v->ui);
     bool ui_keys = !v->o.no_ui && dirt_ui_wants_keyboard(v->ui);
     if (!run_script(v)) {
@@ -1498,10 +1550,18 @@ static bool frame(viewer *v, double dt)
     sync_sessions(v);
     if (v->click_pending)
         focus_at(v);
-    /* A bounded amount of work: at most samples_per_frame samples. */
+    /* A bounded amount of work: at most samples_per_frame samples, or the
+     * raster preview while input moves the camera; none in a frame whose
+     * image a script output took. */
     double s0 = dirt_clock_ms();
     int have = dirt_session_samples(v->s);
-    if (v->o.spp == 0 || have < v->o.spp) {
+    bool preview = v->moving && v->pre;
+    if (preview && !dirt_session_add_samples(v->pre, 1, NULL, NULL)) {
+        set_status(v, "the raster preview failed (see the log); off");
+        v->o.no_preview = true;
+        preview = false;
+    }
+    if (!preview && !v->hold && (v->o.spp == 0 || have < v->o.spp)) {
         int n = v->o.samples_per_frame;
         if (v->o.spp && have + n > v->o.spp)
             n = v->o.spp - have;
@@ -1513,7 +1573,7 @@ static bool frame(viewer *v, double dt)
         record_passes(v, &before, have == 0);
         v->generation++;
     }
-    if (v->cmp) {
+    if (v->cmp && !preview && !v->hold) {
         int hc = dirt_session_samples(v->cmp);
         if ((v->o.spp == 0 || hc < v->o.spp) && !dirt_session_add_samples(v->cmp, 1, NULL, NULL)) {
             set_status(v, "the comparison engine failed (see the log); split view off");
@@ -1521,7 +1581,8 @@ static bool frame(viewer *v, double dt)
         }
     }
     double s1 = dirt_clock_ms();
-    draw(v);
+    v->hold = false;
+    draw(v, preview);
     v->num_panels = 0;
     if (!v->o.no_ui) {
         panel_settings(v);
@@ -1647,13 +1708,9 @@ int main(int argc, char **argv)
         /* The last frame again, for the window as it is now. */
         v->quit = false;
         screenshot(v, v->o.screenshot);
-        int spp = v->o.spp;
-        v->o.spp = dirt_session_samples(v->s); /* no more samples */
-        if (!v->o.spp)
-            v->o.spp = 1;
+        v->hold = true; /* the image as saved: no more samples */
         if (!frame(v, 0))
             rc = DIRT_EXIT_FAILURE;
-        v->o.spp = spp;
     }
     if (v->o.report && !write_report(v, v->o.report))
         rc = DIRT_EXIT_FAILURE;
@@ -1665,6 +1722,7 @@ int main(int argc, char **argv)
     }
 done:
     dirt_gpu_texture_destroy(v->gpu, v->aux_tex);
+    dirt_session_destroy(v->pre);
     dirt_session_destroy(v->cmp);
     dirt_session_destroy(v->s);
     dirt_ui_destroy(v->ui);

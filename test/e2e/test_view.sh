@@ -48,8 +48,10 @@ json_field() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[s
 for engine in dirt mmrt; do
   printf 'wait-samples 3\nquit\n' >"$tmp/s.txt"
   if run_view "same-$engine" --window 160x120 --no-ui --engine $engine --seed 7 --bounces 3 \
-      --script "$tmp/s.txt" --save-image "$tmp/v-$engine.exr" -q; then ok; else
-    fail "$engine: dirt-view exit $?"; cat "$tmp/same-$engine.err" >&2; fi
+      --script "$tmp/s.txt" --save-image "$tmp/v-$engine.exr" --report "$tmp/v-$engine.json" -q
+  then ok; else fail "$engine: dirt-view exit $?"; cat "$tmp/same-$engine.err" >&2; fi
+  spp=$(json_field "$tmp/v-$engine.json" samples)
+  [ "$spp" = 3 ] && ok || fail "$engine: the viewer saved $spp samples, not the 3 waited for"
   "$render" -W 160 -H 120 --engine $engine --seed 7 --bounces 3 --spp 3 -q \
     -o "$tmp/r-$engine.exr" || fail "$engine: dirt-render failed"
   if "$check" same "$tmp/v-$engine.exr" "$tmp/r-$engine.exr"; then ok; else
@@ -91,11 +93,13 @@ cam=$(json_field "$tmp/moved.json" camera_args 2>/dev/null)
 mode=$(json_field "$tmp/moved.json" camera_mode 2>/dev/null)
 [ "$mode" = look ] && ok || fail "after the drag the camera mode is '$mode', not look"
 # shellcheck disable=SC2086
-"$render" -W 200 -H 150 --seed 3 --bounces 2 --spp 2 -q $cam -o "$tmp/moved-r.exr" ||
+spp=$(json_field "$tmp/moved.json" samples 2>/dev/null)
+# shellcheck disable=SC2086
+"$render" -W 200 -H 150 --seed 3 --bounces 2 --spp "$spp" -q $cam -o "$tmp/moved-r.exr" ||
   fail "dirt-render $cam failed"
 if "$check" same "$tmp/moved.exr" "$tmp/moved-r.exr"; then ok; else
   fail "dirt-render from the reported camera ($cam) is not the viewer's image"; fi
-"$render" -W 200 -H 150 --seed 3 --bounces 2 --spp 2 -q -o "$tmp/unmoved.exr"
+"$render" -W 200 -H 150 --seed 3 --bounces 2 --spp "$spp" -q -o "$tmp/unmoved.exr"
 if "$check" same "$tmp/moved.exr" "$tmp/unmoved.exr" >/dev/null; then
   fail "the input did not move the camera"; else ok; fi
 # The script's orbit, reported and rendered offline the same way.
@@ -103,8 +107,9 @@ printf 'orbit 40 15\ndolly 0.8\nwait-samples 2\nsave-image %s\nreport %s\nquit\n
   "$tmp/orbit.exr" "$tmp/orbit.json" >"$tmp/s.txt"
 run_view orbit --window 200x150 --no-ui --script "$tmp/s.txt" -q || fail "orbit run failed"
 cam=$(json_field "$tmp/orbit.json" camera_args 2>/dev/null)
+spp=$(json_field "$tmp/orbit.json" samples 2>/dev/null)
 # shellcheck disable=SC2086
-"$render" -W 200 -H 150 --spp 2 -q $cam -o "$tmp/orbit-r.exr"
+"$render" -W 200 -H 150 --spp "$spp" -q $cam -o "$tmp/orbit-r.exr"
 if "$check" same "$tmp/orbit.exr" "$tmp/orbit-r.exr"; then ok; else
   fail "script orbit: dirt-render $cam differs"; fi
 
@@ -114,7 +119,8 @@ printf 'wait-samples 1\nresize 300 200\nwait-frames 5\nwait-samples 1\nreport %s
 run_view resize --window 200x150 --no-ui --script "$tmp/s.txt" -q || fail "resize run failed"
 size=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['render'])" "$tmp/rs.json")
 [ "$size" = "[300, 200]" ] && ok || fail "after resize 300x200 the render is $size"
-"$render" -W 300 -H 200 --spp 1 -q -o "$tmp/rs-r.exr"
+spp=$(json_field "$tmp/rs.json" samples)
+"$render" -W 300 -H 200 --spp "$spp" -q -o "$tmp/rs-r.exr"
 if "$check" same "$tmp/rs.exr" "$tmp/rs-r.exr"; then ok; else fail "the resized render differs"; fi
 
 # 5. Bad input exits 2 with a one-line reason, before any window.

@@ -96,7 +96,7 @@ typedef struct dirt_present_opts {
     int x, y, w, h;              /* destination in window pixels (w, h > 0) */
     enum dirt_present_mode mode;
     float exposure;              /* stops (COLOR) */
-    int tonemap;                 /* COLOR: an enum dirt_tonemap (dirt/image.h) */
+    enum dirt_tonemap tonemap;   /* COLOR */
     int channel;                 /* HEAT: 0..3 */
     float lo, hi;                /* HEAT and DIFF range (hi > lo) */
     float split;                 /* 0 = off; else the split's x in (0, 1) of w: pixels
