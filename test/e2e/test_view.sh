@@ -4,6 +4,7 @@
 #    scene, size, camera, seed and settings (dirt and mmrt), bit for bit;
 #  - a window screenshot holds the panels (different from the render there)
 #    and the render (equal to the saved image where no panel covers it);
+#    the depth buffer shows the image's Z through the heat ramp;
 #  - real X input (xdotool: a left drag, the wheel, a held key) moves the
 #    camera, and dirt-render from the camera the viewer reports gives the
 #    viewer's image; the script's orbit does the same;
@@ -66,6 +67,13 @@ if run_view shot --window 900x600 --script "$tmp/s.txt" -q; then ok; else
   fail "screenshot run: exit $?"; cat "$tmp/shot.err" >&2; fi
 if "$check" window "$tmp/shot.png" "$tmp/alone.png" "$tmp/rep.json"; then ok; else
   fail "the screenshot is not the render plus the panels"; fi
+
+# 2b. The depth buffer shown as a heat map is the image's Z through the ramp.
+printf 'wait-samples 1\nset buffer depth\nwait-frames 1\nscreenshot %s\nsave-image %s\nquit\n' \
+  "$tmp/depth.png" "$tmp/depth.exr" >"$tmp/s.txt"
+run_view depth --window 160x120 --no-ui --script "$tmp/s.txt" -q || fail "depth run failed"
+if "$check" heat "$tmp/depth.png" "$tmp/depth.exr"; then ok; else
+  fail "the depth heat map is not the image's Z through the ramp"; fi
 
 # 3. Real input moves the camera: a left drag, the wheel and a held key.
 printf 'wait-file %s\nwait-frames 3\nwait-samples 2\nsave-image %s\nreport %s\nquit\n' \

@@ -7,6 +7,10 @@
  *       covers, within the one 8-bit step a GPU's and the CPU's float
  *       pow/rounding may differ by (and exactly at 99% of them or more);
  *       inside the panels, most pixels differ from the render.
+ *   view_check heat SHOT.png IMAGE.exr
+ *       SHOT (the depth buffer shown without panels) is the heat ramp of
+ *       IMAGE's "Z" over its finite range (misses black), sRGB-encoded,
+ *       within one 8-bit step (exactly at 99% of the pixels or more).
  * Prints what it found; exit 0 when the condition holds, 1 when it does
  * not, 2 on unreadable input. */
 #include <math.h>
@@ -17,6 +21,7 @@
 #include <cjson/cJSON.h>
 #include <stb_image.h>
 
+#include "common/display.h"
 #include "dirt/image.h"
 
 static int same(const char *a_path, const char *b_path)
@@ -137,12 +142,67 @@ done:
     return rc;
 }
 
+static int heat(const char *shot_path, const char *exr_path)
+{
+    static const float keys[DIRT_HEAT_KEYS][3] = {{DIRT_HEAT_KEY_0}, {DIRT_HEAT_KEY_1},
+                                                   {DIRT_HEAT_KEY_2}, {DIRT_HEAT_KEY_3},
+                                                   {DIRT_HEAT_KEY_4}};
+    int w, h, c;
+    unsigned char *shot = stbi_load(shot_path, &w, &h, &c, 4);
+    dirt_image *img = dirt_image_read_exr(exr_path);
+    const float *z = img ? dirt_image_find_channel(img, "Z") : NULL;
+    int rc = 2;
+    if (!shot || !z) {
+        printf("unreadable input\n");
+        goto done;
+    }
+    rc = 1;
+    if (w != img->width || h != img->height) {
+        printf("window %dx%d, image %dx%d\n", w, h, img->width, img->height);
+        goto done;
+    }
+    size_t n = (size_t)w * h, exact = 0, off = 0, misses = 0;
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(z[i]))
+            lo = fminf(lo, z[i]), hi = fmaxf(hi, z[i]);
+    for (size_t i = 0; i < n; i++) {
+        float rgb[3] = {0, 0, 0};
+        if (isfinite(z[i])) {
+            float x = fminf(fmaxf((z[i] - lo) / (hi - lo), 0), 1) * (DIRT_HEAT_KEYS - 1);
+            int k = (int)x < DIRT_HEAT_KEYS - 1 ? (int)x : DIRT_HEAT_KEYS - 2;
+            float t = x - (float)k;
+            for (int j = 0; j < 3; j++)
+                rgb[j] = keys[k][j] + t * (keys[k + 1][j] - keys[k][j]);
+        } else {
+            misses++;
+        }
+        int d = 0;
+        for (int j = 0; j < 3; j++) {
+            int e = abs(shot[4 * i + j] - dirt_linear_to_srgb8(rgb[j]));
+            d = e > d ? e : d;
+        }
+        exact += d == 0;
+        off += d > 1;
+    }
+    printf("depth %g..%g, %zu misses: %zu of %zu pixels exact, %zu off by more than 1\n", lo, hi,
+           misses, exact, n, off);
+    rc = off == 0 && exact * 100 >= n * 99 && hi > lo ? 0 : 1;
+done:
+    stbi_image_free(shot);
+    dirt_image_destroy(img);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 4 && !strcmp(argv[1], "heat"))
+        return heat(argv[2], argv[3]);
     if (argc == 4 && !strcmp(argv[1], "same"))
         return same(argv[2], argv[3]);
     if (argc == 5 && !strcmp(argv[1], "window"))
         return window(argv[2], argv[3], argv[4]);
-    fprintf(stderr, "usage: view_check same A.exr B.exr | window SHOT.png RENDER.png REPORT.json\n");
+    fprintf(stderr, "usage: view_check same A.exr B.exr | window SHOT.png RENDER.png REPORT.json | "
+            "heat SHOT.png IMAGE.exr\n");
     return 2;
 }
