@@ -7,7 +7,10 @@
  *
  *   test_gl_input input TITLE   dirt_window_input: cursor and its motion,
  *                               buttons, double clicks, wheel, keys (W,
- *                               Shift left and right, F1), resizes, title
+ *                               Shift left and right, F1), resizes, title;
+ *                               drops and the close button through the
+ *                               window's callbacks; a GPU destroyed with
+ *                               its UI attached
  *   test_gl_input ui TITLE      one panel at 10,10 200x100: drawn inside,
  *                               not outside, dirt_ui_covers agrees; hover
  *                               takes the mouse; a click on its button
