@@ -7,7 +7,10 @@
  *
  *   test_gl_input input TITLE   dirt_window_input: cursor and its motion,
  *                               buttons, double clicks, wheel, keys (W,
- *                               Shift left and right, F1), resizes, title
+ *                               Shift left and right, F1), resizes, title;
+ *                               drops and the close button through the
+ *                               window's callbacks; a GPU destroyed with
+ *                               its UI attached
  *   test_gl_input ui TITLE      one panel at 10,10 200x100: drawn inside,
  *                               not outside, dirt_ui_covers agrees; hover
  *                               takes the mouse; a click on its button
@@ -349,6 +352,21 @@ static int run_input(const char *title)
     CHECK(!dirt_gpu_window_set_size(g_gpu, 0, 10));
     test_drops_and_close();
     CHECK(dirt_gpu_error_count(g_gpu) == 0);
+    /* A GPU destroyed with its UI still attached takes the UI with it (here,
+     * as a second window GPU in one process upsets LeakSanitizer's thread
+     * walk in the sanitizer build: Mesa's GLX state of the first). */
+    dirt_ui *ui = dirt_ui_create(g_gpu);
+    CHECK(ui != NULL);
+    for (int i = 0; ui && i < 2; i++) {
+        dirt_gpu_window_poll(g_gpu);
+        dirt_ui_begin_frame(ui);
+        dirt_ui_begin("Left attached", NULL, 0, 0, 32, 32);
+        dirt_ui_text("%d", i);
+        dirt_ui_end();
+        dirt_ui_end_frame(ui);
+        dirt_gpu_window_swap(g_gpu);
+    }
+    CHECK(dirt_gpu_error_count(g_gpu) == 0);
     dirt_gpu_destroy(g_gpu);
     int rc = check_finish();
     say("DONE %d", rc);
@@ -517,24 +535,6 @@ static int run_ui(const char *title)
     say("%s after: mouse %.1f %.1f", back ? "OK" : "FAIL", in.mouse_x, in.mouse_y);
     CHECK(back);
     dirt_gpu_destroy(g_gpu);
-    /* A GPU destroyed with its UI still attached takes the UI with it. */
-    g_gpu = dirt_gpu_create(&(dirt_gpu_opts){.window = true, .width = 64, .height = 64});
-    CHECK(g_gpu != NULL);
-    if (g_gpu) {
-        st.ui = dirt_ui_create(g_gpu);
-        CHECK(st.ui != NULL);
-        for (int i = 0; st.ui && i < 2; i++) {
-            dirt_gpu_window_poll(g_gpu);
-            dirt_ui_begin_frame(st.ui);
-            dirt_ui_begin("Second", NULL, 0, 0, 32, 32);
-            dirt_ui_text("%d", i);
-            dirt_ui_end();
-            dirt_ui_end_frame(st.ui);
-            dirt_gpu_window_swap(g_gpu);
-        }
-        CHECK(dirt_gpu_error_count(g_gpu) == 0);
-        dirt_gpu_destroy(g_gpu);
-    }
     int rc = check_finish();
     say("DONE %d", rc);
     return rc;
