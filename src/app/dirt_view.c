@@ -1024,7 +1024,7 @@ static bool run_script(viewer *v)
             if (!cli_creatable(PROG, a->text))
                 return false;
             screenshot(v, a->text);
-            break;
+            return true; /* taken at the end of this frame: the next actions wait */
         case VS_SAVE_IMAGE:
             v->hold = true;
             if (!save_render(v, a->text))

@@ -15,7 +15,8 @@
  *   set OPTION VALUE                a command-line option without "--"
  *                                   (flags take on/off)
  *   resize W H                      the window's size
- *   screenshot FILE.png             the window, panels included
+ *   screenshot FILE.png             the window, panels included, as this frame
+ *                                   shows it (the next actions run next frame)
  *   save-image FILE.exr|.png        the render alone (an .exr gets a .png beside it)
  *   report FILE.json                camera, sizes, samples, panels
  *   print-camera                    the camera as dirt-render options, on stdout
