@@ -147,7 +147,7 @@ if command -v oiiotool >/dev/null; then
   for e in dirt mmrt embree raster; do
     "$render" -o "$tmp/aov_$e.exr" "${small[@]}" --engine $e || fail "aov render $e"
   done
-  want="R, G, B, A, Z, N.X, N.Y, N.Z, albedo.R, albedo.G, albedo.B"
+  want="R, G, B, A, Z, ID, N.X, N.Y, N.Z, albedo.R, albedo.G, albedo.B"
   for e in dirt mmrt embree; do
     got=$(oiiotool --info -v "$tmp/aov_$e.exr" | sed -n 's/^ *channel list: //p')
     [ "$got" = "$want" ] && ok || fail "$e channels: $got"

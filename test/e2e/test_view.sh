@@ -70,9 +70,9 @@ if "$check" window "$tmp/shot.png" "$tmp/alone.png" "$tmp/rep.json"; then ok; el
 
 # 2b. The depth buffer shown as a heat map is the image's Z through the ramp.
 printf 'wait-samples 1\nset buffer depth\nwait-frames 1\nscreenshot %s\nsave-image %s\nquit\n' \
-  "$tmp/depth.png" "$tmp/depth.exr" >"$tmp/s.txt"
+  "$tmp/depth-shot.png" "$tmp/depth.exr" >"$tmp/s.txt"
 run_view depth --window 160x120 --no-ui --script "$tmp/s.txt" -q || fail "depth run failed"
-if "$check" heat "$tmp/depth.png" "$tmp/depth.exr"; then ok; else
+if "$check" heat "$tmp/depth-shot.png" "$tmp/depth.exr"; then ok; else
   fail "the depth heat map is not the image's Z through the ramp"; fi
 
 # 3. Real input moves the camera: a left drag, the wheel and a held key.
