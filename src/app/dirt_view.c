@@ -93,6 +93,7 @@ static const vopt_spec specs[] = {
     {NULL, "--engine", 'c', OFF(s.engine), 0, 0, NULL, true},
     {NULL, "--compare", 'c', OFF(compare), 0, 0, compares, true},
     {NULL, "--split", 'f', OFF(split), 0, 1, NULL, true},
+    {NULL, "--diff", 'B', OFF(diff), 0, 0, NULL, true},
     {NULL, "--diff-range", 'f', OFF(diff_range), 1e-6, 1e6, NULL, true},
     {NULL, "--mode", 'c', OFF(s.mode), 0, 0, modes, true},
     {NULL, "--spp", 'i', OFF(spp), 0, 1 << 20, NULL, true},
@@ -168,7 +169,9 @@ static void usage(FILE *f)
 "      --compare ENGINE  split view against a second engine on the same camera:\n"
 "                        dirt, mmrt, embree or raster (default none)\n"
 "      --split X         where the split is, 0..1 of the width (default 0.5)\n"
-"      --diff-range R    difference view (the D key): heat of |luminance| up to R\n"
+"      --diff            with --compare: a heat map of the difference instead of\n"
+"                        the split (X toggles it)\n"
+"      --diff-range R    the difference that shows white (default 0.1)\n"
 "      --scale N         render at the window's size / N, shown enlarged (default 1)\n"
 "      --no-preview      path trace while the camera moves (default: the raster\n"
 "                        preview until it stops)\n"
