@@ -22,6 +22,7 @@ typedef struct options {
     const char *output, *stats_path, *graph_dot, *debug_ads, *log_path, *mse_ref, *chunk;
     double time, fps, exposure, claim_timeout;
     int camera;               /* -1 default, -2 automatic, else scene camera */
+    int gpu_platform;         /* enum dirt_gpu_platform */
     dirt_camera_look look;    /* --eye, --look-at, ... */
     bool eye_set, target_set, look_set; /* --eye, --look-at, any look option */
     int clip, tonemap;
@@ -96,6 +97,9 @@ static void usage(FILE *out)
 "      --stats FILE.json write timings (per pass, with the clock that measured\n"
 "                        them), ray counts and bytes per buffer as JSON\n"
 "      --threads N       embree: CPU threads (default: all)\n"
+"      --gpu PLATFORM    auto (default: a hardware GPU's EGL device, else Mesa's\n"
+"                        surfaceless platform), device or surfaceless; also the\n"
+"                        environment variable DIRT_GPU\n"
 "      --cpu-timing      time passes with glFinish and the CPU clock (always on\n"
 "                        with a software renderer such as llvmpipe)\n"
 "\n"
@@ -285,6 +289,7 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--chunk", NULL, 's', &o->chunk, 0, 0, NULL},
         {NULL, "--claim-timeout", NULL, 'd', &o->claim_timeout, 1, 1e7, NULL},
         {NULL, "--tonemap", NULL, 'c', &o->tonemap, 0, 0, tonemaps},
+        {NULL, "--gpu", NULL, 'c', &o->gpu_platform, 0, 0, dirt_gpu_platform_names},
     };
     const struct { const char *s, *l; bool *dst; } flags[] = {
         {NULL, "--loop", &o->loop}, {NULL, "--png", &o->png_preview},
@@ -506,7 +511,8 @@ int main(int argc, char **argv)
     }
     if (o.s.engine != DIRT_ENGINE_EMBREE || o.debug_ads) {
         rc = DIRT_EXIT_NO_GPU;
-        gpu = dirt_gpu_create(&(dirt_gpu_opts){.cpu_timing = o.cpu_timing});
+        gpu = dirt_gpu_create(&(dirt_gpu_opts){.cpu_timing = o.cpu_timing,
+                                                .platform = (enum dirt_gpu_platform)o.gpu_platform});
         if (!gpu) {
             cli_error(PROG, "no OpenGL 4.5 context could be made (see the error above)");
             goto done;

@@ -95,36 +95,88 @@ error:
     return false;
 }
 
-static bool egl_create(dirt_gpu *gpu)
+const char *const dirt_gpu_platform_names[4] = {"auto", "device", "surfaceless", NULL};
+
+/* The platform the options and DIRT_GPU ask for; false after logging when
+ * DIRT_GPU names none. */
+static bool chosen_platform(const dirt_gpu_opts *o, enum dirt_gpu_platform *out)
 {
-    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!gpu->opts.force_device_platform && has_ext(client, "EGL_MESA_platform_surfaceless")) {
-        EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA,
-                                               EGL_DEFAULT_DISPLAY, NULL);
-        if (dpy != EGL_NO_DISPLAY && egl_make_context(gpu, dpy)) {
-            gpu->caps.platform = "egl-surfaceless";
+    *out = o->force_device_platform ? DIRT_GPU_PLATFORM_DEVICE : o->platform;
+    const char *env = getenv("DIRT_GPU");
+    if (*out != DIRT_GPU_PLATFORM_AUTO || !env || !*env)
+        return true;
+    for (int i = 0; i < 3; i++) {
+        if (!strcmp(env, dirt_gpu_platform_names[i])) {
+            *out = (enum dirt_gpu_platform)i;
             return true;
         }
     }
-    if (has_ext(client, "EGL_EXT_platform_device")) {
-        PFNEGLQUERYDEVICESEXTPROC query_devices =
-            (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
-        EGLDeviceEXT devices[16];
-        EGLint n = 0;
-        if (query_devices && query_devices(16, devices, &n)) {
-            for (EGLint i = 0; i < n; i++) {
-                EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT,
-                                                       devices[i], NULL);
-                if (dpy != EGL_NO_DISPLAY && egl_make_context(gpu, dpy)) {
-                    gpu->caps.platform = "egl-device";
-                    return true;
-                }
-            }
+    DIRT_ERROR("DIRT_GPU=%s: expected auto, device or surfaceless", env);
+    return false;
+}
+
+static bool egl_surfaceless(dirt_gpu *gpu, const char *client)
+{
+    if (!has_ext(client, "EGL_MESA_platform_surfaceless"))
+        return false;
+    EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
+                                           NULL);
+    if (dpy == EGL_NO_DISPLAY || !egl_make_context(gpu, dpy))
+        return false;
+    gpu->caps.platform = "egl-surfaceless";
+    return true;
+}
+
+/* The first EGL device that makes a context: hardware devices only
+ * (`software` false) or Mesa's software device only (true). */
+static bool egl_device(dirt_gpu *gpu, const char *client, bool software)
+{
+    if (!has_ext(client, "EGL_EXT_platform_device"))
+        return false;
+    PFNEGLQUERYDEVICESEXTPROC query_devices =
+        (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    PFNEGLQUERYDEVICESTRINGEXTPROC query_string =
+        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+    EGLDeviceEXT devices[16];
+    EGLint n = 0;
+    if (!query_devices || !query_devices(16, devices, &n))
+        return false;
+    for (EGLint i = 0; i < n; i++) {
+        const char *exts = query_string ? query_string(devices[i], EGL_EXTENSIONS) : NULL;
+        if (has_ext(exts, "EGL_MESA_device_software") != software)
+            continue;
+        EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
+        if (dpy != EGL_NO_DISPLAY && egl_make_context(gpu, dpy)) {
+            gpu->caps.platform = software ? "egl-device (software)" : "egl-device";
+            return true;
         }
     }
-    DIRT_ERROR("no headless OpenGL 4.5 core context: neither the Mesa surfaceless "
-               "platform nor an EGL device could make one (is libegl-mesa0 or an "
-               "NVIDIA driver installed?)");
+    return false;
+}
+
+static bool egl_create(dirt_gpu *gpu)
+{
+    enum dirt_gpu_platform want;
+    if (!chosen_platform(&gpu->opts, &want))
+        return false;
+    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    bool ok;
+    switch (want) {
+    case DIRT_GPU_PLATFORM_SURFACELESS:
+        ok = egl_surfaceless(gpu, client);
+        break;
+    case DIRT_GPU_PLATFORM_DEVICE:
+        ok = egl_device(gpu, client, false) || egl_device(gpu, client, true);
+        break;
+    default:
+        ok = egl_device(gpu, client, false) || egl_surfaceless(gpu, client) ||
+             egl_device(gpu, client, true);
+    }
+    if (ok)
+        return true;
+    DIRT_ERROR("no headless OpenGL 4.5 core context on the %s EGL platform%s (is "
+               "libegl-mesa0 or an NVIDIA driver installed?)", dirt_gpu_platform_names[want],
+               want == DIRT_GPU_PLATFORM_AUTO ? "s (EGL devices, Mesa surfaceless)" : "");
     return false;
 }
 
@@ -318,5 +370,5 @@ void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height)
 
 uint64_t dirt_gpu_error_count(const dirt_gpu *gpu)
 {
-    return gpu->error_count;
+    return __atomic_load_n(&gpu->error_count, __ATOMIC_RELAXED);
 }

@@ -41,7 +41,7 @@ static void APIENTRY on_debug(GLenum source, GLenum type, GLuint id, GLenum seve
     else if (severity == GL_DEBUG_SEVERITY_MEDIUM || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR)
         level = DIRT_LOG_WARN;
     if (level <= DIRT_LOG_WARN)
-        gpu->error_count++;
+        __atomic_fetch_add(&gpu->error_count, 1, __ATOMIC_RELAXED); /* async output: any thread */
     dirt_log(level, NULL, 0, "GL %s %s #%u: %s", source_name(source), type_name(type),
              id, message);
 }
@@ -53,7 +53,12 @@ void gl_debug_install(dirt_gpu *gpu)
     if (!(flags & GL_CONTEXT_FLAG_DEBUG_BIT))
         DIRT_DEBUG("context has no debug flag; debug output may be limited");
     glEnable(GL_DEBUG_OUTPUT);
-    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    /* Synchronous output stalls a GPU's pipeline at every call: only when
+     * asked, or when debug messages are printed anyway. */
+    if (gpu->opts.sync_debug || dirt_log_get_level() >= DIRT_LOG_DEBUG)
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    else
+        glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(on_debug, gpu);
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, NULL, GL_TRUE);
     /* Notifications (buffer placement hints etc.) are noise. */

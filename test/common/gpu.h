@@ -10,7 +10,7 @@
  * the test ends with exit 1 here. */
 static inline dirt_gpu *test_gpu(void)
 {
-    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
+    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.sync_debug = true});
     if (!gpu && test_in_ci()) {
         fprintf(stderr, "CI=true: no OpenGL 4.5 context: failing instead of skipping\n");
         exit(1);

@@ -2,6 +2,7 @@
  * with the driver, GL errors reach the engine log through debug output,
  * labels stick, timers measure, programs compile from glsl/ with defines and
  * report compile errors. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -19,6 +20,39 @@ static void on_log(void *user, enum dirt_log_level level, const char *file, int 
     if (level <= DIRT_LOG_WARN && strstr(msg, "GL "))
         logged_gl_errors++;
     fprintf(stderr, "[log %d] %s\n", level, msg);
+}
+
+/* The EGL platform choice: surfaceless and device give what they name, the
+ * DIRT_GPU environment chooses when the options say auto, auto prefers a
+ * hardware device over Mesa (on a machine with only llvmpipe: surfaceless). */
+static void check_platforms(const dirt_gpu_caps *first)
+{
+    static const struct { enum dirt_gpu_platform p; const char *env, *want; } cases[] = {
+        {DIRT_GPU_PLATFORM_SURFACELESS, NULL, "egl-surfaceless"},
+        {DIRT_GPU_PLATFORM_DEVICE, NULL, "egl-device"},
+        {DIRT_GPU_PLATFORM_AUTO, "device", "egl-device"},
+        {DIRT_GPU_PLATFORM_AUTO, "surfaceless", "egl-surfaceless"},
+    };
+    for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+        if (cases[i].env)
+            setenv("DIRT_GPU", cases[i].env, 1);
+        dirt_gpu *g = dirt_gpu_create(&(dirt_gpu_opts){.platform = cases[i].p, .sync_debug = true});
+        unsetenv("DIRT_GPU");
+        CHECK_MSG(g != NULL, "no context on the %s platform", cases[i].want);
+        if (!g)
+            continue;
+        const dirt_gpu_caps *c = dirt_gpu_get_caps(g);
+        CHECK_MSG(!strncmp(c->platform, cases[i].want, strlen(cases[i].want)),
+                  "asked for %s, got %s", cases[i].want, c->platform);
+        dirt_gpu_destroy(g);
+    }
+    /* auto: a hardware device when there is one, else not the software device. */
+    bool hw = !first->software;
+    CHECK_MSG(hw ? !strcmp(first->platform, "egl-device") : !strcmp(first->platform, "egl-surfaceless"),
+              "auto gave %s on %s", first->platform, first->renderer);
+    setenv("DIRT_GPU", "nonsense", 1);
+    CHECK(dirt_gpu_create(&(dirt_gpu_opts){0}) == NULL);
+    unsetenv("DIRT_GPU");
 }
 
 int main(void)
@@ -100,6 +134,7 @@ int main(void)
 
     gl_buffer_destroy(&buf);
     CHECK(gl_check("end of test"));
+    check_platforms(dirt_gpu_get_caps(gpu));
     dirt_gpu_destroy(gpu);
     dirt_gpu_destroy(NULL);
     return check_finish();

@@ -20,6 +20,22 @@ extern "C" {
 
 typedef struct dirt_gpu dirt_gpu;
 
+/* The headless EGL platform. AUTO prefers a hardware GPU: the EGL devices
+ * that are not Mesa's software device first, then Mesa's surfaceless
+ * platform (llvmpipe, or the GPU Mesa drives), then any EGL device.
+ * DEVICE: EGL devices only (hardware first); SURFACELESS: Mesa's only.
+ * The environment variable DIRT_GPU (auto, device, surfaceless) chooses
+ * when the options leave it AUTO. The platform in use is in caps.platform
+ * and dirt_gpu_describe. */
+enum dirt_gpu_platform {
+    DIRT_GPU_PLATFORM_AUTO = 0,
+    DIRT_GPU_PLATFORM_DEVICE,
+    DIRT_GPU_PLATFORM_SURFACELESS,
+};
+
+/* "auto", "device", "surfaceless"; NULL-terminated (for option parsers). */
+extern const char *const dirt_gpu_platform_names[4];
+
 /* Options for dirt_gpu_create. Zero-initialised = headless, debug output on
  * at warning level and above. */
 typedef struct dirt_gpu_opts {
@@ -28,7 +44,13 @@ typedef struct dirt_gpu_opts {
     const char *title;       /* window title (default "DIRT") */
     bool vsync;              /* window: swap interval 1 */
     bool no_debug;           /* no debug context / debug output */
-    bool force_device_platform; /* headless: skip Mesa surfaceless, use EGL devices */
+    bool force_device_platform; /* headless: skip Mesa surfaceless, use EGL devices
+                                   (as platform = DIRT_GPU_PLATFORM_DEVICE) */
+    enum dirt_gpu_platform platform; /* headless: which EGL platform (default: the
+                                   environment's DIRT_GPU, else auto) */
+    bool sync_debug;         /* synchronous GL debug output (messages at the call that
+                                caused them; slower). Default: only at log level
+                                debug (-v, DIRT_LOG=debug); the tests turn it on */
     bool disable_conservative;  /* report GL_NV_conservative_raster as absent */
     bool cpu_timing;         /* time every pass with glFinish + the CPU clock, even
                                 where GL timer queries work (dirt_gpu_clock) */
