@@ -663,7 +663,7 @@ uint32_t corner_vertex(Loader &L, PrimBuild &p, const Corner &c, const char *wha
 
 /* Moves a finished primitive into the scene mesh (counted first, so that a
  * failure frees it). */
-void finish_prim(dirt_scene *s, scene_mesh *mesh, PrimBuild &b)
+void finish_prim(scene_mesh *mesh, PrimBuild &b)
 {
     scene_prim *pr = &mesh->prims[mesh->num_prims++];
     pr->material = b.material;
@@ -676,8 +676,6 @@ void finish_prim(dirt_scene *s, scene_mesh *mesh, PrimBuild &b)
     pr->num_triangles = b.idx.size() / 3;
     pr->indices = dup_array(b.idx);
     mesh->num_triangles += pr->num_triangles;
-    if (pr->num_vertices > s->max_prim_vertices)
-        s->max_prim_vertices = pr->num_vertices;
     b = PrimBuild();
 }
 
@@ -814,7 +812,7 @@ bool convert(Loader &L, const std::vector<tinyobj::shape_t> &shapes,
                 poly.push_back(&a.vertices[3 * (size_t)q.vertex_index]);
             }
             if (open && cur.material != mat) {
-                finish_prim(s, mesh, cur);
+                finish_prim(mesh, cur);
                 open = false;
             }
             if (!open) {
@@ -836,7 +834,7 @@ bool convert(Loader &L, const std::vector<tinyobj::shape_t> &shapes,
         }
     }
     if (open)
-        finish_prim(s, mesh, cur);
+        finish_prim(mesh, cur);
 
     s->nodes = alloc_zeroed<scene_node>(1);
     s->num_nodes = 1;
