@@ -22,6 +22,79 @@
 
 namespace {
 
+/* The glTF extensions this loader honours: the one list behind both checks
+ * of a parsed file (extension_check): one in extensionsRequired that is not
+ * here fails the load (DIRT_SCENE_ERR_UNSUPPORTED, naming it), one in
+ * extensionsUsed that is not here is ignored with a warning. An extension
+ * joins the list when the loader reads it (and doc/scenes.md names it). */
+const char *const supported_extensions[] = {
+    "KHR_lights_punctual",             /* lights of nodes (convert_cameras_lights) */
+    "KHR_materials_emissive_strength", /* emissiveStrength (convert_materials) */
+    "KHR_mesh_quantization",           /* integer attributes (read_floats takes every
+                                          component type, normalized or not) */
+    nullptr,
+};
+
+bool extension_supported(const std::string &name)
+{
+    for (const char *const *e = supported_extensions; *e; e++) {
+        if (name == *e)
+            return true;
+    }
+    return false;
+}
+
+/* The distinct names of `names` the loader does not support, in order,
+ * leaving out those of `skip`. */
+std::vector<std::string> unsupported(const std::vector<std::string> &names,
+                                     const std::vector<std::string> *skip)
+{
+    std::vector<std::string> out;
+    for (const std::string &n : names) {
+        bool dup = extension_supported(n);
+        for (const std::string &o : out)
+            dup |= o == n;
+        for (size_t k = 0; skip && k < skip->size(); k++)
+            dup |= (*skip)[k] == n;
+        if (!dup)
+            out.push_back(n);
+    }
+    return out;
+}
+
+std::string join(const std::vector<std::string> &names)
+{
+    std::string list;
+    for (const std::string &n : names)
+        list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+/* Fails (UNSUPPORTED, logged, naming them) when extensionsRequired names
+ * extensions the loader does not support; otherwise, with `warn_used`,
+ * warns once about each extension of extensionsUsed that it ignores. */
+bool extension_check(const tinygltf::Model &m, const char *path, bool warn_used)
+{
+    std::vector<std::string> req = unsupported(m.extensionsRequired, nullptr);
+    if (!req.empty()) {
+        std::vector<std::string> ok(supported_extensions,
+                                    supported_extensions +
+                                        sizeof(supported_extensions) / sizeof(char *) - 1);
+        SCENE_FAIL(UNSUPPORTED,
+                   "'%s' requires the glTF extension%s %s, which this loader does not "
+                   "support (it supports %s)",
+                   path, req.size() > 1 ? "s" : "", join(req).c_str(), join(ok).c_str());
+        return false;
+    }
+    if (warn_used) {
+        for (const std::string &e : unsupported(m.extensionsUsed, &m.extensionsRequired))
+            DIRT_WARN("'%s' uses the glTF extension %s, which this loader ignores: the "
+                      "scene may look different from what its author intended",
+                      path, e.c_str());
+    }
+    return true;
+}
+
 /* Unpacked accessor: where its elements are and how to read them. */
 struct AccessorView {
     const unsigned char *data = nullptr; /* first element; nullptr = all zeros */
@@ -1405,6 +1478,15 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
                                       (unsigned int)size, dir);
     }
     log_lines(false, path, warn);
+    /* tinygltf reads extensionsRequired before anything that may fail, so
+     * an unsupported extension is the reason given even when what it
+     * changes (an image format, compressed buffers) broke the parse. */
+    if (!extension_check(*model, path, ok)) {
+        if (!ok)
+            log_lines(true, path, err);
+        DIRT_ERROR("cannot load '%s'", path);
+        return false;
+    }
     if (!ok) {
         if (err.empty())
             err = "tinygltf could not parse the file";
@@ -1530,6 +1612,11 @@ dirt_scene *load_memory(const void *data, size_t size, const char *label,
 }
 
 } // namespace
+
+extern "C" const char *const *dirt_scene_gltf_extensions(void)
+{
+    return supported_extensions;
+}
 
 extern "C" dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *opts)
 {

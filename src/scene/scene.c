@@ -521,6 +521,17 @@ static dirt_scene *load_done(dirt_scene *s)
     return s;
 }
 
+/* True when `name` ends in ".obj", in any case: the OBJ loader's files. */
+static bool is_obj_name(const char *name)
+{
+    size_t n = strlen(name);
+    if (n < 4 || name[n - 4] != '.')
+        return false;
+    const char *e = name + n - 3;
+    return (e[0] == 'o' || e[0] == 'O') && (e[1] == 'b' || e[1] == 'B') &&
+           (e[2] == 'j' || e[2] == 'J');
+}
+
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
 {
     scene_error_reset();
@@ -530,7 +541,25 @@ dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
         return NULL;
     }
     dirt_load_opts o = resolve_load_opts(opts);
+    if (is_obj_name(path))
+        return load_done(scene_load_obj(path, &o));
     return load_done(scene_load_gltf(path, &o));
+}
+
+dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const void *mtl,
+                                       size_t mtl_size, const char *name,
+                                       const dirt_load_opts *opts)
+{
+    scene_error_reset();
+    if (!name || !*name)
+        name = "memory.obj";
+    if ((!obj && obj_size > 0) || (!mtl && mtl_size > 0)) {
+        DIRT_ERROR("dirt_scene_load_obj_memory: '%s': no data given", name);
+        scene_set_error(DIRT_SCENE_ERR_ARGUMENT);
+        return NULL;
+    }
+    dirt_load_opts o = resolve_load_opts(opts);
+    return load_done(scene_load_obj_memory(obj ? obj : "", obj_size, mtl, mtl_size, name, &o));
 }
 
 dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
@@ -545,6 +574,8 @@ dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *na
         return NULL;
     }
     dirt_load_opts o = resolve_load_opts(opts);
+    if (is_obj_name(name))
+        return load_done(scene_load_obj_memory(data ? data : "", size, NULL, 0, name, &o));
     return load_done(scene_load_gltf_memory(data ? data : "", size, name, &o));
 }
 

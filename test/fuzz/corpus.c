@@ -2,8 +2,10 @@
  * fuzz_scene.h): the reference quad as .gltf and .glb, animation (LINEAR,
  * STEP, CUBICSPLINE, two clips), morph targets with animated weights, a
  * skin, a sparse accessor without bufferView, strips and fans, a camera and
- * a light, the embedded default scene; and invalid ones (truncated .glb,
- * deep nesting, a huge count, an index out of range, a node cycle). */
+ * a light, the embedded default scene, quantized positions, OBJ + MTL; and
+ * invalid ones (truncated .glb, deep nesting, a huge count, an index out of
+ * range, a node cycle, a required extension the loader lacks, OBJ indices
+ * past the vertices or zero, an infinite OBJ position). */
 #include "fuzz_scene.h"
 
 #include "../unit/test_scene_util.h"
@@ -211,6 +213,61 @@ int dirt_fuzz_write_corpus(const char *dir)
     }
     if (ok)
         ok = put(dir, "default.gltf", scene_default_gltf, scene_default_gltf_size, &count);
+    /* Extensions: one required that the loader lacks (fails), a quantized
+     * (SHORT) position accessor under KHR_mesh_quantization (loads). */
+    if (ok) {
+        char *body = strf("\"extensionsUsed\":[\"KHR_draco_mesh_compression\","
+                          "\"KHR_texture_transform\"],"
+                          "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],%s", quad);
+        char *j = gltf(body, bj);
+        ok = put(dir, "draco_required.gltf", j, strlen(j), &count);
+        free(j);
+        free(body);
+    }
+    if (ok) {
+        char *j = strf("{\"asset\":{\"version\":\"2.0\"},"
+                       "\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
+                       "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+                       "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+                       "\"buffers\":[%s],\"bufferViews\":[{\"buffer\":0,\"byteLength\":24,"
+                       "\"byteStride\":8}],\"accessors\":[{\"bufferView\":0,"
+                       "\"componentType\":5122,\"count\":3,\"type\":\"VEC3\"}]}",
+                       bj);
+        ok = put(dir, "quantized.gltf", j, strlen(j), &count);
+        free(j);
+    }
+    /* OBJ (dirt_fuzz_load: a '#' first; the MTL text after a NUL byte):
+     * materials of every mapped kind, a quad, a concave pentagon, relative
+     * indices, normals, UVs, a line, a tag; one without MTL; and three that
+     * must fail (an index past the vertices, a zero index, an infinite
+     * position). */
+    static const char obj[] =
+        "# fuzz seed\nmtllib a.mtl\n"
+        "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\n"
+        "g walls\nusemtl red\nf 1/1/1 2/2/1 3/3/1 4/1/1 5/2/1\ns 1\n"
+        "o light\nusemtl lamp\nf -5//1 -4//1 -3//1 -1//1\nusemtl nosuch\nf 1 2 3\n"
+        "l 1 2\nt crease 2/1/0 1 2 0.5\np 1\n";
+    static const char mtl[] =
+        "newmtl red\n Kd 0.6 0.1 0.1\n Ks 0.5 0.5 0.5\n Ns 80\n illum 2\n d 0.9\n"
+        " map_Kd -s 2 2 1 tex\\red.png\n map_bump bump.png\n Xq 1\n"
+        "newmtl lamp\r\n Kd 0.8 0.8 0.8\r\n Ke 17 12 4\r\n map_Ke glow.png\r\n"
+        "newmtl metal\n Kd 0 0 0\n Ks 0.9 0.9 0.9\n Ns 1000\n illum 3\n"
+        "newmtl pbr\n Kd 1 1 1\n Pr 0.3\n Pm 1\n illum 7\n Tr 0.5\n";
+    if (ok) {
+        size_t n = sizeof(obj) - 1, m = sizeof(mtl) - 1;
+        char both[sizeof(obj) + sizeof(mtl)];
+        memcpy(both, obj, n);
+        both[n] = '\0';
+        memcpy(both + n + 1, mtl, m);
+        ok = put(dir, "scene.obj", both, n + 1 + m, &count) &&
+             put(dir, "no_mtl.obj", obj, n, &count);
+    }
+    static const char *const bad_obj[][2] = {
+        {"obj_index.obj", "# past\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"},
+        {"obj_zero.obj", "# zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"},
+        {"obj_inf.obj", "# inf\nv 1e999 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"}};
+    for (size_t i = 0; ok && i < sizeof(bad_obj) / sizeof(bad_obj[0]); i++)
+        ok = put(dir, bad_obj[i][0], bad_obj[i][1], strlen(bad_obj[i][1]), &count);
     free(glb_buffer);
     free(bj);
     free(uri);

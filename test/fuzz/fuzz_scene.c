@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 /* The frame agrees with the scene's counts; every corner is read (a short
  * array is then the sanitizer's to see). */
@@ -22,10 +23,21 @@ static bool check_frame(const dirt_scene *s, const dirt_frame *f)
     return true;
 }
 
-bool dirt_fuzz_scene_one(const uint8_t *data, size_t size)
+dirt_scene *dirt_fuzz_load(const uint8_t *data, size_t size)
 {
     const dirt_load_opts lo = {.max_bytes = (size_t)64 << 20};
-    dirt_scene *s = dirt_scene_load_memory(data, size, "fuzz.gltf", &lo);
+    if (size > 0 && data[0] == '#') {
+        const uint8_t *nul = memchr(data, 0, size);
+        size_t obj = nul ? (size_t)(nul - data) : size;
+        return dirt_scene_load_obj_memory(data, obj, nul ? nul + 1 : NULL,
+                                          nul ? size - obj - 1 : 0, "fuzz.obj", &lo);
+    }
+    return dirt_scene_load_memory(data, size, "fuzz.gltf", &lo);
+}
+
+bool dirt_fuzz_scene_one(const uint8_t *data, size_t size)
+{
+    dirt_scene *s = dirt_fuzz_load(data, size);
     if (!s) {
         if (dirt_scene_last_error() == DIRT_SCENE_ERR_OK) {
             fprintf(stderr, "fuzz: a failed load left no error id\n");

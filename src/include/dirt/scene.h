@@ -1,11 +1,13 @@
 /* DIRT engine: scene model.
  *
- * A scene is loaded once (glTF 2.0 .gltf/.glb, or the embedded default scene)
- * and evaluated at a time t into a world-space triangle soup, `dirt_frame`,
+ * A scene is loaded once (glTF 2.0 .gltf/.glb, Wavefront OBJ + MTL, or the
+ * embedded default scene) and evaluated at a time t into a world-space triangle soup, `dirt_frame`,
  * which is what every technique (raster preview, DIRT, MMRT, Embree) consumes.
  *
  * Primitive ids: triangle p of the frame is the p-th triangle in the order
- * (mesh instance in depth-first node order, glTF primitive, index triple).
+ * (mesh instance in depth-first node order, glTF primitive, index triple);
+ * for an OBJ file, the file's faces in order, each polygon of n corners
+ * making n - 2 consecutive triangles.
  * The node hierarchy and meshes never change with t, so ids are stable over
  * time: the same id names the same triangle in every frame. */
 #ifndef DIRT_SCENE_H
@@ -85,7 +87,7 @@ typedef struct dirt_light_def {
     X(EMPTY, "the file is empty")                                                     \
     X(TRUNCATED, "the data ends early (a .glb chunk, a buffer or a buffer view)")     \
     X(TOO_DEEP, "JSON nested deeper than the limit")                                  \
-    X(SYNTAX, "not a glTF 2.0 file (JSON syntax or required members)")                \
+    X(SYNTAX, "not a glTF 2.0 or OBJ file (syntax or required members)")              \
     X(EXTERNAL, "an external file cannot be used (missing, or loading from memory)")  \
     X(RANGE, "an accessor's elements lie outside its buffer view")                    \
     X(TYPE, "an accessor of the wrong type or component type")                        \
@@ -95,6 +97,7 @@ typedef struct dirt_light_def {
     X(HIERARCHY, "a node cycle or a node with two parents")                           \
     X(TOO_LARGE, "the scene needs more memory than the load budget")                  \
     X(OUT_OF_MEMORY, "out of memory")                                                 \
+    X(UNSUPPORTED, "the file requires a glTF extension the loader does not support")  \
     X(INVALID, "other invalid content")
 
 enum dirt_scene_error {
@@ -109,7 +112,8 @@ const char *dirt_scene_error_str(enum dirt_scene_error e);
 /* "OK", "TOO_DEEP", ...: the id's name (for messages and tests). */
 const char *dirt_scene_error_name(enum dirt_scene_error e);
 
-/* The outcome of this thread's last dirt_scene_load / dirt_scene_load_memory:
+/* The outcome of this thread's last dirt_scene_load / dirt_scene_load_memory /
+ * dirt_scene_load_obj_memory:
  * DIRT_SCENE_ERR_OK after a success, else the first reason the load met
  * (the log says more). */
 enum dirt_scene_error dirt_scene_last_error(void);
@@ -127,21 +131,36 @@ typedef struct dirt_load_opts {
      * (every accessor read as floats or indices, the triangles made of them).
      * A file that needs more fails with DIRT_SCENE_ERR_TOO_LARGE before the
      * memory is allocated. 0 = DIRT_LOAD_DEFAULT_MAX_BYTES. (The file's own
-     * bytes and its decoded buffers are bounded by the file's size.) */
+     * bytes and its decoded buffers are bounded by the file's size; so are
+     * the OBJ parser's arrays, up to about 30 times the size of the file.)
+     * Decoded textures of OBJ materials are charged too. */
     size_t max_bytes;
     /* Deepest nesting of JSON objects/arrays accepted (checked on the bytes
      * before any parser sees them): deeper fails with
-     * DIRT_SCENE_ERR_TOO_DEEP. 0 = DIRT_LOAD_DEFAULT_MAX_DEPTH. */
+     * DIRT_SCENE_ERR_TOO_DEEP. 0 = DIRT_LOAD_DEFAULT_MAX_DEPTH. (glTF only.) */
     int max_depth;
 } dirt_load_opts;
 
-/* Loads a .gltf or .glb file. Returns NULL on failure (unreadable or
- * malformed file: truncated data, out-of-range indices, non-finite
- * positions, nesting or size past the opts' limits...) after logging the
- * reason; dirt_scene_last_error() tells the reason's id. Missing or undecodable textures
- * only warn: the material falls back to its factor (a white default texture).
+/* Loads a scene file; the loader is picked by the name's extension: ".obj"
+ * (any case) is a Wavefront OBJ with its MTL libraries (mtllib, resolved
+ * beside the .obj), anything else a .gltf or .glb. Returns NULL on failure
+ * (unreadable or malformed file: truncated data, out-of-range indices,
+ * non-finite positions, nesting or size past the opts' limits, a glTF
+ * extension in extensionsRequired that dirt_scene_gltf_extensions() does not
+ * list (DIRT_SCENE_ERR_UNSUPPORTED, the log names it)...) after logging the
+ * reason; dirt_scene_last_error() tells the reason's id. Missing or
+ * undecodable textures, a missing MTL library, an extension of
+ * extensionsUsed that is ignored, or MTL statements without an equivalent
+ * only warn (once per load and kind): the material falls back to its factor
+ * (a white default texture) or to the default material. An OBJ scene is one
+ * node with one static mesh (no cameras, lights or animation); its MTL
+ * materials map onto the metallic-roughness model as doc/scenes.md says.
  * `opts` may be NULL. */
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
+
+/* The glTF extensions the loader honours, NULL-terminated, in one list that
+ * decides both checks above ("KHR_lights_punctual", ...). */
+const char *const *dirt_scene_gltf_extensions(void);
 
 /* Loads a glTF held in memory: `size` bytes of .glb (they start with "glTF")
  * or of .gltf JSON (not necessarily NUL-terminated), whose buffers and images
@@ -152,6 +171,18 @@ dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
  * behaviour as dirt_scene_load; `opts` may be NULL. */
 dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
                                    const dirt_load_opts *opts);
+/* (When `name` ends in ".obj" the bytes are OBJ text, loaded as by
+ * dirt_scene_load_obj_memory without MTL text.) */
+
+/* Loads an OBJ held in memory: `obj_size` bytes of OBJ text and, optional
+ * (NULL / 0), `mtl_size` bytes of MTL text that stands for the first
+ * mtllib statement (without it, mtllib only warns and faces get the default
+ * material). Texture maps cannot be read from memory: they warn and the
+ * materials keep their factors. `name` as for dirt_scene_load_memory. Same
+ * failure behaviour as dirt_scene_load; `opts` may be NULL. */
+dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const void *mtl,
+                                       size_t mtl_size, const char *name,
+                                       const dirt_load_opts *opts);
 
 /* The project's own default scene, data/default_scene.gltf embedded into the
  * library at build time (nothing is read from disk), named "default": a
