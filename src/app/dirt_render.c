@@ -39,7 +39,7 @@ static void usage(FILE *out)
 "Usage: " PROG " [SCENE] -o OUTPUT [options]\n"
 "       " PROG " --info [SCENE]\n"
 "\n"
-"Renders a glTF 2.0 scene (.gltf or .glb) headless through OpenGL 4.5 (EGL).\n"
+"Renders a glTF 2.0 (.gltf, .glb) or OBJ + MTL (.obj) scene headless through OpenGL 4.5 (EGL).\n"
 "Without SCENE, renders the embedded default scene (a Cornell-style room).\n"
 "\n"
 "Output:\n"

@@ -150,8 +150,8 @@ static void usage(FILE *f)
     fputs(
 "Usage: dirt-view [SCENE] [options]\n"
 "\n"
-"Interactive viewer: progressive path tracing of a glTF 2.0 scene (.gltf or\n"
-"  .glb; without SCENE, the embedded default scene) through the DIRT structure,\n"
+"Interactive viewer: progressive path tracing of a glTF 2.0 (.gltf, .glb) or\n"
+"  OBJ (.obj) scene (without SCENE, the embedded default scene) through DIRT,\n"
 "  the MMRT A-buffer, Embree or the raster preview, with panels for every\n"
 "  setting, the structure's heat maps, per-pass timings and memory. F1 in the\n"
 "  window lists the key bindings (also doc/viewer.md, --bindings).\n"
