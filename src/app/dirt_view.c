@@ -1098,8 +1098,10 @@ static void panel_settings(viewer *v)
     if (dirt_ui_begin("Settings", NULL, 8, 8, 330, (float)(v->win_h - 16 > 200 ? v->win_h - 16 : 200))) {
         int samples = dirt_session_samples(v->s);
         dirt_ui_text("%s", v->scene_name);
-        dirt_ui_text("%zu triangles, %d x %d, %d / %d samples", dirt_scene_num_triangles(v->scene),
-                     v->rw, v->rh, samples, o->spp);
+        dirt_ui_text("%zu triangles, %d x %d", dirt_scene_num_triangles(v->scene), v->rw, v->rh);
+        dirt_ui_text("%d / %d samples in %.1f s%s", samples, o->spp,
+                     dirt_session_get_stats(v->s)->total_ms / 1000.0,
+                     o->spp && samples >= o->spp ? " (done)" : "");
         if (v->status[0])
             dirt_ui_text_disabled("%s", v->status);
         if (dirt_ui_header("Render", true)) {

@@ -9,6 +9,8 @@
 #    camera, and dirt-render from the camera the viewer reports gives the
 #    viewer's image; the script's orbit does the same;
 #  - a resize changes the render size and the render follows;
+#  - animation: the timeline and playing move the time, and the image at
+#    the reported time equals dirt-render -t (BoxAnimated from ../shared);
 #  - a bad scene, option, script or output path exits 2 before a window.
 #   test_view.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK DOC/VIEWER.MD
 set -u
@@ -130,6 +132,28 @@ size=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['render']
 spp=$(json_field "$tmp/rs.json" samples)
 "$render" -W 300 -H 200 --spp "$spp" -q -o "$tmp/rs-r.exr"
 if "$check" same "$tmp/rs.exr" "$tmp/rs-r.exr"; then ok; else fail "the resized render differs"; fi
+
+# 4b. Animation: the timeline (set time), a clip played with a speed; the
+#     image at the time the viewer reports equals dirt-render -t at that time.
+anim=${DIRT_SHARED_DIR:-../shared}/scenes/gltf/BoxAnimated/BoxAnimated.gltf
+if [ ! -r "$anim" ]; then
+  if [ "${CI:-}" = true ]; then fail "$anim missing (CI=true)"; else echo "no $anim: animation part skipped"; fi
+else
+  printf 'set time 0.75\nwait-samples 1\nsave-image %s\nreport %s\nset speed 2\nset play on\nwait-frames 3\nset play off\nwait-frames 1\nwait-samples 1\nsave-image %s\nreport %s\nquit\n' \
+    "$tmp/t1.exr" "$tmp/t1.json" "$tmp/t2.exr" "$tmp/t2.json" >"$tmp/s.txt"
+  run_view anim "$anim" --window 96x72 --no-ui --auto-camera --script "$tmp/s.txt" -q ||
+    fail "animation run failed"
+  t1=$(json_field "$tmp/t1.json" time) t2=$(json_field "$tmp/t2.json" time)
+  [ "$t1" = 0.75 ] && ok || fail "set time 0.75 gave time $t1"
+  python3 -c "import sys; sys.exit(0 if float(sys.argv[2]) > float(sys.argv[1]) else 1)" "$t1" "$t2" &&
+    ok || fail "playing did not advance the time ($t1 -> $t2)"
+  for k in 1 2; do
+    t=$(json_field "$tmp/t$k.json" time) spp=$(json_field "$tmp/t$k.json" samples)
+    "$render" "$anim" -W 96 -H 72 --auto-camera -t "$t" --spp "$spp" -q -o "$tmp/t$k-r.exr"
+    if "$check" same "$tmp/t$k.exr" "$tmp/t$k-r.exr"; then ok; else
+      fail "the viewer's frame at t=$t is not dirt-render -t $t"; fi
+  done
+fi
 
 # 5. Bad input exits 2 with a one-line reason, before any window.
 expect2() {
