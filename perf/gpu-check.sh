@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The prepared GPU check: what a lent NVIDIA machine runs in one call of
+# under 5 minutes (doc/gpu-check.md), writing OUT/gpu-check.md (and the
+# dirt-compare tables under OUT/). Built here, carried there:
+#   perf/gpu-pack.sh           collects the runtime libraries into .gpu/
+#   carry: build .gpu .gl      (.gl: the GL loader packages, see doc/gpu-check.md)
+#   perf/gpu-check.sh $OUT     there (also runs here, on llvmpipe, as a dry run)
+# Parts (each under its own time limit, so one hang cannot eat the call):
+#   1. the device: nvidia-smi, the renderer and EGL platform the engine gets;
+#   2. the GPU tests, run directly (no meson there), conservative raster
+#      (extension vs emulation: the same lists) included;
+#   3. the build and trace at 1024x512: DIRT build per pass (bench-ads, the
+#      raster build; S = 1, 2), DIRT vs MMRT (dirt-compare, no quality), and
+#      Mrays/s per ray type, DIRT on the GPU vs Embree on the CPU's cores
+#      (bench-trace).
+set -u
+out=${1:?usage: perf/gpu-check.sh OUTDIR [SCENE...]}
+shift
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${BUILD:-$root/build}
+mkdir -p "$out"
+report=$out/gpu-check.md
+[ -d "$root/.gpu/lib" ] && export LD_LIBRARY_PATH=$root/.gpu/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+export DIRT_GLSL_DIR=$root/glsl
+export DIRT_SHARED_DIR=${DIRT_SHARED_DIR:-$root/../shared}
+scenes=("$@")
+[ ${#scenes[@]} -gt 0 ] || scenes=(default)
+res=${RES:-1024x512}
+W=${res%x*} H=${res#*x}
+start=$(date +%s)
+say() { printf '%s\n' "$*" | tee -a "$report"; }
+# part NAME LIMIT CMD...: runs CMD with a time limit, its output in the report.
+part() {
+  local name=$1 limit=$2; shift 2
+  say ""; say "### $name"; say ""; say '```'
+  say "\$ $*"
+  timeout "$limit" "$@" >"$out/part.log" 2>&1
+  local rc=$?
+  tail -n 60 "$out/part.log" | tee -a "$report"
+  say '```'
+  say "exit $rc$( [ $rc = 124 ] && echo ' (time limit)')"
+  return $rc
+}
+: >"$report"
+say "# GPU check ($(date -u +%Y-%m-%dT%H:%M:%SZ), commit $(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown))"
+part "device" 30 sh -c "nvidia-smi -L 2>/dev/null || echo 'no nvidia-smi'; \
+  '$build/src/app/dirt-render' -o '$out/probe.png' -W 64 --spp 1 2>&1 | head -n 3"
+
+say ""; say "### GPU tests"; say ""
+say "| test | result | seconds |"; say "|---|---|---|"
+for t in gl_context timing layout_gpu conservative_raster ads_complete ads_edge dirt_hits \
+         dirt_visibility dirt_fetch dirt_pt mmrt_hits mmrt_store mmrt_trace mmrt_pt session memory; do
+  exe=$build/test/gpu/test_$t
+  [ -x "$exe" ] || { say "| $t | missing | |"; continue; }
+  t0=$(date +%s.%N)
+  timeout 90 "$exe" >"$out/test_$t.log" 2>&1
+  rc=$?
+  t1=$(date +%s.%N)
+  case $rc in 0) r=pass ;; 77) r=skip ;; 124) r="time limit" ;; *) r="FAIL ($rc)" ;; esac
+  say "| $t | $r | $(printf '%.1f' "$(echo "$t1 - $t0" | bc)") |"
+  [ "$rc" = 0 ] || [ "$rc" = 77 ] || tail -n 15 "$out/test_$t.log" >>"$report"
+done
+[ -x "$build/perf/bench-ads" ] &&
+  part "DIRT build per pass, $res (bench-ads)" 90 "$build/perf/bench-ads" "${scenes[@]}" \
+    -W "$W" -H "$H" -S 1,2 -B 16 --repeat 3
+part "DIRT vs MMRT, $res (dirt-compare, no quality)" 150 "$build/src/app/dirt-compare" \
+  "${scenes[@]}" -o "$out/compare" --res "$res" --tile 1,2 --repeat 3 --no-quality -q
+[ -f "$out/compare/table.md" ] && { say ""; cat "$out/compare/table.md" >>"$report"; }
+[ -x "$build/perf/bench-trace" ] &&
+  part "Mrays/s per ray type, $res: DIRT (GPU) vs Embree ($(nproc) CPU threads)" 90 \
+    "$build/perf/bench-trace" "${scenes[@]}" -W "$W" -H "$H"
+say ""; say "total: $(( $(date +%s) - start )) s"
+rm -f "$out/part.log"
