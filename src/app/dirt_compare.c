@@ -395,6 +395,8 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
              dirt_session_add_samples(s, c->spp, NULL, NULL);
         if (!ok)
             break;
+        /* this repeat's pass times, complete (GPU clock: they come late) */
+        dirt_session_drain_times(s);
         st = *dirt_session_get_stats(s);
         for (int p = 0; p < st.num_passes && p < 32; p++) {
             pass_ms[p][r] = st.passes[p].ms;

@@ -328,7 +328,7 @@ void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size)
 enum dirt_clock dirt_gpu_clock(const dirt_gpu *gpu)
 {
     const dirt_gpu_caps *c = &gpu->caps;
-    if (gpu->opts.cpu_timing || c->software || !c->timer_query)
+    if (gpu->opts.cpu_timing || !c->timer_query || (c->software && !gpu->opts.gpu_timing))
         return DIRT_CLOCK_CPU;
     return DIRT_CLOCK_GPU;
 }

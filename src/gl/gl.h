@@ -34,6 +34,7 @@ struct dirt_gpu {
     void *ui;                      /* the dirt_ui attached (ui.cpp), NULL when none */
     uint64_t error_count;
     bool in_finish_timer;
+    dirt_gpu_query_counts queries; /* timer.c: the time queries' counts */
 };
 
 /* ---- the window's input (window.c) ---- */
@@ -115,21 +116,63 @@ bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba);
  * DIRT_CLOCK_GPU: a GL_TIME_ELAPSED query around the region (no glFinish);
  * DIRT_CLOCK_CPU: glFinish before and after, CPU wall clock in between.
  * Time queries do not nest: do not time a region inside another timed one
- * (a frame graph pass). Results are read after gl_timer_end. */
+ * (a frame graph pass).
+ *
+ * GPU clock: every timer owns a ring of GL_TIMER_RING queries, so a region
+ * can be ended without waiting for its result:
+ *  - gl_timer_end (blocking) ends the query and reads its result at once
+ *    (a wait: the CPU stops until the GPU has run the region);
+ *  - gl_timer_end_async ends the query and harvests, without waiting and in
+ *    order, every earlier query of the ring whose GL_QUERY_RESULT_AVAILABLE
+ *    is true; t->ms is their sum (0 when none had arrived): results come one
+ *    or more regions late, the region just ended is counted by a later end
+ *    or by gl_timer_drain;
+ *  - gl_timer_begin with all GL_TIMER_RING queries still in flight waits for
+ *    the oldest (counted in dirt_gpu_query_counts.ring_waits), whose time the
+ *    next end reports;
+ *  - gl_timer_drain waits for the rest and gives their sum.
+ * Every GL_QUERY_RESULT read that waits (AVAILABLE false at the time, or a
+ * blocking end's read, which does not ask) counts in dirt_gpu_query_waits.
+ * The CPU clock has no queries: both ends are the blocking one. */
+#define GL_TIMER_RING 8
+
 typedef struct gl_timer {
-    GLuint query;          /* GPU clock only */
+    dirt_gpu *gpu;
+    GLuint queries[GL_TIMER_RING]; /* GPU clock only */
+    int oldest;            /* ring slot of the oldest query in flight */
+    int pending;           /* ended, result not read yet (the running one aside) */
+    int discard;           /* the oldest `discard` of them are read but not reported */
+    double held_ms;        /* read by a begin (ring full), reported at the next end */
+    bool held;             /* held_ms holds a result */
     enum dirt_clock clock; /* the clock `ms` is measured with (fixed at init) */
     bool running;
     double cpu_start;
-    double ms;             /* the last region; -1 until one was measured */
+    double ms;             /* what the last end reported; -1 until one did */
 } gl_timer;
 
-/* False after logging when the query cannot be created. */
+/* False after logging when the queries cannot be created. */
 bool gl_timer_init(gl_timer *t, dirt_gpu *gpu, const char *label);
 void gl_timer_begin(gl_timer *t);
-/* Ends the region and sets t->ms (blocking: waits for the query result or
- * for glFinish). */
+/* Ends the region and sets t->ms to its time (blocking: waits for the query
+ * result or for glFinish; results of earlier asynchronous ends still in
+ * flight are waited for too and added). */
 void gl_timer_end(gl_timer *t);
+/* Ends the region without waiting (GPU clock): t->ms = the sum of the
+ * earlier regions' results that have arrived (see above). CPU clock: as
+ * gl_timer_end. */
+void gl_timer_end_async(gl_timer *t);
+/* Waits for every result still in flight; *ms = their sum plus what a full
+ * ring's begin read (0 when none). Returns how many results that is (the
+ * discarded ones aside). A running region is not touched: its end reports
+ * it. */
+int gl_timer_drain(gl_timer *t, double *ms);
+/* Results still in flight (ended, not read). */
+int gl_timer_pending(const gl_timer *t);
+/* Forgets the results in flight without waiting: they are read as they
+ * arrive but not reported (a caller restarting what it measures; a running
+ * region is not touched). */
+void gl_timer_discard(gl_timer *t);
+/* Frees the queries; results still in flight are dropped (counted). */
 void gl_timer_release(gl_timer *t);
 
 #endif

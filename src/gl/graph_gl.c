@@ -277,7 +277,10 @@ static bool gl_end_pass(void *self, const fg_pass_info *p, double *ms, enum dirt
     *ms = -1;
     *clock = DIRT_CLOCK_NONE;
     if (s && p->timed && s->timer_ok && s->timer.running) {
-        gl_timer_end(&s->timer);
+        if (p->async)
+            gl_timer_end_async(&s->timer);
+        else
+            gl_timer_end(&s->timer);
         *ms = s->timer.ms;
         *clock = s->timer.clock;
     }
@@ -291,6 +294,23 @@ static bool gl_end_pass(void *self, const fg_pass_info *p, double *ms, enum dirt
         return false;
     }
     return true;
+}
+
+static void gl_drain(void *self, int index, bool discard, double *ms, enum dirt_clock *clock)
+{
+    graph_gl *b = self;
+    if (index < 0 || index >= b->num_passes || !b->passes[index].timer_ok)
+        return;
+    gl_timer *t = &b->passes[index].timer;
+    if (discard) {
+        gl_timer_discard(t);
+        return;
+    }
+    double late_ms = 0;
+    if (gl_timer_drain(t, &late_ms) > 0) {
+        *ms = late_ms;
+        *clock = t->clock;
+    }
 }
 
 static void gl_release(void *self)
@@ -317,6 +337,7 @@ static const fg_backend_ops gl_ops = {
     .begin_pass = gl_begin_pass,
     .end_pass = gl_end_pass,
     .release = gl_release,
+    .drain = gl_drain,
 };
 
 bool fg_gl_backend(dirt_gpu *gpu, fg_backend *out)

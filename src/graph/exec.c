@@ -291,7 +291,7 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
             .name = p->name, .index = p->index, .position = pos, .kind = p->kind,
             .bindings = g->scratch, .num_bindings = nb, .raster_width = p->raster_width,
             .raster_height = p->raster_height, .raster_layers = p->raster_layers,
-            .timed = !o.no_timers,
+            .timed = !o.no_timers, .async = !o.no_timers && o.async_timers,
         };
         if (!g->backend.ops->begin_pass(g->backend.self, &info)) {
             DIRT_ERROR("frame graph: pass '%s' could not start", p->name);
@@ -426,5 +426,49 @@ void fg_report_used(fg_ctx *ctx, fg_res r, size_t bytes)
     if (ctx->g->rstats) {
         ctx->g->rstats[r.id - 1].used_bytes = bytes;
         ctx->g->rstats[r.id - 1].used_reported = true;
+    }
+}
+
+/* ---- late times ---------------------------------------------------------- */
+
+bool fg_drain_timers(fg_graph *g, double *late_ms, int count, enum dirt_clock *clock)
+{
+    if (clock)
+        *clock = DIRT_CLOCK_NONE;
+    for (int i = 0; late_ms && i < count; i++)
+        late_ms[i] = 0;
+    if (!g || !g->has_backend)
+        return false;
+    if (!g->backend.ops->drain)
+        return true;
+    enum dirt_clock seen = DIRT_CLOCK_NONE;
+    for (int i = 0; i < g->num_passes; i++) {
+        double ms = 0;
+        enum dirt_clock c = DIRT_CLOCK_NONE;
+        g->backend.ops->drain(g->backend.self, i, false, &ms, &c);
+        if (c == DIRT_CLOCK_NONE || ms < 0)
+            continue;
+        if (seen != DIRT_CLOCK_NONE && c != seen) {
+            DIRT_ERROR("frame graph: pass '%s' drained a time of another clock; left out",
+                       g->passes[i]->name);
+            continue;
+        }
+        seen = c;
+        if (late_ms && i < count)
+            late_ms[i] = ms;
+    }
+    if (clock)
+        *clock = seen;
+    return true;
+}
+
+void fg_discard_timers(fg_graph *g)
+{
+    if (!g || !g->has_backend || !g->backend.ops->drain)
+        return;
+    for (int i = 0; i < g->num_passes; i++) {
+        double ms = 0;
+        enum dirt_clock c = DIRT_CLOCK_NONE;
+        g->backend.ops->drain(g->backend.self, i, true, &ms, &c);
     }
 }

@@ -277,6 +277,15 @@ size_t fg_bytes(const fg_graph *g, fg_res r);
 typedef struct fg_exec_opts {
     bool no_timers;       /* do not time the passes (their ms stay -1): no time
                              queries, no glFinish around them */
+    bool async_timers;    /* never wait for a pass's time: with the GPU clock a
+                             pass's timer ends without reading its result, and
+                             the pass's ms (and the stats') is the sum of its
+                             earlier executes' times that have arrived by this
+                             one (0 when none): times come one or more executes
+                             late and fg_drain_timers gives the rest. Totals
+                             summed over executes and the drain are complete.
+                             The CPU clock is unchanged (glFinish around each
+                             pass: ms is the pass's own) */
     bool validate;        /* check every hazard against the barriers really
                              issued; violations are errors */
     /* Test hook: do not issue the derived barrier of the pass with this name
@@ -288,6 +297,18 @@ typedef struct fg_exec_opts {
  * the graph is not compiled, has no backend, an allocation or a pass fails,
  * or (validate) a barrier is missing. */
 bool fg_execute(fg_graph *g, const fg_exec_opts *opts);
+
+/* The times of asynchronously timed passes (fg_exec_opts.async_timers) still
+ * in flight: waits for them and writes each pass's late ms to late_ms[i] by
+ * declaration index (i < count, normally fg_num_passes; 0 where nothing was
+ * late). *clock (may be NULL) gets their clock, DIRT_CLOCK_NONE when none was
+ * late. Each time is given once: by an execute's stats or by one drain. Call
+ * it where the CPU waits for the GPU anyway (a readback). False when the
+ * graph cannot execute (no backend). */
+bool fg_drain_timers(fg_graph *g, double *late_ms, int count, enum dirt_clock *clock);
+/* Forgets the times in flight without waiting (the caller restarts what it
+ * measures): no later execute or drain reports them. */
+void fg_discard_timers(fg_graph *g);
 
 /* Inside a pass callback. fg_name() returns the GL name of a resource the
  * pass declared (0 and an error, counted as a validation error, when it did
@@ -313,7 +334,8 @@ typedef struct fg_pass_stats {
     bool culled;
     int position;         /* execution position, -1 when culled */
     uint32_t barrier;     /* bits issued before it */
-    double ms;            /* last execute; -1 when not measured (culled, no_timers) */
+    double ms;            /* last execute; -1 when not measured (culled, no_timers);
+                             async_timers: the pass's times that arrived during it */
     enum dirt_clock clock; /* what measured ms (the backend's one clock);
                               DIRT_CLOCK_NONE when not measured */
 } fg_pass_stats;
@@ -409,6 +431,7 @@ typedef struct fg_pass_info {
     int num_bindings;
     int raster_width, raster_height, raster_layers; /* attachment-less raster */
     bool timed;                     /* time the pass (fg_exec_opts.no_timers off) */
+    bool async;                     /* without waiting (fg_exec_opts.async_timers) */
 } fg_pass_info;
 
 typedef struct fg_backend_ops {
@@ -426,6 +449,13 @@ typedef struct fg_backend_ops {
     bool (*end_pass)(void *self, const fg_pass_info *p, double *ms, enum dirt_clock *clock);
     /* Frees `self`. */
     void (*release)(void *self);
+    /* Optional (NULL: the backend's times never come late). The late time of
+     * pass `index` (declaration index): with `discard` forgets what is in
+     * flight; else waits for it, writes its sum to *ms and its clock to
+     * *clock (the graph presets 0 and DIRT_CLOCK_NONE: nothing late). An
+     * asynchronous end_pass (p->async) reports in *ms the pass's earlier
+     * times that have arrived (0 when none, with the clock). */
+    void (*drain)(void *self, int index, bool discard, double *ms, enum dirt_clock *clock);
 } fg_backend_ops;
 
 typedef struct fg_backend {

@@ -66,6 +66,10 @@ struct dirt_pt {
     bool g_direct;
     pass_ctx ctx[MAX_PASSES];
     int num_ctx;
+    /* pass times that came after the dirt_pt_add_samples call that issued
+     * them (drained at a readback), until dirt_pt_take_late_times */
+    double late_ms[DIRT_PT_NUM_PASSES];
+    enum dirt_clock late_clock;
     /* accumulation: image size and samples so far */
     int width, height;
     uint32_t samples;
@@ -316,6 +320,8 @@ static bool exec_pass(fg_ctx *ctx, void *user)
     return true;
 }
 
+static void drain_times(dirt_pt *pt);
+
 /* One graph of a sample's chunk: raygen, then per event k = 1..events trace,
  * fetch, shade, shadow trace, resolve; then accumulate. All buffers are
  * imported (they persist across samples); the structure's buffers are the
@@ -324,6 +330,10 @@ static bool exec_pass(fg_ctx *ctx, void *user)
  * are not per buffer). */
 static bool make_graph(dirt_pt *pt, int events)
 {
+    /* Times still in flight belong to this accumulation's figures (after a
+     * reset there are none: it discarded them). */
+    if (pt->samples > 0)
+        drain_times(pt);
     fg_destroy(pt->graph);
     pt->graph = gl_graph_create(pt->gpu);
     if (!pt->graph)
@@ -397,8 +407,20 @@ static bool make_graph(dirt_pt *pt, int events)
     return true;
 }
 
+/* The per-kind sums of st->pass_ms. */
+static void sum_kinds(dirt_pt_stats *st)
+{
+    st->trace_ms = st->pass_ms[DIRT_PT_PASS_TRACE] + st->pass_ms[DIRT_PT_PASS_SHADOW];
+    st->fetch_ms = st->pass_ms[DIRT_PT_PASS_FETCH];
+    st->visibility_ms = st->pass_ms[DIRT_PT_PASS_VISIBILITY];
+    st->shade_ms = st->pass_ms[DIRT_PT_PASS_RAYGEN] + st->pass_ms[DIRT_PT_PASS_SHADE] +
+                   st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
+}
+
 /* Adds the last execute's pass times to `st`, keyed by each pass's kind
- * (the passes' declaration order is pt->ctx's); st->clock is the graph's. */
+ * (the passes' declaration order is pt->ctx's); st->clock is the graph's.
+ * The passes are timed asynchronously: with the GPU clock these are the
+ * times of earlier executes that have arrived by now. */
 static void add_times(dirt_pt *pt, dirt_pt_stats *st)
 {
     fg_stats s;
@@ -410,11 +432,35 @@ static void add_times(dirt_pt *pt, dirt_pt_stats *st)
         if (p->clock == s.clock)
             st->pass_ms[pt->ctx[i].kind] += p->ms;
     }
-    st->trace_ms = st->pass_ms[DIRT_PT_PASS_TRACE] + st->pass_ms[DIRT_PT_PASS_SHADOW];
-    st->fetch_ms = st->pass_ms[DIRT_PT_PASS_FETCH];
-    st->visibility_ms = st->pass_ms[DIRT_PT_PASS_VISIBILITY];
-    st->shade_ms = st->pass_ms[DIRT_PT_PASS_RAYGEN] + st->pass_ms[DIRT_PT_PASS_SHADE] +
-                   st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
+    sum_kinds(st);
+}
+
+/* Waits for the pass times still in flight and holds them in pt->late_ms. */
+static void drain_times(dirt_pt *pt)
+{
+    if (!pt->graph)
+        return;
+    double late[MAX_PASSES];
+    enum dirt_clock clock = DIRT_CLOCK_NONE;
+    if (!fg_drain_timers(pt->graph, late, pt->num_ctx, &clock) || clock == DIRT_CLOCK_NONE)
+        return;
+    if (pt->late_clock != DIRT_CLOCK_NONE && pt->late_clock != clock)
+        return; /* one GPU, one clock: cannot happen */
+    pt->late_clock = clock;
+    for (int i = 0; i < pt->num_ctx; i++)
+        pt->late_ms[pt->ctx[i].kind] += late[i];
+}
+
+void dirt_pt_take_late_times(dirt_pt *pt, bool wait, dirt_pt_stats *late)
+{
+    if (wait)
+        drain_times(pt);
+    *late = (dirt_pt_stats){.clock = pt->late_clock};
+    for (int i = 0; i < DIRT_PT_NUM_PASSES; i++)
+        late->pass_ms[i] = pt->late_ms[i];
+    sum_kinds(late);
+    memset(pt->late_ms, 0, sizeof(pt->late_ms));
+    pt->late_clock = DIRT_CLOCK_NONE;
 }
 
 /* Bytes per pixel of one chunk's buffers (the accumulation aside). */
@@ -469,6 +515,10 @@ bool dirt_pt_reset(dirt_pt *pt, int width, int height)
     static const float zero = 0.0f;
     for (size_t c = 0; c < pt->num_chunks; c++)
         glClearNamedBufferData(pt->accum[c], GL_R32F, GL_RED, GL_FLOAT, &zero);
+    /* The times in flight and held are the last accumulation's. */
+    fg_discard_timers(pt->graph);
+    memset(pt->late_ms, 0, sizeof(pt->late_ms));
+    pt->late_clock = DIRT_CLOCK_NONE;
     pt->width = width;
     pt->height = height;
     pt->samples = 0;
@@ -576,7 +626,9 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             tech->restart(tech->self);
     }
     tech->reset_counts(tech->self);
-    fg_exec_opts eo = {.validate = true};
+    /* Asynchronous timers: no pass waits for its time query; late times are
+     * drained at the readback (dirt_pt_read). */
+    fg_exec_opts eo = {.validate = true, .async_timers = true};
     for (int s = 0; s < count; s++) {
         pt->sample = pt->samples;
         for (size_t c = 0; c < pt->num_chunks; c++) {
@@ -664,6 +716,8 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
     free(sums);
     if (invalid_samples)
         *invalid_samples = invalid;
+    /* The readback waited for the samples: their times have arrived. */
+    drain_times(pt);
     return gl_check("dirt_pt_read");
 }
 
@@ -715,9 +769,30 @@ bool dirt_pt_render(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *fram
     int spp = opts && opts->spp > 0 ? opts->spp : 1;
     dirt_pt_stats local;
     dirt_pt_stats *st = stats ? stats : &local;
-    return dirt_pt_reset(pt, out->width, out->height) &&
-           dirt_pt_add_samples(pt, tech, frame, cam, opts, spp, st) &&
-           dirt_pt_read(pt, out, &st->invalid_samples);
+    if (!dirt_pt_reset(pt, out->width, out->height) ||
+        !dirt_pt_add_samples(pt, tech, frame, cam, opts, spp, st) ||
+        !dirt_pt_read(pt, out, &st->invalid_samples))
+        return false;
+    dirt_pt_stats late;
+    dirt_pt_take_late_times(pt, false, &late);
+    dirt_pt_add_late_times(st, &late);
+    return true;
+}
+
+void dirt_pt_add_late_times(dirt_pt_stats *st, const dirt_pt_stats *late)
+{
+    if (late->clock == DIRT_CLOCK_NONE)
+        return;
+    if (st->clock != DIRT_CLOCK_NONE && st->clock != late->clock) {
+        DIRT_ERROR("late pass times of the %s clock, the others of the %s clock: left out",
+                   dirt_clock_names[late->clock], dirt_clock_names[st->clock]);
+        return;
+    }
+    st->clock = late->clock;
+    for (int i = 0; i < DIRT_PT_NUM_PASSES; i++)
+        st->pass_ms[i] += late->pass_ms[i];
+    sum_kinds(st);
+    st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
 }
 
 bool dirt_pt_write_dot(const dirt_pt *pt, const char *path)

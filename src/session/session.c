@@ -823,6 +823,29 @@ bool dirt_session_add_samples(dirt_session *s, int count,
     return true;
 }
 
+/* Adds the path tracer's late pass times (dirt_pt_take_late_times; with
+ * `wait` the ones still in flight too) to the stats. */
+static void add_late_times(dirt_session *s, bool wait)
+{
+    if (!traced(s->opts.engine) || !s->pt || !s->samples)
+        return;
+    dirt_pt_stats late;
+    dirt_pt_take_late_times(s->pt, wait, &late);
+    if (late.clock == DIRT_CLOCK_NONE)
+        return;
+    dirt_session_stats *st = &s->stats;
+    st->trace_ms += late.trace_ms;
+    st->fetch_ms += late.fetch_ms;
+    st->visibility_ms += late.visibility_ms;
+    st->shade_ms += late.shade_ms;
+    for (int i = 0; i < DIRT_PT_NUM_PASSES; i++) {
+        if (i == DIRT_PT_PASS_VISIBILITY && !s->opts.direct_visibility)
+            continue;
+        add_pass(st, dirt_pt_pass_names[i], late.pass_ms[i], late.clock);
+    }
+    st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
+}
+
 const dirt_image *dirt_session_image(dirt_session *s)
 {
     if (!s->samples) {
@@ -839,8 +862,14 @@ const dirt_image *dirt_session_image(dirt_session *s)
     }
     if (!dirt_pt_read(s->pt, s->img, &s->stats.invalid_samples))
         return NULL;
+    add_late_times(s, false); /* the readback drained them */
     s->img_current = true;
     return s->img;
+}
+
+void dirt_session_drain_times(dirt_session *s)
+{
+    add_late_times(s, true);
 }
 
 uint32_t dirt_session_display_texture(dirt_session *s)

@@ -1,8 +1,9 @@
 /* The one timing rule (dirt_gpu_clock; doc/frame-graph.md, Timing):
  *  - the rule: the CPU clock (glFinish + wall clock) when the GPU was
  *    created with dirt_gpu_opts.cpu_timing, when the renderer is software
- *    (llvmpipe: its time queries do not time rasterization) or has no timer
- *    queries; else GL_TIME_ELAPSED queries. Checked on the real context and
+ *    (llvmpipe: its time queries do not time rasterization; unless
+ *    gpu_timing, for tests) or has no timer queries; else GL_TIME_ELAPSED
+ *    queries. Checked on the real context and
  *    on the same context presented as hardware (caps poked through
  *    gl/gl.h), so a rule that ignores cpu_timing fails here on llvmpipe too;
  *  - every figure follows it, nothing re-decides: a gl_timer, a frame-graph
@@ -48,13 +49,16 @@ static void check_rule(dirt_gpu *gpu)
 {
     dirt_gpu_caps caps = gpu->caps;
     dirt_gpu_opts opts = gpu->opts;
-    for (int bits = 0; bits < 8; bits++) {
+    for (int bits = 0; bits < 16; bits++) {
         gpu->opts.cpu_timing = bits & 1;
         gpu->caps.software = bits & 2;
         gpu->caps.timer_query = !(bits & 4);
-        enum dirt_clock want = bits ? DIRT_CLOCK_CPU : DIRT_CLOCK_GPU;
-        CHECK_MSG(dirt_gpu_clock(gpu) == want, "cpu_timing %d, software %d, timer queries %d: %s",
-                  bits & 1, !!(bits & 2), !(bits & 4), name_of(dirt_gpu_clock(gpu)));
+        gpu->opts.gpu_timing = bits & 8; /* tests: the queries on a software renderer */
+        bool cpu = (bits & 1) || (bits & 4) || ((bits & 2) && !(bits & 8));
+        enum dirt_clock want = cpu ? DIRT_CLOCK_CPU : DIRT_CLOCK_GPU;
+        CHECK_MSG(dirt_gpu_clock(gpu) == want,
+                  "cpu_timing %d, software %d, timer queries %d, gpu_timing %d: %s", bits & 1,
+                  !!(bits & 2), !(bits & 4), !!(bits & 8), name_of(dirt_gpu_clock(gpu)));
     }
     gpu->caps = caps;
     gpu->opts = opts;

@@ -296,6 +296,10 @@ typedef struct fake {
     enum dirt_clock clock;
     int odd_pass;
     enum dirt_clock odd_clock;
+    /* asynchronous ends (p->async): each leaves one 0.25 ms time in flight
+     * for the pass, which fake_drain gives (or forgets) */
+    int asyncs;
+    int in_flight[16];
 } fake;
 
 static void ev(fake *f, const char *fmt, const char *a, unsigned x)
@@ -348,6 +352,11 @@ static bool fake_end(void *self, const fg_pass_info *p, double *ms, enum dirt_cl
         return true; /* the graph preset -1 and DIRT_CLOCK_NONE */
     *ms = 0.5;
     *clock = f->clock == DIRT_CLOCK_NONE ? DIRT_CLOCK_GPU : f->clock;
+    if (p->async) {
+        f->asyncs++;
+        if (p->index < 16)
+            f->in_flight[p->index]++;
+    }
     if (f->odd_pass == p->index + 1)
         *clock = f->odd_clock;
     return true;
@@ -358,8 +367,24 @@ static void fake_release(void *self)
     ((fake *)self)->released = true;
 }
 
+static void fake_drain(void *self, int index, bool discard, double *ms, enum dirt_clock *clock)
+{
+    fake *f = self;
+    if (index >= 16 || !f->in_flight[index])
+        return;
+    if (!discard) {
+        *ms = 0.25 * f->in_flight[index];
+        *clock = DIRT_CLOCK_GPU;
+    }
+    f->in_flight[index] = 0;
+}
+
 static const fg_backend_ops fake_ops = {
     fake_create, fake_destroy, fake_barrier, fake_begin, fake_end, fake_release,
+};
+
+static const fg_backend_ops fake_async_ops = {
+    fake_create, fake_destroy, fake_barrier, fake_begin, fake_end, fake_release, fake_drain,
 };
 
 typedef struct demo {
@@ -575,6 +600,57 @@ static void test_timing(void)
     fg_destroy(g);
 }
 
+/* Asynchronous timers: the backend is told (not with no_timers), and
+ * fg_drain_timers hands its late times back per pass, once; a discard
+ * forgets them; a backend without drain has nothing late. */
+static void test_async_timing(void)
+{
+    fake f = {.next_name = 950};
+    demo d = {0};
+    fg_graph *g = demo_graph(&f, &d);
+    CHECK(fg_compile(g));
+    double late[8];
+    enum dirt_clock clock = DIRT_CLOCK_CPU;
+    CHECK(fg_execute(g, &(fg_exec_opts){.async_timers = true}));
+    CHECK(f.asyncs == 4); /* the backend without drain: told, nothing late */
+    CHECK(fg_drain_timers(g, late, 8, &clock) && clock == DIRT_CLOCK_NONE && late[0] == 0);
+    fg_destroy(g);
+
+    f = (fake){.next_name = 960};
+    fg_backend b = {&fake_async_ops, &f};
+    g = fg_create(&b);
+    CHECK(g != NULL);
+    fg_res buf = fg_buffer(g, "buf", &(fg_buf_desc){.bytes = 64});
+    fg_res out = fg_import_buffer(g, "out", 5, 64);
+    fg_pass *p1 = fg_add_pass(g, "one", FG_COMPUTE, NULL, NULL);
+    fg_write(p1, buf, FG_SSBO_WRITE);
+    fg_pass *p2 = fg_add_pass(g, "two", FG_COMPUTE, NULL, NULL);
+    fg_read(p2, buf, FG_SSBO_READ);
+    fg_write(p2, out, FG_SSBO_WRITE);
+    fg_pass *p3 = fg_add_pass(g, "culled", FG_COMPUTE, NULL, NULL);
+    fg_write(p3, fg_buffer(g, "unused", &(fg_buf_desc){.bytes = 4}), FG_SSBO_WRITE);
+    CHECK(fg_compile(g) && fg_culled(g, "culled"));
+    CHECK(fg_execute(g, &(fg_exec_opts){.async_timers = true, .no_timers = true}));
+    CHECK(f.asyncs == 0); /* no timers: nothing asynchronous */
+    CHECK(fg_execute(g, NULL));
+    CHECK(f.asyncs == 0);
+    for (int run = 0; run < 3; run++)
+        CHECK(fg_execute(g, &(fg_exec_opts){.async_timers = true}));
+    CHECK(f.asyncs == 6);
+    CHECK(fg_drain_timers(g, late, 3, &clock) && clock == DIRT_CLOCK_GPU);
+    CHECK(late[0] == 0.75 && late[1] == 0.75 && late[2] == 0);
+    CHECK(fg_drain_timers(g, late, 3, &clock) && clock == DIRT_CLOCK_NONE && late[0] == 0);
+    CHECK(fg_execute(g, &(fg_exec_opts){.async_timers = true}));
+    fg_discard_timers(g);
+    CHECK(fg_drain_timers(g, late, 3, NULL) && late[0] == 0 && late[1] == 0);
+    fg_destroy(g);
+    /* no backend: nothing to drain */
+    g = fg_create(NULL);
+    CHECK(!fg_drain_timers(g, late, 3, &clock) && clock == DIRT_CLOCK_NONE);
+    fg_discard_timers(g);
+    fg_destroy(g);
+}
+
 int main(void)
 {
     dirt_log_set_callback(capture, NULL);
@@ -584,6 +660,7 @@ int main(void)
     test_execute();
     test_alias_validation();
     test_timing();
+    test_async_timing();
     dirt_log_set_callback(NULL, NULL);
     return check_finish();
 }

@@ -54,6 +54,10 @@ typedef struct dirt_gpu_opts {
     bool disable_conservative;  /* report GL_NV_conservative_raster as absent */
     bool cpu_timing;         /* time every pass with glFinish + the CPU clock, even
                                 where GL timer queries work (dirt_gpu_clock) */
+    bool gpu_timing;         /* for tests: time with GL timer queries even on a
+                                software renderer (llvmpipe's GL_TIME_ELAPSED works
+                                but does not time rasterization, so its figures are
+                                not the work's); cpu_timing wins (dirt_gpu_clock) */
 } dirt_gpu_opts;
 
 typedef struct dirt_gpu_caps {
@@ -84,13 +88,34 @@ void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size);
 
 /* The one timing rule: the clock every pass on this GPU is measured with.
  * DIRT_CLOCK_CPU (glFinish before and after, CPU wall clock) when the GPU
- * was created with opts.cpu_timing, when the renderer is software
- * (caps.software: llvmpipe's GL_TIME_ELAPSED does not time rasterization)
- * or when it has no timer queries; else DIRT_CLOCK_GPU (GL_TIME_ELAPSED
- * queries, no glFinish). Fixed for the GPU's lifetime. Every timer (the
- * gl layer's gl_timer, the frame graph's GL backend) asks this function;
- * nothing else decides, and every reported time carries this clock. */
+ * was created with opts.cpu_timing, when it has no timer queries, or when
+ * the renderer is software (caps.software: llvmpipe's GL_TIME_ELAPSED does
+ * not time rasterization) unless opts.gpu_timing (tests) asks for the
+ * queries; else DIRT_CLOCK_GPU (GL_TIME_ELAPSED queries, no glFinish).
+ * Fixed for the GPU's lifetime. Every timer (the gl layer's gl_timer, the
+ * frame graph's GL backend) asks this function; nothing else decides, and
+ * every reported time carries this clock. With the GPU clock the frame
+ * graph's asynchronous timers (the path tracer's) read their results one or
+ * more samples late, from a ring of queries, and never wait for them
+ * (doc/frame-graph.md, Timing). */
 enum dirt_clock dirt_gpu_clock(const dirt_gpu *gpu);
+
+/* The GPU clock's time queries since creation (tests and diagnostics).
+ * issued = harvested + dropped + those still in flight. */
+typedef struct dirt_gpu_query_counts {
+    uint64_t issued;      /* GL_TIME_ELAPSED queries ended */
+    uint64_t harvested;   /* their results read (discarded ones included) */
+    uint64_t dropped;     /* freed in flight, never read (a timer released) */
+    uint64_t waits;       /* result reads that waited for the GPU: AVAILABLE was
+                             false at the time, or not asked (a blocking end) */
+    uint64_t ring_waits;  /* begins that found their timer's ring full and read
+                             its oldest result first */
+} dirt_gpu_query_counts;
+
+dirt_gpu_query_counts dirt_gpu_queries(const dirt_gpu *gpu);
+/* dirt_gpu_queries(gpu).waits: 0 over a stretch of work means no query
+ * result stalled the CPU there. */
+uint64_t dirt_gpu_query_waits(const dirt_gpu *gpu);
 
 /* Waits for all GPU work (glFinish). */
 void dirt_gpu_finish(dirt_gpu *gpu);

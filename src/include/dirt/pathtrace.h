@@ -69,9 +69,22 @@ enum dirt_pt_pass {
 
 extern const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES];
 
-/* Figures of one dirt_pt_add_samples call (or one dirt_pt_render). */
+/* Figures of one dirt_pt_add_samples call (or one dirt_pt_render).
+ *
+ * Pass times never stall the GPU: the frame graph times its passes
+ * asynchronously. With the CPU clock (llvmpipe, dirt_gpu_opts.cpu_timing)
+ * that changes nothing: glFinish around every pass, each call's times are
+ * its own. With the GPU clock (time queries) a pass's result is read only
+ * once the GPU has it, one or more samples later, so a call's pass_ms hold
+ * the times that arrived during it: typically the earlier calls' last
+ * samples and all but its own last ones. The rest arrive at the readback:
+ * dirt_pt_read waits for them (it waits for the GPU anyway) and keeps them
+ * for dirt_pt_take_late_times; dirt_pt_render adds them itself. Summed over
+ * the calls of an accumulation plus the late times, every sample's every
+ * pass is counted once. dirt_pt_reset forgets the times still in flight. */
 typedef struct dirt_pt_stats {
-    double pass_ms[DIRT_PT_NUM_PASSES]; /* summed over samples and events */
+    double pass_ms[DIRT_PT_NUM_PASSES]; /* summed over samples and events (the
+                                           times that arrived, see above) */
     enum dirt_clock clock;    /* what measured them: the clock of the frame graph's
                                  stats (the GPU's one clock, dirt_gpu_clock);
                                  DIRT_CLOCK_NONE when nothing was measured */
@@ -132,17 +145,31 @@ int dirt_pt_samples(const dirt_pt *pt);
  * pixel centre, INFINITY where it misses: the Embree reference's Z, traced
  * once per accumulation through the tracer) and "ID" (that hit's primitive
  * as a float, -1 where it misses). `invalid_samples` (may be
- * NULL) gets the non-finite samples dropped. Blocking readback. False
+ * NULL) gets the non-finite samples dropped. Blocking readback; then the
+ * pass times still in flight are drained (dirt_pt_take_late_times). False
  * (logged) with no samples or a size mismatch. */
 bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples);
+
+/* The pass times that came after the dirt_pt_add_samples call that issued
+ * them (see dirt_pt_stats): with `wait`, first waits for every one still in
+ * flight (dirt_pt_read did that for the samples it read). Fills late's
+ * pass_ms, clock (DIRT_CLOCK_NONE when none came late) and the per-kind
+ * sums (trace_ms, fetch_ms, visibility_ms, shade_ms); the rest is 0. Each
+ * time is given once: they are forgotten here. */
+void dirt_pt_take_late_times(dirt_pt *pt, bool wait, dirt_pt_stats *late);
+/* Adds late times (dirt_pt_take_late_times) to the figures `st`: pass_ms,
+ * the per-kind sums, clock, mrays_per_s. */
+void dirt_pt_add_late_times(dirt_pt_stats *st, const dirt_pt_stats *late);
 
 /* The same mean beauty in an RGBA32F texture (GL name; texel (x, y) = image
  * pixel (x, y), row 0 = top; alpha 1), updated on the GPU when samples were
  * added: the pixels equal dirt_pt_read's. Owned by `pt`, valid until the
- * next reset to another size or destroy. 0 (logged) with no samples. */
+ * next reset to another size or destroy. 0 (logged) with no samples. No
+ * readback and no wait: the pass times keep arriving with later calls. */
 uint32_t dirt_pt_display_texture(dirt_pt *pt);
 
-/* One render: reset to out's size, opts->spp samples (default 1), read. */
+/* One render: reset to out's size, opts->spp samples (default 1), read;
+ * `stats` include the late pass times (complete). */
 bool dirt_pt_render(dirt_pt *pt, const dirt_tracer *tracer, const dirt_frame *frame,
                     const dirt_camera *cam, const dirt_pt_opts *opts, dirt_image *out,
                     dirt_pt_stats *stats);

@@ -101,7 +101,15 @@ enum dirt_camera_choice {
 };
 
 /* Figures of the accumulation since the last restart (times and rays add
- * up over dirt_session_add_samples calls; the build's are the last build's). */
+ * up over dirt_session_add_samples calls; the build's are the last build's).
+ * The path tracer's pass times may lag (dirt/pathtrace.h, dirt_pt_stats):
+ * with the GPU clock (time queries) no sample waits for its times, so after
+ * dirt_session_add_samples they hold the times the GPU had delivered by
+ * then, and the last samples' come later: with the next calls (a viewer
+ * showing the display texture sees them late, never stalling for them), or
+ * at dirt_session_image, whose readback waits for the GPU and completes them,
+ * or at dirt_session_drain_times. After either, the totals are complete.
+ * The CPU clock (llvmpipe, cpu_timing) and the build's passes never lag. */
 typedef struct dirt_session_stats {
     enum dirt_engine engine;
     char device[256];           /* the GL renderer, or "CPU" */
@@ -186,6 +194,10 @@ const dirt_image *dirt_session_image(dirt_session *s);
 uint32_t dirt_session_display_texture(dirt_session *s);
 
 const dirt_session_stats *dirt_session_get_stats(const dirt_session *s);
+/* Waits for the path tracer's pass times still in flight and adds them to
+ * the stats (dirt_session_image does it with its readback): for a caller
+ * that reads the figures of every call without reading the image back. */
+void dirt_session_drain_times(dirt_session *s);
 
 /* Writes a stats document as JSON (through cJSON), atomically: the
  * figures of `frames[count - 1]`'s run (engine, device, size, samples),
