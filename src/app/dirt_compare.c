@@ -352,6 +352,34 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
 
 static int g_face; /* --face: one value for the whole sweep */
 
+/* The library's messages, printed as its default sink prints them; the
+ * first error since the configuration began is kept for the row's reason. */
+static char g_first_error[400];
+
+static void log_sink(void *user, enum dirt_log_level level, const char *file, int line,
+                     const char *msg)
+{
+    (void)user;
+    static const char *const tags[] = {"error", "warning", "info", "debug"};
+    if (file) {
+        const char *src = strstr(file, "src/");
+        fprintf(stderr, "dirt: %s: %s:%d: %s\n", tags[level], src ? src : file, line, msg);
+    } else {
+        fprintf(stderr, "dirt: %s\n", msg);
+    }
+    if (level == DIRT_LOG_ERROR && !g_first_error[0])
+        snprintf(g_first_error, sizeof(g_first_error), "%s", msg);
+}
+
+/* "ENGINE: WHAT: the first error logged", or "(see the log)" without one. */
+static void set_reason(char *why, size_t n, const char *engine, const char *what)
+{
+    if (g_first_error[0])
+        snprintf(why, n, "%s: %s: %s", engine, what, g_first_error);
+    else
+        snprintf(why, n, "%s: %s (see the log)", engine, what);
+}
+
 static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float thickness,
                                       uint32_t seed)
 {
@@ -376,7 +404,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
     dirt_session_opts so = session_opts(c, e, thickness, o->seed);
     dirt_session *s = dirt_session_create(gpu, si->scene, &so);
     if (!s) {
-        snprintf(why, whysz, "%s: the session could not be made", dirt_engine_names[e]);
+        set_reason(why, whysz, dirt_engine_names[e], "the session could not be made");
         return NULL;
     }
     bool ok = true;
@@ -410,8 +438,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
     const dirt_image *img = ok ? dirt_session_image(s) : NULL;
     if (!ok || !img) {
         if (!why[0])
-            snprintf(why, whysz, "%s: build or render failed (see the log)",
-                     dirt_engine_names[e]);
+            set_reason(why, whysz, dirt_engine_names[e], "build or render failed");
         dirt_session_destroy(s);
         return NULL;
     }
@@ -505,7 +532,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         dirt_session_agreement ag;
         int aw = o->agree_w ? o->agree_w : c->w, ah = o->agree_h ? o->agree_h : c->h;
         if (!dirt_session_hit_agreement(s, aw, ah, o->seed, &ag)) {
-            snprintf(why, whysz, "%s: hit agreement failed (see the log)", dirt_engine_names[e]);
+            set_reason(why, whysz, dirt_engine_names[e], "hit agreement failed");
             cJSON_Delete(j);
             dirt_session_destroy(s);
             return NULL;
@@ -581,6 +608,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
                          const options *o, const env *ev, const char *id, int index)
 {
     char why[512] = "";
+    g_first_error[0] = 0;
     double t0 = dirt_clock_ms();
     float th = (float)(c->thickness < 0 ? -c->thickness * si->diagonal : c->thickness);
     cJSON *row = cJSON_CreateObject();
@@ -623,7 +651,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
                   ? dirt_session_image(rs)
                   : NULL;
         if (!ref)
-            snprintf(why, sizeof(why), "embree reference failed (see the log)");
+            set_reason(why, sizeof(why), "embree", "the reference failed");
         else
             cJSON_AddNumberToObject(cJSON_AddObjectToObject(row, "embree"), "total_ms",
                                     dirt_session_get_stats(rs)->total_ms);
@@ -689,6 +717,7 @@ int main(int argc, char **argv)
     if (!parse_args(argc, argv, &o, 0))
         return DIRT_EXIT_USAGE;
     g_face = o.face;
+    dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
         return DIRT_EXIT_USAGE;
