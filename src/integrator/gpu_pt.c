@@ -363,6 +363,7 @@ static bool make_graph(dirt_pt *pt, int events)
         p = ADD(DIRT_PT_PASS_FETCH, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
+        fg_write(p, hits, FG_SSBO_WRITE); /* MMRT: t of the shading point */
         fg_use(p, gpts, FG_SSBO_READ, NULL);
         fg_write(p, gpts, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "shade %d", k);

@@ -124,6 +124,7 @@ static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t c
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_COUNT, count);
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_SLOT, slot);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, g.vertices);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, g.views);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);

@@ -39,7 +39,9 @@ typedef struct dirt_tracer {
     bool (*visibility)(void *self, uint32_t rays, uint32_t hits);
     /* Writes G of every hit's owner pixel into ring slot `slot` of
      * `gpoints` (misses: prim = DIRT_NO_HIT, wo = -ray direction), for the
-     * hits of the last closest-hit trace (or visibility) of these buffers. */
+     * hits of the last closest-hit trace (or visibility) of these buffers.
+     * It may rewrite a hit's t to the distance of the shading point it
+     * chose (MMRT: where the ray meets the hit primitive). */
     bool (*fetch)(void *self, uint32_t rays, uint32_t hits, uint32_t count, uint32_t gpoints,
                   uint32_t slot);
     /* Binds the dirt_gpu_vertex buffer at DIRT_BIND_VERTICES and the
