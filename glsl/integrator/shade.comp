@@ -86,6 +86,22 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
             return false;
         float w = dirt_mis_power_g(pdf_l, dirt_bsdf_pdf_g(v.surf.bsdf, v.wo, wl));
         contrib = f * ls.emission * (wl.z * w / pdf_l);
+        if (u_surface_offset > 0.0) {
+            // Stop the shadow ray u_surface_offset off the light's plane
+            // (the tracer accepts surfaces within a thickness of the ray);
+            // receiver and light point too close to each other's planes for
+            // that: untraced, unoccluded.
+            vec3 nl = tri_normal_ng(prim);
+            if (dot(nl, v.p - y) < 0.0)
+                nl = -nl;
+            float off = u_surface_offset;
+            if (dot(y - v.p, v.ng) < 2.0 * off || dot(v.p - y, nl) < 2.0 * off) {
+                wi_out = wi;
+                tmax = -1.0;
+                return true;
+            }
+            y += nl * off;
+        }
         shadow_to(v, y, wi_out, tmax);
         return true;
     }

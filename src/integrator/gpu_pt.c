@@ -250,6 +250,7 @@ static void set_common(dirt_pt *pt, GLuint prog, int k)
     glUniform1ui(DIRT_LOC_PT_SLOT, (GLuint)(k % 3));
     glUniform3fv(DIRT_LOC_PT_BACKGROUND, 1, pt->opts->background);
     glUniform1f(DIRT_LOC_PT_AO_DISTANCE, pt->ao_distance);
+    glUniform1f(DIRT_LOC_PT_SURFACE_OFFSET, pt->tech->surface_offset);
     dirt_gpu_model_tables_bind(&pt->tables);
     pt->tech->bind_geometry(pt->tech->self);
 }

@@ -206,9 +206,10 @@ bool dirt_mmrt_trace_cpu(dirt_mmrt *mmrt, const dirt_ray *rays, size_t count, di
  * node; geometric normal of the primitive; position where the ray meets the
  * hit primitive's plane when it meets it inside the hit fragment's pixel,
  * else the MMRT hit point, ray origin + t direction; the hit's t is set to
- * the distance used). Every ray is traced from 3 thicknesses along it
- * (shadow rays also stop 3 thicknesses short of their end) so that a ray
- * does not hit the surface it leaves within the thickness. No visibility
+ * the distance used). Its surface_offset is 3 thicknesses: rays leave
+ * surfaces 3 thicknesses off along the normal and shadow rays stop 3
+ * thicknesses off the light's plane (dirt/tracer.h), so that a ray is never
+ * within the thickness of a planar surface it leaves or aims at. No visibility
  * function. Owned by `mmrt`; valid until the next call or destroy. NULL
  * (logged) before a successful build. */
 const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts *opts);

@@ -63,6 +63,14 @@ typedef struct dirt_tracer {
     void (*begin_chunk)(void *self, uint32_t first);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
+    /* World distance by which rays leaving a surface start off it along its
+     * geometric normal (on the side they leave, beyond the integrator's own
+     * epsilon), and by which shadow rays towards an emitting triangle stop
+     * off its plane (on the receiver's side); a shadow ray whose receiver
+     * and light point are within twice this distance of each other's plane
+     * is not traced (unoccluded: the technique cannot resolve anything
+     * between them). 0 for exact tracers (DIRT: the reference's rays). */
+    float surface_offset;
 } dirt_tracer;
 
 #ifdef __cplusplus
