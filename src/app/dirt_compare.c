@@ -29,7 +29,7 @@ typedef struct options {
     const char *scenes[MAX_SCENES];
     int num_scenes;
     const char *dir;
-    int_list w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
+    int_list w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
     dbl_list thickness, time;
     int warmup, repeat, agree_w, agree_h, face;
     bool quality, images, quiet;
@@ -62,6 +62,8 @@ static void usage(FILE *out)
 "  --thickness-rel LIST   MMRT thickness as fractions of the diagonal (added to\n"
 "                         the --thickness list)\n"
 "  --march LIST           MMRT march: hiz, linear (default hiz)\n"
+"  --samples LIST         MMRT linear march: samples per view (0 = its default,\n"
+"                         30; default 0; Hi-Z rows take none)\n"
 "  --spp LIST             samples per pixel of the path-traced image (default 1)\n"
 "  --bounces LIST         path events (default 4)\n"
 "  --time LIST            animation times in seconds (default 0)\n"
@@ -268,6 +270,8 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
                 o->thickness.v[k] = -o->thickness.v[k]; /* resolved per scene */
         } else if (!strcmp(a, "--march")) {
             ok = parse_ints(a, v, &o->march, 0, 0, march_names);
+        } else if (!strcmp(a, "--samples")) {
+            ok = parse_ints(a, v, &o->samples, 0, 65536, NULL);
         } else if (!strcmp(a, "--spp")) {
             ok = parse_ints(a, v, &o->spp, 1, 1 << 16, NULL);
         } else if (!strcmp(a, "--bounces")) {
@@ -317,7 +321,7 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
 /* ---- one configuration ---- */
 
 typedef struct config {
-    int scene, w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
+    int scene, w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
     double thickness, time; /* thickness < 0: a fraction of the diagonal */
 } config;
 
@@ -387,7 +391,8 @@ static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
-        .march = (enum dirt_mmrt_march)c->march, .thickness = thickness,
+        .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
+        .thickness = thickness,
         .bounces = c->bounces, .seed = seed, .background = {1, 1, 1}};
 }
 
@@ -560,9 +565,13 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
 static void config_id(const options *o, const scene_info *si, const config *c, char *buf,
                       size_t n)
 {
+    char march[32];
+    snprintf(march, sizeof(march), "%s", march_names[c->march]);
+    if (c->march == DIRT_MMRT_MARCH_LINEAR && c->samples) /* linear alone: 30 samples */
+        snprintf(march, sizeof(march), "linear%d", c->samples);
     snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
              si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
-             c->dbuckets, c->mbuckets, c->thickness, march_names[c->march], o->warmup,
+             c->dbuckets, c->mbuckets, c->thickness, march, o->warmup,
              o->repeat, o->quality ? 1 : 0, o->seed);
 }
 
@@ -632,6 +641,10 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
     cJSON_AddBoolToObject(set, "mmrt_thickness_default", th == 0);
     cJSON_AddStringToObject(set, "mmrt_march", march_names[c->march]);
+    cJSON_AddNumberToObject(set, "mmrt_samples",
+                            c->march == DIRT_MMRT_MARCH_LINEAR ? (c->samples ? c->samples : 30) : 0);
+    cJSON_AddBoolToObject(set, "mmrt_default",
+                          th == 0 && c->march == DIRT_MMRT_MARCH_HIZ);
     cJSON_AddNumberToObject(set, "warmup", o->warmup);
     cJSON_AddNumberToObject(set, "repeat", o->repeat);
     cJSON_AddNumberToObject(set, "seed", o->seed);
@@ -657,10 +670,16 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
                                     dirt_session_get_stats(rs)->total_ms);
     }
     char ipath[3][1024];
-    if (o->images)
-        for (int k = 0; k < 3; k++)
-            snprintf(ipath[k], sizeof(ipath[k]), "%s/images/%04d_%s.png", o->dir, index,
-                     k == 0 ? "dirt" : k == 1 ? "mmrt" : "embree");
+    if (o->images) {
+        cJSON *ij = cJSON_AddObjectToObject(row, "images"); /* relative to DIR */
+        for (int k = 0; k < 3; k++) {
+            const char *e = k == 0 ? "dirt" : k == 1 ? "mmrt" : "embree";
+            snprintf(ipath[k], sizeof(ipath[k]), "%s/images/%04d_%s.png", o->dir, index, e);
+            char rel[64];
+            snprintf(rel, sizeof(rel), "images/%04d_%s.png", index, e);
+            cJSON_AddStringToObject(ij, e, rel);
+        }
+    }
     if (ref && o->images)
         cli_write_image(PROG, ref, ipath[2], 0, false, true);
     cJSON *dj = why[0] ? NULL
@@ -731,6 +750,7 @@ int main(int argc, char **argv)
     set_default(&o.dbuckets, 4);
     set_default(&o.mbuckets, 4);
     set_default(&o.march, 0);
+    set_default(&o.samples, 0);
     set_default(&o.spp, 1);
     set_default(&o.bounces, 4);
     if (!o.thickness.n)
@@ -779,7 +799,7 @@ int main(int argc, char **argv)
     /* The sweep, MMRT's settings innermost. */
     size_t total = (size_t)o.num_scenes * o.w.n * o.views.n * o.time.n * o.spp.n *
                    o.bounces.n * o.tile.n * o.dbuckets.n * o.mbuckets.n * o.march.n *
-                   o.thickness.n;
+                   o.samples.n * o.thickness.n;
     config *cfg = rc == DIRT_EXIT_OK ? calloc(total ? total : 1, sizeof(*cfg)) : NULL;
     size_t n = 0;
     if (rc == DIRT_EXIT_OK && !cfg)
@@ -794,13 +814,20 @@ int main(int argc, char **argv)
                                 for (int h = 0; h < o.dbuckets.n; h++)
                                     for (int i = 0; i < o.mbuckets.n; i++)
                                         for (int j = 0; j < o.march.n; j++)
-                                            for (int k = 0; k < o.thickness.n; k++)
-                                                cfg[n++] = (config){
-                                                    a, o.w.v[b], o.h.v[b], o.views.v[c],
-                                                    o.tile.v[g], o.dbuckets.v[h],
-                                                    o.mbuckets.v[i], o.march.v[j], o.spp.v[e],
-                                                    o.bounces.v[f], o.thickness.v[k],
-                                                    o.time.v[d]};
+                                            for (int l = 0; l < o.samples.n; l++)
+                                                for (int k = 0; k < o.thickness.n; k++) {
+                                                    /* Hi-Z takes no samples: one row */
+                                                    bool hiz = o.march.v[j] == DIRT_MMRT_MARCH_HIZ;
+                                                    if (hiz && l > 0)
+                                                        continue;
+                                                    cfg[n++] = (config){
+                                                        a, o.w.v[b], o.h.v[b], o.views.v[c],
+                                                        o.tile.v[g], o.dbuckets.v[h],
+                                                        o.mbuckets.v[i], o.march.v[j],
+                                                        hiz ? 0 : o.samples.v[l], o.spp.v[e],
+                                                        o.bounces.v[f], o.thickness.v[k],
+                                                        o.time.v[d]};
+                                                }
     dirt_gpu *gpu = NULL;
     if (rc == DIRT_EXIT_OK) {
         gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
