@@ -612,9 +612,20 @@ static void machine_string(char *buf, size_t n)
              sysconf(_SC_NPROCESSORS_ONLN));
 }
 
+/* 64-bit FNV-1a of a configuration's id: its images' names, the same in
+ * every run whatever the sweep around it (a position in the sweep is not:
+ * a rerun with longer lists would overwrite the images of kept rows). */
+static unsigned long long id_hash(const char *id)
+{
+    unsigned long long h = 1469598103934665603ull;
+    for (const unsigned char *p = (const unsigned char *)id; *p; p++)
+        h = (h ^ *p) * 1099511628211ull;
+    return h;
+}
+
 /* One configuration: DIRT, MMRT and the Embree reference; the row. */
 static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
-                         const options *o, const env *ev, const char *id, int index)
+                         const options *o, const env *ev, const char *id)
 {
     char why[512] = "";
     g_first_error[0] = 0;
@@ -674,9 +685,9 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
         cJSON *ij = cJSON_AddObjectToObject(row, "images"); /* relative to DIR */
         for (int k = 0; k < 3; k++) {
             const char *e = k == 0 ? "dirt" : k == 1 ? "mmrt" : "embree";
-            snprintf(ipath[k], sizeof(ipath[k]), "%s/images/%04d_%s.png", o->dir, index, e);
             char rel[64];
-            snprintf(rel, sizeof(rel), "images/%04d_%s.png", index, e);
+            snprintf(rel, sizeof(rel), "images/%016llx_%s.png", id_hash(id), e);
+            snprintf(ipath[k], sizeof(ipath[k]), "%s/%s", o->dir, rel);
             cJSON_AddStringToObject(ij, e, rel);
         }
     }
@@ -905,7 +916,7 @@ int main(int argc, char **argv)
                 else
                     fprintf(stderr, PROG ": [%zu/%zu] %s; ETA unknown\n", i + 1, n, id);
             }
-            row = run_config(gpu, &si[cfg[i].scene], &cfg[i], &o, &ev, id, (int)i);
+            row = run_config(gpu, &si[cfg[i].scene], &cfg[i], &o, &ev, id);
             measured_s += jnum(row, "seconds", NULL);
             measured++;
             const cJSON *st = cJSON_GetObjectItemCaseSensitive(row, "status");

@@ -144,7 +144,7 @@ json.dump({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}
                    "type": "SCALAR"}]}, open(sys.argv[1], "w"))
 PY
 "$cmp" "$tmp/layers.gltf" -o "$tmp/fails" --res 64x32,512x256,32x16 --views single --tile 8 \
-  --warmup 0 --repeat 1 --agree-res 16x8 2>"$tmp/fails.log"
+  --warmup 0 --repeat 1 --agree-res 16x8 --images 2>"$tmp/fails.log"
 rc=$?
 python3 - "$tmp/fails/results.json" "$rc" <<'PY' || { fail "mid-sweep failure"; cat "$tmp/fails.log" >&2; }
 import json, sys
@@ -157,6 +157,14 @@ if len(rows) == 3 and st[1] == "ok" and "llvmpipe" not in rows[1]["environment"]
 why = rows[1].get("reason") if len(rows) == 3 else None
 ok = st == ["ok", "failed", "ok"] and int(sys.argv[2]) == 1 and isinstance(why, str) and \
      why.startswith("mmrt: ") and "largest storage buffer" in why
+# --images: the measured rows name their PNGs (relative to DIR), which exist
+d = sys.argv[1].rsplit("/", 1)[0]
+for r in rows:
+    for e in ("dirt", "mmrt", "embree"):
+        p = r.get("images", {}).get(e) if r["status"] == "ok" else None
+        if r["status"] == "ok" and not (p and open(d + "/" + p, "rb").read(4) == b"\x89PNG"):
+            print("row %s: no %s image" % (r["id"], e), file=sys.stderr)
+            ok = False
 if not ok:
     print("statuses %s, exit %s, reason %r" % (st, sys.argv[2], why), file=sys.stderr)
 sys.exit(0 if ok else 1)
