@@ -92,31 +92,30 @@
 
 /* The path tracer's MMRT technique (src/mmrt/pt_mmrt.c, glsl/mmrt/pt_rays.comp). */
 #define DIRT_BIND_MMRT_PT_FIRST 22
-#define DIRT_BIND_MMRT_PT_RAYS_OUT 22 /* dirt_gpu_ray[count]: the offset copy of a batch */
-#define DIRT_BIND_MMRT_PT_COUNTS 23   /* dirt_mmrt_pt_counts */
-#define DIRT_BIND_MMRT_PT_LAST 23
+#define DIRT_BIND_MMRT_PT_COUNTS 22   /* dirt_mmrt_pt_counts */
+#define DIRT_BIND_MMRT_PT_LAST 22
 
 /* Tables of the light-transport model (src/integrator/gpu_tables.c,
  * glsl/integrator/model.glsl with DIRT_MODEL_BUFFERS). */
-#define DIRT_BIND_MODEL_FIRST 24
-#define DIRT_BIND_MODEL_MATERIALS 24   /* dirt_gpu_model_material[materials] */
-#define DIRT_BIND_MODEL_AREA_CDF 25    /* dirt_gpu_model_lights header, float cdf[count] */
-#define DIRT_BIND_MODEL_AREA_PRIMS 26  /* uint prim[count] (at least one entry) */
-#define DIRT_BIND_MODEL_PUNCTUAL 27    /* dirt_gpu_model_light[punctual] (at least one) */
-#define DIRT_BIND_MODEL_CAMERA 28      /* one dirt_gpu_model_camera */
-#define DIRT_BIND_MODEL_LAST 28
+#define DIRT_BIND_MODEL_FIRST 23
+#define DIRT_BIND_MODEL_MATERIALS 23   /* dirt_gpu_model_material[materials] */
+#define DIRT_BIND_MODEL_AREA_CDF 24    /* dirt_gpu_model_lights header, float cdf[count] */
+#define DIRT_BIND_MODEL_AREA_PRIMS 25  /* uint prim[count] (at least one entry) */
+#define DIRT_BIND_MODEL_PUNCTUAL 26    /* dirt_gpu_model_light[punctual] (at least one) */
+#define DIRT_BIND_MODEL_CAMERA 27      /* one dirt_gpu_model_camera */
+#define DIRT_BIND_MODEL_LAST 27
 
 /* Raster preview (src/raster/preview.c, glsl/raster/). */
-#define DIRT_BIND_PREVIEW_FIRST 29
-#define DIRT_BIND_PREVIEW_MATERIALS 29 /* dirt_gpu_material[materials] */
-#define DIRT_BIND_PREVIEW_LIGHTS 30    /* dirt_gpu_light[lights] */
-#define DIRT_BIND_PREVIEW_LAST 30
+#define DIRT_BIND_PREVIEW_FIRST 28
+#define DIRT_BIND_PREVIEW_MATERIALS 28 /* dirt_gpu_material[materials] */
+#define DIRT_BIND_PREVIEW_LIGHTS 29    /* dirt_gpu_light[lights] */
+#define DIRT_BIND_PREVIEW_LAST 29
 
 /* Test shaders (glsl/test/, glsl/graph_test/, integrator/test_model.comp). */
-#define DIRT_BIND_TEST_FIRST 31
-#define DIRT_BIND_TEST_IN 31           /* a test's input buffer */
-#define DIRT_BIND_TEST_OUT 32          /* a test's output buffer */
-#define DIRT_BIND_TEST_LAST 32
+#define DIRT_BIND_TEST_FIRST 30
+#define DIRT_BIND_TEST_IN 30           /* a test's input buffer */
+#define DIRT_BIND_TEST_OUT 31          /* a test's output buffer */
+#define DIRT_BIND_TEST_LAST 31
 
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
@@ -172,8 +171,7 @@
     !DIRT_BIND_IN(DIRT_BIND_MMRT_COUNTERS, DIRT_BIND_MMRT_FIRST, DIRT_BIND_MMRT_LAST)
 #error "common/constants.h: an MMRT binding lies outside DIRT_BIND_MMRT_*"
 #endif
-#if !DIRT_BIND_IN(DIRT_BIND_MMRT_PT_RAYS_OUT, DIRT_BIND_MMRT_PT_FIRST, DIRT_BIND_MMRT_PT_LAST) || \
-    !DIRT_BIND_IN(DIRT_BIND_MMRT_PT_COUNTS, DIRT_BIND_MMRT_PT_FIRST, DIRT_BIND_MMRT_PT_LAST)
+#if !DIRT_BIND_IN(DIRT_BIND_MMRT_PT_COUNTS, DIRT_BIND_MMRT_PT_FIRST, DIRT_BIND_MMRT_PT_LAST)
 #error "common/constants.h: an MMRT technique binding lies outside DIRT_BIND_MMRT_PT_*"
 #endif
 #if !DIRT_BIND_IN(DIRT_BIND_MODEL_MATERIALS, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
@@ -229,6 +227,7 @@
 #define DIRT_LOC_PT_BACKGROUND 8     /* vec3 */
 #define DIRT_LOC_PT_AO_DISTANCE 9    /* float */
 #define DIRT_LOC_PT_PIXEL_OFFSET 10  /* uint: image pixel of the chunk's record 0 */
+#define DIRT_LOC_PT_SURFACE_OFFSET 11 /* float: the tracer's surface_offset (dirt/tracer.h) */
 /* glsl/integrator/resolve.comp */
 #define DIRT_LOC_RESOLVE_PIXELS 0    /* uint: pixels of this chunk */
 /* glsl/integrator/accumulate.comp */
@@ -266,8 +265,6 @@
 #define DIRT_LOC_MMRT_TRACE_FIRST_RAY 8  /* uint: wavefront index of the batch's ray 0 */
 /* glsl/mmrt/pt_rays.comp */
 #define DIRT_LOC_MMRT_PT_RAYS_COUNT 0    /* uint: rays */
-#define DIRT_LOC_MMRT_PT_RAYS_OFFSET 1   /* float: origin offset */
-#define DIRT_LOC_MMRT_PT_RAYS_SHADOW 2   /* int: 1 for a shadow (any-hit) batch */
 /* glsl/mmrt/to_gpoint.comp */
 #define DIRT_LOC_MMRT_TO_GPOINT_COUNT 0  /* uint: rays */
 #define DIRT_LOC_MMRT_TO_GPOINT_SLOT 1   /* uint: ring slot written */

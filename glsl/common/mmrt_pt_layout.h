@@ -6,9 +6,8 @@
 
 #include "common/mmrt_layout.h"
 
-/* pt_rays.comp writes the offset copy of a ray batch at
- * DIRT_BIND_MMRT_PT_RAYS_OUT and counts at DIRT_BIND_MMRT_PT_COUNTS (the
- * MMRT technique's own range of common/constants.h). */
+/* pt_rays.comp writes its counts at DIRT_BIND_MMRT_PT_COUNTS (the MMRT
+ * technique's own range of common/constants.h). */
 
 /* Counters of a render (16 bytes), cleared by the host at its start. */
 struct dirt_mmrt_pt_counts {

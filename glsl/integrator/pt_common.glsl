@@ -28,6 +28,10 @@ layout(location = DIRT_LOC_PT_AO_DISTANCE) uniform float u_ao_distance;
 // record p of the per-pixel buffers is image pixel u_pixel_offset + p, which
 // keys the random numbers and gives the pixel's coordinates.
 layout(location = DIRT_LOC_PT_PIXEL_OFFSET) uniform uint u_pixel_offset;
+// The tracer's surface_offset (dirt/tracer.h): rays leaving a surface start
+// this much farther off it along ng; shadow rays stop this far off the
+// emitter's plane. 0 for DIRT (the reference's rays exactly).
+layout(location = DIRT_LOC_PT_SURFACE_OFFSET) uniform float u_surface_offset;
 
 #define SHADOW_SHORTEN 1e-4
 
@@ -126,6 +130,8 @@ pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir)
     v.surf = dirt_material_surface_g(floatBitsToUint(g.n_mat.w), vec2(g.ng_u.w, g.wo_v.w));
     v.le = (v.front || v.surf.double_sided) ? v.surf.emission : vec3(0.0);
     v.origin = v.p + ng * ray_epsilon(v.p);
+    if (u_surface_offset > 0.0)
+        v.origin += ng * u_surface_offset;
     return v;
 }
 

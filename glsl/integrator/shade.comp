@@ -27,9 +27,21 @@ layout(std430, binding = DIRT_BIND_SHADOW_RAYS) writeonly buffer ShadowRays {
     dirt_gpu_ray shadow_rays[];
 };
 
+// The shadow ray from v's ray origin to the light point y, stopping
+// SHADOW_SHORTEN short of it (= occluded_to of the reference): aimed from
+// the origin itself, not along the direction from v.p, which would end the
+// ray ray_epsilon off y and could take it through the light.
+void shadow_to(pt_vertex v, vec3 y, out vec3 dir, out float tmax)
+{
+    vec3 d = y - v.origin;
+    float len = length(d);
+    dir = len > 0.0 ? d * (1.0 / len) : vec3(0.0, 0.0, 1.0);
+    tmax = len > 0.0 ? len * (1.0 - SHADOW_SHORTEN) : -1.0; // -1: unoccluded
+}
+
 // Next-event estimation at v (= sample_light of the reference): returns the
-// contribution (before the throughput) and sets the shadow ray; false when
-// nothing can be sampled.
+// contribution (before the throughput) and sets the shadow ray's direction
+// and length (from v.origin); false when nothing can be sampled.
 bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out float tmax)
 {
     contrib = vec3(0.0);
@@ -74,8 +86,23 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
             return false;
         float w = dirt_mis_power_g(pdf_l, dirt_bsdf_pdf_g(v.surf.bsdf, v.wo, wl));
         contrib = f * ls.emission * (wl.z * w / pdf_l);
-        wi_out = wi;
-        tmax = dist * (1.0 - SHADOW_SHORTEN);
+        if (u_surface_offset > 0.0) {
+            // Stop the shadow ray u_surface_offset off the light's plane
+            // (the tracer accepts surfaces within a thickness of the ray);
+            // receiver and light point too close to each other's planes for
+            // that: untraced, unoccluded.
+            vec3 nl = tri_normal_ng(prim);
+            if (dot(nl, v.p - y) < 0.0)
+                nl = -nl;
+            float off = u_surface_offset;
+            if (dot(y - v.p, v.ng) < 2.0 * off || dot(v.p - y, nl) < 2.0 * off) {
+                wi_out = wi;
+                tmax = -1.0;
+                return true;
+            }
+            y += nl * off;
+        }
+        shadow_to(v, y, wi_out, tmax);
         return true;
     }
     dirt_gpu_model_light light = dirt_model_punctual[s - (area > 0u ? 1u : 0u)];
@@ -91,7 +118,9 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
         return false;
     contrib = f * li * (wl.z * float(n));
     wi_out = wi;
-    tmax = isinf(dist) ? DIRT_INFINITY_G : dist * (1.0 - SHADOW_SHORTEN);
+    tmax = DIRT_INFINITY_G;
+    if (!isinf(dist))
+        shadow_to(v, v.p + wi * dist, wi_out, tmax);
     return true;
 }
 

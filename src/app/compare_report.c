@@ -79,6 +79,28 @@ static bool write_buf(const char *prog, const char *dir, const char *name, buf *
     return ok;
 }
 
+/* Rows of one scene, resolution, spp and bounces: MMRT's settings vary. */
+static bool same_group(const cJSON *p, const cJSON *a)
+{
+    return !strcmp(js(p, "scene.path"), js(a, "scene.path")) &&
+           jd(p, "settings.width") == jd(a, "settings.width") &&
+           jd(p, "settings.height") == jd(a, "settings.height") &&
+           jd(p, "settings.spp") == jd(a, "settings.spp") &&
+           jd(p, "settings.bounces") == jd(a, "settings.bounces");
+}
+
+/* "1.921 (0.2 % of the diagonal), hiz" / "..., linear 30". */
+static void setting_str(const cJSON *r, char *out, size_t n)
+{
+    double t = jd(r, "mmrt.thickness_used"), d = jd(r, "scene.diagonal");
+    char march[32];
+    if (!strcmp(js(r, "settings.mmrt_march"), "linear") && jd(r, "settings.mmrt_samples") > 0)
+        snprintf(march, sizeof(march), "linear %.0f", jd(r, "settings.mmrt_samples"));
+    else
+        snprintf(march, sizeof(march), "%s", js(r, "settings.mmrt_march"));
+    snprintf(out, n, "%.4g (%.2g %% of the diagonal), %s", t, d > 0 ? 100 * t / d : NAN, march);
+}
+
 /* The CSV's columns: name and the row's JSON path. */
 static const char *const csv_cols[][2] = {
     {"id", "id"}, {"status", "status"}, {"reason", "reason"},
@@ -89,6 +111,7 @@ static const char *const csv_cols[][2] = {
     {"dirt_buckets", "settings.dirt_buckets"}, {"mmrt_buckets", "settings.mmrt_buckets"},
     {"mmrt_thickness", "settings.mmrt_thickness"},
     {"mmrt_thickness_used", "mmrt.thickness_used"}, {"mmrt_march", "settings.mmrt_march"},
+    {"mmrt_samples", "settings.mmrt_samples"},
     {"warmup", "settings.warmup"}, {"repeat", "settings.repeat"},
     {"clock", "environment.clock"},
     {"mmrt_fragments", "mmrt.records"}, {"mmrt_used_bytes", "mmrt.memory.structure_used"},
@@ -283,10 +306,15 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
             bprintf(&b, "\n");
         }
     }
-    /* MMRT's best thickness per scene beside its default. */
-    bprintf(&b, "\n## MMRT thickness per scene (relMSE of the path-traced image vs Embree)"
-                "\n\n| scene | resolution | spp | default thickness | relMSE at default | "
-                "best thickness | relMSE at best | DIRT relMSE |\n|---|---|---|---|---|---|---|---|\n");
+    /* MMRT's best setting per scene (thickness, march, samples) beside its
+     * default (default thickness, Hi-Z), with their images. */
+    bprintf(&b, "\n## MMRT's best setting per scene (relMSE of the path-traced image vs "
+                "Embree)\n\nDefault: MMRT's default thickness (0.2 %% of the scene's diagonal) "
+                "and the Hi-Z march; best: the lowest relMSE over the thicknesses, marches and "
+                "samples swept at that scene, resolution and spp.\n\n"
+                "| scene | resolution | spp | default | relMSE at default | best setting | "
+                "relMSE at best | DIRT relMSE | images (MMRT default, MMRT best, Embree) |\n"
+                "|---|---|---|---|---|---|---|---|---|\n");
     int nrows = cJSON_GetArraySize(rows);
     for (int i = 0; i < nrows; i++) {
         const cJSON *a = cJSON_GetArrayItem(rows, i);
@@ -295,33 +323,40 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
         bool seen = false;
         for (int k = 0; k < i && !seen; k++) {
             const cJSON *p = cJSON_GetArrayItem(rows, k);
-            seen = row_ok(p) && !strcmp(js(p, "scene.path"), js(a, "scene.path")) &&
-                   jd(p, "settings.width") == jd(a, "settings.width") &&
-                   jd(p, "settings.spp") == jd(a, "settings.spp");
+            seen = row_ok(p) && same_group(p, a);
         }
         if (seen)
             continue;
-        double best = INFINITY, best_t = NAN, def = NAN, def_t = NAN, dirt = NAN;
+        const cJSON *def = NULL, *best = NULL;
         for (int k = i; k < nrows; k++) {
             const cJSON *p = cJSON_GetArrayItem(rows, k);
-            if (!row_ok(p) || strcmp(js(p, "scene.path"), js(a, "scene.path")) ||
-                jd(p, "settings.width") != jd(a, "settings.width") ||
-                jd(p, "settings.spp") != jd(a, "settings.spp"))
+            if (!row_ok(p) || !same_group(p, a))
                 continue;
-            double e = jd(p, "mmrt.rel_mse");
-            if (cJSON_IsTrue(jget(p, "settings.mmrt_thickness_default")))
-                def = e, def_t = jd(p, "mmrt.thickness_used"), dirt = jd(p, "dirt.rel_mse");
-            if (e < best)
-                best = e, best_t = jd(p, "mmrt.thickness_used");
-            if (isnan(dirt))
-                dirt = jd(p, "dirt.rel_mse");
+            bool is_def = cJSON_IsTrue(jget(p, "settings.mmrt_default")) ||
+                          (!jget(p, "settings.mmrt_default") &&
+                           cJSON_IsTrue(jget(p, "settings.mmrt_thickness_default")) &&
+                           !strcmp(js(p, "settings.mmrt_march"), "hiz"));
+            if (is_def && !def)
+                def = p;
+            if (!best || jd(p, "mmrt.rel_mse") < jd(best, "mmrt.rel_mse"))
+                best = p;
         }
-        char dt[32] = "not swept (add 0)", de[32] = "";
-        if (!isnan(def))
-            snprintf(dt, sizeof(dt), "%.4g", def_t), snprintf(de, sizeof(de), "%.4g", def);
-        bprintf(&b, "| %s | %.0fx%.0f | %.0f | %s | %s | %.4g | %.4g | %.3g |\n",
+        char ds[96] = "not swept (add 0 and hiz)", de[32] = "-", bs[96], im[256] = "-";
+        if (def) {
+            setting_str(def, ds, sizeof(ds));
+            snprintf(de, sizeof(de), "%.4g", jd(def, "mmrt.rel_mse"));
+        }
+        setting_str(best, bs, sizeof(bs));
+        if (*js(best, "images.mmrt"))
+            snprintf(im, sizeof(im), "%s%s%s, [best](%s), [Embree](%s)",
+                     def && *js(def, "images.mmrt") ? "[default](" : "",
+                     def && *js(def, "images.mmrt") ? js(def, "images.mmrt") : "-",
+                     def && *js(def, "images.mmrt") ? ")" : "", js(best, "images.mmrt"),
+                     js(best, "images.embree"));
+        bprintf(&b, "| %s | %.0fx%.0f | %.0f | %s | %s | %s | %.4g | %.3g | %s |\n",
                 js(a, "scene.name"), jd(a, "settings.width"), jd(a, "settings.height"),
-                jd(a, "settings.spp"), dt, de, best_t, best, dirt);
+                jd(a, "settings.spp"), ds, de, bs, jd(best, "mmrt.rel_mse"),
+                jd(def ? def : best, "dirt.rel_mse"), im);
     }
     return write_buf(prog, dir, "table.md", &b);
 }

@@ -29,7 +29,7 @@ typedef struct options {
     const char *scenes[MAX_SCENES];
     int num_scenes;
     const char *dir;
-    int_list w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
+    int_list w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
     dbl_list thickness, time;
     int warmup, repeat, agree_w, agree_h, face;
     bool quality, images, quiet;
@@ -62,6 +62,8 @@ static void usage(FILE *out)
 "  --thickness-rel LIST   MMRT thickness as fractions of the diagonal (added to\n"
 "                         the --thickness list)\n"
 "  --march LIST           MMRT march: hiz, linear (default hiz)\n"
+"  --samples LIST         MMRT linear march: samples per view (0 = its default,\n"
+"                         30; default 0; Hi-Z rows take none)\n"
 "  --spp LIST             samples per pixel of the path-traced image (default 1)\n"
 "  --bounces LIST         path events (default 4)\n"
 "  --time LIST            animation times in seconds (default 0)\n"
@@ -268,6 +270,8 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
                 o->thickness.v[k] = -o->thickness.v[k]; /* resolved per scene */
         } else if (!strcmp(a, "--march")) {
             ok = parse_ints(a, v, &o->march, 0, 0, march_names);
+        } else if (!strcmp(a, "--samples")) {
+            ok = parse_ints(a, v, &o->samples, 0, 65536, NULL);
         } else if (!strcmp(a, "--spp")) {
             ok = parse_ints(a, v, &o->spp, 1, 1 << 16, NULL);
         } else if (!strcmp(a, "--bounces")) {
@@ -317,7 +321,7 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
 /* ---- one configuration ---- */
 
 typedef struct config {
-    int scene, w, h, views, tile, dbuckets, mbuckets, march, spp, bounces;
+    int scene, w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
     double thickness, time; /* thickness < 0: a fraction of the diagonal */
 } config;
 
@@ -352,6 +356,34 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
 
 static int g_face; /* --face: one value for the whole sweep */
 
+/* The library's messages, printed as its default sink prints them; the
+ * first error since the configuration began is kept for the row's reason. */
+static char g_first_error[400];
+
+static void log_sink(void *user, enum dirt_log_level level, const char *file, int line,
+                     const char *msg)
+{
+    (void)user;
+    static const char *const tags[] = {"error", "warning", "info", "debug"};
+    if (file) {
+        const char *src = strstr(file, "src/");
+        fprintf(stderr, "dirt: %s: %s:%d: %s\n", tags[level], src ? src : file, line, msg);
+    } else {
+        fprintf(stderr, "dirt: %s\n", msg);
+    }
+    if (level == DIRT_LOG_ERROR && !g_first_error[0])
+        snprintf(g_first_error, sizeof(g_first_error), "%s", msg);
+}
+
+/* "ENGINE: WHAT: the first error logged", or "(see the log)" without one. */
+static void set_reason(char *why, size_t n, const char *engine, const char *what)
+{
+    if (g_first_error[0])
+        snprintf(why, n, "%s: %s: %s", engine, what, g_first_error);
+    else
+        snprintf(why, n, "%s: %s (see the log)", engine, what);
+}
+
 static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float thickness,
                                       uint32_t seed)
 {
@@ -359,7 +391,8 @@ static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
-        .march = (enum dirt_mmrt_march)c->march, .thickness = thickness,
+        .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
+        .thickness = thickness,
         .bounces = c->bounces, .seed = seed, .background = {1, 1, 1}};
 }
 
@@ -376,7 +409,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
     dirt_session_opts so = session_opts(c, e, thickness, o->seed);
     dirt_session *s = dirt_session_create(gpu, si->scene, &so);
     if (!s) {
-        snprintf(why, whysz, "%s: the session could not be made", dirt_engine_names[e]);
+        set_reason(why, whysz, dirt_engine_names[e], "the session could not be made");
         return NULL;
     }
     bool ok = true;
@@ -412,8 +445,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
     const dirt_image *img = ok ? dirt_session_image(s) : NULL;
     if (!ok || !img) {
         if (!why[0])
-            snprintf(why, whysz, "%s: build or render failed (see the log)",
-                     dirt_engine_names[e]);
+            set_reason(why, whysz, dirt_engine_names[e], "build or render failed");
         dirt_session_destroy(s);
         return NULL;
     }
@@ -507,7 +539,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         dirt_session_agreement ag;
         int aw = o->agree_w ? o->agree_w : c->w, ah = o->agree_h ? o->agree_h : c->h;
         if (!dirt_session_hit_agreement(s, aw, ah, o->seed, &ag)) {
-            snprintf(why, whysz, "%s: hit agreement failed (see the log)", dirt_engine_names[e]);
+            set_reason(why, whysz, dirt_engine_names[e], "hit agreement failed");
             cJSON_Delete(j);
             dirt_session_destroy(s);
             return NULL;
@@ -535,9 +567,13 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
 static void config_id(const options *o, const scene_info *si, const config *c, char *buf,
                       size_t n)
 {
+    char march[32];
+    snprintf(march, sizeof(march), "%s", march_names[c->march]);
+    if (c->march == DIRT_MMRT_MARCH_LINEAR && c->samples) /* linear alone: 30 samples */
+        snprintf(march, sizeof(march), "linear%d", c->samples);
     snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
              si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
-             c->dbuckets, c->mbuckets, c->thickness, march_names[c->march], o->warmup,
+             c->dbuckets, c->mbuckets, c->thickness, march, o->warmup,
              o->repeat, o->quality ? 1 : 0, o->seed);
 }
 
@@ -578,11 +614,23 @@ static void machine_string(char *buf, size_t n)
              sysconf(_SC_NPROCESSORS_ONLN));
 }
 
+/* 64-bit FNV-1a of a configuration's id: its images' names, the same in
+ * every run whatever the sweep around it (a position in the sweep is not:
+ * a rerun with longer lists would overwrite the images of kept rows). */
+static unsigned long long id_hash(const char *id)
+{
+    unsigned long long h = 1469598103934665603ull;
+    for (const unsigned char *p = (const unsigned char *)id; *p; p++)
+        h = (h ^ *p) * 1099511628211ull;
+    return h;
+}
+
 /* One configuration: DIRT, MMRT and the Embree reference; the row. */
 static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
-                         const options *o, const env *ev, const char *id, int index)
+                         const options *o, const env *ev, const char *id)
 {
     char why[512] = "";
+    g_first_error[0] = 0;
     double t0 = dirt_clock_ms();
     float th = (float)(c->thickness < 0 ? -c->thickness * si->diagonal : c->thickness);
     cJSON *row = cJSON_CreateObject();
@@ -606,6 +654,10 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
     cJSON_AddBoolToObject(set, "mmrt_thickness_default", th == 0);
     cJSON_AddStringToObject(set, "mmrt_march", march_names[c->march]);
+    cJSON_AddNumberToObject(set, "mmrt_samples",
+                            c->march == DIRT_MMRT_MARCH_LINEAR ? (c->samples ? c->samples : 30) : 0);
+    cJSON_AddBoolToObject(set, "mmrt_default",
+                          th == 0 && c->march == DIRT_MMRT_MARCH_HIZ);
     cJSON_AddNumberToObject(set, "warmup", o->warmup);
     cJSON_AddNumberToObject(set, "repeat", o->repeat);
     cJSON_AddNumberToObject(set, "seed", o->seed);
@@ -625,16 +677,22 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
                   ? dirt_session_image(rs)
                   : NULL;
         if (!ref)
-            snprintf(why, sizeof(why), "embree reference failed (see the log)");
+            set_reason(why, sizeof(why), "embree", "the reference failed");
         else
             cJSON_AddNumberToObject(cJSON_AddObjectToObject(row, "embree"), "total_ms",
                                     dirt_session_get_stats(rs)->total_ms);
     }
     char ipath[3][1024];
-    if (o->images)
-        for (int k = 0; k < 3; k++)
-            snprintf(ipath[k], sizeof(ipath[k]), "%s/images/%04d_%s.png", o->dir, index,
-                     k == 0 ? "dirt" : k == 1 ? "mmrt" : "embree");
+    if (o->images) {
+        cJSON *ij = cJSON_AddObjectToObject(row, "images"); /* relative to DIR */
+        for (int k = 0; k < 3; k++) {
+            const char *e = k == 0 ? "dirt" : k == 1 ? "mmrt" : "embree";
+            char rel[64];
+            snprintf(rel, sizeof(rel), "images/%016llx_%s.png", id_hash(id), e);
+            snprintf(ipath[k], sizeof(ipath[k]), "%s/%s", o->dir, rel);
+            cJSON_AddStringToObject(ij, e, rel);
+        }
+    }
     if (ref && o->images)
         cli_write_image(PROG, ref, ipath[2], 0, false, true);
     cJSON *dj = why[0] ? NULL
@@ -691,6 +749,7 @@ int main(int argc, char **argv)
     if (!parse_args(argc, argv, &o, 0))
         return DIRT_EXIT_USAGE;
     g_face = o.face;
+    dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
         return DIRT_EXIT_USAGE;
@@ -704,6 +763,7 @@ int main(int argc, char **argv)
     set_default(&o.dbuckets, 4);
     set_default(&o.mbuckets, 4);
     set_default(&o.march, 0);
+    set_default(&o.samples, 0);
     set_default(&o.spp, 1);
     set_default(&o.bounces, 4);
     if (!o.thickness.n)
@@ -752,7 +812,7 @@ int main(int argc, char **argv)
     /* The sweep, MMRT's settings innermost. */
     size_t total = (size_t)o.num_scenes * o.w.n * o.views.n * o.time.n * o.spp.n *
                    o.bounces.n * o.tile.n * o.dbuckets.n * o.mbuckets.n * o.march.n *
-                   o.thickness.n;
+                   o.samples.n * o.thickness.n;
     config *cfg = rc == DIRT_EXIT_OK ? calloc(total ? total : 1, sizeof(*cfg)) : NULL;
     size_t n = 0;
     if (rc == DIRT_EXIT_OK && !cfg)
@@ -767,13 +827,20 @@ int main(int argc, char **argv)
                                 for (int h = 0; h < o.dbuckets.n; h++)
                                     for (int i = 0; i < o.mbuckets.n; i++)
                                         for (int j = 0; j < o.march.n; j++)
-                                            for (int k = 0; k < o.thickness.n; k++)
-                                                cfg[n++] = (config){
-                                                    a, o.w.v[b], o.h.v[b], o.views.v[c],
-                                                    o.tile.v[g], o.dbuckets.v[h],
-                                                    o.mbuckets.v[i], o.march.v[j], o.spp.v[e],
-                                                    o.bounces.v[f], o.thickness.v[k],
-                                                    o.time.v[d]};
+                                            for (int l = 0; l < o.samples.n; l++)
+                                                for (int k = 0; k < o.thickness.n; k++) {
+                                                    /* Hi-Z takes no samples: one row */
+                                                    bool hiz = o.march.v[j] == DIRT_MMRT_MARCH_HIZ;
+                                                    if (hiz && l > 0)
+                                                        continue;
+                                                    cfg[n++] = (config){
+                                                        a, o.w.v[b], o.h.v[b], o.views.v[c],
+                                                        o.tile.v[g], o.dbuckets.v[h],
+                                                        o.mbuckets.v[i], o.march.v[j],
+                                                        hiz ? 0 : o.samples.v[l], o.spp.v[e],
+                                                        o.bounces.v[f], o.thickness.v[k],
+                                                        o.time.v[d]};
+                                                }
     dirt_gpu *gpu = NULL;
     if (rc == DIRT_EXIT_OK) {
         gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
@@ -851,7 +918,7 @@ int main(int argc, char **argv)
                 else
                     fprintf(stderr, PROG ": [%zu/%zu] %s; ETA unknown\n", i + 1, n, id);
             }
-            row = run_config(gpu, &si[cfg[i].scene], &cfg[i], &o, &ev, id, (int)i);
+            row = run_config(gpu, &si[cfg[i].scene], &cfg[i], &o, &ev, id);
             measured_s += jnum(row, "seconds", NULL);
             measured++;
             const cJSON *st = cJSON_GetObjectItemCaseSensitive(row, "status");

@@ -255,6 +255,7 @@ static void set_common(dirt_pt *pt, GLuint prog, int k)
     glUniform1ui(DIRT_LOC_PT_SLOT, (GLuint)(k % 3));
     glUniform3fv(DIRT_LOC_PT_BACKGROUND, 1, pt->opts->background);
     glUniform1f(DIRT_LOC_PT_AO_DISTANCE, pt->ao_distance);
+    glUniform1f(DIRT_LOC_PT_SURFACE_OFFSET, pt->tech->surface_offset);
     dirt_gpu_model_tables_bind(&pt->tables);
     pt->tech->bind_geometry(pt->tech->self);
 }
@@ -374,6 +375,7 @@ static bool make_graph(dirt_pt *pt, int events)
         p = ADD(DIRT_PT_PASS_FETCH, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
+        fg_write(p, hits, FG_SSBO_WRITE); /* MMRT: t of the shading point */
         fg_use(p, gpts, FG_SSBO_READ, NULL);
         fg_write(p, gpts, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "shade %d", k);

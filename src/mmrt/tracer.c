@@ -1,11 +1,14 @@
 /* The MMRT A-buffer as the integrator's tracer (dirt/tracer.h): the
  * Trace -> Fetch -> Shade frame graph of the path tracer traced through the
  * A-buffer. MMRT has no Fetch: the "fetch" turns a hit's data node into the
- * shading point (glsl/mmrt/to_gpoint.comp). Every trace first copies its
- * batch with the start (and, for shadow rays, the end) moved by
- * PT_MMRT_OFFSET_THICKNESSES thicknesses along the ray (glsl/mmrt/
- * pt_rays.comp), so that a ray does not hit the surface it leaves: MMRT
- * accepts any fragment within the thickness of the ray's depth. */
+ * shading point (glsl/mmrt/to_gpoint.comp). MMRT accepts any fragment
+ * within the thickness of the ray's depth, so rays must start clear of the
+ * surface they leave, and shadow rays stop clear of the light, by more than
+ * the thickness in depth in every view: the tracer's surface_offset
+ * (PT_MMRT_OFFSET_THICKNESSES thicknesses) makes Shade start them that far
+ * off the surface along its normal and end shadow rays that far off the
+ * emitter along its normal (dirt/tracer.h). Before every trace
+ * glsl/mmrt/pt_rays.comp counts the batch's active rays. */
 #include <stddef.h>
 #include <stdlib.h>
 
@@ -13,15 +16,20 @@
 #include "gl/program.h"
 #include "mmrt_internal.h"
 
-/* Ray start offset, in thicknesses (the mmrt_trace test starts its bounce
- * rays 3 thicknesses off the surface). */
+/* Surface offset, in thicknesses. Along the normal, 3 thicknesses are at
+ * least 3 x 0.577 = 1.7 thicknesses in depth in a 90-degree cube face (the
+ * view axis is within 54.7 degrees of any view ray) and more in the
+ * camera's narrower view; a planar surface is never within the thickness of
+ * a ray leaving it, at any angle. (Moved 3 thicknesses along the ray
+ * instead, as before, a ray leaving at under 19.5 degrees was still within
+ * one thickness of its surface in depth in a view along the normal: the
+ * Cornell box's shadow rays below 10 degrees of elevation were 30 %
+ * falsely occluded, by their own wall or by the light.) */
 #define PT_MMRT_OFFSET_THICKNESSES 3.0f
 
 struct mmrt_tracer {
     dirt_gpu *gpu;
     GLuint prog_rays, prog_gpoint;
-    GLuint rays;              /* offset copy of the batch being traced */
-    size_t rays_cap;          /* in rays */
     GLuint counts;            /* dirt_mmrt_pt_counts */
     dirt_mmrt *mmrt;
     dirt_mmrt_trace_opts opts;
@@ -40,7 +48,6 @@ void mmrt_tracer_release(dirt_mmrt *mmrt)
         return;
     gl_program_destroy(&s->prog_rays);
     gl_program_destroy(&s->prog_gpoint);
-    gl_buffer_destroy(&s->rays);
     gl_buffer_destroy(&s->counts);
     free(s);
     mmrt->tracer = NULL;
@@ -70,37 +77,17 @@ static pt_mmrt *get_state(dirt_mmrt *mmrt)
     return s;
 }
 
-static bool ensure_rays(pt_mmrt *s, size_t count)
-{
-    if (s->rays && s->rays_cap >= count)
-        return true;
-    gl_buffer_destroy(&s->rays);
-    s->rays_cap = 0;
-    s->rays = gl_buffer_create(s->gpu, (count ? count : 1) * sizeof(struct dirt_gpu_ray), NULL,
-                               false, "mmrt pt offset rays");
-    if (!s->rays)
-        return false;
-    s->rays_cap = count;
-    s->tracer.bytes_extra = s->rays_cap * sizeof(struct dirt_gpu_ray) +
-                            sizeof(struct dirt_mmrt_pt_counts);
-    return true;
-}
-
 static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t count,
                             bool any_hit)
 {
     pt_mmrt *s = self;
-    if (!ensure_rays(s, count))
-        return false;
+    (void)any_hit;
     dirt_mmrt_gl g;
     dirt_mmrt_gl_buffers(s->mmrt, &g);
-    gl_group_push("mmrt pt ray setup");
+    gl_group_push("mmrt pt ray count");
     glUseProgram(s->prog_rays);
     glUniform1ui(DIRT_LOC_MMRT_PT_RAYS_COUNT, count);
-    glUniform1f(DIRT_LOC_MMRT_PT_RAYS_OFFSET, s->offset);
-    glUniform1i(DIRT_LOC_MMRT_PT_RAYS_SHADOW, any_hit ? 1 : 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_PT_RAYS_OUT, s->rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_PT_COUNTS, s->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_COUNTERS, g.counters);
     glDispatchCompute(DIRT_GROUPS(count) ? DIRT_GROUPS(count) : 1, 1, 1);
@@ -110,7 +97,7 @@ static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t c
     dirt_mmrt_trace_opts o = s->opts;
     o.seed = s->opts.seed + s->calls++ * 0x9E3779B9u;
     o.first_ray = s->first_ray;
-    return dirt_mmrt_trace(s->mmrt, s->rays, hits, count, &o, NULL);
+    return dirt_mmrt_trace(s->mmrt, rays, hits, count, &o, NULL);
 }
 
 static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t count,
@@ -124,6 +111,7 @@ static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t c
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_COUNT, count);
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_SLOT, slot);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, g.vertices);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, g.views);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);
@@ -221,7 +209,8 @@ const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts 
         .restart = mmrt_tech_restart,
         .begin_chunk = mmrt_tech_begin_chunk,
         .views = &mmrt->set,
-        .bytes_extra = s->tracer.bytes_extra,
+        .bytes_extra = sizeof(struct dirt_mmrt_pt_counts),
+        .surface_offset = s->offset,
     };
     return &s->tracer;
 }

@@ -164,6 +164,20 @@ static bool occluded(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 dir
     return dirt_ref_occluded1(c->accel, &r);
 }
 
+/* Whether anything blocks the segment from v's ray origin to the light point
+ * y (the shadow ray stops SHADOW_SHORTEN short of y). Aimed from the origin
+ * itself: a ray from the origin along the direction from v->p would end
+ * ray_epsilon off y and could pass through the light (shadowing it by
+ * itself) when the light is closer than the magnitude of the coordinates. */
+static bool occluded_to(render_ctx *c, uint64_t *rays, const vertex *v, dirt_vec3 y)
+{
+    dirt_vec3 d = v3_sub(y, v->origin);
+    float len = v3_length(d);
+    if (!(len > 0.0f))
+        return false;
+    return occluded(c, rays, v->origin, v3_scale(d, 1.0f / len), len * (1.0f - SHADOW_SHORTEN));
+}
+
 /* Solid-angle pdf with which NEE picks direction `dir` towards a point of
  * emissive triangle `prim` at distance `dist` (including the 1 / n source
  * choice). 0 when the point cannot be sampled. */
@@ -227,7 +241,7 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
                               uv[0], uv[1], &ls);
         if (v3_is_zero(ls.emission))
             return zero;
-        if (occluded(c, rays, v->origin, wi, dist * (1.0f - SHADOW_SHORTEN)))
+        if (occluded_to(c, rays, v, y))
             return zero;
         float w = dirt_mis_power(pdf_l, dirt_bsdf_pdf(&v->surf.bsdf, v->wo, wl));
         return v3_scale(v3_mul(f, ls.emission), wl.z * w / pdf_l);
@@ -244,8 +258,8 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
     dirt_vec3 f = dirt_bsdf_eval(&v->surf.bsdf, v->wo, wl);
     if (v3_is_zero(f))
         return zero;
-    float tmax = isinf(dist) ? INFINITY : dist * (1.0f - SHADOW_SHORTEN);
-    if (occluded(c, rays, v->origin, wi, tmax))
+    if (isinf(dist) ? occluded(c, rays, v->origin, wi, INFINITY)
+                    : occluded_to(c, rays, v, v3_mad(v->p, wi, dist)))
         return zero;
     return v3_scale(v3_mul(f, li), wl.z * (float)n);
 }

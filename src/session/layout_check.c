@@ -184,7 +184,6 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_MMRT_IDS, "MMRT"),
     B(DIRT_BIND_MMRT_DATA, "MMRT"),
     B(DIRT_BIND_MMRT_COUNTERS, "MMRT"),
-    B(DIRT_BIND_MMRT_PT_RAYS_OUT, "MMRT_PT"),
     B(DIRT_BIND_MMRT_PT_COUNTS, "MMRT_PT"),
     B(DIRT_BIND_MODEL_MATERIALS, "MODEL"),
     B(DIRT_BIND_MODEL_AREA_CDF, "MODEL"),
@@ -252,7 +251,6 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_MMRT_IDS);
         CASE(DIRT_BIND_MMRT_DATA);
         CASE(DIRT_BIND_MMRT_COUNTERS);
-        CASE(DIRT_BIND_MMRT_PT_RAYS_OUT);
         CASE(DIRT_BIND_MMRT_PT_COUNTS);
         CASE(DIRT_BIND_MODEL_MATERIALS);
         CASE(DIRT_BIND_MODEL_AREA_CDF);
@@ -283,7 +281,7 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
             L(DIRT_LOC_PT_PIXELS) L(DIRT_LOC_PT_WIDTH) L(DIRT_LOC_PT_HEIGHT) L(DIRT_LOC_PT_SEED)
             L(DIRT_LOC_PT_SAMPLE) L(DIRT_LOC_PT_BOUNCE) L(DIRT_LOC_PT_BOUNCES) L(DIRT_LOC_PT_SLOT)
             L(DIRT_LOC_PT_BACKGROUND) L(DIRT_LOC_PT_AO_DISTANCE) L(DIRT_LOC_PT_PIXEL_OFFSET)
-            return 1;
+            L(DIRT_LOC_PT_SURFACE_OFFSET) return 1;
         }
         break;
     case 1:
@@ -307,8 +305,7 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
         break;
     case 4:
         switch (loc) {
-            L(DIRT_LOC_MMRT_PT_RAYS_COUNT) L(DIRT_LOC_MMRT_PT_RAYS_OFFSET)
-            L(DIRT_LOC_MMRT_PT_RAYS_SHADOW) return 1;
+            L(DIRT_LOC_MMRT_PT_RAYS_COUNT) return 1;
         }
         break;
     case 5:
@@ -360,7 +357,7 @@ static const dirt_layout_uniform u_pt[] = {
     U("u_sample", DIRT_LOC_PT_SAMPLE),   U("u_bounce", DIRT_LOC_PT_BOUNCE),
     U("u_bounces", DIRT_LOC_PT_BOUNCES), U("u_slot", DIRT_LOC_PT_SLOT),
     U("u_background", DIRT_LOC_PT_BACKGROUND), U("u_ao_distance", DIRT_LOC_PT_AO_DISTANCE),
-    U("u_pixel_offset", DIRT_LOC_PT_PIXEL_OFFSET),
+    U("u_pixel_offset", DIRT_LOC_PT_PIXEL_OFFSET), U("u_surface_offset", DIRT_LOC_PT_SURFACE_OFFSET),
 };
 static const dirt_layout_uniform u_resolve[] = {U("u_pixels", DIRT_LOC_RESOLVE_PIXELS)};
 static const dirt_layout_uniform u_accum[] = {U("u_pixels", DIRT_LOC_ACCUM_PIXELS)};
@@ -383,8 +380,7 @@ static const dirt_layout_uniform u_mmrt_trace[] = {
     U("u_stats", DIRT_LOC_MMRT_TRACE_STATS),         U("u_all_views", DIRT_LOC_MMRT_TRACE_ALL_VIEWS),
     U("u_first_ray", DIRT_LOC_MMRT_TRACE_FIRST_RAY)};
 static const dirt_layout_uniform u_pt_rays[] = {
-    U("u_count", DIRT_LOC_MMRT_PT_RAYS_COUNT), U("u_offset", DIRT_LOC_MMRT_PT_RAYS_OFFSET),
-    U("u_shadow", DIRT_LOC_MMRT_PT_RAYS_SHADOW)};
+    U("u_count", DIRT_LOC_MMRT_PT_RAYS_COUNT)};
 static const dirt_layout_uniform u_to_gpoint[] = {
     U("u_count", DIRT_LOC_MMRT_TO_GPOINT_COUNT), U("u_slot", DIRT_LOC_MMRT_TO_GPOINT_SLOT)};
 static const dirt_layout_uniform u_preview[] = {

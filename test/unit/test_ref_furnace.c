@@ -18,7 +18,18 @@
  * 3. Punctual lights: a Lambert floor lit by a point, a spot and a
  *    directional light; the centre pixel of a narrow camera looking straight
  *    down must equal rho / pi * E within 1e-3 relative.
- * 4. Background: rays that leave an open scene return the background. */
+ * 4. Background: rays that leave an open scene return the background.
+ * 5. An area light close above a floor: a square emitter (half size a,
+ *    facing down) at height h over a Lambert floor, direct light only; the
+ *    floor point under its centre, seen from the side under the light, must
+ *    be rho / pi * E with E = Le pi F (F: the point-to-square form factor,
+ *    four corner rectangles) within 5 standard errors, at the origin and
+ *    moved 20 units away. The shadow ray must end before the light sample
+ *    it aims at: aimed from the shading point but started from the origin
+ *    offset along the normal (ray_epsilon, 1e-4 of the coordinates), it ran
+ *    past the light (through it: occluded) whenever the offset exceeded its
+ *    shortening, 1e-4 of the distance times the cosine -- every light closer
+ *    than the coordinates' magnitude, e.g. the Cornell box's tall box top. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -372,6 +383,54 @@ static void background(void)
     mesh_free(&m);
 }
 
+/* Form factor from a point to a rectangle X h by Y h parallel to it at
+ * height h with one corner above the point. */
+static double corner_ff(double X, double Y)
+{
+    double a = sqrt(1.0 + X * X), b = sqrt(1.0 + Y * Y);
+    return (X / a * atan(Y / a) + Y / b * atan(X / b)) / (2.0 * PI);
+}
+
+static void near_light(float offset)
+{
+    const float a = 0.5f, h = 0.5f, le = 3.0f, rho = 0.6f, o = offset;
+    mesh m;
+    CHECK(mesh_init(&m, 4));
+    float f0[3] = {o - 5, 0, o - 5}, f1[3] = {o - 5, 0, o + 5}, f2[3] = {o + 5, 0, o + 5},
+          f3[3] = {o + 5, 0, o - 5};
+    tri(&m, f0, f1, f2, 0);
+    tri(&m, f0, f2, f3, 0);
+    /* the emitter, counter-clockwise seen from below */
+    float l0[3] = {o - a, h, o - a}, l1[3] = {o + a, h, o - a}, l2[3] = {o + a, h, o + a},
+          l3[3] = {o - a, h, o + a};
+    tri(&m, l0, l1, l2, 1);
+    tri(&m, l0, l2, l3, 1);
+    dirt_material mat[2] = {mat_make(rho, 0.0f, 1.0f, 0.0f), mat_make(0.0f, 0.0f, 1.0f, le)};
+    float spec[2] = {0.0f, 0.0f};
+    dirt_ref_materials mats = {mat, 2, NULL, 0, spec};
+    dirt_camera cam;
+    look(&cam, o + 2.0f, 0.1f, o, o, 0.0f, o, 1e-4f);
+    dirt_ref_opts opt = {0};
+    opt.width = 16;
+    opt.height = 16;
+    opt.spp = 64;
+    opt.bounces = 1;
+    opt.seed = 5u;
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &opt, NULL);
+    CHECK(img != NULL);
+    if (img) {
+        double expect = rho / PI * le * PI * 4.0 * corner_ff(a / h, a / h), mean, se;
+        image_mean(img, &mean, &se);
+        fprintf(stderr, "near light at %g: L %.5f expected %.5f, s.e. %.5f\n", offset, mean,
+                expect, se);
+        CHECK(se > 0.0 && se < 0.02 * expect);
+        CHECK_MSG(fabs(mean - expect) < 5.0 * se, "near light at %g: L %.5f, expected %.5f",
+                  offset, mean, expect);
+    }
+    dirt_image_destroy(img);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     furnace(1, 128);
@@ -386,5 +445,7 @@ int main(void)
     mirror_furnace(5);
     lights();
     background();
+    near_light(0.0f);
+    near_light(20.0f);
     return check_finish();
 }

@@ -202,11 +202,14 @@ bool dirt_mmrt_trace_cpu(dirt_mmrt *mmrt, const dirt_ray *rays, size_t count, di
  * options `opts` (NULL = defaults; the seed jitters the linear march, mixed
  * with the index of the trace since the tracer's counts were last reset).
  * MMRT's way (the MMRT paper: no Fetch): a hit's data node becomes the
- * shading point directly (position = ray origin + t direction, the MMRT hit
- * point; shading normal, uv and material from the data node; geometric
- * normal of the primitive). Every ray is traced from 3 thicknesses along it
- * (shadow rays also stop 3 thicknesses short of their end) so that a ray
- * does not hit the surface it leaves within the thickness. No visibility
+ * shading point directly (shading normal, uv and material from the data
+ * node; geometric normal of the primitive; position where the ray meets the
+ * hit primitive's plane when it meets it inside the hit fragment's pixel,
+ * else the MMRT hit point, ray origin + t direction; the hit's t is set to
+ * the distance used). Its surface_offset is 3 thicknesses: rays leave
+ * surfaces 3 thicknesses off along the normal and shadow rays stop 3
+ * thicknesses off the light's plane (dirt/tracer.h), so that a ray is never
+ * within the thickness of a planar surface it leaves or aims at. No visibility
  * function. Owned by `mmrt`; valid until the next call or destroy. NULL
  * (logged) before a successful build. */
 const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts *opts);

@@ -39,7 +39,9 @@ typedef struct dirt_tracer {
     bool (*visibility)(void *self, uint32_t rays, uint32_t hits);
     /* Writes G of every hit's owner pixel into ring slot `slot` of
      * `gpoints` (misses: prim = DIRT_NO_HIT, wo = -ray direction), for the
-     * hits of the last closest-hit trace (or visibility) of these buffers. */
+     * hits of the last closest-hit trace (or visibility) of these buffers.
+     * It may rewrite a hit's t to the distance of the shading point it
+     * chose (MMRT: where the ray meets the hit primitive). */
     bool (*fetch)(void *self, uint32_t rays, uint32_t hits, uint32_t count, uint32_t gpoints,
                   uint32_t slot);
     /* Binds the dirt_gpu_vertex buffer at DIRT_BIND_VERTICES and the
@@ -61,6 +63,14 @@ typedef struct dirt_tracer {
     void (*begin_chunk)(void *self, uint32_t first);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
+    /* World distance by which rays leaving a surface start off it along its
+     * geometric normal (on the side they leave, beyond the integrator's own
+     * epsilon), and by which shadow rays towards an emitting triangle stop
+     * off its plane (on the receiver's side); a shadow ray whose receiver
+     * and light point are within twice this distance of each other's plane
+     * is not traced (unoccluded: the technique cannot resolve anything
+     * between them). 0 for exact tracers (DIRT: the reference's rays). */
+    float surface_offset;
 } dirt_tracer;
 
 #ifdef __cplusplus
