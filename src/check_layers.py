@@ -42,9 +42,6 @@ PUBLIC = {
     "integrator.h": "integrator", "gpu_tables.h": "integrator", "pathtrace.h": "integrator",
     "ref.h": "ref", "raytypes.h": "ref",
     "session.h": "session",
-    # Headers of dirt-view's window (ui branch) without their implementation
-    # yet; provisionally the layer that may include both gl and io.
-    "window.h": "session", "ui.h": "session",
 }
 # Folders whose internal headers (FOLDER/x.h) other layers may include.
 INTERNAL = set(LAYERS)
