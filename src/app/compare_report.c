@@ -380,6 +380,7 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
     bprintf(&b, " mmrt_relmse dirt_relmse\n");
     const char *last = NULL;
     int blocks = 0, nok = 0;
+    bool agreement = false; /* any agreement figure (none with --no-quality) */
     cJSON_ArrayForEach(r, rows)
     {
         if (!row_ok(r))
@@ -404,6 +405,7 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
                 snprintf(p, sizeof(p), "%s.agreement.fraction.%s", e ? "dirt" : "mmrt",
                          dirt_ray_type_names[t]);
                 double v = jd(r, p);
+                agreement |= !isnan(v);
                 bprintf(&b, isnan(v) ? " NaN" : " %.6g", 100 * v);
             }
         }
@@ -454,6 +456,9 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
     }
     bprintf(&g, "'\nset key outside right\nset grid\nset datafile missing 'NaN'\n");
     for (size_t p = 0; p < sizeof(plots) / sizeof(plots[0]); p++) {
+        /* Without agreement figures (--no-quality) that plot has no points. */
+        if (!agreement && !strcmp(plots[p].name, "agreement_vs_thickness"))
+            continue;
         for (int f = 0; f < 2; f++) {
             /* noenhanced: names with '_' are not subscripts */
             bprintf(&g, "set terminal %s noenhanced size 900,500\nset output '%s/%s.%s'\n",

@@ -7,7 +7,8 @@
 # equal what dirt-render --stats reports for the same settings (DIRT and
 # MMRT); a configuration that fails mid-sweep (an A-buffer beyond the GPU's
 # largest storage block, known only once built) is recorded as failed with its
-# reason, the configurations after it are measured, and the exit status is 1.
+# reason, the configurations after it are measured, and the exit status is 1;
+# --no-quality leaves out only the agreement plot.
 #   test_compare.sh PATH/TO/dirt-compare PATH/TO/doc/compare.md PATH/TO/dirt-render
 set -u
 cmp=$1 doc=$2 render=$3
@@ -171,5 +172,15 @@ sys.exit(0 if ok else 1)
 PY
 grep -q "configuration 2 failed: mmrt: " "$tmp/fails.log" || fail "no line naming the failed configuration"
 grep -q "1 failed)" "$tmp/fails.log" || fail "the summary does not count the failure"
+# --no-quality: no agreement figures, so no agreement plot; the others are made.
+if "$cmp" default -o "$tmp/nq" --res 32x16 --repeat 1 --warmup 0 --no-quality -q \
+    >"$tmp/nq.log" 2>&1; then
+  for p in memory_vs_resolution time_vs_resolution ratios_per_scene; do
+    [ -s "$tmp/nq/$p.png" ] || fail "--no-quality: no $p.png"
+  done
+  [ -e "$tmp/nq/agreement_vs_thickness.png" ] && fail "--no-quality drew an empty agreement plot"
+else
+  fail "--no-quality run: exit $?"; cat "$tmp/nq.log" >&2
+fi
 [ "$fails" -eq 0 ] && echo "test_compare: all checks passed"
 [ "$fails" -eq 0 ]
