@@ -418,7 +418,9 @@ typedef struct viewer {
     long frame;
     bool show_help, quit;
     int exit_code;
-    int shots;
+    int shots;                  /* numbers the P / O files */
+    char shot_path[4][4096];    /* window screenshots asked for in this frame */
+    int num_shots;
     char status[512];
     float panels[4][4];
     int num_panels;
@@ -764,12 +766,17 @@ static void handle_input(viewer *v, const dirt_window_input *in, double dt, bool
 }
 
 /* Focus on the surface under the cursor: the Z AOV at that pixel. */
+static void fit(const viewer *v, int w, int h, int r[4]);
+
 static void focus_at(viewer *v)
 {
     v->click_pending = false;
     if (dirt_session_samples(v->s) == 0 || v->win_w <= 0)
         return;
-    int x = (int)(v->click_x * v->rw / v->win_w), y = (int)(v->click_y * v->rh / v->win_h);
+    int r[4];
+    fit(v, v->rw, v->rh, r);
+    int x = (int)floor((v->click_x - r[0]) * v->rw / r[2]);
+    int y = (int)floor((v->click_y - r[1]) * v->rh / r[3]);
     const dirt_image *img = dirt_session_image(v->s);
     const float *z = img ? dirt_image_find_channel(img, "Z") : NULL;
     if (!z || x < 0 || y < 0 || x >= img->width || y >= img->height)
@@ -801,16 +808,12 @@ static bool save_render(viewer *v, const char *path)
 }
 
 /* Requested window screenshots are taken at the end of the frame, after
- * the panels are drawn. */
-static char shot_path[4][4096];
-static int num_shots;
-
+ * the panels are drawn (take_screenshots). */
 static bool screenshot(viewer *v, const char *path)
 {
-    (void)v;
-    if (num_shots >= 4)
+    if (v->num_shots >= 4)
         return false;
-    snprintf(shot_path[num_shots++], sizeof(shot_path[0]), "%s", path);
+    snprintf(v->shot_path[v->num_shots++], sizeof(v->shot_path[0]), "%s", path);
     return true;
 }
 
@@ -818,16 +821,16 @@ static bool take_screenshots(viewer *v)
 {
     bool ok = true;
     uint8_t *px = NULL;
-    if (num_shots) {
+    if (v->num_shots) {
         px = malloc((size_t)v->win_w * v->win_h * 4);
         ok = px && dirt_gpu_window_read(v->gpu, px, v->win_w, v->win_h);
     }
-    for (int i = 0; ok && i < num_shots; i++) {
-        ok = dirt_write_png_rgba8(shot_path[i], v->win_w, v->win_h, px);
+    for (int i = 0; ok && i < v->num_shots; i++) {
+        ok = dirt_write_png_rgba8(v->shot_path[i], v->win_w, v->win_h, px);
         if (ok)
-            set_status(v, "screenshot %s (%dx%d)", shot_path[i], v->win_w, v->win_h);
+            set_status(v, "screenshot %s (%dx%d)", v->shot_path[i], v->win_w, v->win_h);
     }
-    num_shots = 0;
+    v->num_shots = 0;
     free(px);
     return ok;
 }
@@ -849,6 +852,63 @@ static void camera_args(const viewer *v, char *buf, size_t size)
     }
 }
 
+/* The dirt-render options that render what the main session shows now
+ * (size, engine, every technique setting that differs from dirt-render's
+ * default, time, camera, lens), samples excepted. */
+static void render_args(const viewer *v, char *buf, size_t size)
+{
+    const dirt_session_opts *o = &v->applied;
+    size_t n = 0;
+#define ADD(...) (n < size ? (void)(n += (size_t)snprintf(buf + n, size - n, __VA_ARGS__)) : (void)0)
+    ADD("-W %d -H %d --engine %s --seed %u", o->width, o->height, dirt_engine_names[o->engine],
+        o->seed);
+    if (o->bounces)
+        ADD(" --bounces %d", o->bounces);
+    if (o->mode)
+        ADD(" --mode %s", modes[o->mode]);
+    if (o->ao_distance > 0)
+        ADD(" --ao-distance %.9g", o->ao_distance);
+    if (o->background[0] || o->background[1] || o->background[2])
+        ADD(" --background %.9g,%.9g,%.9g", o->background[0], o->background[1], o->background[2]);
+    if (o->views)
+        ADD(" --views %s", views[o->views]);
+    if (o->tile_size)
+        ADD(" --tile %d", o->tile_size);
+    if (o->buckets)
+        ADD(" --buckets %d", o->buckets);
+    if (o->face_size)
+        ADD(" --face-size %d", o->face_size);
+    if (o->hiz_levels)
+        ADD(" --hiz-top %d", o->hiz_levels - 1);
+    if (o->fetch)
+        ADD(" --fetch %s", fetches[o->fetch]);
+    if (o->direct_visibility)
+        ADD(" --direct-visibility");
+    if (o->force_emulation)
+        ADD(" --no-conservative-raster");
+    if (o->engine == DIRT_ENGINE_MMRT && o->march)
+        ADD(" --march %s", marches[o->march]);
+    if (o->engine == DIRT_ENGINE_MMRT && o->march_samples)
+        ADD(" --samples %d", o->march_samples);
+    if (o->engine == DIRT_ENGINE_MMRT && o->thickness > 0)
+        ADD(" --thickness %.9g", o->thickness);
+    if (o->aperture > 0)
+        ADD(" --aperture %.9g", o->aperture);
+    if (o->aperture > 0 && o->focus > 0)
+        ADD(" --focus %.9g", o->focus);
+    if (v->applied_time != 0)
+        ADD(" -t %.17g", v->applied_time);
+    if (v->applied_clip)
+        ADD(" --clip %d", v->applied_clip);
+    if (v->applied_loop)
+        ADD(" --loop");
+    char cam[1024];
+    camera_args(v, cam, sizeof(cam));
+    if (cam[0])
+        ADD(" %s", cam);
+#undef ADD
+}
+
 static bool write_report(viewer *v, const char *path)
 {
     cJSON *r = cJSON_CreateObject();
@@ -865,6 +925,11 @@ static bool write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
     cJSON_AddStringToObject(r, "camera_args", cam);
+    char args[4096];
+    render_args(v, args, sizeof(args));
+    cJSON_AddStringToObject(r, "render_args", args);
+    cJSON_AddNumberToObject(r, "aperture", v->applied.aperture);
+    cJSON_AddNumberToObject(r, "focus", v->applied.focus);
     const dirt_camera *c = dirt_session_camera(v->s);
     cJSON *cj = cJSON_AddObjectToObject(r, "camera");
     cJSON_AddItemToObject(cj, "eye", cJSON_CreateFloatArray(c->eye, 3));
@@ -1183,8 +1248,12 @@ static void panel_settings(viewer *v)
             if (dirt_ui_button("next scene camera"))
                 cycle_camera(v);
             dirt_ui_same_line();
-            if (dirt_ui_button("print"))
-                printf("camera: %s\n", cam);
+            if (dirt_ui_button("print")) {
+                char args[4096];
+                render_args(v, args, sizeof(args));
+                printf("camera: %s\ndirt-render %s --spp %d\n", cam, args,
+                       dirt_session_samples(v->s));
+            }
             if (v->cam_mode == CAM_LOOK) {
                 if (dirt_ui_slider_float("field of view", &v->look.fov_deg, 5.0f, 120.0f, "%.1f",
                                          false))
@@ -1722,8 +1791,12 @@ int main(int argc, char **argv)
     if (!v->o.quiet) {
         char cam[1024];
         camera_args(v, cam, sizeof(cam));
-        fprintf(stderr, "%s: %d samples; camera: %s\n", PROG, dirt_session_samples(v->s),
-                cam[0] ? cam : "(default)");
+        char args[4096];
+        render_args(v, args, sizeof(args));
+        fprintf(stderr, "%s: %d samples; camera: %s\n%s: the same image offline: dirt-render %s%s"
+                "%s --spp %d -o OUT.exr\n", PROG, dirt_session_samples(v->s),
+                cam[0] ? cam : "(default)", PROG, v->o.scene_path ? v->o.scene_path : "",
+                v->o.scene_path ? " " : "", args, dirt_session_samples(v->s));
     }
 done:
     dirt_gpu_texture_destroy(v->gpu, v->aux_tex);

@@ -123,6 +123,23 @@ spp=$(json_field "$tmp/orbit.json" samples 2>/dev/null)
 if "$check" same "$tmp/orbit.exr" "$tmp/orbit-r.exr"; then ok; else
   fail "script orbit: dirt-render $cam differs"; fi
 
+# 3b. Double click focuses the thin lens at the surface under the cursor:
+#     the focus distance is the image's Z there, and dirt-render with the
+#     reported options (aperture and focus included) gives the same image.
+printf 'set aperture 0.02\nwait-samples 1\nclick 60 50\nwait-frames 1\nwait-samples 2\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/focus.exr" "$tmp/focus.json" >"$tmp/s.txt"
+run_view focus --window 160x120 --no-ui --script "$tmp/s.txt" -q || fail "focus run failed"
+# The Z AOV is traced along the lens centre's ray through the pixel centre,
+# whose direction depends on the focus distance by float rounding (1e-7).
+z=$("$check" pixel "$tmp/focus.exr" Z 60 50) focus=$(json_field "$tmp/focus.json" focus)
+python3 -c "import sys; a, b = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if abs(a - b) <= 1e-6 * b else 1)" \
+  "$focus" "$z" && ok || fail "the focus $focus is not the Z $z under the cursor"
+args=$(json_field "$tmp/focus.json" render_args) spp=$(json_field "$tmp/focus.json" samples)
+# shellcheck disable=SC2086
+"$render" $args --spp "$spp" -q -o "$tmp/focus-r.exr" || fail "dirt-render $args failed"
+if "$check" same "$tmp/focus.exr" "$tmp/focus-r.exr"; then ok; else
+  fail "dirt-render $args is not the focused image"; fi
+
 # 4. A resize: the render follows the window.
 printf 'wait-samples 1\nresize 300 200\nwait-frames 5\nwait-samples 1\nreport %s\nsave-image %s\nquit\n' \
   "$tmp/rs.json" "$tmp/rs.exr" >"$tmp/s.txt"

@@ -11,6 +11,8 @@
  *       SHOT (the depth buffer shown without panels) is the heat ramp of
  *       IMAGE's "Z" over its finite range (misses black), sRGB-encoded,
  *       within one 8-bit step (exactly at 99% of the pixels or more).
+ *   view_check pixel IMAGE.exr CHANNEL X Y
+ *       prints the value of CHANNEL at pixel (X, Y) (row 0 = top), %.9g
  * Prints what it found; exit 0 when the condition holds, 1 when it does
  * not, 2 on unreadable input. */
 #include <math.h>
@@ -194,8 +196,23 @@ done:
     return rc;
 }
 
+static int pixel(const char *path, const char *channel, int x, int y)
+{
+    dirt_image *img = dirt_image_read_exr(path);
+    const float *c = img ? dirt_image_find_channel(img, channel) : NULL;
+    int rc = 2;
+    if (c && x >= 0 && y >= 0 && x < img->width && y < img->height) {
+        printf("%.9g\n", c[(size_t)y * img->width + x]);
+        rc = 0;
+    }
+    dirt_image_destroy(img);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 6 && !strcmp(argv[1], "pixel"))
+        return pixel(argv[2], argv[3], atoi(argv[4]), atoi(argv[5]));
     if (argc == 4 && !strcmp(argv[1], "heat"))
         return heat(argv[2], argv[3]);
     if (argc == 4 && !strcmp(argv[1], "same"))
