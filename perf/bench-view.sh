@@ -5,14 +5,14 @@
 # median, max over the frames after the first). The configurations run
 # interleaved, REPEATS times each; the table keeps each one's minimum of
 # the medians. Prints a markdown table with the machine and renderer.
-#   perf/bench-view.sh BUILD_DIR [FRAMES] [REPEATS] [SCENE]
+#   [SIZES="WxH ..."] [ENGINES="dirt ..."] perf/bench-view.sh BUILD_DIR [FRAMES] [REPEATS] [SCENE]
 set -eu
 build=$1 frames=${2:-40} repeats=${3:-3} scene=${4:-}
 view=$build/src/app/dirt-view
 tmp=$(mktemp -d /tmp/bench-view-XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
-sizes="320x240 640x480 1280x720"
-engines="dirt mmrt raster"
+sizes=${SIZES:-"320x240 640x480 1280x720"}
+engines=${ENGINES:-"dirt mmrt raster"}
 for r in $(seq "$repeats"); do
   for size in $sizes; do
     for engine in $engines; do
