@@ -1,7 +1,8 @@
 #version 450 core
 // DIRT build passes, fragment stage: one invocation per (primitive, view,
-// tile) candidate. Clips the triangle exactly against the tile frustum and
-// drops empty clips. Then:
+// tile) candidate. Computes the exact depth range of the triangle inside the
+// tile frustum (dirt/clip.glsl; DIRT_CLIP_SH: the plain clip) and drops
+// tiles it misses. Then:
 //  DIRT_PASS_DEPTH: atomic min/max of the clipped polygon's depth into the
 //                   tile's depth bounds (pyramid level 0);
 //  DIRT_PASS_FILL:  one {primitive id, next} node per bucket the clipped
@@ -63,11 +64,14 @@ layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
 };
 #endif
 
-layout(location = 0) flat in vec4 g_c0;
-layout(location = 1) flat in vec4 g_c1;
-layout(location = 2) flat in vec4 g_c2;
-layout(location = 3) flat in uint g_prim;
-layout(location = 4) flat in int g_view;
+layout(location = 0) flat in vec4 g_p0;
+layout(location = 1) flat in vec4 g_p1;
+layout(location = 2) flat in vec4 g_p2;
+layout(location = 3) flat in vec4 g_p3;
+layout(location = 4) flat in vec4 g_p4;
+layout(location = 5) flat in uint g_prim;
+layout(location = 6) flat in int g_view;
+layout(location = 7) flat in int g_n;
 
 void main()
 {
@@ -84,8 +88,14 @@ void main()
 #else
     int S = params.config.y;
     float zmin, zmax;
-    if (!dirt_clip_tile(v, S, tile, g_c0, g_c1, g_c2, float(DIRT_CLIP_EPS), zmin, zmax))
+#ifdef DIRT_CLIP_SH
+    if (!dirt_clip_tile(v, S, tile, g_p0, g_p1, g_p2, float(DIRT_CLIP_EPS), zmin, zmax))
         return;
+#else
+    if (!dirt_range_tile(v, S, tile, g_p0, g_p1, g_p2, g_p3, g_p4, g_n, float(DIRT_CLIP_EPS),
+                         zmin, zmax))
+        return;
+#endif
     uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
 #ifdef DIRT_PASS_DEPTH
     atomicMin(depth[t].x, floatBitsToUint(zmin));

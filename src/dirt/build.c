@@ -47,9 +47,12 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
 
     char nviews[8];
     snprintf(nviews, sizeof(nviews), "%d", a->num_views);
-    glsl_define defs[3] = {{"DIRT_NUM_VIEWS", nviews}, {"DIRT_PASS_DEPTH", "1"},
-                           {"DIRT_CONSERVATIVE_NV", "1"}};
-    size_t ndefs = a->use_nv ? 3 : 2;
+    glsl_define defs[4] = {{"DIRT_NUM_VIEWS", nviews}, {"DIRT_PASS_DEPTH", "1"}};
+    size_t ndefs = 2;
+    if (a->use_nv)
+        defs[ndefs++] = (glsl_define){"DIRT_CONSERVATIVE_NV", "1"};
+    if (a->opts.reference_clip)
+        defs[ndefs++] = (glsl_define){"DIRT_CLIP_SH", "1"};
     const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
     a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
     defs[1].name = "DIRT_PASS_FILL";

@@ -34,6 +34,9 @@ typedef struct dirt_ads_opts {
     int buckets;              /* B >= 1 (default 16) */
     size_t initial_nodes;     /* first node capacity (0 = automatic) */
     bool force_emulation;     /* ignore GL_NV_conservative_raster */
+    bool reference_clip;      /* Sutherland-Hodgman clip of every candidate tile (the
+                                 slow reference of the exact range, for checks and
+                                 benchmarks; doc/dirt-build.md) */
 } dirt_ads_opts;
 
 enum { DIRT_ADS_PASS_CLEAR, DIRT_ADS_PASS_DEPTH, DIRT_ADS_PASS_MIP, DIRT_ADS_PASS_FILL,
