@@ -33,6 +33,7 @@
 #define DIRT_NODE_BYTES 8              /* DIRT id node: uvec2 (primitive id, next) */
 #define DIRT_DEPTH_ENTRY_BYTES 8       /* depth-bounds pyramid entry: uvec2 (zmin, zmax) bits */
 #define DIRT_HEAD_BYTES 4              /* list head: one uint */
+#define DIRT_CANDIDATE_BYTES 16        /* DIRT build candidate: uvec4 (see common/layout.h) */
 #define DIRT_HIT_NODE_BYTES 32         /* dirt_gpu_hit (the DIRT paper's hit node) */
 #define DIRT_MMRT_ID_UINTS 3           /* MMRT id node: {z, next, prev} uints */
 #define DIRT_MMRT_ID_NODE_BYTES 12     /* = 4 * DIRT_MMRT_ID_UINTS (the MMRT paper's size) */
@@ -64,58 +65,59 @@
 #define DIRT_BIND_HEADS 8            /* uint[buckets * tiles]: first node or DIRT_LIST_END */
 #define DIRT_BIND_NODES 9            /* uvec2[capacity]: (primitive id, next node) */
 #define DIRT_BIND_COUNTERS 10        /* dirt_gpu_ads_counters */
-#define DIRT_BIND_ADS_LAST 10
+#define DIRT_BIND_CANDIDATES 11      /* uvec4[candidate capacity]: the build's (primitive, tile) pairs */
+#define DIRT_BIND_ADS_LAST 11
 
 /* DIRT trace and fetch (src/dirt/trace.c, glsl/dirt/trace.comp, fetch*). */
-#define DIRT_BIND_TRACE_FIRST 11
-#define DIRT_BIND_HIT_HEADS 11       /* uint[tiles]: first hit record of each ADS tile */
-#define DIRT_BIND_FETCH_PARAMS 12    /* dirt_gpu_fetch_params */
-#define DIRT_BIND_TRACE_LAST 12
+#define DIRT_BIND_TRACE_FIRST 12
+#define DIRT_BIND_HIT_HEADS 12       /* uint[tiles]: first hit record of each ADS tile */
+#define DIRT_BIND_FETCH_PARAMS 13    /* dirt_gpu_fetch_params */
+#define DIRT_BIND_TRACE_LAST 13
 
 /* GPU path tracer (src/integrator/gpu_pt.c, glsl/integrator/). */
-#define DIRT_BIND_INTEGRATOR_FIRST 13
-#define DIRT_BIND_PATHS 13           /* dirt_gpu_path[pixels] */
-#define DIRT_BIND_ACCUM 14           /* dirt_gpu_accum[pixels] */
-#define DIRT_BIND_SHADOW_RAYS 15     /* dirt_gpu_ray[pixels]: next-event shadow rays */
-#define DIRT_BIND_INTEGRATOR_LAST 15
+#define DIRT_BIND_INTEGRATOR_FIRST 14
+#define DIRT_BIND_PATHS 14           /* dirt_gpu_path[pixels] */
+#define DIRT_BIND_ACCUM 15           /* dirt_gpu_accum[pixels] */
+#define DIRT_BIND_SHADOW_RAYS 16     /* dirt_gpu_ray[pixels]: next-event shadow rays */
+#define DIRT_BIND_INTEGRATOR_LAST 16
 
 /* MMRT A-buffer (src/mmrt/, glsl/mmrt/); its per-primitive materials are
  * DIRT_BIND_PRIM_MATERIAL. */
-#define DIRT_BIND_MMRT_FIRST 16
-#define DIRT_BIND_MMRT_PARAMS 16     /* dirt_mmrt_gpu_params */
-#define DIRT_BIND_MMRT_HEADS 17      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
-#define DIRT_BIND_MMRT_TAILS 18      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
-#define DIRT_BIND_MMRT_IDS 19        /* uint[DIRT_MMRT_ID_UINTS * capacity]: id nodes */
-#define DIRT_BIND_MMRT_DATA 20       /* dirt_mmrt_gpu_data[capacity] */
-#define DIRT_BIND_MMRT_COUNTERS 21   /* dirt_mmrt_gpu_counters */
-#define DIRT_BIND_MMRT_LAST 21
+#define DIRT_BIND_MMRT_FIRST 17
+#define DIRT_BIND_MMRT_PARAMS 17     /* dirt_mmrt_gpu_params */
+#define DIRT_BIND_MMRT_HEADS 18      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_TAILS 19      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_IDS 20        /* uint[DIRT_MMRT_ID_UINTS * capacity]: id nodes */
+#define DIRT_BIND_MMRT_DATA 21       /* dirt_mmrt_gpu_data[capacity] */
+#define DIRT_BIND_MMRT_COUNTERS 22   /* dirt_mmrt_gpu_counters */
+#define DIRT_BIND_MMRT_LAST 22
 
 /* The path tracer's MMRT technique (src/mmrt/pt_mmrt.c, glsl/mmrt/pt_rays.comp). */
-#define DIRT_BIND_MMRT_PT_FIRST 22
-#define DIRT_BIND_MMRT_PT_COUNTS 22   /* dirt_mmrt_pt_counts */
-#define DIRT_BIND_MMRT_PT_LAST 22
+#define DIRT_BIND_MMRT_PT_FIRST 23
+#define DIRT_BIND_MMRT_PT_COUNTS 23   /* dirt_mmrt_pt_counts */
+#define DIRT_BIND_MMRT_PT_LAST 23
 
 /* Tables of the light-transport model (src/integrator/gpu_tables.c,
  * glsl/integrator/model.glsl with DIRT_MODEL_BUFFERS). */
-#define DIRT_BIND_MODEL_FIRST 23
-#define DIRT_BIND_MODEL_MATERIALS 23   /* dirt_gpu_model_material[materials] */
-#define DIRT_BIND_MODEL_AREA_CDF 24    /* dirt_gpu_model_lights header, float cdf[count] */
-#define DIRT_BIND_MODEL_AREA_PRIMS 25  /* uint prim[count] (at least one entry) */
-#define DIRT_BIND_MODEL_PUNCTUAL 26    /* dirt_gpu_model_light[punctual] (at least one) */
-#define DIRT_BIND_MODEL_CAMERA 27      /* one dirt_gpu_model_camera */
-#define DIRT_BIND_MODEL_LAST 27
+#define DIRT_BIND_MODEL_FIRST 24
+#define DIRT_BIND_MODEL_MATERIALS 24   /* dirt_gpu_model_material[materials] */
+#define DIRT_BIND_MODEL_AREA_CDF 25    /* dirt_gpu_model_lights header, float cdf[count] */
+#define DIRT_BIND_MODEL_AREA_PRIMS 26  /* uint prim[count] (at least one entry) */
+#define DIRT_BIND_MODEL_PUNCTUAL 27    /* dirt_gpu_model_light[punctual] (at least one) */
+#define DIRT_BIND_MODEL_CAMERA 28      /* one dirt_gpu_model_camera */
+#define DIRT_BIND_MODEL_LAST 28
 
 /* Raster preview (src/raster/preview.c, glsl/raster/). */
-#define DIRT_BIND_PREVIEW_FIRST 28
-#define DIRT_BIND_PREVIEW_MATERIALS 28 /* dirt_gpu_material[materials] */
-#define DIRT_BIND_PREVIEW_LIGHTS 29    /* dirt_gpu_light[lights] */
-#define DIRT_BIND_PREVIEW_LAST 29
+#define DIRT_BIND_PREVIEW_FIRST 29
+#define DIRT_BIND_PREVIEW_MATERIALS 29 /* dirt_gpu_material[materials] */
+#define DIRT_BIND_PREVIEW_LIGHTS 30    /* dirt_gpu_light[lights] */
+#define DIRT_BIND_PREVIEW_LAST 30
 
 /* Test shaders (glsl/test/, glsl/graph_test/, integrator/test_model.comp). */
-#define DIRT_BIND_TEST_FIRST 30
-#define DIRT_BIND_TEST_IN 30           /* a test's input buffer */
-#define DIRT_BIND_TEST_OUT 31          /* a test's output buffer */
-#define DIRT_BIND_TEST_LAST 31
+#define DIRT_BIND_TEST_FIRST 31
+#define DIRT_BIND_TEST_IN 31           /* a test's input buffer */
+#define DIRT_BIND_TEST_OUT 32          /* a test's output buffer */
+#define DIRT_BIND_TEST_LAST 32
 
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
@@ -151,7 +153,8 @@
 #if !DIRT_BIND_IN(DIRT_BIND_PARAMS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_HEADS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_NODES, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
-    !DIRT_BIND_IN(DIRT_BIND_COUNTERS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST)
+    !DIRT_BIND_IN(DIRT_BIND_COUNTERS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_CANDIDATES, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST)
 #error "common/constants.h: a DIRT structure binding lies outside DIRT_BIND_ADS_*"
 #endif
 #if !DIRT_BIND_IN(DIRT_BIND_HIT_HEADS, DIRT_BIND_TRACE_FIRST, DIRT_BIND_TRACE_LAST) || \

@@ -86,18 +86,27 @@ struct dirt_gpu_view {
     DIRT_IV4 level_base[4]; /* first pyramid entry of levels 0..15 */
 };
 
-/* Build parameters (32 bytes). */
+/* Build parameters (48 bytes). */
 struct dirt_gpu_ads_params {
     DIRT_IV4 config;     /* views, tile size S, buckets B, tiles */
     DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas width, atlas height */
+    DIRT_UV4 cand;       /* x candidate capacity (records), yzw 0 */
 };
 
-/* Counters written by the fill pass (16 bytes). */
+/* Counters of the build and the trace (32 bytes). */
 struct dirt_gpu_ads_counters {
-    DIRT_UV4 fill;       /* x nodes requested, y (primitive, tile) pairs (fill pass);
+    DIRT_UV4 fill;       /* x id nodes needed (count pass), y (primitive, tile) pairs
+                            n_p (depth pass, also past the candidate capacity);
                             z rays aborted by the last trace, w active rays traced
                             since the host last reset it */
+    DIRT_UV4 build;      /* x candidate bound (bound pass), yzw 0 */
 };
+
+/* A candidate of the build (DIRT_CANDIDATE_BYTES, at DIRT_BIND_CANDIDATES):
+ * one (primitive, tile) pair with a non-empty range, written by the depth
+ * pass as uvec4(primitive, global tile, float bits of zmin, of zmax); the
+ * count pass replaces zw by (first id node, first bucket | last bucket << 16)
+ * for the fill pass. */
 
 /* ---- Rays and hits shared by every technique's trace ---- */
 

@@ -1,14 +1,16 @@
 #version 450 core
 // DIRT build passes, fragment stage: one invocation per (primitive, view,
-// tile) candidate. Clips the triangle exactly against the tile frustum and
-// drops empty clips. Then:
-//  DIRT_PASS_DEPTH: atomic min/max of the clipped polygon's depth into the
-//                   tile's depth bounds (pyramid level 0);
-//  DIRT_PASS_FILL:  one {primitive id, next} node per bucket the clipped
-//                   depth range overlaps (DIRT paper eq. 1a/1b, clamped),
-//                   pushed on the list of (bucket, tile). Nodes past the
-//                   pool's capacity are counted, not written, so the host
-//                   can grow the pool and run the pass again.
+// tile) candidate.
+//  DIRT_PASS_DEPTH: computes the exact depth range of the triangle inside
+//                   the tile frustum (dirt/clip.glsl; DIRT_CLIP_SH: the
+//                   plain clip), drops tiles it misses, min/maxes the range
+//                   into the tile's depth bounds (pyramid level 0) and
+//                   appends the candidate (common/layout.h) for the count
+//                   and fill passes (dirt/count.comp, dirt/fill.comp), which
+//                   so never compute a range again. Candidates past the
+//                   buffer's capacity are counted, not written: the host
+//                   grows the buffer and runs the pass again.
+//  DIRT_PASS_BOUND: nothing (the geometry stage counts).
 //  DIRT_PASS_FETCH: the paper's raster Fetch: tiles with no hit record are
 //                   masked out; otherwise every record of the tile's hit list
 //                   whose primitive is this one is fetched into G_{k+1} of
@@ -46,31 +48,31 @@ layout(std430, binding = DIRT_BIND_HIT_HEADS) readonly buffer HitHeads {
     uint hit_heads[];
 };
 #include "dirt/fetch_common.glsl"
-#else
+#endif
+#ifdef DIRT_PASS_DEPTH
 layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
     uvec2 depth[];
-};
-#endif
-#ifdef DIRT_PASS_FILL
-layout(std430, binding = DIRT_BIND_HEADS) buffer Heads {
-    uint heads[];
-};
-layout(std430, binding = DIRT_BIND_NODES) buffer Nodes {
-    uvec2 nodes[];
 };
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
+layout(std430, binding = DIRT_BIND_CANDIDATES) writeonly buffer Candidates {
+    uvec4 candidates[];
+};
 #endif
 
-layout(location = 0) flat in vec4 g_c0;
-layout(location = 1) flat in vec4 g_c1;
-layout(location = 2) flat in vec4 g_c2;
-layout(location = 3) flat in uint g_prim;
-layout(location = 4) flat in int g_view;
+layout(location = 0) flat in vec4 g_p0;
+layout(location = 1) flat in vec4 g_p1;
+layout(location = 2) flat in vec4 g_p2;
+layout(location = 3) flat in vec4 g_p3;
+layout(location = 4) flat in vec4 g_p4;
+layout(location = 5) flat in uint g_prim;
+layout(location = 6) flat in int g_view;
+layout(location = 7) flat in int g_n;
 
 void main()
 {
+#ifndef DIRT_PASS_BOUND
     dirt_gpu_view v = views[g_view];
     ivec2 tile = ivec2(gl_FragCoord.xy) - ivec2(v.placement.y, 0);
     if (any(lessThan(tile, ivec2(0))) || any(greaterThanEqual(tile, v.size.zw)))
@@ -81,35 +83,23 @@ void main()
         if (hits[r].ids.x == g_prim && hits[r].ids.y == uint(g_view))
             dirt_fetch_record(r);
     }
-#else
+#elif defined(DIRT_PASS_DEPTH)
     int S = params.config.y;
     float zmin, zmax;
-    if (!dirt_clip_tile(v, S, tile, g_c0, g_c1, g_c2, float(DIRT_CLIP_EPS), zmin, zmax))
+#ifdef DIRT_CLIP_SH
+    if (!dirt_clip_tile(v, S, tile, g_p0, g_p1, g_p2, float(DIRT_CLIP_EPS), zmin, zmax))
         return;
+#else
+    if (!dirt_range_tile(v, S, tile, g_p0, g_p1, g_p2, g_p3, g_p4, g_n, float(DIRT_CLIP_EPS),
+                         zmin, zmax))
+        return;
+#endif
     uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
-#ifdef DIRT_PASS_DEPTH
     atomicMin(depth[t].x, floatBitsToUint(zmin));
     atomicMax(depth[t].y, floatBitsToUint(zmax));
-#else
-    float tmin = uintBitsToFloat(depth[t].x);
-    float trange = uintBitsToFloat(depth[t].y) - tmin;
-    int B = params.config.z;
-    int b0 = 0, b1 = 0;
-    if (trange > 0.0) {
-        b0 = clamp(int(floor(float(B) * (zmin - tmin) / trange)), 0, B - 1);
-        b1 = clamp(int(floor(float(B) * (zmax - tmin) / trange)), 0, B - 1);
-    }
-    atomicAdd(counters.fill.y, 1u);
-    uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
-    uint capacity = params.pool.x;
-    uint tiles = uint(params.config.w);
-    for (int b = b0; b <= b1; b++) {
-        uint node = first + uint(b - b0);
-        if (node < capacity) {
-            uint prev = atomicExchange(heads[uint(b) * tiles + t], node);
-            nodes[node] = uvec2(g_prim, prev);
-        }
-    }
+    uint i = atomicAdd(counters.fill.y, 1u);
+    if (i < params.cand.x)
+        candidates[i] = uvec4(g_prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax));
 #endif
 #endif
 }

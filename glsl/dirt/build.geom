@@ -1,13 +1,18 @@
 #version 450 core
-// DIRT build passes (depth bounds and fill primitives), geometry stage: one
-// invocation per view. Emits, in the raster atlas (one pixel per tile, views
-// side by side), a quad covering every tile the triangle's near-clipped
-// projection touches (conservative rasterization by bounding box; the
-// fragment stage clips exactly and discards empty tiles). With
-// DIRT_CONSERVATIVE_NV the hardware rasterizes the triangle conservatively
-// instead, except for triangles that cross the near plane or are
-// (near-)degenerate, which keep the quad.
+// DIRT build passes (depth bounds, candidate bound, fetch), geometry stage:
+// one invocation per view. Emits, in the raster atlas (one pixel per tile,
+// views side by side), a quad covering every tile the triangle's
+// near-clipped projection touches (conservative rasterization by bounding
+// box; the fragment stage computes the exact range and discards empty
+// tiles). With DIRT_CONSERVATIVE_NV the hardware rasterizes the triangle
+// conservatively instead, except for triangles that cross the near plane or
+// are (near-)degenerate, which keep the quad. The fragment stage gets the
+// triangle clipped against the near and far planes (dirt/clip.glsl; with
+// DIRT_CLIP_SH the triangle itself). DIRT_PASS_BOUND emits nothing: it adds
+// the tiles of the quad to counters.build.x, an upper bound of the
+// candidates the depth pass will find (it sizes their buffer).
 #include "common/layout.h"
+#include "dirt/clip.glsl"
 
 #ifndef DIRT_NUM_VIEWS
 #define DIRT_NUM_VIEWS 1
@@ -26,21 +31,39 @@ layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
 
-layout(location = 0) flat out vec4 g_c0;
-layout(location = 1) flat out vec4 g_c1;
-layout(location = 2) flat out vec4 g_c2;
-layout(location = 3) flat out uint g_prim;
-layout(location = 4) flat out int g_view;
+#ifdef DIRT_PASS_BOUND
+layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
+    dirt_gpu_ads_counters counters;
+};
+#endif
 
-void emit(vec2 atlas_px, vec4 c0, vec4 c1, vec4 c2, uint prim, int view)
+// The polygon the fragment stage clips (g_n vertices), the primitive, the view.
+layout(location = 0) flat out vec4 g_p0;
+layout(location = 1) flat out vec4 g_p1;
+layout(location = 2) flat out vec4 g_p2;
+layout(location = 3) flat out vec4 g_p3;
+layout(location = 4) flat out vec4 g_p4;
+layout(location = 5) flat out uint g_prim;
+layout(location = 6) flat out int g_view;
+layout(location = 7) flat out int g_n;
+
+void set_outputs(vec4 poly[5], int poly_n, uint prim, int view)
+{
+    g_p0 = poly[0];
+    g_p1 = poly[1];
+    g_p2 = poly[2];
+    g_p3 = poly[3];
+    g_p4 = poly[4];
+    g_prim = prim;
+    g_view = view;
+    g_n = poly_n;
+}
+
+void emit(vec2 atlas_px, vec4 poly[5], int poly_n, uint prim, int view)
 {
     vec2 atlas = vec2(params.pool.zw);
     gl_Position = vec4(atlas_px / atlas * 2.0 - 1.0, 0.0, 1.0);
-    g_c0 = c0;
-    g_c1 = c1;
-    g_c2 = c2;
-    g_prim = prim;
-    g_view = view;
+    set_outputs(poly, poly_n, prim, view);
     EmitVertex();
 }
 
@@ -94,6 +117,23 @@ void main()
     if (lo.x >= hi.x || lo.y >= hi.y)
         return;
 
+#ifdef DIRT_PASS_BOUND
+    // Tiles whose square meets the quad: at least the fragments it makes.
+    vec2 n = ceil(hi) - floor(lo);
+    atomicAdd(counters.build.x, uint(n.x) * uint(n.y));
+    return;
+#endif
+    vec4 poly[5];
+    int poly_n;
+#if defined(DIRT_CLIP_SH) || defined(DIRT_PASS_FETCH)
+    poly = vec4[5](c[0], c[1], c[2], c[2], c[2]);
+    poly_n = 3;
+#else
+    dirt_clip_near_far(c, float(DIRT_CLIP_EPS), poly, poly_n);
+    if (poly_n < 3)
+        return;
+#endif
+
     vec2 base = vec2(float(v.placement.y), 0.0);
 #ifdef DIRT_CONSERVATIVE_NV
     vec2 e1 = (c[1].xy / c[1].w - c[0].xy / c[0].w) * tiles;
@@ -106,20 +146,16 @@ void main()
             vec2 px = base + (c[i].xy / c[i].w * 0.5 + 0.5) * tiles;
             vec2 ndc = px / atlas * 2.0 - 1.0;
             gl_Position = vec4(ndc * c[i].w, 0.0, c[i].w);
-            g_c0 = c[0];
-            g_c1 = c[1];
-            g_c2 = c[2];
-            g_prim = prim;
-            g_view = view;
+            set_outputs(poly, poly_n, prim, view);
             EmitVertex();
         }
         EndPrimitive();
         return;
     }
 #endif
-    emit(base + vec2(lo.x, lo.y), c[0], c[1], c[2], prim, view);
-    emit(base + vec2(hi.x, lo.y), c[0], c[1], c[2], prim, view);
-    emit(base + vec2(lo.x, hi.y), c[0], c[1], c[2], prim, view);
-    emit(base + vec2(hi.x, hi.y), c[0], c[1], c[2], prim, view);
+    emit(base + vec2(lo.x, lo.y), poly, poly_n, prim, view);
+    emit(base + vec2(hi.x, lo.y), poly, poly_n, prim, view);
+    emit(base + vec2(lo.x, hi.y), poly, poly_n, prim, view);
+    emit(base + vec2(hi.x, hi.y), poly, poly_n, prim, view);
     EndPrimitive();
 }

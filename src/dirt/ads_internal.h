@@ -13,17 +13,22 @@ struct dirt_ads {
     dirt_ads_opts opts;
     int num_views;
     bool use_nv;
-    GLuint prog_depth, prog_fill, prog_mip;
-    /* frame graphs: build (clear, depth bounds, mip, fill, read counters)
-     * and refill (clear lists, fill, read counters) after pool growth */
-    fg_graph *graph, *refill;
-    fg_res r_vertices, r_views, r_params, r_depth, r_heads, r_nodes, r_counters;
+    GLuint prog_depth, prog_bound, prog_mip, prog_count, prog_fill;
+    /* frame graphs: build (clear, depth bounds, mip, count nodes, read
+     * counters), fill (fill primitives) once the node pool is sized, and
+     * bound (clear counters, candidate bound, read counters) when the
+     * candidate buffer's size is unknown */
+    fg_graph *graph, *fill, *bound;
+    fg_res r_vertices, r_views, r_params, r_depth, r_heads, r_nodes, r_counters, r_cands;
     int graph_atlas_w, graph_atlas_h;
     struct dirt_gpu_ads_counters counters_cpu; /* read back by the graph */
     /* buffers and their capacities in bytes */
-    GLuint vertices, views, params, depth, heads, nodes, counters;
+    GLuint vertices, views, params, depth, heads, nodes, counters, cands;
     size_t vertices_size, depth_size, heads_size;
     size_t node_capacity;     /* nodes */
+    size_t cand_capacity;     /* candidates (0: unknown, the bound pass sizes it) */
+    int cand_tiles;           /* tiles and primitives the capacity was bounded for */
+    size_t cand_prims;
     dirt_view_set set;
     size_t num_primitives;
     struct dirt_gpu_vertex *staging;

@@ -1,4 +1,7 @@
-/* DIRT build stage: depth bounds, Hi-Z mip and fill-primitives passes. */
+/* DIRT build stage: depth bounds (the exact range of every candidate,
+ * stored), Hi-Z mip, count nodes (the node pool's size) and fill
+ * primitives passes; a candidate bound pass sizes the candidate buffer when
+ * its size is unknown. doc/dirt-build.md. */
 #include "views/hiz.h"
 #include "dirt/ads.h"
 
@@ -17,7 +20,7 @@
 /* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
 const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
-    "clear", "depth bounds", "mip", "fill primitives",
+    "clear", "depth bounds", "mip", "fill primitives", "count nodes", "candidate bound",
 };
 
 
@@ -38,6 +41,10 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         a->opts = *opts;
     if (a->opts.buckets <= 0)
         a->opts.buckets = 16;
+    if (a->opts.buckets > 65535) { /* a candidate packs two bucket indices in 32 bits */
+        DIRT_ERROR("%d buckets: at most 65535", a->opts.buckets);
+        goto error;
+    }
     if (a->opts.views.mode < DIRT_VIEWS_SINGLE || a->opts.views.mode > DIRT_VIEWS_CUBE_CAMERA) {
         DIRT_ERROR("unknown view mode %d", (int)a->opts.views.mode);
         goto error;
@@ -47,21 +54,26 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
 
     char nviews[8];
     snprintf(nviews, sizeof(nviews), "%d", a->num_views);
-    glsl_define defs[3] = {{"DIRT_NUM_VIEWS", nviews}, {"DIRT_PASS_DEPTH", "1"},
-                           {"DIRT_CONSERVATIVE_NV", "1"}};
-    size_t ndefs = a->use_nv ? 3 : 2;
+    glsl_define defs[4] = {{"DIRT_NUM_VIEWS", nviews}, {"DIRT_PASS_DEPTH", "1"}};
+    size_t ndefs = 2;
+    if (a->use_nv)
+        defs[ndefs++] = (glsl_define){"DIRT_CONSERVATIVE_NV", "1"};
+    if (a->opts.reference_clip)
+        defs[ndefs++] = (glsl_define){"DIRT_CLIP_SH", "1"};
     const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
     a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
-    defs[1].name = "DIRT_PASS_FILL";
-    a->prog_fill = gl_program_create("dirt fill primitives", paths, defs, ndefs);
+    defs[1].name = "DIRT_PASS_BOUND";
+    a->prog_bound = gl_program_create("dirt candidate bound", paths, defs, ndefs);
+    a->prog_count = gl_program_compute("dirt/count.comp", NULL, 0);
+    a->prog_fill = gl_program_compute("dirt/fill.comp", NULL, 0);
     a->prog_mip = views_hiz_program();
     a->prog_trace = gl_program_compute("dirt/trace.comp", NULL, 0);
     a->prog_fetch = gl_program_compute("dirt/fetch.comp", NULL, 0);
     a->prog_fetch_miss = gl_program_compute("dirt/fetch_miss.comp", NULL, 0);
     defs[1].name = "DIRT_PASS_FETCH";
     a->prog_fetch_raster = gl_program_create("dirt fetch (raster)", paths, defs, ndefs);
-    if (!a->prog_depth || !a->prog_fill || !a->prog_mip || !a->prog_trace || !a->prog_fetch ||
-        !a->prog_fetch_miss || !a->prog_fetch_raster)
+    if (!a->prog_depth || !a->prog_bound || !a->prog_count || !a->prog_fill || !a->prog_mip ||
+        !a->prog_trace || !a->prog_fetch || !a->prog_fetch_miss || !a->prog_fetch_raster)
         goto error;
     const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
     a->prog_vis = gl_program_create("dirt direct visibility", vis, NULL, 0);
@@ -88,6 +100,7 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     if (!a->views || !a->params || !a->counters)
         goto error;
     a->node_capacity = a->opts.initial_nodes;
+    a->cand_capacity = a->opts.initial_candidates;
     return a;
 error:
     dirt_ads_destroy(a);
@@ -99,6 +112,8 @@ void dirt_ads_destroy(dirt_ads *a)
     if (!a)
         return;
     gl_program_destroy(&a->prog_depth);
+    gl_program_destroy(&a->prog_bound);
+    gl_program_destroy(&a->prog_count);
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
     gl_program_destroy(&a->prog_trace);
@@ -125,9 +140,10 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_buffer_destroy(&a->hits);
     gl_timer_release(&a->trace_timer);
     fg_destroy(a->graph);
-    fg_destroy(a->refill);
+    fg_destroy(a->fill);
+    fg_destroy(a->bound);
     GLuint *bufs[] = {&a->vertices, &a->views, &a->params, &a->depth,
-                      &a->heads, &a->nodes, &a->counters};
+                      &a->heads, &a->nodes, &a->counters, &a->cands};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         gl_buffer_destroy(bufs[i]);
     free(a->staging);
@@ -187,6 +203,7 @@ static void upload_params(dirt_ads *a)
         .config = {a->set.count, a->set.tile_size, a->opts.buckets, a->set.num_tiles},
         .pool = {(unsigned)a->node_capacity, (unsigned)a->set.pyramid_size,
                  (unsigned)a->set.atlas_width, (unsigned)a->set.atlas_height},
+        .cand = {(unsigned)a->cand_capacity, 0, 0, 0},
     };
     glNamedBufferSubData(a->params, 0, sizeof(p), &p);
 }
@@ -208,6 +225,38 @@ static bool ensure_nodes(dirt_ads *a, size_t nodes)
     return a->nodes != 0;
 }
 
+/* Candidate buffer of at least `cands` records (at least one, so the
+ * buffer always exists); false (logged) past the GPU's limit. */
+static bool ensure_cands(dirt_ads *a, size_t cands)
+{
+    if (cands < 1)
+        cands = 1;
+    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
+    if (max > 0 && (int64_t)(cands * DIRT_CANDIDATE_BYTES) > max) {
+        DIRT_ERROR("the build needs %zu candidates (%.1f MB), more than this GPU's largest "
+                   "storage buffer (%.1f MB): use larger tiles or smaller views", cands,
+                   cands * DIRT_CANDIDATE_BYTES / 1e6, max / 1e6);
+        return false;
+    }
+    if (a->cands && a->cand_capacity >= cands)
+        return true;
+    gl_buffer_destroy(&a->cands);
+    a->cands = gl_buffer_create(a->gpu, cands * DIRT_CANDIDATE_BYTES, NULL, false,
+                                "dirt candidates");
+    a->cand_capacity = a->cands ? cands : 0;
+    return a->cands != 0;
+}
+
+/* Grows a pool to `need` (plus a quarter, within the GPU's limit). */
+static size_t grown(const dirt_ads *a, size_t need, size_t bytes_each)
+{
+    size_t g = need + need / 4;
+    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
+    if (max > 0 && (int64_t)(g * bytes_each) > max)
+        g = need;
+    return g;
+}
+
 static bool ensure_targets(dirt_ads *a)
 {
     const dirt_view_set *s = &a->set;
@@ -224,7 +273,7 @@ static bool ensure_targets(dirt_ads *a)
         return false;
     if (!a->node_capacity)
         a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
-    if (!ensure_nodes(a, a->node_capacity))
+    if (!ensure_nodes(a, a->node_capacity) || !ensure_cands(a, a->cand_capacity))
         return false;
     return true;
 }
@@ -238,6 +287,7 @@ void ads_bind_all(dirt_ads *a)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HEADS, a->heads);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_NODES, a->nodes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_COUNTERS, a->counters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_CANDIDATES, a->cands);
 }
 
 /* ---- passes (bodies run by the frame graph) ---- */
@@ -256,12 +306,10 @@ static bool exec_clear(fg_ctx *ctx, void *user)
     return true;
 }
 
-static bool exec_clear_lists(fg_ctx *ctx, void *user)
+static bool exec_clear_counters(fg_ctx *ctx, void *user)
 {
     dirt_ads *a = user;
-    static const uint32_t end = DIRT_LIST_END, zero = 0;
-    glClearNamedBufferData(fg_name(ctx, a->r_heads), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                           &end);
+    static const uint32_t zero = 0;
     glClearNamedBufferData(fg_name(ctx, a->r_counters), GL_R32UI, GL_RED_INTEGER,
                            GL_UNSIGNED_INT, &zero);
     return true;
@@ -292,10 +340,39 @@ static bool exec_depth(fg_ctx *ctx, void *user)
     return true;
 }
 
+static bool exec_bound(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    glEnable(GL_RASTERIZER_DISCARD);
+    draw_views(user, ((dirt_ads *)user)->prog_bound);
+    glDisable(GL_RASTERIZER_DISCARD);
+    return true;
+}
+
+/* Count and fill dispatch over the candidate records: all the capacity
+ * (count: the depth pass's count is on the GPU) or the count read back
+ * (fill); the shaders bound-check against both. */
+static bool exec_count(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_ads *a = user;
+    glUseProgram(a->prog_count);
+    glDispatchCompute((GLuint)DIRT_GROUPS(a->cand_capacity), 1, 1);
+    glUseProgram(0);
+    return true;
+}
+
 static bool exec_fill(fg_ctx *ctx, void *user)
 {
     (void)ctx;
-    draw_views(user, ((dirt_ads *)user)->prog_fill);
+    dirt_ads *a = user;
+    size_t n = a->counters_cpu.fill.y < a->cand_capacity ? a->counters_cpu.fill.y
+                                                          : a->cand_capacity;
+    if (n) {
+        glUseProgram(a->prog_fill);
+        glDispatchCompute((GLuint)DIRT_GROUPS(n), 1, 1);
+        glUseProgram(0);
+    }
     return true;
 }
 
@@ -318,37 +395,32 @@ static void use(fg_pass *p, fg_res r, fg_access acc, unsigned binding)
     fg_use(p, r, acc, &(fg_use_opts){.bind = true, .binding = binding});
 }
 
-/* The fill pass and the counter readback, shared by both graphs. */
-static void add_fill(dirt_ads *a, fg_graph *g)
+static void add_read_counters(dirt_ads *a, fg_graph *g)
 {
-    fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_FILL], FG_RASTER, exec_fill, a);
-    fg_set_raster_size(p, &(fg_tex_desc){.width = a->set.atlas_width,
-                                         .height = a->set.atlas_height});
-    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
-    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
-    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
-    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
-    use(p, a->r_heads, FG_SSBO_READ, DIRT_BIND_HEADS);
-    use(p, a->r_heads, FG_SSBO_WRITE, DIRT_BIND_HEADS);
-    use(p, a->r_nodes, FG_SSBO_WRITE, DIRT_BIND_NODES);
-    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
-    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
-    p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, a);
+    fg_pass *p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, a);
     fg_read(p, a->r_counters, FG_TRANSFER_READ);
     fg_keep(p);
 }
 
-/* Builds both graphs over the structure's (imported) buffers. */
+static void raster_size(dirt_ads *a, fg_pass *p)
+{
+    fg_set_raster_size(p, &(fg_tex_desc){.width = a->set.atlas_width,
+                                         .height = a->set.atlas_height});
+}
+
+/* Builds the three graphs over the structure's (imported) buffers. */
 static bool make_graphs(dirt_ads *a)
 {
     fg_destroy(a->graph);
-    fg_destroy(a->refill);
+    fg_destroy(a->fill);
+    fg_destroy(a->bound);
     a->graph = gl_graph_create(a->gpu);
-    a->refill = gl_graph_create(a->gpu);
-    if (!a->graph || !a->refill)
+    a->fill = gl_graph_create(a->gpu);
+    a->bound = gl_graph_create(a->gpu);
+    if (!a->graph || !a->fill || !a->bound)
         return false;
-    fg_graph *graphs[2] = {a->graph, a->refill};
-    for (int i = 0; i < 2; i++) {
+    fg_graph *graphs[3] = {a->graph, a->fill, a->bound};
+    for (int i = 0; i < 3; i++) {
         fg_graph *g = graphs[i];
         a->r_vertices = fg_import_buffer(g, "vertices", a->vertices, a->vertices_size);
         a->r_views = fg_import_buffer(g, "views", a->views, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view));
@@ -358,49 +430,88 @@ static bool make_graphs(dirt_ads *a)
         a->r_nodes = fg_import_buffer(g, "id nodes", a->nodes, a->node_capacity * DIRT_NODE_BYTES);
         a->r_counters = fg_import_buffer(g, "counters", a->counters,
                                          sizeof(struct dirt_gpu_ads_counters));
+        a->r_cands = fg_import_buffer(g, "candidates", a->cands,
+                                      a->cand_capacity * DIRT_CANDIDATE_BYTES);
     }
-    /* build: clear, depth bounds, mip, fill, read counters */
+    /* build: clear, depth bounds, mip, count nodes, read counters */
     fg_graph *g = a->graph;
     fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear, a);
     fg_write(p, a->r_depth, FG_TRANSFER_WRITE);
     fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_RASTER, exec_depth, a);
-    fg_set_raster_size(p, &(fg_tex_desc){.width = a->set.atlas_width,
-                                         .height = a->set.atlas_height});
+    raster_size(a, p);
     use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
     use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
     use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
     use(p, a->r_depth, FG_SSBO_WRITE, DIRT_BIND_DEPTH);
+    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    use(p, a->r_cands, FG_SSBO_WRITE, DIRT_BIND_CANDIDATES);
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_MIP], FG_COMPUTE, exec_mip, a);
     use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
     use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
     use(p, a->r_depth, FG_SSBO_WRITE, DIRT_BIND_DEPTH);
-    add_fill(a, g);
-    /* refill after the node pool grew: clear lists, fill, read counters */
-    g = a->refill;
-    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear_lists, a);
-    fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_COUNT], FG_COMPUTE, exec_count, a);
+    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
+    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    use(p, a->r_cands, FG_SSBO_READ, DIRT_BIND_CANDIDATES);
+    use(p, a->r_cands, FG_SSBO_WRITE, DIRT_BIND_CANDIDATES);
+    add_read_counters(a, g);
+    /* fill: the lists, from the counted candidates */
+    g = a->fill;
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_FILL], FG_COMPUTE, exec_fill, a);
+    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+    use(p, a->r_cands, FG_SSBO_READ, DIRT_BIND_CANDIDATES);
+    use(p, a->r_heads, FG_SSBO_READ, DIRT_BIND_HEADS);
+    use(p, a->r_heads, FG_SSBO_WRITE, DIRT_BIND_HEADS);
+    use(p, a->r_nodes, FG_SSBO_WRITE, DIRT_BIND_NODES);
+    /* bound: an upper bound of the candidates */
+    g = a->bound;
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear_counters, a);
     fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
-    add_fill(a, g);
-    if (!fg_compile(a->graph) || !fg_compile(a->refill))
+    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_BOUND], FG_RASTER, exec_bound, a);
+    raster_size(a, p);
+    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
+    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    add_read_counters(a, g);
+    if (!fg_compile(a->graph) || !fg_compile(a->fill) || !fg_compile(a->bound))
         return false;
     a->graph_atlas_w = a->set.atlas_width;
     a->graph_atlas_h = a->set.atlas_height;
     return true;
 }
 
-/* Points both graphs at the current buffers (after growth). */
+/* Points the graphs at the current buffers (after growth). */
 static void update_imports(dirt_ads *a)
 {
-    fg_graph *graphs[2] = {a->graph, a->refill};
-    for (int i = 0; i < 2; i++) {
+    fg_graph *graphs[3] = {a->graph, a->fill, a->bound};
+    for (int i = 0; i < 3; i++) {
         fg_set_import(graphs[i], a->r_vertices, a->vertices, a->vertices_size);
         fg_set_import(graphs[i], a->r_depth, a->depth, a->depth_size);
         fg_set_import(graphs[i], a->r_heads, a->heads, a->heads_size);
         fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * DIRT_NODE_BYTES);
+        fg_set_import(graphs[i], a->r_cands, a->cands, a->cand_capacity * DIRT_CANDIDATE_BYTES);
     }
+}
+
+/* Runs one graph, adds its pass times; shader writes of the graph before
+ * are made visible first (graphs do not track each other). */
+static bool run_graph(fg_graph *g, double *ms, enum dirt_clock *clock)
+{
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    fg_exec_opts eo = {.validate = true};
+    if (!fg_execute(g, &eo))
+        return false;
+    fg_add_pass_times(g, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, ms, clock);
+    return true;
 }
 
 bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
@@ -430,34 +541,58 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (!make_graphs(a))
             goto done;
     }
+    /* The candidate buffer: from the bound pass when its size is unknown
+     * (first build, other views or primitives), so the depth pass of a
+     * first build never overflows it. */
+    st->bound_pass = false;
+    bool unknown = a->cand_tiles == 0 ? !a->opts.initial_candidates /* the caller's choice */
+                                      : a->cand_tiles != a->set.num_tiles ||
+                                            a->cand_prims != a->num_primitives;
     update_imports(a);
-    fg_exec_opts eo = {.validate = true};
-    /* Buffers were written by glBufferSubData (ordered by GL itself); the
-     * previous frame's trace read them with shaders: no barrier needed. */
-    if (!fg_execute(a->graph, &eo))
-        goto done;
-    fg_add_pass_times(a->graph, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, ms, &clock);
-    st->fill_runs = 1;
-    while (a->counters_cpu.fill.x > a->node_capacity) {
-        size_t need = a->counters_cpu.fill.x;
-        size_t grown = need + need / 4;
-        int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-        if (max > 0 && (int64_t)(grown * DIRT_NODE_BYTES) > max)
-            grown = need;
-        DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB); fill pass rerun",
-                  a->node_capacity, grown, grown * DIRT_NODE_BYTES / 1e6);
-        if (!ensure_nodes(a, grown))
+    if (unknown) {
+        if (!run_graph(a->bound, ms, &clock))
+            goto done;
+        st->bound_pass = true;
+        if (!ensure_cands(a, a->counters_cpu.build.x))
             goto done;
         upload_params(a);
         update_imports(a);
-        /* The other graph's shader writes (heads, counters) must be visible
-         * to this one's clears and fill. */
-        glMemoryBarrier(GL_ALL_BARRIER_BITS);
-        if (!fg_execute(a->refill, &eo))
-            goto done;
-        fg_add_pass_times(a->refill, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, ms, &clock);
-        st->fill_runs++;
     }
+    a->cand_tiles = a->set.num_tiles;
+    a->cand_prims = a->num_primitives;
+    /* clear, depth bounds, mip, count nodes; again if the candidates
+     * outgrew their buffer */
+    st->depth_runs = 0;
+    for (;;) {
+        if (!run_graph(a->graph, ms, &clock))
+            goto done;
+        st->depth_runs++;
+        size_t n = a->counters_cpu.fill.y;
+        if (n <= a->cand_capacity)
+            break;
+        size_t g = grown(a, n, DIRT_CANDIDATE_BYTES);
+        DIRT_INFO("candidate buffer grew from %zu to %zu (%.1f MB); depth pass rerun",
+                  a->cand_capacity, g, g * DIRT_CANDIDATE_BYTES / 1e6);
+        if (!ensure_cands(a, g))
+            goto done;
+        upload_params(a);
+        update_imports(a);
+    }
+    /* The node pool from the count, then the one fill pass. */
+    if (a->counters_cpu.fill.x > a->node_capacity) {
+        size_t g = grown(a, a->counters_cpu.fill.x, DIRT_NODE_BYTES);
+        DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB)", a->node_capacity, g,
+                  g * DIRT_NODE_BYTES / 1e6);
+        if (!ensure_nodes(a, g))
+            goto done;
+        upload_params(a);
+        update_imports(a);
+    }
+    if (!run_graph(a->fill, ms, &clock))
+        goto done;
+    st->fill_runs = 1;
+    /* The trace and the next build see the lists. */
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
     struct dirt_gpu_ads_counters counters = a->counters_cpu;
     st->primitives = a->num_primitives;
     st->samples = counters.fill.y;
@@ -469,10 +604,12 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_heads = (uint64_t)a->opts.buckets * (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES;
     st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
     st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
+    st->bytes_candidates_allocated = (uint64_t)a->cand_capacity * DIRT_CANDIDATE_BYTES;
+    st->bytes_candidates_used = st->samples * DIRT_CANDIDATE_BYTES;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
-                                st->bytes_nodes_allocated;
+                                st->bytes_nodes_allocated + st->bytes_candidates_allocated;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
-                           st->bytes_nodes_used;
+                           st->bytes_nodes_used + st->bytes_candidates_used;
     st->bytes_table3 = (double)a->set.num_tiles * (8.0 * 1.33 + 4.0 * a->opts.buckets) +
                        8.0 * st->buckets_per_sample * (double)st->samples;
     st->clock = clock;

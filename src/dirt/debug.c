@@ -96,11 +96,23 @@ bool dirt_ads_write_debug(dirt_ads *ads, const char *dir, bool quiet)
         dirt_image_destroy(img);
     }
     if (ok && ads->graph) {
+        /* The build's three graphs (build, fill, bound), one digraph each. */
         char path[4096];
         snprintf(path, sizeof(path), "%s/ads_graph.dot", dir);
-        char *dot = fg_dot(ads->graph);
+        char *dots[3] = {fg_dot(ads->graph), fg_dot(ads->fill), fg_dot(ads->bound)};
+        size_t bytes = 0;
+        for (int i = 0; i < 3; i++)
+            bytes += dots[i] ? strlen(dots[i]) : 0;
+        char *dot = dots[0] && dots[1] && dots[2] ? malloc(bytes + 1) : NULL;
+        if (dot) {
+            dot[0] = 0;
+            for (int i = 0; i < 3; i++)
+                strcat(dot, dots[i]);
+        }
         ok = dot && dirt_write_file_atomic(path, dot, strlen(dot));
         free(dot);
+        for (int i = 0; i < 3; i++)
+            free(dots[i]);
         if (ok && !quiet)
             printf("wrote %s\n", path);
     }
@@ -120,13 +132,16 @@ void dirt_ads_print_stats(const dirt_ads *ads, void *out_)
             set->count, set->tile_size, dirt_ads_buckets(ads), set->num_tiles,
             s->conservative_nv ? "GL_NV_conservative_raster" : "emulated conservative");
     fprintf(out, "  primitives %llu, clipped primitive samples n_p %llu, buckets per sample c %.3f, "
-            "nodes %llu, fill runs %d\n", (unsigned long long)s->primitives,
-            (unsigned long long)s->samples, s->buckets_per_sample,
-            (unsigned long long)s->nodes, s->fill_runs);
+            "nodes %llu; passes run: depth %d, fill %d, candidate bound %d\n",
+            (unsigned long long)s->primitives, (unsigned long long)s->samples,
+            s->buckets_per_sample, (unsigned long long)s->nodes, s->depth_runs, s->fill_runs,
+            s->bound_pass ? 1 : 0);
     fprintf(out, "  MB: vertices %.3f, depth+mips %.3f, heads %.3f, nodes %.3f used / %.3f "
-            "allocated; total %.3f used / %.3f allocated\n", s->bytes_vertices / 1e6,
+            "allocated, candidates %.3f used / %.3f allocated; total %.3f used / %.3f "
+            "allocated\n", s->bytes_vertices / 1e6,
             s->bytes_depth / 1e6, s->bytes_heads / 1e6, s->bytes_nodes_used / 1e6,
-            s->bytes_nodes_allocated / 1e6, s->bytes_total_used / 1e6,
+            s->bytes_nodes_allocated / 1e6, s->bytes_candidates_used / 1e6,
+            s->bytes_candidates_allocated / 1e6, s->bytes_total_used / 1e6,
             s->bytes_total_allocated / 1e6);
     double ads_used = (double)(s->bytes_depth + s->bytes_heads + s->bytes_nodes_used);
     fprintf(out, "  Table 3 formula %.3f MB vs measured %.3f MB (depth+heads+nodes; mip "

@@ -56,12 +56,14 @@ AT(dirt_gpu_view, size, 6);
 AT(dirt_gpu_view, placement, 7);
 AT(dirt_gpu_view, level_base, 8); /* [4] */
 
-RECORD(dirt_gpu_ads_params, 2);
+RECORD(dirt_gpu_ads_params, 3);
 AT(dirt_gpu_ads_params, config, 0);
 AT(dirt_gpu_ads_params, pool, 1);
+AT(dirt_gpu_ads_params, cand, 2);
 
-RECORD(dirt_gpu_ads_counters, 1);
+RECORD(dirt_gpu_ads_counters, 2);
 AT(dirt_gpu_ads_counters, fill, 0);
+AT(dirt_gpu_ads_counters, build, 1);
 
 RECORD(dirt_gpu_ray, 2);
 AT(dirt_gpu_ray, origin_tmin, 0);
@@ -173,6 +175,7 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_HEADS, "ADS"),
     B(DIRT_BIND_NODES, "ADS"),
     B(DIRT_BIND_COUNTERS, "ADS"),
+    B(DIRT_BIND_CANDIDATES, "ADS"),
     B(DIRT_BIND_HIT_HEADS, "TRACE"),
     B(DIRT_BIND_FETCH_PARAMS, "TRACE"),
     B(DIRT_BIND_PATHS, "INTEGRATOR"),
@@ -240,6 +243,7 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_HEADS);
         CASE(DIRT_BIND_NODES);
         CASE(DIRT_BIND_COUNTERS);
+        CASE(DIRT_BIND_CANDIDATES);
         CASE(DIRT_BIND_HIT_HEADS);
         CASE(DIRT_BIND_FETCH_PARAMS);
         CASE(DIRT_BIND_PATHS);

@@ -543,6 +543,7 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
         add_buffer(st, "depth bounds", a->bytes_depth, a->bytes_depth);
         add_buffer(st, "list heads", a->bytes_heads, a->bytes_heads);
         add_buffer(st, "id nodes", a->bytes_nodes_used, a->bytes_nodes_allocated);
+        add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
     } else if (s->mmrt) {
         const dirt_mmrt_stats *m = dirt_mmrt_get_stats(s->mmrt);
         st->has_mmrt = true;

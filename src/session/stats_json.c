@@ -35,10 +35,14 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
         cJSON_AddNumberToObject(b, "list heads", (double)a->bytes_heads);
         cJSON_AddNumberToObject(b, "id nodes", (double)a->bytes_nodes_used);
         cJSON_AddNumberToObject(b, "id nodes allocated", (double)a->bytes_nodes_allocated);
+        cJSON_AddNumberToObject(b, "candidates", (double)a->bytes_candidates_used);
+        cJSON_AddNumberToObject(b, "candidates allocated", (double)a->bytes_candidates_allocated);
         cJSON_AddNumberToObject(o, "samples_np", (double)a->samples);
         cJSON_AddNumberToObject(o, "nodes", (double)a->nodes);
         cJSON_AddNumberToObject(o, "buckets_per_sample", a->buckets_per_sample);
         cJSON_AddNumberToObject(o, "fill_runs", a->fill_runs);
+        cJSON_AddNumberToObject(o, "depth_runs", a->depth_runs);
+        cJSON_AddBoolToObject(o, "bound_pass", a->bound_pass);
         cJSON_AddNumberToObject(o, "bytes_table3", a->bytes_table3);
     } else if (s->has_mmrt) {
         /* The same keys as DIRT's where they mean the same; "list heads"

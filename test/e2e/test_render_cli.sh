@@ -142,7 +142,7 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'all(d[k] > 0 for k in ("build_ms", "trace_ms", "fetch_ms", "shade_ms", "mrays_per_s"))' \
   'd["rays"] >= 32 * 24 * 2 and d["aborted_rays"] == 0 and d["spp"] == 2' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
-  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes")) + 32 * 24 * 448' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 448' \
   'd["samples_np"] > 0 and d["frames"][0]["samples"] == 2' \
   'all(p["clock"] in ("gpu", "cpu") and p["ms"] >= 0 for p in d["passes"])' \
   'set(p["name"] for p in d["passes"]) >= {"depth bounds", "fill primitives", "trace", "fetch", "shade"}' \

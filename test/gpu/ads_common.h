@@ -3,6 +3,10 @@
 #ifndef DIRT_TEST_ADS_COMMON_H
 #define DIRT_TEST_ADS_COMMON_H
 
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "check.h"
 #include "dirt/ads.h"
 #include "dirt/ads_ref.h"
@@ -14,6 +18,50 @@
 static const char *mode_name(enum dirt_view_mode m)
 {
     return m == DIRT_VIEWS_SINGLE ? "single" : m == DIRT_VIEWS_CUBE ? "cube" : "cube+camera";
+}
+
+/* A frame of n hand-made triangles (only positions matter to the build). */
+static inline dirt_frame *frame_new(size_t n)
+{
+    dirt_frame *f = calloc(1, sizeof(*f));
+    f->num_triangles = n;
+    f->position = calloc(3 * n, sizeof(*f->position));
+    f->normal = calloc(3 * n, sizeof(*f->normal));
+    f->uv = calloc(3 * n, sizeof(*f->uv));
+    f->material = calloc(n, sizeof(*f->material));
+    f->instance = calloc(n, sizeof(*f->instance));
+    return f;
+}
+
+static inline void frame_free(dirt_frame *f)
+{
+    free(f->position);
+    free(f->normal);
+    free(f->uv);
+    free(f->material);
+    free(f->instance);
+    free(f);
+}
+
+static inline void frame_bounds(dirt_frame *f)
+{
+    for (int k = 0; k < 3; k++) {
+        f->bounds_min[k] = INFINITY;
+        f->bounds_max[k] = -INFINITY;
+    }
+    for (size_t i = 0; i < 3 * f->num_triangles; i++) {
+        for (int k = 0; k < 3; k++) {
+            f->bounds_min[k] = fminf(f->bounds_min[k], f->position[i][k]);
+            f->bounds_max[k] = fmaxf(f->bounds_max[k], f->position[i][k]);
+        }
+    }
+}
+
+static inline void set_tri(dirt_frame *f, size_t t, const float a[3], const float b[3], const float c[3])
+{
+    memcpy(f->position[3 * t], a, 12);
+    memcpy(f->position[3 * t + 1], b, 12);
+    memcpy(f->position[3 * t + 2], c, 12);
 }
 
 /* Builds with `opts` and checks; returns false on any discrepancy. */

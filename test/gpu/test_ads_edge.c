@@ -2,8 +2,9 @@
  *  - slivers, zero-area (collinear, repeated-point) and edge-on triangles,
  *    triangles lying on tile boundaries and crossing the near plane are all
  *    recorded wherever their exact clip is non-empty;
- *  - overflow: starting from a node pool of 1 gives exactly the lists of a
- *    run with ample capacity;
+ *  - pools: a first build runs every pass once (from a node pool of 1 too)
+ *    and gives exactly the lists of a run with ample capacity; a candidate
+ *    buffer that is too small reruns the depth pass, same lists;
  *  - odd view sizes (97x61): the Hi-Z pyramid equals a CPU min/max pyramid. */
 #include <math.h>
 #include <stdlib.h>
@@ -14,50 +15,6 @@
 #include "dirt/log.h"
 #include "dirt/scene.h"
 #include "gpu.h"
-
-/* A frame of n hand-made triangles (only positions matter to the build). */
-static dirt_frame *frame_new(size_t n)
-{
-    dirt_frame *f = calloc(1, sizeof(*f));
-    f->num_triangles = n;
-    f->position = calloc(3 * n, sizeof(*f->position));
-    f->normal = calloc(3 * n, sizeof(*f->normal));
-    f->uv = calloc(3 * n, sizeof(*f->uv));
-    f->material = calloc(n, sizeof(*f->material));
-    f->instance = calloc(n, sizeof(*f->instance));
-    return f;
-}
-
-static void frame_free(dirt_frame *f)
-{
-    free(f->position);
-    free(f->normal);
-    free(f->uv);
-    free(f->material);
-    free(f->instance);
-    free(f);
-}
-
-static void frame_bounds(dirt_frame *f)
-{
-    for (int k = 0; k < 3; k++) {
-        f->bounds_min[k] = INFINITY;
-        f->bounds_max[k] = -INFINITY;
-    }
-    for (size_t i = 0; i < 3 * f->num_triangles; i++) {
-        for (int k = 0; k < 3; k++) {
-            f->bounds_min[k] = fminf(f->bounds_min[k], f->position[i][k]);
-            f->bounds_max[k] = fmaxf(f->bounds_max[k], f->position[i][k]);
-        }
-    }
-}
-
-static void set_tri(dirt_frame *f, size_t t, const float a[3], const float b[3], const float c[3])
-{
-    memcpy(f->position[3 * t], a, 12);
-    memcpy(f->position[3 * t + 1], b, 12);
-    memcpy(f->position[3 * t + 2], c, 12);
-}
 
 static float frand(unsigned *s)
 {
@@ -154,6 +111,12 @@ static uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
     return out;
 }
 
+/* Pool sizing. A first build runs every pass once (the candidate buffer
+ * from the bound pass, the node pool from the count pass), from a node
+ * capacity of 1 too, and gives exactly the lists of a build with ample
+ * pools; a second build of the same frame needs no bound pass; a candidate
+ * buffer of 1 (initial_candidates) reruns the depth pass once, same lists;
+ * other primitives bring the bound pass back, still one depth pass. */
 static void test_overflow(dirt_gpu *gpu)
 {
     dirt_scene *scene = dirt_scene_create_default();
@@ -164,32 +127,49 @@ static void test_overflow(dirt_gpu *gpu)
         .buckets = 8,
         .force_emulation = true,
     };
-    dirt_ads_data d[2];
-    size_t n[2] = {0};
-    uint64_t *tri[2] = {NULL};
-    int runs[2] = {0};
-    for (int i = 0; i < 2; i++) {
-        o.initial_nodes = i == 0 ? 1 : (size_t)1 << 20;
+    enum { CASES = 3 };
+    dirt_ads_data d[CASES];
+    size_t n[CASES] = {0};
+    uint64_t *tri[CASES] = {NULL};
+    for (int i = 0; i < CASES; i++) {
+        o.initial_nodes = i == 1 ? (size_t)1 << 20 : 1;
+        o.initial_candidates = i == 2 ? 1 : i == 1 ? (size_t)1 << 20 : 0;
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         CHECK(ads && dirt_ads_build(ads, f, &f->cameras[0]) && dirt_ads_read(ads, &d[i]));
-        runs[i] = dirt_ads_get_stats(ads)->fill_runs;
+        if (!ads)
+            continue;
+        const dirt_ads_stats *st = dirt_ads_get_stats(ads);
+        fprintf(stderr, "pools case %d: %llu nodes, %llu candidates, bound pass %d, depth runs "
+                "%d, fill runs %d\n", i, (unsigned long long)st->nodes,
+                (unsigned long long)st->samples, st->bound_pass, st->depth_runs, st->fill_runs);
+        CHECK(st->fill_runs == 1);
+        CHECK(st->bound_pass == (i == 0));
+        CHECK(st->depth_runs == (i == 2 ? 2 : 1));
+        CHECK(st->bytes_candidates_allocated >= st->bytes_candidates_used &&
+              st->bytes_candidates_used == st->samples * DIRT_CANDIDATE_BYTES);
         tri[i] = list_triples(&d[i], &n[i]);
-        /* A second build reuses the grown pool: one fill run. */
+        /* A second build of the same frame: every pass once, no bound pass. */
+        CHECK(dirt_ads_build(ads, f, &f->cameras[0]));
+        CHECK(st->fill_runs == 1 && st->depth_runs == 1 && !st->bound_pass);
         if (i == 0) {
-            CHECK(dirt_ads_build(ads, f, &f->cameras[0]));
-            CHECK(dirt_ads_get_stats(ads)->fill_runs == 1);
+            /* Other primitives: the bound pass again, still one depth pass. */
+            dirt_frame *g = dirt_scene_evaluate(scene, 0, NULL);
+            g->num_triangles -= 1;
+            CHECK(dirt_ads_build(ads, g, &g->cameras[0]));
+            CHECK(st->bound_pass && st->depth_runs == 1 && st->fill_runs == 1);
+            g->num_triangles += 1;
+            dirt_frame_destroy(g);
         }
         dirt_ads_destroy(ads);
     }
-    fprintf(stderr, "overflow: %zu nodes from capacity 1 (%d fill runs), %zu with ample "
-            "capacity (%d run)\n", n[0], runs[0], n[1], runs[1]);
-    CHECK(runs[0] == 2 && runs[1] == 1);
-    CHECK(n[0] == n[1] && n[0] > 0);
-    CHECK(n[0] == n[1] && memcmp(tri[0], tri[1], n[0] * sizeof(uint64_t)) == 0);
-    /* Depth bounds are independent of the pool. */
-    CHECK(d[0].pyramid_size == d[1].pyramid_size &&
-          memcmp(d[0].depth, d[1].depth, (size_t)d[0].pyramid_size * 8) == 0);
-    for (int i = 0; i < 2; i++) {
+    for (int i = 1; i < CASES; i++) {
+        CHECK(n[i] == n[0] && n[0] > 0);
+        CHECK(n[i] == n[0] && tri[i] && tri[0] && memcmp(tri[i], tri[0], n[0] * sizeof(uint64_t)) == 0);
+        /* Depth bounds are independent of the pools. */
+        CHECK(d[i].pyramid_size == d[0].pyramid_size &&
+              memcmp(d[i].depth, d[0].depth, (size_t)d[0].pyramid_size * 8) == 0);
+    }
+    for (int i = 0; i < CASES; i++) {
         free(tri[i]);
         dirt_ads_data_free(&d[i]);
     }

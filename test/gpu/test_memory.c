@@ -3,15 +3,17 @@
  * bytes reported as allocated are what GL really holds.
  *  - DIRT (default scene, 64x48 camera + six 32x32 faces, S = 2, B = 8):
  *    used = 96 B x primitives (vertices) + 8 B x pyramid entries (depth
- *    bounds and mips) + 4 B x B x tiles (list heads) + 8 B x nodes, with the
- *    nodes counted by walking every list of the structure read back (not the
- *    GPU's counter); the DIRT paper's Table 3 (8 B x 1.33 + 4 B x B per tile
+ *    bounds and mips) + 4 B x B x tiles (list heads) + 8 B x nodes + 16 B x
+ *    n_p (the build's candidates), with the nodes and the (primitive, tile)
+ *    pairs n_p counted by walking every list of the structure read back (not
+ *    the GPU's counters); the DIRT paper's Table 3 (8 B x 1.33 + 4 B x B per tile
  *    + 8 B x c x n_p) then differs from the structure's bytes only by the
  *    mip factor: the pyramid holds between 1 and 1.34 entries per tile.
  *  - MMRT (same views, B = 4): used = vertices + 8 B x pyramid + 2 x 4 B x B
  *    x pixels (heads and tails) + (12 + 32) B x fragments; the MMRT paper's
  *    formula is pixels x (8 + 8 B) + fragments x (12 + 32) exactly.
  *  - Both: each buffer's GL_BUFFER_SIZE equals the allocated figure. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -30,6 +32,12 @@ static uint64_t gl_size(GLuint buf)
     return n < 0 ? 0 : (uint64_t)n;
 }
 
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
 static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam)
 {
     const int B = 8;
@@ -44,17 +52,31 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     const dirt_view_set *set = dirt_ads_views(ads);
     dirt_ads_data d;
     CHECK(dirt_ads_read(ads, &d));
-    uint64_t walked = 0;
-    for (size_t h = 0; h < (size_t)d.buckets * (size_t)d.num_tiles; h++) {
-        for (uint32_t n = d.heads[h]; n != DIRT_LIST_END && walked <= d.num_nodes;
-             n = d.nodes[n][1])
-            walked++;
+    uint64_t walked = 0, pairs = 0;
+    uint32_t *prims = malloc(((size_t)d.num_nodes + 1) * sizeof(*prims));
+    for (int t = 0; prims && t < d.num_tiles; t++) {
+        size_t k = 0;
+        for (int b = 0; b < d.buckets; b++) {
+            for (uint32_t n = d.heads[(size_t)b * d.num_tiles + t];
+                 n != DIRT_LIST_END && walked <= d.num_nodes; n = d.nodes[n][1]) {
+                walked++;
+                if (k < d.num_nodes)
+                    prims[k++] = d.nodes[n][0];
+            }
+        }
+        qsort(prims, k, sizeof(*prims), cmp_u32);
+        for (size_t i = 0; i < k; i++)
+            pairs += i == 0 || prims[i] != prims[i - 1];
     }
+    free(prims);
     dirt_ads_data_free(&d);
+    CHECK_MSG(pairs == st->samples, "lists hold %llu (primitive, tile) pairs, stats say %llu",
+              (unsigned long long)pairs, (unsigned long long)st->samples);
     CHECK_MSG(walked == st->nodes, "lists hold %llu nodes, stats say %llu",
               (unsigned long long)walked, (unsigned long long)st->nodes);
     uint64_t tiles = (uint64_t)set->num_tiles, pyramid = (uint64_t)set->pyramid_size;
-    uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + 8 * walked;
+    uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + 8 * walked +
+                       16 * pairs;
     CHECK_MSG(st->bytes_total_used == formula, "DIRT used %llu B, formula %llu B",
               (unsigned long long)st->bytes_total_used, (unsigned long long)formula);
     double per_tile = (double)pyramid / (double)tiles;
@@ -68,6 +90,7 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK(gl_size(ads->heads) == st->bytes_heads);
     CHECK(gl_size(ads->depth) == st->bytes_depth);
     CHECK(gl_size(ads->nodes) == st->bytes_nodes_allocated);
+    CHECK(gl_size(ads->cands) == st->bytes_candidates_allocated);
     CHECK(gl_size(ads->vertices) >= st->bytes_vertices);
     fprintf(stderr, "DIRT: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
                     "(walked): used %llu B = formula; Table 3 %.0f B vs structure %.0f B\n",

@@ -32,12 +32,22 @@ typedef struct dirt_ads dirt_ads;
 typedef struct dirt_ads_opts {
     dirt_view_opts views;
     int buckets;              /* B >= 1 (default 16) */
-    size_t initial_nodes;     /* first node capacity (0 = automatic) */
+    size_t initial_nodes;     /* first node capacity (0 = automatic; the pool is sized
+                                 from the count pass before the fill pass runs) */
+    size_t initial_candidates; /* first candidate capacity (0 = from the bound pass) */
     bool force_emulation;     /* ignore GL_NV_conservative_raster */
+    bool reference_clip;      /* Sutherland-Hodgman clip of every candidate tile (the
+                                 slow reference of the exact range, for checks and
+                                 benchmarks; doc/dirt-build.md) */
 } dirt_ads_opts;
 
+/* The build's passes (doc/dirt-build.md): clear; depth bounds (exact range
+ * per candidate, stored); mip; fill primitives (from the stored candidates);
+ * count nodes (bucket ranges, node offsets: the node pool's size); candidate
+ * bound (only when the candidate buffer's size is unknown: an upper bound of
+ * the candidates, from the geometry stage). */
 enum { DIRT_ADS_PASS_CLEAR, DIRT_ADS_PASS_DEPTH, DIRT_ADS_PASS_MIP, DIRT_ADS_PASS_FILL,
-       DIRT_ADS_NUM_PASSES };
+       DIRT_ADS_PASS_COUNT, DIRT_ADS_PASS_BOUND, DIRT_ADS_NUM_PASSES };
 
 typedef struct dirt_ads_stats {
     /* Counts of the last build. */
@@ -45,13 +55,19 @@ typedef struct dirt_ads_stats {
     uint64_t samples;         /* n_p: (primitive, tile) pairs with a non-empty clip */
     uint64_t nodes;           /* id nodes = sum over samples of buckets overlapped */
     double buckets_per_sample; /* c = nodes / samples */
-    int fill_runs;            /* 1, or more when the node pool grew */
+    int fill_runs;            /* fill passes run: 1 (the pool is sized from the count) */
+    int depth_runs;           /* depth passes run: 1, or 2 when the candidates
+                                 outgrew their buffer (never on a first build) */
+    bool bound_pass;          /* the candidate bound pass ran (first build, or the
+                                 view set or the primitive count changed) */
     bool conservative_nv;     /* the hardware conservative path was used */
     /* Bytes. */
     uint64_t bytes_vertices;  /* vertex buffer */
     uint64_t bytes_depth;     /* depth bounds incl. pyramid: 8 B per entry */
     uint64_t bytes_heads;     /* 4 B * B * tiles */
     uint64_t bytes_nodes_allocated, bytes_nodes_used; /* 8 B per node */
+    uint64_t bytes_candidates_allocated, bytes_candidates_used; /* 16 B per candidate
+                                 (build scratch: n_p records, not in Table 3) */
     uint64_t bytes_total_allocated, bytes_total_used;
     /* DIRT paper Table 3 per tile: 8 B * 1.33 (depth + mips) + 4 B * B
      * (heads) + 8 B * c * n_p / tiles (nodes), times the tiles. */

@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""Writes a closed test room for the build benchmarks as one .gltf file
+(buffer embedded): a 4 x 3 x 5 box room (white floor and ceiling, red and
+green side walls, white back and front walls, an emissive ceiling panel), a
+camera inside it looking at the back wall, and a bumpy sphere ("blob") on
+the floor tessellated to about TRIANGLES triangles in all (default 69000:
+the ~69k-triangle closed room of issue 16). Nothing is read from disk.
+
+    perf/make-room.py OUT.gltf [TRIANGLES]
+"""
+import base64
+import json
+import math
+import struct
+import sys
+
+
+def blob(n_lat, n_lon, centre, radius):
+    """UV sphere with a smooth bump field: positions, normals, indices."""
+    pos, nrm, idx = [], [], []
+    for i in range(n_lat + 1):
+        th = math.pi * i / n_lat
+        for j in range(n_lon + 1):
+            ph = 2 * math.pi * j / n_lon
+            d = (math.sin(th) * math.cos(ph), math.cos(th), math.sin(th) * math.sin(ph))
+            r = radius * (1 + 0.08 * math.sin(5 * th) * math.cos(7 * ph)
+                          + 0.04 * math.sin(11 * ph + 3 * th))
+            pos.append((centre[0] + r * d[0], centre[1] + r * d[1], centre[2] + r * d[2]))
+            nrm.append(d)
+    row = n_lon + 1
+    for i in range(n_lat):
+        for j in range(n_lon):
+            a, b = i * row + j, i * row + j + 1
+            c, e = (i + 1) * row + j, (i + 1) * row + j + 1
+            if i > 0:
+                idx += [a, b, c]
+            if i < n_lat - 1:
+                idx += [b, e, c]
+    return pos, nrm, idx
+
+
+def quad(p0, p1, p2, p3, n):
+    return [p0, p1, p2, p3], [n] * 4, [0, 1, 2, 0, 2, 3]
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    total = int(sys.argv[2]) if len(sys.argv) > 2 else 69000
+    W, H, D = 4.0, 3.0, 5.0  # x in [-2, 2], y in [0, 3], z in [-5, 0]
+    x0, x1, y0, y1, z0, z1 = -W / 2, W / 2, 0.0, H, -D, 0.0
+    walls = {  # inward normals, counter-clockwise seen from inside
+        "floor": (quad((x0, y0, z1), (x1, y0, z1), (x1, y0, z0), (x0, y0, z0), (0, 1, 0)), 0),
+        "ceiling": (quad((x0, y1, z0), (x1, y1, z0), (x1, y1, z1), (x0, y1, z1), (0, -1, 0)), 0),
+        "back": (quad((x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (0, 0, 1)), 0),
+        "front": (quad((x1, y0, z1), (x0, y0, z1), (x0, y1, z1), (x1, y1, z1), (0, 0, -1)), 0),
+        "left": (quad((x0, y0, z1), (x0, y0, z0), (x0, y1, z0), (x0, y1, z1), (1, 0, 0)), 1),
+        "right": (quad((x1, y0, z0), (x1, y0, z1), (x1, y1, z1), (x1, y1, z0), (-1, 0, 0)), 2),
+        "light": (quad((-0.5, y1 - 1e-3, -3.0), (0.5, y1 - 1e-3, -3.0), (0.5, y1 - 1e-3, -2.0),
+                       (-0.5, y1 - 1e-3, -2.0), (0, -1, 0)), 3),
+    }
+    # The blob takes what the walls leave: 2 (n_lat - 1) n_lon triangles.
+    left = max(total - 2 * len(walls), 100)
+    n_lat = max(4, int(round(math.sqrt(left / 4.0))))
+    n_lon = max(8, int(round(left / (2.0 * (n_lat - 1)))))
+    meshes = [("blob", blob(n_lat, n_lon, (0.0, 0.9, -3.0), 0.85), 0)]
+    meshes += [(k, v[0], v[1]) for k, v in walls.items()]
+    materials = [
+        {"name": "white", "pbrMetallicRoughness": {"baseColorFactor": [0.73, 0.73, 0.73, 1],
+                                                    "metallicFactor": 0, "roughnessFactor": 1}},
+        {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.63, 0.065, 0.05, 1],
+                                                  "metallicFactor": 0, "roughnessFactor": 1}},
+        {"name": "green", "pbrMetallicRoughness": {"baseColorFactor": [0.14, 0.45, 0.091, 1],
+                                                    "metallicFactor": 0, "roughnessFactor": 1}},
+        {"name": "light", "emissiveFactor": [1, 1, 1],
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 15}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+    ]
+    buf = bytearray()
+    views, accessors, gl_meshes, nodes = [], [], [], []
+    tris = 0
+    for name, (pos, nrm, idx), mat in meshes:
+        tris += len(idx) // 3
+        prim = {"material": mat, "mode": 4, "attributes": {}}
+        for key, data, fmt, comps in (("POSITION", pos, "<3f", 3), ("NORMAL", nrm, "<3f", 3),
+                                      ("indices", idx, "<I", 1)):
+            while len(buf) % 4:
+                buf.append(0)
+            start = len(buf)
+            for v in data:
+                buf += struct.pack(fmt, *(v if comps > 1 else (v,)))
+            views.append({"buffer": 0, "byteOffset": start, "byteLength": len(buf) - start,
+                          "target": 34963 if key == "indices" else 34962})
+            acc = {"bufferView": len(views) - 1, "count": len(data),
+                   "componentType": 5125 if key == "indices" else 5126,
+                   "type": "SCALAR" if comps == 1 else "VEC3"}
+            if key == "POSITION":
+                acc["min"] = [min(p[k] for p in data) for k in range(3)]
+                acc["max"] = [max(p[k] for p in data) for k in range(3)]
+            accessors.append(acc)
+            if key == "indices":
+                prim["indices"] = len(accessors) - 1
+            else:
+                prim["attributes"][key] = len(accessors) - 1
+        gl_meshes.append({"name": name, "primitives": [prim]})
+        nodes.append({"name": name, "mesh": len(gl_meshes) - 1})
+    # Camera near the front wall at eye height, looking down -z (glTF
+    # cameras look down their local -z).
+    nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 1.5, -0.3]})
+    gltf = {
+        "asset": {"version": "2.0", "generator": "DIRT perf/make-room.py"},
+        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": gl_meshes,
+        "materials": materials,
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.05,
+                                                            "aspectRatio": 1.0}}],
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(buf), "uri": "data:application/octet-stream;base64,"
+                     + base64.b64encode(bytes(buf)).decode()}],
+    }
+    with open(out, "w") as f:
+        json.dump(gltf, f)
+    print(f"{out}: {tris} triangles (blob {n_lat} x {n_lon})")
+
+
+if __name__ == "__main__":
+    main()
