@@ -118,8 +118,10 @@ void main()
         return;
 
 #ifdef DIRT_PASS_BOUND
-    // Tiles whose square meets the quad: at least the fragments it makes.
-    vec2 n = ceil(hi) - floor(lo);
+    // Tile centres in the quad widened by 0.01 (vertex snapping): at least
+    // the fragments it makes (and those of the hardware conservative path,
+    // whose tiles meet the triangle, so their centres lie within 0.5 of it).
+    vec2 n = max(floor(hi + 0.01 - 0.5) - ceil(lo - 0.01 - 0.5) + 1.0, vec2(0.0));
     atomicAdd(counters.build.x, uint(n.x) * uint(n.y));
     return;
 #endif

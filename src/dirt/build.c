@@ -553,7 +553,13 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (!run_graph(a->bound, ms, &clock))
             goto done;
         st->bound_pass = true;
-        if (!ensure_cands(a, a->counters_cpu.build.x))
+        /* Past the GPU's limit the real count may still fit: the depth pass
+         * tells (and ensure_cands fails clearly if it does not). */
+        size_t bound = a->counters_cpu.build.x;
+        int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
+        if (max > 0 && (int64_t)(bound * DIRT_CANDIDATE_BYTES) > max)
+            bound = (size_t)max / DIRT_CANDIDATE_BYTES;
+        if (!ensure_cands(a, bound))
             goto done;
         upload_params(a);
         update_imports(a);

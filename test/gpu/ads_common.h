@@ -84,7 +84,7 @@ static bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *
         fprintf(stderr,
                 "%-14s %-11s S=%d B=%-2d: %6llu tiles, %7llu required pairs, %7llu on GPU, "
                 "%7llu allowed | missing %llu, beyond tol %llu, dup %llu, buckets %llu, "
-                "bounds %llu, links %llu, pyramid %llu | n_p %llu c %.2f runs %d\n",
+                "bounds %llu, links %llu, pyramid %llu | n_p %llu c %.2f runs %d/%d\n",
                 label, mode_name(opts->views.mode), set->tile_size, opts->buckets,
                 (unsigned long long)r.tiles, (unsigned long long)r.required_pairs,
                 (unsigned long long)r.gpu_pairs, (unsigned long long)r.allowed_pairs,
@@ -92,7 +92,7 @@ static bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *
                 (unsigned long long)r.duplicates, (unsigned long long)r.bad_buckets,
                 (unsigned long long)r.bad_bounds, (unsigned long long)r.bad_list_links,
                 (unsigned long long)pyr, (unsigned long long)st->samples,
-                st->buckets_per_sample, st->fill_runs);
+                st->buckets_per_sample, st->depth_runs, st->fill_runs);
         CHECK(r.missing == 0);
         CHECK(r.beyond_tolerance == 0);
         CHECK(r.duplicates == 0);
@@ -101,6 +101,11 @@ static bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *
         CHECK(r.bad_list_links == 0);
         CHECK(pyr == 0);
         CHECK(st->samples == r.gpu_pairs);
+        /* A first build runs each pass once (the bound pass sized the
+         * candidates, the count pass the node pool). */
+        CHECK_MSG(st->depth_runs == 1 && st->fill_runs == 1 && st->bound_pass,
+                  "first build: %d depth, %d fill passes, bound pass %d", st->depth_runs,
+                  st->fill_runs, st->bound_pass);
         CHECK(r.required_pairs > 0);
         ok = r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
              r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 && pyr == 0;
