@@ -226,8 +226,12 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             node = n.y;
             uint p = n.x;
             float t, u, w;
+            // Ties at the same t go to the lower primitive id: the lists'
+            // order comes from the build's atomics and varies between runs.
+            float tmax = best.prim != DIRT_NO_HIT && p < best.prim
+                             ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
             if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
-                           vertices[3u * p + 2u].position.xyz, tmin, best.t, t, u, w))
+                           vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w))
                 continue;
             vec4 c = co + t * cd;
             vec2 ndc = c.xy / c.w;
