@@ -95,7 +95,7 @@ wait_jobs() {
   return 1
 }
 frames=0:8
-args="-W 24 -H 18 --spp 24 -q --claim-timeout 3"
+args="-W 24 -H 18 --spp 160 -q --claim-timeout 3" # frames of a second or more: a kill lands mid-frame
 export DIRT_RENDER=$render DIRT_SCENE=$scene DIRT_OUTPUT=$T/out/f_####.exr DIRT_FRAMES=$frames \
   DIRT_LOG_DIR=$T/out DIRT_ARGS=$args
 cd "$T" || exit 1
