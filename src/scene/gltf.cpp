@@ -5,6 +5,7 @@
  * buffer, an index past the vertex count, a non-finite position or a bad
  * object reference ends the load with an error, never with a crash. */
 #include "scene/scene_internal.h"
+#include "scene/cpp_alloc.hpp"
 
 #include "dirt/log.h"
 
@@ -507,23 +508,8 @@ bool all_finite(const std::vector<float> &v)
     return true;
 }
 
-template <typename T> T *dup_array(const std::vector<T> &v)
-{
-    T *p = (T *)malloc((v.empty() ? 1 : v.size()) * sizeof(T));
-    if (!p)
-        throw std::bad_alloc();
-    if (!v.empty())
-        memcpy(p, v.data(), v.size() * sizeof(T));
-    return p;
-}
-
-template <typename T> T *alloc_zeroed(size_t n)
-{
-    T *p = (T *)calloc(n ? n : 1, sizeof(T));
-    if (!p)
-        throw std::bad_alloc();
-    return p;
-}
+using dirt_scene_cpp::alloc_zeroed;
+using dirt_scene_cpp::dup_array;
 
 /* ---- textures and materials -------------------------------------------- */
 

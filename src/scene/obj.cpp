@@ -7,6 +7,7 @@
  * with an error, never with a crash; what has no equivalent in the model
  * warns once per kind. */
 #include "scene/scene_internal.h"
+#include "scene/cpp_alloc.hpp"
 
 #include "dirt/log.h"
 
@@ -46,23 +47,8 @@ bool charge(size_t count, size_t each, const char *what)
     return true;
 }
 
-template <typename T> T *dup_array(const std::vector<T> &v)
-{
-    T *p = (T *)malloc((v.empty() ? 1 : v.size()) * sizeof(T));
-    if (!p)
-        throw std::bad_alloc();
-    if (!v.empty())
-        memcpy(p, v.data(), v.size() * sizeof(T));
-    return p;
-}
-
-template <typename T> T *alloc_zeroed(size_t n)
-{
-    T *p = (T *)calloc(n ? n : 1, sizeof(T));
-    if (!p)
-        throw std::bad_alloc();
-    return p;
-}
+using dirt_scene_cpp::alloc_zeroed;
+using dirt_scene_cpp::dup_array;
 
 /* A read-only stream buffer over bytes in memory (no copy). */
 struct MemBuf : std::streambuf {
