@@ -107,8 +107,11 @@ for _ in $(seq 1 600); do
     [ -e "$c" ] || continue
     f=${c%.claim.*}
     [ -e "$f" ] && continue
-    victim=$(pgrep -f "dirt-render.*--log $T/out/task_${job}_" | head -n 1)
-    [ -n "$victim" ] && break 2
+    # The claim names its holder ("HOST PID"): kill that worker, not any
+    # task (another may be between frames or already exiting).
+    victim=$(awk '{print $2}' "$c" 2>/dev/null)
+    [ -n "$victim" ] && [ ! -e "$f" ] && kill -0 "$victim" 2>/dev/null && break 2
+    victim=
   done
   sleep 0.1
 done
