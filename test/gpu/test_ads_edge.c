@@ -177,6 +177,62 @@ static void test_overflow(dirt_gpu *gpu)
     dirt_scene_destroy(scene);
 }
 
+/* Frame after frame (an animation, one structure): each build equals a
+ * fresh structure's build of that frame, lists and bounds, also when the
+ * candidates outgrow the buffer the first frame sized and the depth pass
+ * reruns. */
+static void test_animation(dirt_gpu *gpu)
+{
+    const char *shared = test_shared_dir();
+    if (!shared) {
+        fprintf(stderr, "../shared absent: animation part skipped\n");
+        return;
+    }
+    char path[4096];
+    snprintf(path, sizeof(path), "%s/scenes/gltf/BoxAnimated/BoxAnimated.gltf", shared);
+    dirt_scene *scene = dirt_scene_load(path, NULL);
+    CHECK(scene != NULL);
+    if (!scene)
+        return;
+    dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 96, .height = 72},
+                       .buckets = 16, .force_emulation = true};
+    dirt_ads *ads = dirt_ads_create(gpu, &o);
+    CHECK(ads != NULL);
+    int reruns = 0;
+    static const float times[] = {0.75f, 0.8f, 0.85f, 0.9f, 0.93f, 0.98f, 1.2f, 1.5f, 2.0f};
+    for (size_t i = 0; ads && i < sizeof(times) / sizeof(times[0]); i++) {
+        dirt_frame *f = dirt_scene_evaluate(scene, times[i], NULL);
+        dirt_camera cam;
+        dirt_camera_default(f, &cam);
+        dirt_ads *fresh = dirt_ads_create(gpu, &o);
+        dirt_ads_data d[2];
+        bool ok = fresh && dirt_ads_build(ads, f, &cam) && dirt_ads_build(fresh, f, &cam) &&
+                  dirt_ads_read(ads, &d[0]) && dirt_ads_read(fresh, &d[1]);
+        CHECK(ok);
+        if (ok) {
+            const dirt_ads_stats *st = dirt_ads_get_stats(ads);
+            reruns += st->depth_runs - 1;
+            size_t n[2];
+            uint64_t *tri[2] = {list_triples(&d[0], &n[0]), list_triples(&d[1], &n[1])};
+            CHECK_MSG(n[0] == n[1] && memcmp(tri[0], tri[1], n[0] * sizeof(uint64_t)) == 0,
+                      "t = %g: the lists differ from a fresh build's (%zu vs %zu nodes, %d "
+                      "depth passes)", times[i], n[0], n[1], st->depth_runs);
+            CHECK_MSG(memcmp(d[0].depth, d[1].depth, (size_t)d[0].pyramid_size * 8) == 0,
+                      "t = %g: the depth bounds differ from a fresh build's", times[i]);
+            for (int k = 0; k < 2; k++) {
+                free(tri[k]);
+                dirt_ads_data_free(&d[k]);
+            }
+        }
+        dirt_ads_destroy(fresh);
+        dirt_frame_destroy(f);
+    }
+    fprintf(stderr, "animation: %d depth pass reruns over %zu frames\n", reruns,
+            sizeof(times) / sizeof(times[0]));
+    dirt_ads_destroy(ads);
+    dirt_scene_destroy(scene);
+}
+
 static void test_odd_sizes(dirt_gpu *gpu)
 {
     dirt_scene *scene = dirt_scene_create_default();
@@ -237,6 +293,7 @@ int main(void)
         return TEST_SKIP;
     test_slivers(gpu);
     test_overflow(gpu);
+    test_animation(gpu);
     test_odd_sizes(gpu);
     CHECK(dirt_gpu_error_count(gpu) == 0);
     test_limits(gpu);
