@@ -231,7 +231,7 @@
 #define DIRT_LOC_PT_BOUNCE 5         /* uint k: the path event being shaded */
 #define DIRT_LOC_PT_BOUNCES 6        /* uint K: scattering events allowed */
 #define DIRT_LOC_PT_SLOT 7           /* uint: ring slot of G_k (k mod 3) */
-#define DIRT_LOC_PT_BACKGROUND 8     /* vec3 */
+/* location 8: free (was the background radiance; now the environment table) */
 #define DIRT_LOC_PT_AO_DISTANCE 9    /* float */
 #define DIRT_LOC_PT_PIXEL_OFFSET 10  /* uint: image pixel of the chunk's record 0 */
 #define DIRT_LOC_PT_SURFACE_OFFSET 11 /* float: the tracer's surface_offset (dirt/tracer.h) */

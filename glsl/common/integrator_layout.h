@@ -68,6 +68,16 @@ struct dirt_gpu_model_lights {
     DIRT_V4 area;        /* x total area, yzw 0 */
 };
 
+/* Header of the environment light (32 bytes), first in the
+ * DIRT_BIND_MODEL_ENV buffer, followed by float data[]: the dirt_env's
+ * cdf[w h] at 0, row_cos[h + 1] at w h, rgb[3 w h] at w h + h + 1. Without
+ * an environment: size 0 x 0 and one float of data. */
+struct dirt_gpu_model_env {
+    DIRT_IV4 dims;       /* x width, y height (0: no environment), z 1 when
+                            NEE samples it (dirt_env_samples), w 0 */
+    DIRT_V4 params;      /* x rot_cos, y rot_sin, z total, w 0 */
+};
+
 /* A camera (80 bytes), from a dirt_camera. */
 struct dirt_gpu_model_camera {
     DIRT_V4 eye;         /* xyz eye, w kind (DIRT_MODEL_CAMERA_*, exact) */

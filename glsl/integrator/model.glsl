@@ -458,6 +458,124 @@ uint dirt_area_lights_select_g(float u)
     }
     return lo;
 }
+// ---- environment light (env.c) -----------------------------------------
+
+layout(std430, binding = DIRT_BIND_MODEL_ENV) readonly buffer DirtModelEnv {
+    dirt_gpu_model_env dirt_model_env;
+    float dirt_model_env_data[]; // cdf[w h], row_cos[h + 1], rgb[3 w h]
+};
+
+// True when next-event estimation samples the map (= dirt_env_samples).
+bool dirt_env_samples_g() { return dirt_model_env.dims.z != 0; }
+
+// Number of NEE light sources (= dirt_nee_source_count): the area set, the
+// punctual lights and, last, the environment.
+uint dirt_nee_sources_g()
+{
+    return dirt_model_lights.counts.z + (dirt_env_samples_g() ? 1u : 0u);
+}
+
+float dirt_env_row_cos_g(int j)
+{
+    int w = dirt_model_env.dims.x, h = dirt_model_env.dims.y;
+    return dirt_model_env_data[w * h + j];
+}
+
+// Texel (column, row) of unit world direction d (= dirt_env_texel).
+ivec2 dirt_env_texel_g(vec3 d)
+{
+    int w = dirt_model_env.dims.x, h = dirt_model_env.dims.y;
+    float rc = dirt_model_env.params.x, rs = dirt_model_env.params.y;
+    vec3 e = vec3(rc * d.x - rs * d.z, d.y, rs * d.x + rc * d.z);
+    float x = (atan(e.x, -e.z) + DIRT_PI_G) * (1.0 / (2.0 * DIRT_PI_G)) * float(w);
+    int i = int(floor(x));
+    if (!(x >= 0.0))
+        i = 0;
+    if (i > w - 1)
+        i = w - 1;
+    int lo = 0, hi = h - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (dirt_env_row_cos_g(mid + 1) <= e.y)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return ivec2(i, lo);
+}
+
+vec3 dirt_env_rgb_g(int k)
+{
+    int w = dirt_model_env.dims.x, h = dirt_model_env.dims.y;
+    int base = w * h + h + 1 + 3 * k;
+    return vec3(dirt_model_env_data[base], dirt_model_env_data[base + 1],
+                dirt_model_env_data[base + 2]);
+}
+
+// Radiance seen looking along unit direction d (= dirt_env_eval); 0
+// without an environment.
+vec3 dirt_env_eval_g(vec3 d)
+{
+    if (dirt_model_env.dims.x == 0)
+        return vec3(0.0);
+    ivec2 t = dirt_env_texel_g(d);
+    return dirt_env_rgb_g(t.y * dirt_model_env.dims.x + t.x);
+}
+
+// Solid-angle pdf of texel (i, j) (= texel_pdf of env.c).
+float dirt_env_texel_pdf_g(int i, int j)
+{
+    int w = dirt_model_env.dims.x;
+    int k = j * w + i;
+    float wt = dirt_model_env_data[k] - (k > 0 ? dirt_model_env_data[k - 1] : 0.0);
+    float band = dirt_env_row_cos_g(j) - dirt_env_row_cos_g(j + 1);
+    float omega = (2.0 * DIRT_PI_G / float(w)) * band;
+    return omega > 0.0 ? wt / (dirt_model_env.params.z * omega) : 0.0;
+}
+
+// = dirt_env_pdf.
+float dirt_env_pdf_g(vec3 d)
+{
+    if (!dirt_env_samples_g())
+        return 0.0;
+    ivec2 t = dirt_env_texel_g(d);
+    return dirt_env_texel_pdf_g(t.x, t.y);
+}
+
+// = dirt_env_sample.
+bool dirt_env_sample_g(float u_sel, float u1, float u2, out vec3 d, out float pdf,
+                       out vec3 radiance)
+{
+    d = vec3(0.0, 0.0, 1.0);
+    pdf = 0.0;
+    radiance = vec3(0.0);
+    if (!dirt_env_samples_g())
+        return false;
+    int w = dirt_model_env.dims.x, h = dirt_model_env.dims.y;
+    float x = u_sel * dirt_model_env.params.z;
+    int lo = 0, hi = w * h - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (dirt_model_env_data[mid] > x)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    int i = lo % w, j = lo / w;
+    float p = dirt_env_texel_pdf_g(i, j);
+    if (!(p > 0.0))
+        return false;
+    float phi = 2.0 * DIRT_PI_G * (float(i) + u1) / float(w) - DIRT_PI_G;
+    float rj = dirt_env_row_cos_g(j);
+    float z = rj - u2 * (rj - dirt_env_row_cos_g(j + 1));
+    float s = sqrt(max(0.0, 1.0 - z * z));
+    vec3 e = vec3(s * sin(phi), z, -s * cos(phi));
+    float rc = dirt_model_env.params.x, rs = dirt_model_env.params.y;
+    d = vec3(rc * e.x + rs * e.z, e.y, -rs * e.x + rc * e.z);
+    pdf = p;
+    radiance = dirt_env_rgb_g(lo);
+    return true;
+}
 #endif // DIRT_MODEL_BUFFERS
 
 #endif

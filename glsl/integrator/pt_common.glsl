@@ -22,7 +22,6 @@ layout(location = DIRT_LOC_PT_SAMPLE) uniform uint u_sample;
 layout(location = DIRT_LOC_PT_BOUNCE) uniform uint u_bounce;    // k: the path event being shaded
 layout(location = DIRT_LOC_PT_BOUNCES) uniform uint u_bounces;   // K: scattering events allowed
 layout(location = DIRT_LOC_PT_SLOT) uniform uint u_slot;      // ring slot of G_k
-layout(location = DIRT_LOC_PT_BACKGROUND) uniform vec3 u_background;
 layout(location = DIRT_LOC_PT_AO_DISTANCE) uniform float u_ao_distance;
 // The image is worked through in chunks (wavefronts) of u_pixels records:
 // record p of the per-pixel buffers is image pixel u_pixel_offset + p, which
@@ -77,8 +76,14 @@ float light_pdf(uint prim, vec3 dir, float dist)
     float cos_l = abs(dot(tri_normal_ng(prim), dir));
     if (!(cos_l > 0.0))
         return 0.0;
-    return dist * dist /
-           (cos_l * dirt_model_lights.area.x * float(dirt_model_lights.counts.z));
+    return dist * dist / (cos_l * dirt_model_lights.area.x * float(dirt_nee_sources_g()));
+}
+
+// Solid-angle pdf with which next-event estimation picks direction `dir` of
+// the environment (= env_light_pdf of the reference).
+float env_light_pdf(vec3 dir)
+{
+    return dirt_env_pdf_g(dir) / float(dirt_nee_sources_g());
 }
 
 // A path vertex (= make_vertex of the reference).

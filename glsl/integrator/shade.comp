@@ -47,7 +47,7 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
     contrib = vec3(0.0);
     wi_out = vec3(0.0, 0.0, 1.0);
     tmax = -1.0;
-    uint n = dirt_model_lights.counts.z;
+    uint n = dirt_nee_sources_g();
     if (n == 0u)
         return false;
     float us = dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_SELECT);
@@ -105,6 +105,26 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
         shadow_to(v, y, wi_out, tmax);
         return true;
     }
+    if (dirt_env_samples_g() && s == n - 1u) {
+        vec3 wi, le;
+        float pdf_e;
+        if (!dirt_env_sample_g(dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_TRI),
+                               dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_U),
+                               dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_V), wi, pdf_e, le))
+            return false;
+        if (dot(wi, v.ng) <= 0.0)
+            return false;
+        vec3 wl = to_local(wi, v.t, v.b, v.n);
+        vec3 f = dirt_bsdf_eval_g(v.surf.bsdf, v.wo, wl);
+        if (dirt_is_zero_g(f))
+            return false;
+        float pdf_l = pdf_e / float(n);
+        float w = dirt_mis_power_g(pdf_l, dirt_bsdf_pdf_g(v.surf.bsdf, v.wo, wl));
+        contrib = f * le * (wl.z * w / pdf_l);
+        wi_out = wi;
+        tmax = DIRT_INFINITY_G;
+        return true;
+    }
     dirt_gpu_model_light light = dirt_model_punctual[s - (area > 0u ? 1u : 0u)];
     vec3 wi, li;
     float dist;
@@ -146,7 +166,11 @@ void main()
 #ifdef DIRT_AO
         s.radiance.xyz = vec3(1.0); // camera ray missed: unoccluded
 #else
-        s.radiance.xyz += beta * u_background;
+        vec3 le = dirt_env_eval_g(dir);
+        float w = 1.0;
+        if ((flags & DIRT_PATH_PREV_DELTA) == 0u && !dirt_is_zero_g(le))
+            w = dirt_mis_power_g(s.beta_pdf.w, env_light_pdf(dir));
+        s.radiance.xyz += beta * le * w;
 #endif
         set_flags(s, flags & ~DIRT_PATH_ALIVE);
         paths[p] = s;

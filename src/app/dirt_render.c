@@ -11,6 +11,7 @@
 #include "app/sequence.h"
 #include "dirt/clock.h"
 #include "dirt/file.h"
+#include "dirt/integrator.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 
@@ -20,6 +21,9 @@ typedef struct options {
     dirt_session_opts s;
     const char *scene_path;   /* NULL = embedded default scene */
     const char *output, *stats_path, *graph_dot, *debug_ads, *log_path, *mse_ref, *chunk;
+    const char *env_path;     /* --env */
+    dirt_env_opts env;        /* --env-intensity, --env-rotation */
+    bool background_set;
     double time, fps, exposure, claim_timeout;
     int camera;               /* -1 default, -2 automatic, else scene camera */
     int gpu_platform;         /* enum dirt_gpu_platform */
@@ -93,7 +97,13 @@ static void usage(FILE *out)
 "      --seed N          random seed (default 0); the same seed gives the same\n"
 "                        paths in every engine\n"
 "      --ao-distance D   AO ray length (default: infinite)\n"
-"      --background R,G,B  radiance of rays that leave the scene (default 0,0,0)\n"
+"      --background R,G,B  radiance of rays that leave the scene (default 0,0,0):\n"
+"                        a constant environment light\n"
+"      --env FILE        environment light: an equirectangular map (.exr or\n"
+"                        .hdr, linear radiance; its centre looks along -Z),\n"
+"                        or 'sky' for the built-in sky; importance-sampled\n"
+"      --env-intensity X scale of the map's radiance (default 1)\n"
+"      --env-rotation DEG  turn the map about +Y (default 0)\n"
 "      --stats FILE.json write timings (per pass, with the clock that measured\n"
 "                        them), ray counts and bytes per buffer as JSON\n"
 "      --threads N       embree: CPU threads (default: all)\n"
@@ -202,6 +212,10 @@ static bool check_options(const options *o)
     } else if (o->look_set && o->look.zfar > 0 && o->look.znear > 0 &&
                !(o->look.zfar > o->look.znear)) {
         cli_error(PROG, "--zfar must be beyond --znear");
+    } else if (o->env_path && o->background_set) {
+        cli_error(PROG, "--env and --background both set the environment: give one");
+    } else if (!o->env_path && (o->env.intensity != 0 || o->env.rotation != 0)) {
+        cli_error(PROG, "--env-intensity and --env-rotation need an --env map");
     } else if (o->debug_ads && many) {
         cli_error(PROG, "--debug-ads works on a single frame, not with --frames");
     } else if (o->png_preview && !cli_has_ext(o->output, ".exr")) {
@@ -282,6 +296,9 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--march", NULL, 'c', &o->s.march, 0, 0, marches},
         {NULL, "--frames", NULL, 'F', o, 0, 0, NULL},
         {NULL, "--background", NULL, 'b', o->s.background, 0, 0, NULL},
+        {NULL, "--env", NULL, 's', &o->env_path, 0, 0, NULL},
+        {NULL, "--env-intensity", NULL, 'f', &o->env.intensity, 1e-30, 1e30, NULL},
+        {NULL, "--env-rotation", NULL, 'f', &o->env.rotation, -1e6, 1e6, NULL},
         {NULL, "--stats", NULL, 'j', &o->stats_path, 0, 0, NULL},
         {NULL, "--graph-dot", NULL, 'g', &o->graph_dot, 0, 0, NULL},
         {NULL, "--log", NULL, 's', &o->log_path, 0, 0, NULL},
@@ -322,6 +339,7 @@ static int parse_args(int argc, char **argv, options *o)
             if (opts[k].kind == 'F' && !parse_frames(val, o))
                 return DIRT_EXIT_USAGE;
             o->time_set |= opts[k].dst == &o->time;
+            o->background_set |= opts[k].dst == o->s.background;
             o->exposure_set |= opts[k].dst == &o->exposure;
             o->tonemap_set |= opts[k].dst == &o->tonemap;
             o->eye_set |= opts[k].dst == o->look.eye;
@@ -456,6 +474,7 @@ int main(int argc, char **argv)
         return rc;
     }
     dirt_scene *scene = NULL;
+    dirt_env *env = NULL;
     dirt_gpu *gpu = NULL;
     dirt_session *session = NULL, *debug = NULL;
     dirt_session_stats *fstats = NULL;
@@ -499,6 +518,13 @@ int main(int argc, char **argv)
     if (o.info) {
         rc = dirt_scene_print_info(scene, stdout) ? DIRT_EXIT_OK : DIRT_EXIT_FAILURE;
         goto done;
+    }
+    if (o.env_path) {
+        if (!(env = dirt_env_load(o.env_path, &o.env, why, sizeof(why)))) {
+            cli_error(PROG, "--env: %s", why);
+            goto done;
+        }
+        o.s.env = env;
     }
     size_t cameras = dirt_scene_num_cameras(scene), clips = dirt_scene_num_clips(scene);
     if (o.camera >= 0 && (size_t)o.camera >= cameras) {
@@ -715,6 +741,7 @@ done:
     dirt_session_destroy(debug);
     dirt_session_destroy(session);
     dirt_gpu_destroy(gpu);
+    dirt_env_destroy(env);
     dirt_scene_destroy(scene);
     return rc;
 }

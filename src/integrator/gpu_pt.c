@@ -84,6 +84,15 @@ struct dirt_pt {
     /* state read by the pass bodies during dirt_pt_add_samples */
     const dirt_tracer *tech;
     dirt_gpu_model_tables tables;
+    /* the environment table (DIRT_BIND_MODEL_ENV) and what it holds: the
+     * map `env_src` (borrowed from the options; NULL with env_bg set: the
+     * constant `env_bg`, made into `env_own`) */
+    GLuint env_buf;
+    size_t env_bytes;
+    const dirt_env *env_src;
+    dirt_env *env_own;
+    float env_bg[3];
+    bool env_valid;
     const dirt_pt_opts *opts;
     int bounces;
     uint32_t sample;
@@ -191,6 +200,8 @@ void dirt_pt_destroy(dirt_pt *pt)
         gl_program_destroy(p[i]);
     release_buffers(pt);
     dirt_gpu_model_tables_destroy(&pt->tables);
+    gl_buffer_destroy(&pt->env_buf);
+    dirt_env_destroy(pt->env_own);
     fg_destroy(pt->graph);
     free(pt);
 }
@@ -239,6 +250,45 @@ static bool ensure_buffers(dirt_pt *pt, size_t pixels)
     return true;
 }
 
+static void bind(GLuint binding, GLuint buf)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);
+}
+
+/* Makes env_buf hold the environment of `opts` (uploaded again only when
+ * the map or the background changed). False after logging. */
+static bool ensure_env(dirt_pt *pt, const dirt_pt_opts *opts)
+{
+    const float *bg = opts->background;
+    bool constant = !opts->env && (bg[0] > 0.0f || bg[1] > 0.0f || bg[2] > 0.0f);
+    if (pt->env_valid && pt->env_src == opts->env &&
+        (opts->env || !memcmp(pt->env_bg, bg, sizeof(pt->env_bg))))
+        return true;
+    pt->env_valid = false;
+    dirt_env_destroy(pt->env_own);
+    pt->env_own = NULL;
+    gl_buffer_destroy(&pt->env_buf);
+    pt->env_bytes = 0;
+    if (constant && !(pt->env_own = dirt_env_constant(bg)))
+        return false;
+    const dirt_env *env = opts->env ? opts->env : pt->env_own;
+    size_t size = 0;
+    const dirt_gpu_caps *caps = dirt_gpu_get_caps(pt->gpu);
+    void *data = dirt_gpu_env_pack(env, caps && caps->max_ssbo_size > 0 ?
+                                   (size_t)caps->max_ssbo_size : 0, &size);
+    if (!data)
+        return false;
+    pt->env_buf = gl_buffer_create(pt->gpu, size, data, false, "pt environment");
+    free(data);
+    if (!pt->env_buf)
+        return false;
+    pt->env_bytes = size;
+    pt->env_src = opts->env;
+    memcpy(pt->env_bg, bg, sizeof(pt->env_bg));
+    pt->env_valid = true;
+    return true;
+}
+
 /* Uniforms of pt_common.glsl for event k; binds the model tables and the
  * technique's geometry. */
 static void set_common(dirt_pt *pt, GLuint prog, int k)
@@ -253,17 +303,13 @@ static void set_common(dirt_pt *pt, GLuint prog, int k)
     glUniform1ui(DIRT_LOC_PT_BOUNCE, (GLuint)k);
     glUniform1ui(DIRT_LOC_PT_BOUNCES, (GLuint)pt->bounces);
     glUniform1ui(DIRT_LOC_PT_SLOT, (GLuint)(k % 3));
-    glUniform3fv(DIRT_LOC_PT_BACKGROUND, 1, pt->opts->background);
     glUniform1f(DIRT_LOC_PT_AO_DISTANCE, pt->ao_distance);
     glUniform1f(DIRT_LOC_PT_SURFACE_OFFSET, pt->tech->surface_offset);
     dirt_gpu_model_tables_bind(&pt->tables);
+    bind(DIRT_BIND_MODEL_ENV, pt->env_buf);
     pt->tech->bind_geometry(pt->tech->self);
 }
 
-static void bind(GLuint binding, GLuint buf)
-{
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);
-}
 
 static GLuint groups(size_t n)
 {
@@ -492,6 +538,7 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt shading ring", 3 * px * sizeof(struct dirt_gpu_gpoint), 0},
         {"pt paths", px * sizeof(struct dirt_gpu_path), 0},
         {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
+        {"pt environment", pt->env_bytes, 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
     };
     int n = 0;
@@ -570,6 +617,8 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     gl_group_push("dirt path tracer");
     if (!dirt_area_lights_build(&area, frame, dirt_scene_materials(pt->scene),
                                 dirt_scene_num_materials(pt->scene)))
+        goto done;
+    if (!ensure_env(pt, &opts))
         goto done;
     /* Materials and textures are the scene's: uploaded once; lights and the
      * camera change per frame. */

@@ -142,6 +142,39 @@ void dirt_gpu_area_table_free(dirt_gpu_area_table *t)
     memset(t, 0, sizeof(*t));
 }
 
+void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size)
+{
+    struct dirt_gpu_model_env hdr;
+    memset(&hdr, 0, sizeof(hdr));
+    size_t n = 0, h = 0, floats = 1;
+    if (env) {
+        n = (size_t)env->width * (size_t)env->height;
+        h = (size_t)env->height;
+        floats = n + h + 1 + 3 * n;
+        hdr.dims = (dirt_i4){env->width, env->height, dirt_env_samples(env) ? 1 : 0, 0};
+        hdr.params = (dirt_f4){env->rot_cos, env->rot_sin, env->total, 0.0f};
+    }
+    *size = sizeof(hdr) + floats * sizeof(float);
+    if (max_bytes > 0 && *size > max_bytes) {
+        DIRT_ERROR("gpu tables: the %dx%d environment map needs %zu bytes, more than the GPU's "
+                   "storage-block limit of %zu", env->width, env->height, *size, max_bytes);
+        return NULL;
+    }
+    char *out = calloc(1, *size);
+    if (!out) {
+        DIRT_ERROR("gpu tables: out of memory for the environment table (%zu bytes)", *size);
+        return NULL;
+    }
+    memcpy(out, &hdr, sizeof(hdr));
+    if (env) {
+        float *d = (float *)(out + sizeof(hdr));
+        memcpy(d, env->cdf, n * sizeof(float));
+        memcpy(d + n, env->row_cos, (h + 1) * sizeof(float));
+        memcpy(d + n + h + 1, env->rgb, 3 * n * sizeof(float));
+    }
+    return out;
+}
+
 /* ---- textures ----------------------------------------------------------- */
 
 static float srgb_encode(float c)

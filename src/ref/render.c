@@ -37,7 +37,8 @@ typedef struct render_ctx {
     uint32_t first_sample, seed;
     enum dirt_ref_mode mode;
     float ao_distance;
-    dirt_vec3 background;
+    const dirt_env *env;  /* NULL: nothing beyond the scene */
+    dirt_env *own_env;    /* the background's constant map */
     int tiles_x, tiles_y;
 
     float *rgba, *albedo[3], *normal[3], *depth, *ids;
@@ -191,6 +192,13 @@ static float light_pdf(const render_ctx *c, uint32_t prim, dirt_vec3 dir, float 
     return dist * dist / (cos_l * c->area.total_area * (float)c->num_sources);
 }
 
+/* Solid-angle pdf with which NEE picks direction `dir` of the environment
+ * (including the 1 / n source choice). */
+static float env_light_pdf(const render_ctx *c, dirt_vec3 dir)
+{
+    return dirt_env_pdf(c->env, dir) / (float)c->num_sources;
+}
+
 /* Next-event estimation at vertex v: one light source, one shadow ray.
  * Light geometry (direction, distance, pdf) is taken from the surface point
  * p; only the shadow ray starts at the offset origin (along the same
@@ -247,6 +255,26 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
         return v3_scale(v3_mul(f, ls.emission), wl.z * w / pdf_l);
     }
 
+    if (dirt_env_samples(c->env) && s == n - 1) {
+        dirt_vec3 wi, le;
+        float pdf_e;
+        if (!dirt_env_sample(c->env, dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_TRI),
+                             dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_U),
+                             dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_V), &wi, &pdf_e, &le))
+            return zero;
+        if (v3_dot(wi, v->ng) <= 0.0f)
+            return zero;
+        dirt_vec3 wl = v3_to_local(wi, v->t, v->b, v->n);
+        dirt_vec3 f = dirt_bsdf_eval(&v->surf.bsdf, v->wo, wl);
+        if (v3_is_zero(f))
+            return zero;
+        float pdf_l = pdf_e / (float)n;
+        if (occluded(c, rays, v->origin, wi, INFINITY))
+            return zero;
+        float w = dirt_mis_power(pdf_l, dirt_bsdf_pdf(&v->surf.bsdf, v->wo, wl));
+        return v3_scale(v3_mul(f, le), wl.z * w / pdf_l);
+    }
+
     const dirt_light *light = &c->frame->lights[s - (c->area.count > 0 ? 1u : 0u)];
     dirt_vec3 wi, li;
     float dist;
@@ -280,7 +308,11 @@ static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint
     for (int k = 1;; k++) {
         dirt_ref_hit h;
         if (!trace(c, rays, org, dir, INFINITY, &h)) {
-            l = v3_add(l, v3_mul(beta, c->background));
+            dirt_vec3 le = dirt_env_eval(c->env, dir);
+            float w = 1.0f;
+            if (!prev_delta && !v3_is_zero(le))
+                w = dirt_mis_power(prev_pdf, env_light_pdf(c, dir));
+            l = v3_add(l, v3_scale(v3_mul(beta, le), w));
             break;
         }
         vertex v;
@@ -525,7 +557,14 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     c.seed = o.seed;
     c.mode = o.mode;
     c.ao_distance = o.ao_distance > 0.0f ? o.ao_distance : INFINITY;
-    c.background = v3_load(o.background);
+    if (o.env) {
+        c.env = o.env;
+    } else if (o.background[0] > 0.0f || o.background[1] > 0.0f || o.background[2] > 0.0f) {
+        c.own_env = dirt_env_constant(o.background);
+        if (!c.own_env)
+            return NULL;
+        c.env = c.own_env;
+    }
     c.tiles_x = (o.width + TILE - 1) / TILE;
     c.tiles_y = (o.height + TILE - 1) / TILE;
     c.progress = o.progress;
@@ -538,7 +577,7 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
         if (dirt_ref_accel_num_prims(o.accel) != frame->num_triangles) {
             DIRT_ERROR("reference render: accel has %zu triangles, frame %zu",
                        dirt_ref_accel_num_prims(o.accel), frame->num_triangles);
-            return NULL;
+            goto error;
         }
         c.accel = o.accel;
     } else {
@@ -559,7 +598,8 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     if (o.mode == DIRT_REF_MODE_PT) {
         if (!dirt_area_lights_build(&c.area, frame, materials->materials, materials->num_materials))
             goto error;
-        c.num_sources = dirt_light_source_count(c.area.count, frame->num_lights);
+        c.num_sources = dirt_nee_source_count(c.area.count, frame->num_lights,
+                                              dirt_env_samples(c.env));
     }
 
     img = dirt_image_create(o.width, o.height);
@@ -601,6 +641,7 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     pthread_mutex_destroy(&c.progress_lock);
     dirt_area_lights_free(&c.area);
     dirt_ref_accel_destroy(own);
+    dirt_env_destroy(c.own_env);
     return img;
 
 error:
@@ -609,6 +650,7 @@ error:
     dirt_image_destroy(img);
     dirt_area_lights_free(&c.area);
     dirt_ref_accel_destroy(own);
+    dirt_env_destroy(c.own_env);
     return NULL;
 }
 

@@ -112,6 +112,10 @@ RECORD(dirt_gpu_model_lights, 2);
 AT(dirt_gpu_model_lights, counts, 0);
 AT(dirt_gpu_model_lights, area, 1);
 
+RECORD(dirt_gpu_model_env, 2);
+AT(dirt_gpu_model_env, dims, 0);
+AT(dirt_gpu_model_env, params, 1);
+
 RECORD(dirt_gpu_model_camera, 5);
 AT(dirt_gpu_model_camera, eye, 0);
 AT(dirt_gpu_model_camera, forward, 1);
@@ -288,7 +292,7 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
         switch (loc) {
             L(DIRT_LOC_PT_PIXELS) L(DIRT_LOC_PT_WIDTH) L(DIRT_LOC_PT_HEIGHT) L(DIRT_LOC_PT_SEED)
             L(DIRT_LOC_PT_SAMPLE) L(DIRT_LOC_PT_BOUNCE) L(DIRT_LOC_PT_BOUNCES) L(DIRT_LOC_PT_SLOT)
-            L(DIRT_LOC_PT_BACKGROUND) L(DIRT_LOC_PT_AO_DISTANCE) L(DIRT_LOC_PT_PIXEL_OFFSET)
+            L(DIRT_LOC_PT_AO_DISTANCE) L(DIRT_LOC_PT_PIXEL_OFFSET)
             L(DIRT_LOC_PT_SURFACE_OFFSET) return 1;
         }
         break;
@@ -364,7 +368,7 @@ static const dirt_layout_uniform u_pt[] = {
     U("u_height", DIRT_LOC_PT_HEIGHT),   U("u_seed", DIRT_LOC_PT_SEED),
     U("u_sample", DIRT_LOC_PT_SAMPLE),   U("u_bounce", DIRT_LOC_PT_BOUNCE),
     U("u_bounces", DIRT_LOC_PT_BOUNCES), U("u_slot", DIRT_LOC_PT_SLOT),
-    U("u_background", DIRT_LOC_PT_BACKGROUND), U("u_ao_distance", DIRT_LOC_PT_AO_DISTANCE),
+    U("u_ao_distance", DIRT_LOC_PT_AO_DISTANCE),
     U("u_pixel_offset", DIRT_LOC_PT_PIXEL_OFFSET), U("u_surface_offset", DIRT_LOC_PT_SURFACE_OFFSET),
 };
 static const dirt_layout_uniform u_resolve[] = {U("u_pixels", DIRT_LOC_RESOLVE_PIXELS)};

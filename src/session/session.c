@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dirt/clock.h"
+#include "dirt/integrator.h"
 #include "dirt/log.h"
 #include "dirt/raster.h"
 #include "dirt/ref.h"
@@ -298,7 +299,7 @@ static void restart(dirt_session *s)
 static void warn_unlit(const dirt_scene *scene, const dirt_session_opts *o)
 {
     if (o->mode == DIRT_PT_AO || o->background[0] > 0 || o->background[1] > 0 ||
-        o->background[2] > 0 || dirt_scene_num_lights(scene) > 0)
+        o->background[2] > 0 || dirt_env_samples(o->env) || dirt_scene_num_lights(scene) > 0)
         return;
     const dirt_material *m = dirt_scene_materials(scene);
     for (size_t i = 0; i < dirt_scene_num_materials(scene); i++) {
@@ -306,8 +307,9 @@ static void warn_unlit(const dirt_scene *scene, const dirt_session_opts *o)
             m[i].emissive_strength > 0)
             return;
     }
-    DIRT_WARN("the scene has no light and no emissive material and the background is black: "
-              "the image will be black (give a --background, or render AO)");
+    DIRT_WARN("the scene has no light, no emissive material and no environment: the image "
+              "will be black (give --env FILE.exr|.hdr, --env sky or a --background, or "
+              "render AO)");
 }
 
 dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
@@ -371,6 +373,7 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
     bool image_changes = structure || tracer || old.mode != n.mode ||
                          old.bounces != n.bounces || old.seed != n.seed ||
                          old.ao_distance != n.ao_distance ||
+                         old.env != n.env ||
                          memcmp(old.background, n.background, sizeof(n.background)) != 0;
     s->opts = n;
     if (structure) {
@@ -644,6 +647,7 @@ static dirt_pt_opts pt_opts(const dirt_session *s)
         .bounces = o->bounces ? o->bounces : 4,
         .seed = o->seed,
         .background = {o->background[0], o->background[1], o->background[2]},
+        .env = o->env,
         .ao_distance = o->ao_distance,
         .direct_visibility = o->direct_visibility,
     };
@@ -670,7 +674,7 @@ static bool add_embree(dirt_session *s, int count, ref_progress *prog, dirt_sess
         .mode = o->mode == DIRT_PT_AO ? DIRT_REF_MODE_AO : DIRT_REF_MODE_PT,
         .ao_distance = o->ao_distance, .seed = o->seed,
         .background = {o->background[0], o->background[1], o->background[2]},
-        .threads = o->threads, .accel = s->accel,
+        .env = o->env, .threads = o->threads, .accel = s->accel,
         .progress = prog->fn ? on_ref_progress : NULL, .progress_user = prog,
     };
     dirt_ref_stats rs;

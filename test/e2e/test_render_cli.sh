@@ -71,6 +71,15 @@ expect_rc 2 "no output" --
 expect_rc 2 "bad extension" -- -o "$out/a.bmp"
 expect_rc 2 "width not a number" -- -o "$out/a.png" -W abc
 expect_rc 2 "width zero" -- -o "$out/a.png" -W 0
+# The environment light: a bad map, two environments, knobs without a map.
+expect_rc 2 "missing environment map" -- -o "$out/a.png" --env "$out/none.exr"
+expect_rc 2 "environment map of the wrong type" -- -o "$out/a.png" --env "$out/map.png"
+printf 'not an exr' >"$tmp/bad.exr"
+expect_rc 2 "malformed environment map" -- -o "$out/a.png" --env "$tmp/bad.exr"
+expect_rc 2 "--env and --background" -- -o "$out/a.png" --env sky --background 1,1,1
+expect_rc 2 "--env-intensity without a map" -- -o "$out/a.png" --env-intensity 2
+expect_rc 2 "negative --env-intensity" -- -o "$out/a.png" --env sky --env-intensity -1
+[ ! -e "$out/a.png" ] && ok || fail "a refused run wrote its output"
 expect_rc 2 "missing value" -- -o "$out/a.png" -W
 expect_rc 2 "unknown engine" -- -o "$out/a.png" --engine optix
 expect_rc 2 "frames without pattern" -- -o "$out/a.png" --frames 0:3
@@ -137,12 +146,14 @@ grep -q "wrote $out/default.png" "$tmp/stdout" && ok || fail "output path not pr
 
 expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --spp 2 --stats "$out/d.json"
 # The stats: figures that add up (32x24, 2 spp, DIRT's structure + the
-# integrator's 448 bytes per pixel), each pass tagged with its clock.
+# integrator's 448 bytes per pixel and its 36-byte environment table, empty
+# here), each pass tagged with its clock.
 "$json" "$out/d.json" 'd["engine"] == "dirt" and d["frames_rendered"] == 1' \
   'all(d[k] > 0 for k in ("build_ms", "trace_ms", "fetch_ms", "shade_ms", "mrays_per_s"))' \
   'd["rays"] >= 32 * 24 * 2 and d["aborted_rays"] == 0 and d["spp"] == 2' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
-  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 448' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 448 + 36' \
+  '[b["used"] for b in d["buffers"] if b["name"] == "pt environment"] == [36]' \
   'd["samples_np"] > 0 and d["frames"][0]["samples"] == 2' \
   'all(p["clock"] in ("gpu", "cpu") and p["ms"] >= 0 for p in d["passes"])' \
   'set(p["name"] for p in d["passes"]) >= {"depth bounds", "fill primitives", "trace", "fetch", "shade"}' \

@@ -7,9 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/integrator_layout.h"
 #include "dirt/session.h"
 #include "gl/gl.h"
 #include "gpu.h"
+
+/* The environment table without an environment (dirt_gpu_env_pack). */
+#define ENV_NONE_BYTES (sizeof(struct dirt_gpu_model_env) + sizeof(float))
 
 #define W 48
 #define H 36
@@ -129,8 +133,10 @@ static void check_stats(dirt_gpu *gpu, const dirt_scene *scene)
     }
     CHECK(used == st->bytes_total_used && allocated == st->bytes_total_allocated);
     CHECK(st->has_ads && st->ads.bytes_total_used < st->bytes_total_used);
-    /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 64 + 80 + 48 bytes per pixel. */
-    CHECK(st->bytes_total_used - st->ads.bytes_total_used == (uint64_t)W * H * 448);
+    /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 64 + 80 + 48 bytes per pixel,
+     * and the environment table (no environment: its header and one float). */
+    CHECK(st->bytes_total_used - st->ads.bytes_total_used ==
+          (uint64_t)W * H * 448 + ENV_NONE_BYTES);
     int build = 0, pt = 0;
     for (int i = 0; i < st->num_passes; i++) {
         const dirt_pass_time *p = &st->passes[i];
@@ -298,7 +304,7 @@ static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_op
     const dirt_session_stats *st = s ? dirt_session_get_stats(s) : NULL;
     if (st && st->has_ads)
         CHECK(st->bytes_total_used - st->ads.bytes_total_used ==
-              (uint64_t)192 * 400 + (uint64_t)W * H * 48);
+              (uint64_t)192 * 400 + (uint64_t)W * H * 48 + ENV_NONE_BYTES);
     fprintf(stderr, "%s: chunks of 192 pixels, 1+1+2 == unchunked 4, display == image\n",
             what);
     dirt_session_destroy(s);

@@ -19,6 +19,9 @@
  *    directional light; the centre pixel of a narrow camera looking straight
  *    down must equal rho / pi * E within 1e-3 relative.
  * 4. Background: rays that leave an open scene return the background.
+ *    Environment: a white convex box in a uniform environment (the
+ *    background, or a map) reflects exactly 1; a floor under a non-uniform
+ *    map reflects its cosine-weighted integral (env_furnace, env_floor).
  * 5. An area light close above a floor: a square emitter (half size a,
  *    facing down) at height h over a Lambert floor, direct light only; the
  *    floor point under its centre, seen from the side under the light, must
@@ -36,6 +39,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "dirt/integrator.h"
 #include "dirt/ref.h"
 
 #define PI 3.14159265358979323846
@@ -383,6 +387,155 @@ static void background(void)
     mesh_free(&m);
 }
 
+/* Environment furnace: a convex box of white Lambert walls (albedo 1,
+ * dielectric specular weight 0) facing outwards, in a uniform environment
+ * of radiance 1, reflects radiance 1 wherever it is seen (every direction
+ * over a face sees the environment). The environment is the constant
+ * background (the 1 x 1 map) or a 64 x 32 map of ones turned by 37 degrees
+ * (importance sampling over many texels, rotation). Tolerance: 5 standard
+ * errors of the mean over the box's pixels; the background pixels must be
+ * exactly 1. */
+static void env_furnace(bool map)
+{
+    mesh m;
+    CHECK(mesh_init(&m, 12));
+    box_inward(&m, 0);
+    for (size_t t = 0; t < m.n; t++) /* outwards: swap two vertices */
+        for (int k = 0; k < 3; k++) {
+            float tmp = m.pos[3 * t + 1][k];
+            m.pos[3 * t + 1][k] = m.pos[3 * t + 2][k];
+            m.pos[3 * t + 2][k] = tmp;
+            m.nrm[3 * t][k] = m.nrm[3 * t + 1][k] = m.nrm[3 * t + 2][k] = -m.nrm[3 * t][k];
+        }
+    dirt_material mat = mat_make(1.0f, 0.0f, 1.0f, 0.0f);
+    float spec = 0.0f;
+    dirt_ref_materials mats = {&mat, 1, NULL, 0, &spec};
+    dirt_camera cam;
+    look(&cam, 2.5f, 1.8f, 3.0f, 0.0f, 0.0f, 0.0f, 0.9f);
+    dirt_ref_opts o = {0};
+    o.width = 32;
+    o.height = 32;
+    o.spp = 64;
+    o.bounces = 4;
+    o.seed = 3u;
+    float *ones = NULL;
+    dirt_env *env = NULL;
+    if (map) {
+        ones = malloc(64 * 32 * 3 * sizeof(float));
+        for (int k = 0; k < 64 * 32 * 3; k++)
+            ones[k] = 1.0f;
+        env = dirt_env_create(ones, 64, 32, &(dirt_env_opts){.rotation = 37.0f});
+        CHECK(env != NULL);
+        o.env = env;
+    } else {
+        o.background[0] = o.background[1] = o.background[2] = 1.0f;
+    }
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, NULL);
+    CHECK(img != NULL);
+    float *ids = img ? dirt_image_find_channel(img, "ID") : NULL;
+    CHECK(ids != NULL);
+    if (img && ids) {
+        double s = 0.0, s2 = 0.0;
+        size_t n = 0, bg_bad = 0;
+        for (size_t i = 0; i < (size_t)o.width * (size_t)o.height; i++) {
+            double v = img->rgba[4 * i];
+            if (ids[i] < 0) {
+                /* Away from the box (no neighbour's centre on it, so no
+                 * jittered sample of this pixel hits it): exactly 1. */
+                int x = (int)(i % (size_t)o.width), y = (int)(i / (size_t)o.width);
+                bool clear = true;
+                for (int dy = -1; dy <= 1; dy++)
+                    for (int dx = -1; dx <= 1; dx++) {
+                        int xx = x + dx, yy = y + dy;
+                        if (xx >= 0 && yy >= 0 && xx < o.width && yy < o.height &&
+                            ids[yy * o.width + xx] >= 0)
+                            clear = false;
+                    }
+                if (clear)
+                    bg_bad += img->rgba[4 * i] != 1.0f || img->rgba[4 * i + 2] != 1.0f;
+                continue;
+            }
+            s += v;
+            s2 += v * v;
+            n++;
+        }
+        double mean = s / (double)n, se = sqrt(fmax(s2 / n - mean * mean, 0.0) / (n - 1));
+        fprintf(stderr, "environment furnace (%s): %zu box pixels, mean %.5f, s.e. %.5f\n",
+                map ? "64x32 map" : "background", n, mean, se);
+        CHECK(n > 200 && n < 1000);
+        CHECK(se > 0.0 && se < 0.01);
+        CHECK_MSG(fabs(mean - 1.0) < 5.0 * se, "mean %.5f, expected 1, s.e. %.5f", mean, se);
+        CHECK_MSG(bg_bad == 0, "%zu background pixels are not 1", bg_bad);
+    }
+    dirt_image_destroy(img);
+    dirt_env_destroy(env);
+    free(ones);
+    mesh_free(&m);
+}
+
+/* An upward floor (albedo rho) under a non-uniform map (a gradient with a
+ * bright texel above the horizon and light below it, turned by 50 degrees)
+ * reflects L = rho / pi * sum over the texels above the horizon of
+ * rgb (2 pi / w) (c_top^2 - c_bottom^2) / 2 (the cosine-weighted solid
+ * angle of each band), direct light only; the centre of a narrow camera
+ * looking straight down, within 5 standard errors. */
+static void env_floor(void)
+{
+    enum { W = 32, H = 16 };
+    const float rho = 0.8f;
+    mesh m;
+    CHECK(mesh_init(&m, 2));
+    float f0[3] = {-5, 0, -5}, f1[3] = {-5, 0, 5}, f2[3] = {5, 0, 5}, f3[3] = {5, 0, -5};
+    tri(&m, f0, f1, f2, 0);
+    tri(&m, f0, f2, f3, 0);
+    dirt_material mat = mat_make(rho, 0.0f, 1.0f, 0.0f);
+    float spec = 0.0f;
+    dirt_ref_materials mats = {&mat, 1, NULL, 0, &spec};
+    float *rgb = malloc(W * H * 3 * sizeof(float));
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++)
+            for (int c = 0; c < 3; c++)
+                rgb[3 * (j * W + i) + c] = (j == 3 && i == 20) ? 60.0f
+                                           : 0.2f + 0.05f * (float)j + 0.01f * (float)(i % 7);
+    dirt_env *env = dirt_env_create(rgb, W, H, &(dirt_env_opts){.rotation = 50.0f});
+    CHECK(env != NULL);
+    if (!env) {
+        free(rgb);
+        mesh_free(&m);
+        return;
+    }
+    double expect = 0.0;
+    for (int j = 0; j < H / 2; j++) {
+        double ct = env->row_cos[j], cb = env->row_cos[j + 1];
+        for (int i = 0; i < W; i++)
+            expect += env->rgb[3 * (j * W + i)] * (2.0 * PI / W) * (ct * ct - cb * cb) / 2.0;
+    }
+    expect *= rho / PI;
+    dirt_camera cam;
+    look(&cam, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1e-3f);
+    dirt_ref_opts o = {0};
+    o.width = 16;
+    o.height = 16;
+    o.spp = 64;
+    o.bounces = 1;
+    o.seed = 9u;
+    o.env = env;
+    dirt_image *img = dirt_ref_render_materials(&mats, &m.f, &cam, &o, NULL);
+    CHECK(img != NULL);
+    if (img) {
+        double mean, se;
+        image_mean(img, &mean, &se);
+        fprintf(stderr, "environment floor: L %.5f expected %.5f, s.e. %.5f\n", mean, expect, se);
+        CHECK(se > 0.0 && se < 0.02 * expect);
+        CHECK_MSG(fabs(mean - expect) < 5.0 * se, "L %.5f, expected %.5f, s.e. %.5f", mean,
+                  expect, se);
+    }
+    dirt_image_destroy(img);
+    dirt_env_destroy(env);
+    free(rgb);
+    mesh_free(&m);
+}
+
 /* Form factor from a point to a rectangle X h by Y h parallel to it at
  * height h with one corner above the point. */
 static double corner_ff(double X, double Y)
@@ -445,6 +598,9 @@ int main(void)
     mirror_furnace(5);
     lights();
     background();
+    env_furnace(false);
+    env_furnace(true);
+    env_floor();
     near_light(0.0f);
     near_light(20.0f);
     return check_finish();

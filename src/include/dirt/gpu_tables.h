@@ -71,6 +71,15 @@ bool dirt_gpu_area_lights_pack(const dirt_area_lights *area, size_t num_punctual
                                dirt_gpu_area_table *out);
 void dirt_gpu_area_table_free(dirt_gpu_area_table *t);
 
+/* The environment table model.glsl reads at DIRT_BIND_MODEL_ENV: a struct
+ * dirt_gpu_model_env header, then the map's cdf, row_cos and rgb (layout
+ * in common/integrator_layout.h), copied bit for bit. `env` NULL: the
+ * header of no environment and one zero float. Returns malloc'd memory of
+ * *size bytes (caller frees); NULL after logging on out-of-memory or when
+ * the table would not fit `max_bytes` (> 0: the GPU's storage-block
+ * limit). */
+void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size);
+
 /* ---- textures (pure C) -------------------------------------------------- */
 
 /* The scene's textures as one RGBA8 2D array: layer i = texture i, every

@@ -81,6 +81,11 @@ bool dirt_image_write_exr(const dirt_image *img, const char *path,
  * missing or unreadable, tiled or deep file, too large). */
 dirt_image *dirt_image_read_exr(const char *path);
 
+/* Reads a Radiance RGBE (.hdr) file through stb_image: linear RGB, alpha 1,
+ * the first row on top. NULL after logging on failure (missing, unreadable
+ * or malformed file, too large). */
+dirt_image *dirt_image_read_hdr(const char *path);
+
 /* ---- PNG preview -------------------------------------------------------- */
 
 /* enum dirt_tonemap (DIRT_TONEMAP_CLAMP: clamp to [0,1]; _REINHARD: x / (1 + x)

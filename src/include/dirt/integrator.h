@@ -201,6 +201,82 @@ static inline unsigned dirt_light_source_count(size_t num_area, size_t num_punct
     return (unsigned)((num_area > 0 ? 1u : 0u) + num_punctual);
 }
 
+/* With an environment light sampled (dirt_env_samples): one more source,
+ * the last (s = n - 1). */
+static inline unsigned dirt_nee_source_count(size_t num_area, size_t num_punctual, bool env)
+{
+    return dirt_light_source_count(num_area, num_punctual) + (env ? 1u : 0u);
+}
+
+/* ---- environment light (src/integrator/env.c) ---------------------------- */
+
+/* An equirectangular environment map: the radiance arriving along every
+ * direction from infinitely far away, piecewise constant over its texels,
+ * importance-sampled in next-event estimation (doc/light-transport.md,
+ * "Environment"). Direction d (world, unit) is rotated by -rotation about
+ * +Y into the map's frame, e = R_y(-rotation) d; its texel is column
+ * floor(w (atan2(e.x, -e.z) + pi) / (2 pi)) (clamped to [0, w)) and the row
+ * j whose band row_cos[j + 1] <= e.y < row_cos[j] holds it (row 0 at +Y, the
+ * first image row): the image's centre looks along -Z, the glTF camera's
+ * default view. A constant background is the 1 x 1 map. */
+typedef struct dirt_env {
+    int width, height;
+    float *rgb;       /* width * height * 3: texel radiance (times intensity),
+                         row 0 = the image's first row (+Y) */
+    float *row_cos;   /* height + 1: cos theta at the rows' edges, from 1 to -1
+                         (cosf of pi j / height computed in double) */
+    float *cdf;       /* width * height, row-major: cumulative texel weights
+                         luminance(rgb) * (row_cos[j] - row_cos[j + 1]),
+                         summed in double */
+    float total;      /* cdf[width * height - 1]; 0: nothing to sample */
+    float rot_cos, rot_sin; /* cosf / sinf of the rotation (radians) */
+} dirt_env;
+
+/* Zero-initialised = intensity 1, no rotation. */
+typedef struct dirt_env_opts {
+    float intensity;  /* radiance scale; 0 = 1 */
+    float rotation;   /* degrees about +Y (the map turns counter-clockwise
+                         seen from above) */
+} dirt_env_opts;
+
+/* A map of width x height texels from `rgb` (row-major, 3 floats per texel,
+ * copied; each finite and >= 0, else an error). NULL after logging on bad
+ * input or out-of-memory. */
+dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_env_opts *opts);
+/* The constant environment `rgb` (1 x 1). */
+dirt_env *dirt_env_constant(const float rgb[3]);
+/* Reads an equirectangular map from an OpenEXR (.exr) or Radiance (.hdr)
+ * file; "sky" is the built-in procedural sky (dirt_env_sky). NULL after
+ * logging (missing, unreadable or malformed file, negative or non-finite
+ * texels); `why` (may be NULL) receives the reason in one line. */
+dirt_env *dirt_env_load(const char *path, const dirt_env_opts *opts, char *why, size_t size);
+/* The built-in sky (512 x 256 texels, each the value at its centre): a
+ * horizon-to-zenith blue gradient over a dim ground and a sun of radiance
+ * 400 and 2 degrees radius, 40 degrees high (doc/light-transport.md). */
+dirt_env *dirt_env_sky(const dirt_env_opts *opts);
+void dirt_env_destroy(dirt_env *env);
+
+/* True when next-event estimation samples the map (total > 0). NULL: false. */
+bool dirt_env_samples(const dirt_env *env);
+
+/* Texel (column, row) of unit world direction d (see dirt_env). */
+void dirt_env_texel(const dirt_env *env, dirt_vec3 d, int *col, int *row);
+/* Radiance arriving along -d, i.e. seen looking along unit direction d.
+ * NULL env: 0. */
+dirt_vec3 dirt_env_eval(const dirt_env *env, dirt_vec3 d);
+/* Solid-angle pdf with which dirt_env_sample returns d:
+ * (cdf[k] - cdf[k - 1]) / (total (2 pi / w) (row_cos[j] - row_cos[j + 1]))
+ * for d's texel k = j w + i; 0 when the map is not sampled. */
+float dirt_env_pdf(const dirt_env *env, dirt_vec3 d);
+/* Samples a direction: u_sel picks the texel (the first k with cdf[k] >
+ * u_sel * total), (u1, u2) a point of it uniform in solid angle: phi = 2 pi
+ * (i + u1) / w - pi, cos theta = row_cos[j] - u2 (row_cos[j] -
+ * row_cos[j + 1]). Sets *d (unit, world), *pdf (as dirt_env_pdf, from the
+ * texel chosen) and *radiance (the texel's). False when the map is not
+ * sampled or the chosen texel has zero weight. */
+bool dirt_env_sample(const dirt_env *env, float u_sel, float u1, float u2, dirt_vec3 *d,
+                     float *pdf, dirt_vec3 *radiance);
+
 /* ---- camera (src/integrator/lights.c) ----------------------------------- */
 
 /* Primary ray through the continuous pixel position (px, py) of a width x

@@ -44,7 +44,11 @@ typedef struct dirt_pt_opts {
                                  when bounces_set) */
     bool bounces_set;         /* take `bounces` as given even when 0 */
     uint32_t seed;
-    float background[3];      /* radiance of rays that leave the scene */
+    float background[3];      /* radiance of rays that leave the scene (the
+                                 constant environment, sampled as a map);
+                                 ignored when `env` is given */
+    const struct dirt_env *env; /* environment light (borrowed until the call
+                                 returns; NULL = the background) */
     float ao_distance;        /* AO ray length; 0 = infinite */
     /* G_1 from a visibility buffer of the camera view instead of traced
      * camera rays (pixel centres: no pixel jitter, no depth of field). */

@@ -124,7 +124,12 @@ typedef struct dirt_ref_opts {
     enum dirt_ref_mode mode;
     float ao_distance;     /* AO ray length; 0 = infinite */
     uint32_t seed;         /* RNG seed (doc/rng.md) */
-    float background[3];   /* radiance of rays that leave the scene */
+    float background[3];   /* radiance of rays that leave the scene: the
+                              constant environment (dirt_env_constant),
+                              importance-sampled like any map; ignored when
+                              `env` is given */
+    const struct dirt_env *env; /* environment light (borrowed; NULL = the
+                              background) */
     int threads;           /* render (and BVH build) threads; 0 = all CPUs */
     const dirt_ref_accel *accel; /* BVH of this frame to reuse; NULL = build
                                     one (and report its build time) */

@@ -77,7 +77,10 @@ typedef struct dirt_session_opts {
     enum dirt_pt_mode mode;     /* path tracing (default) or AO */
     int bounces;                /* 0 = 4 */
     uint32_t seed;
-    float background[3];
+    float background[3];        /* the constant environment (unless `env`) */
+    const struct dirt_env *env; /* environment light (dirt_env_load; borrowed:
+                                   it must outlive its use in the session;
+                                   NULL = the background) */
     float ao_distance;          /* 0 = infinite */
     float aperture;             /* thin-lens radius (0 = pinhole) */
     float focus;                /* focus distance (0 = distance to the scene centre) */
