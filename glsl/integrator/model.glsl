@@ -489,8 +489,8 @@ ivec2 dirt_env_texel_g(vec3 d)
     vec3 e = vec3(rc * d.x - rs * d.z, d.y, rs * d.x + rc * d.z);
     float x = (atan(e.x, -e.z) + DIRT_PI_G) * (1.0 / (2.0 * DIRT_PI_G)) * float(w);
     int i = int(floor(x));
-    if (!(x >= 0.0))
-        i = 0;
+    if (!(x >= 0.0) || (e.x == 0.0 && e.z == 0.0))
+        i = 0; // also NaN, and the poles (atan(0, 0) is undefined)
     if (i > w - 1)
         i = w - 1;
     int lo = 0, hi = h - 1;

@@ -214,8 +214,8 @@ void dirt_env_texel(const dirt_env *env, dirt_vec3 d, int *col, int *row)
     dirt_vec3 e = to_map(env, d);
     float x = (atan2f(e.x, -e.z) + PI_F) * (1.0f / (2.0f * PI_F)) * (float)env->width;
     int i = (int)floorf(x);
-    if (!(x >= 0.0f))
-        i = 0; /* also NaN */
+    if (!(x >= 0.0f) || (e.x == 0.0f && e.z == 0.0f))
+        i = 0; /* also NaN, and the poles (atan2(0, 0) is undefined in GLSL) */
     if (i > env->width - 1)
         i = env->width - 1;
     /* The first row j whose lower edge row_cos[j + 1] <= e.y. */

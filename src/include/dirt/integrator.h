@@ -215,7 +215,8 @@ static inline unsigned dirt_nee_source_count(size_t num_area, size_t num_punctua
  * importance-sampled in next-event estimation (doc/light-transport.md,
  * "Environment"). Direction d (world, unit) is rotated by -rotation about
  * +Y into the map's frame, e = R_y(-rotation) d; its texel is column
- * floor(w (atan2(e.x, -e.z) + pi) / (2 pi)) (clamped to [0, w)) and the row
+ * floor(w (atan2(e.x, -e.z) + pi) / (2 pi)) (clamped to [0, w); 0 at the
+ * poles, e.x = e.z = 0) and the row
  * j whose band row_cos[j + 1] <= e.y < row_cos[j] holds it (row 0 at +Y, the
  * first image row): the image's centre looks along -Z, the glTF camera's
  * default view. A constant background is the 1 x 1 map. */
