@@ -105,7 +105,7 @@
 #define DIRT_BIND_MODEL_AREA_PRIMS 26  /* uint prim[count] (at least one entry) */
 #define DIRT_BIND_MODEL_PUNCTUAL 27    /* dirt_gpu_model_light[punctual] (at least one) */
 #define DIRT_BIND_MODEL_CAMERA 28      /* one dirt_gpu_model_camera */
-#define DIRT_BIND_MODEL_TEXELS 29      /* the textures at their own sizes (doc/light-transport-gpu.md) */
+#define DIRT_BIND_MODEL_TEXELS 29      /* dirt_gpu_model_texels header, texture records, RGBA8 texels */
 #define DIRT_BIND_MODEL_ENV 30         /* the environment light: header, cdfs, texels */
 #define DIRT_BIND_MODEL_LAST 30
 
@@ -199,9 +199,6 @@
 
 /* ---- Texture and image units ---- */
 
-/* The scene's texture array seen twice (integrator_layout.h). */
-#define DIRT_UNIT_MODEL_TEX_LINEAR 20
-#define DIRT_UNIT_MODEL_TEX_SRGB 21
 /* Raster preview: a material's base colour and emissive textures. */
 #define DIRT_UNIT_PREVIEW_BASE_COLOR 0
 #define DIRT_UNIT_PREVIEW_EMISSIVE 1

@@ -16,11 +16,7 @@
 #include "common/layout.h"
 
 /* The model's tables are bound at DIRT_BIND_MODEL_* (declared by
- * model.glsl when DIRT_MODEL_BUFFERS is defined; common/constants.h).
- * The scene's texture array is bound twice, at DIRT_UNIT_MODEL_TEX_LINEAR
- * through a GL_RGBA8 view (linear data: metallic-roughness) and at
- * DIRT_UNIT_MODEL_TEX_SRGB through a GL_SRGB8_ALPHA8 view (base colour,
- * emissive: decoded before filtering). */
+ * model.glsl when DIRT_MODEL_BUFFERS is defined; common/constants.h). */
 
 /* Punctual light kinds (= enum dirt_light_type). */
 #define DIRT_MODEL_LIGHT_DIRECTIONAL 0
@@ -42,9 +38,9 @@ struct dirt_gpu_model_material {
                             in C), (0,0,0) when not emissive; w unused */
     DIRT_V4 params;      /* x metallic, y roughness (factors, unclamped),
                             z dielectric specular weight clamped to [0,1], w 0 */
-    DIRT_IV4 textures;   /* x base colour layer, y metallic-roughness layer,
-                            z emissive layer (-1: none / out of range),
-                            w DIRT_MODEL_MAT_* flags */
+    DIRT_IV4 textures;   /* x base colour, y metallic-roughness, z emissive
+                            texture (index of dirt_gpu_model_texture; -1:
+                            none / out of range), w DIRT_MODEL_MAT_* flags */
 };
 
 /* One punctual light (64 bytes), from a dirt_light. */
@@ -87,6 +83,31 @@ struct dirt_gpu_model_camera {
     DIRT_V4 up;          /* xyz up, w 0 */
     DIRT_V4 lens;        /* x aperture radius, y focus distance (thin lens when
                             both > 0), z xmag, w ymag (orthographic, raw) */
+};
+
+/* The scene's textures at their own sizes, one buffer at
+ * DIRT_BIND_MODEL_TEXELS of 32-bit words:
+ *
+ *   struct dirt_gpu_model_texels         header (16 bytes)
+ *   struct dirt_gpu_model_texture[count]  one record per scene texture, in
+ *                                         scene order (16 bytes each)
+ *   uint texels[]                         every texture's RGBA8 texels
+ *
+ * Word k after the header is dirt_model_texel_words[k] in GLSL; a texture's
+ * texel (i, j) (row j = 0 = the first image row, as in dirt_texture) is word
+ * extent.x + j * width + i, holding R in bits 0-7, G 8-15, B 16-23, A 24-31
+ * (the bytes of dirt_texture.rgba, unchanged). */
+struct dirt_gpu_model_texels {
+    DIRT_UV4 counts;     /* x textures (records that follow), y words after
+                            the header (records and texels), zw 0 */
+};
+
+/* One texture of the texel buffer (16 bytes). */
+struct dirt_gpu_model_texture {
+    DIRT_UV4 extent;     /* x word of texel (0, 0) (counted from the first
+                            word after the header), y width, z height
+                            (0 x 0: the texture has no pixels and reads
+                            (1,1,1,1), as dirt_texture_sample), w 0 */
 };
 
 #endif

@@ -3,9 +3,9 @@
 // texture.c). Function for function and formula for formula: every
 // dirt_X_g here computes what dirt_X computes in C, with the same operations
 // in the same order, so the two differ only by float rounding (GLSL's
-// division, sqrt and sin/cos are not correctly rounded) -- and, for
-// textures, by the hardware's bilinear filter and the resize of textures to
-// a common size (doc/light-transport-gpu.md). test/gpu/test_glsl_model.c
+// division, sqrt, pow and sin/cos are not correctly rounded). Textures are
+// read from the same texels at their own sizes with the C filter's
+// operations (doc/light-transport-gpu.md). test/gpu/test_glsl_model.c
 // checks GLSL == C. Change both together.
 //
 // Conventions as in C: BSDF directions are in the local shading frame
@@ -272,8 +272,8 @@ float dirt_rr_survival_g(vec3 beta)
 
 // ---- textures and materials (texture.c) -------------------------------
 
-// sRGB decode, exact piecewise formula (the hardware decodes the sRGB view
-// of the texture array itself; this is for other uses).
+// sRGB decode, exact piecewise formula (= dirt_srgb_to_linear; the texture
+// lookup decodes every texel with it).
 float dirt_srgb_to_linear_g(float c)
 {
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
@@ -386,27 +386,87 @@ layout(std430, binding = DIRT_BIND_MODEL_PUNCTUAL) readonly buffer DirtModelPunc
 layout(std430, binding = DIRT_BIND_MODEL_CAMERA) readonly buffer DirtModelCamera {
     dirt_gpu_model_camera dirt_model_camera;
 };
-// The scene's textures, one layer each (all resized to one size), through
-// a linear and an sRGB view of the same RGBA8 storage; bilinear, repeat.
-layout(binding = DIRT_UNIT_MODEL_TEX_LINEAR) uniform sampler2DArray dirt_model_tex_linear;
-layout(binding = DIRT_UNIT_MODEL_TEX_SRGB) uniform sampler2DArray dirt_model_tex_srgb;
+// The scene's textures at their own sizes (common/integrator_layout.h):
+// the header, then dirt_gpu_model_texture records (4 words each), then the
+// RGBA8 texels, one word each.
+layout(std430, binding = DIRT_BIND_MODEL_TEXELS) readonly buffer DirtModelTexels {
+    dirt_gpu_model_texels dirt_model_texels;
+    uint dirt_model_texel_words[];
+};
 
-// Bilinear, repeating lookup of texture layer `layer` at uv (level 0), RGB
-// sRGB-decoded before filtering when `srgb` (alpha never decoded). Texel
-// (i, j) has its centre at ((i + 0.5) / w, (j + 0.5) / h), row 0 = the first
-// image row, as in dirt_texture_sample. A negative layer reads (1,1,1,1);
-// non-finite u or v read as 0.
-vec4 dirt_texture_sample_g(int layer, bool srgb, vec2 uv)
+// Record of texture `tex` (0 <= tex < counts.x).
+dirt_gpu_model_texture dirt_model_texture_g(uint tex)
 {
-    if (layer < 0)
+    uint k = 4u * tex;
+    dirt_gpu_model_texture t;
+    t.extent = uvec4(dirt_model_texel_words[k], dirt_model_texel_words[k + 1u],
+                     dirt_model_texel_words[k + 2u], dirt_model_texel_words[k + 3u]);
+    return t;
+}
+
+// Integer texel coordinate i wrapped into [0, n) (= wrap() of texture.c,
+// i % n made non-negative; GLSL's % is undefined for a negative operand, so
+// the magnitude is reduced and the sign applied by hand; i > INT_MIN).
+int dirt_texel_wrap_g(int i, int n)
+{
+    int r = (i < 0 ? -i : i) % n;
+    return i < 0 && r != 0 ? n - r : r;
+}
+
+// Texel (x, y) of a texture whose texel (0, 0) is word `first`, as linear
+// floats (= texel() of texture.c): each byte c -> c / 255, RGB then
+// sRGB-decoded when `srgb` (alpha never).
+vec4 dirt_texel_g(uint first, int width, bool srgb, int x, int y)
+{
+    uint p = dirt_model_texel_words[first + uint(y) * uint(width) + uint(x)];
+    vec4 c = vec4(float(p & 255u), float((p >> 8u) & 255u), float((p >> 16u) & 255u),
+                  float(p >> 24u)) / 255.0;
+    if (srgb)
+        c.xyz = vec3(dirt_srgb_to_linear_g(c.x), dirt_srgb_to_linear_g(c.y),
+                     dirt_srgb_to_linear_g(c.z));
+    return c;
+}
+
+// Bilinear, repeating lookup of texture `tex` at uv (= dirt_texture_sample,
+// operation for operation): texel (i, j) has its centre at ((i + 0.5) / w,
+// (j + 0.5) / h), row 0 = the first image row; the four texels are decoded
+// (sRGB RGB when `srgb`, alpha never) before they are filtered. A texture
+// index outside [0, count) or a texture without pixels reads (1,1,1,1);
+// non-finite u or v read as 0. `precise` keeps every step the separately
+// rounded operation C performs (no fused multiply-add), so GPU and C differ
+// only by the decode's division and pow.
+vec4 dirt_texture_sample_g(int tex, bool srgb, vec2 uv)
+{
+    if (tex < 0 || uint(tex) >= dirt_model_texels.counts.x)
         return vec4(1.0);
-    if (isnan(uv.x) || isinf(uv.x))
-        uv.x = 0.0;
-    if (isnan(uv.y) || isinf(uv.y))
-        uv.y = 0.0;
-    uv -= floor(uv);
-    vec3 c = vec3(uv, float(layer));
-    return srgb ? textureLod(dirt_model_tex_srgb, c, 0.0) : textureLod(dirt_model_tex_linear, c, 0.0);
+    dirt_gpu_model_texture t = dirt_model_texture_g(uint(tex));
+    int w = int(t.extent.y), h = int(t.extent.z);
+    if (w <= 0 || h <= 0)
+        return vec4(1.0);
+    precise float u = uv.x, v = uv.y;
+    if (isnan(u) || isinf(u))
+        u = 0.0;
+    if (isnan(v) || isinf(v))
+        v = 0.0;
+    // Repeat: u, v into [0, 1] first (u of -tiny becomes exactly 1; the
+    // wrap of the neighbours handles it).
+    u -= floor(u);
+    v -= floor(v);
+    precise float x = u * float(w) - 0.5;
+    precise float y = v * float(h) - 0.5;
+    float x0f = floor(x), y0f = floor(y);
+    precise float fx = x - x0f, fy = y - y0f;
+    int x0 = int(x0f), y0 = int(y0f);
+    int xa = dirt_texel_wrap_g(x0, w), xb = dirt_texel_wrap_g(x0 + 1, w);
+    int ya = dirt_texel_wrap_g(y0, h), yb = dirt_texel_wrap_g(y0 + 1, h);
+    vec4 t00 = dirt_texel_g(t.extent.x, w, srgb, xa, ya);
+    vec4 t10 = dirt_texel_g(t.extent.x, w, srgb, xb, ya);
+    vec4 t01 = dirt_texel_g(t.extent.x, w, srgb, xa, yb);
+    vec4 t11 = dirt_texel_g(t.extent.x, w, srgb, xb, yb);
+    precise vec4 top = t00 + (t10 - t00) * fx;
+    precise vec4 bottom = t01 + (t11 - t01) * fx;
+    precise vec4 r = top + (bottom - top) * fy;
+    return r;
 }
 
 // Textured surface of material `material` at uv (= dirt_material_surface):

@@ -36,7 +36,7 @@ layout(location = DIRT_LOC_TEST_MODEL_COUNT) uniform uint u_count;
                         //    o1 (alpha, specular, double_sided, emissive), o2 emission
 #define MODE_CAMERA 9   // in0..4 camera record, in5 (width, height, px, py),
                         // in6 (lens_u, lens_v) -> o0 org, o1 dir
-#define MODE_TEXTURE 10 // in0 (layer, srgb, u, v) -> o0 rgba
+#define MODE_TEXTURE 10 // in0 (texture, srgb, u, v) -> o0 rgba
 
 dirt_bsdf_g read_bsdf(uint b)
 {

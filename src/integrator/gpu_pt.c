@@ -540,6 +540,8 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
         {"pt environment", pt->env_bytes, 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
+        /* the scene's textures (made with the first samples) */
+        {"model texels", pt->tables.texel_bytes, 0},
     };
     int n = 0;
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]) && n < max; i++) {
@@ -627,7 +629,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             dirt_gpu_model_tables_destroy(&pt->tables);
             goto done;
         }
-    } else if (!dirt_gpu_model_tables_create(pt->gpu, pt->scene, frame, &area, cam, NULL, 0,
+    } else if (!dirt_gpu_model_tables_create(pt->gpu, pt->scene, frame, &area, cam, NULL,
                                              &pt->tables)) {
         goto done;
     }

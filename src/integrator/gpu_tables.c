@@ -177,246 +177,91 @@ void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size)
 
 /* ---- textures ----------------------------------------------------------- */
 
-static float srgb_encode(float c)
+_Static_assert(sizeof(struct dirt_gpu_model_texels) == 4 * sizeof(uint32_t) &&
+               sizeof(struct dirt_gpu_model_texture) == 4 * sizeof(uint32_t),
+               "texel buffer records are 4 words");
+
+static bool has_pixels(const dirt_texture *t)
 {
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+    return t->rgba && t->width > 0 && t->height > 0;
 }
 
-static uint8_t to_byte(float c)
-{
-    float x = clamp01f(c) * 255.0f + 0.5f;
-    return (uint8_t)(x >= 255.0f ? 255 : (int)x);
-}
-
-/* Bilinear, repeating lookup in a linear float RGBA image (texel centres at
- * (i + 0.5) / w as in dirt_texture_sample). */
-static void float_sample(const float *img, int w, int h, float u, float v, float out[4])
-{
-    u -= floorf(u);
-    v -= floorf(v);
-    float x = u * (float)w - 0.5f, y = v * (float)h - 0.5f;
-    float x0f = floorf(x), y0f = floorf(y);
-    float fx = x - x0f, fy = y - y0f;
-    int x0 = ((int)x0f % w + w) % w, y0 = ((int)y0f % h + h) % h;
-    int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
-    const float *t00 = img + ((size_t)y0 * (size_t)w + (size_t)x0) * 4;
-    const float *t10 = img + ((size_t)y0 * (size_t)w + (size_t)x1) * 4;
-    const float *t01 = img + ((size_t)y1 * (size_t)w + (size_t)x0) * 4;
-    const float *t11 = img + ((size_t)y1 * (size_t)w + (size_t)x1) * 4;
-    for (int c = 0; c < 4; c++) {
-        float top = t00[c] + (t10[c] - t00[c]) * fx;
-        float bottom = t01[c] + (t11[c] - t01[c]) * fx;
-        out[c] = top + (bottom - top) * fy;
-    }
-}
-
-/* Rows [j0, j1) of a dw x dh linear float RGBA image into dst (row j0
- * first): each texel the mean of k x k bilinear samples of either the
- * original texture `tex` (decoded by dirt_texture_sample) or the float image
- * `src` (sw x sh), at the centres of a k x k grid over its footprint. */
-static void resample(const dirt_texture *tex, const float *src, int sw, int sh, float *dst,
-                     int dw, int dh, int j0, int j1)
-{
-    int kx = sw > dw ? (sw + dw - 1) / dw : 1;
-    int ky = sh > dh ? (sh + dh - 1) / dh : 1;
-    float inv = 1.0f / (float)(kx * ky);
-    for (int j = j0; j < j1; j++) {
-        for (int i = 0; i < dw; i++) {
-            float sum[4] = {0.0f, 0.0f, 0.0f, 0.0f}, s[4];
-            for (int sy = 0; sy < ky; sy++) {
-                float v = ((float)j + ((float)sy + 0.5f) / (float)ky) / (float)dh;
-                for (int sx = 0; sx < kx; sx++) {
-                    float u = ((float)i + ((float)sx + 0.5f) / (float)kx) / (float)dw;
-                    if (tex)
-                        dirt_texture_sample(tex, tex->srgb, u, v, s);
-                    else
-                        float_sample(src, sw, sh, u, v, s);
-                    for (int c = 0; c < 4; c++)
-                        sum[c] += s[c];
-                }
-            }
-            float *o = dst + ((size_t)(j - j0) * (size_t)dw + (size_t)i) * 4;
-            for (int c = 0; c < 4; c++)
-                o[c] = sum[c] * inv;
-        }
-    }
-}
-
-static void encode(const float *img, size_t texels, bool srgb, uint8_t *out)
-{
-    for (size_t t = 0; t < texels; t++) {
-        for (int c = 0; c < 3; c++)
-            out[4 * t + (size_t)c] = to_byte(srgb ? srgb_encode(img[4 * t + (size_t)c])
-                                                  : img[4 * t + (size_t)c]);
-        out[4 * t + 3] = to_byte(img[4 * t + 3]);
-    }
-}
-
-static int level_dim(int size, int level)
-{
-    int d = size >> level;
-    return d > 0 ? d : 1;
-}
-
-static size_t level_bytes(const dirt_gpu_texture_array *a, int level)
-{
-    return (size_t)level_dim(a->width, level) * (size_t)level_dim(a->height, level) * 4;
-}
-
-/* Level `level` of layer `layer` of `a`. */
-static uint8_t *layer_level(dirt_gpu_texture_array *a, int layer, int level)
-{
-    return a->pixels + a->level_offset[level] + (size_t)layer * level_bytes(a, level);
-}
-
-/* Fills every level of layer `layer` from texture t (NULL or empty: white).
- * Level 0 is t's bytes when t has the array's size, else resampled from t
- * row by row; level 1 is resampled from t, level l >= 2 from level l - 1
- * (in float). `work` holds float images of levels 1 and 2 (>= one row of
- * level 0). */
-static void pack_layer(dirt_gpu_texture_array *a, int layer, const dirt_texture *t,
-                       float *work)
-{
-    bool empty = !t || !t->rgba || t->width <= 0 || t->height <= 0;
-    if (empty) {
-        for (int l = 0; l < a->levels; l++)
-            memset(layer_level(a, layer, l), 255, level_bytes(a, l));
-        return;
-    }
-    if (t->width == a->width && t->height == a->height) {
-        memcpy(layer_level(a, layer, 0), t->rgba, level_bytes(a, 0));
-    } else {
-        size_t row = (size_t)a->width * 4;
-        for (int j = 0; j < a->height; j++) {
-            resample(t, NULL, t->width, t->height, work, a->width, a->height, j, j + 1);
-            encode(work, (size_t)a->width, t->srgb, layer_level(a, layer, 0) + (size_t)j * row);
-        }
-    }
-    if (a->levels < 2)
-        return;
-    size_t n1 = (size_t)level_dim(a->width, 1) * (size_t)level_dim(a->height, 1) * 4;
-    float *cur = work, *next = work + n1;
-    int cw = level_dim(a->width, 1), ch = level_dim(a->height, 1);
-    resample(t, NULL, t->width, t->height, cur, cw, ch, 0, ch);
-    encode(cur, (size_t)cw * (size_t)ch, t->srgb, layer_level(a, layer, 1));
-    for (int l = 2; l < a->levels; l++) {
-        int nw = level_dim(a->width, l), nh = level_dim(a->height, l);
-        resample(NULL, cur, cw, ch, next, nw, nh, 0, nh);
-        encode(next, (size_t)nw * (size_t)nh, t->srgb, layer_level(a, layer, l));
-        float *tmp = cur;
-        cur = next;
-        next = tmp;
-        cw = nw;
-        ch = nh;
-    }
-}
-
-bool dirt_gpu_textures_pack(const dirt_texture *textures, size_t count, int max_size,
-                            dirt_gpu_texture_array *out)
+bool dirt_gpu_textures_pack(const dirt_texture *textures, size_t count,
+                            dirt_gpu_texel_buffer *out)
 {
     memset(out, 0, sizeof(*out));
-    if (max_size <= 0)
-        max_size = 4096;
-    int w = 1, h = 1;
-    for (size_t i = 0; i < count; i++) {
-        if (!textures[i].rgba)
-            continue;
-        w = textures[i].width > w ? textures[i].width : w;
-        h = textures[i].height > h ? textures[i].height : h;
-    }
-    w = w < max_size ? w : max_size;
-    h = h < max_size ? h : max_size;
-    int levels = 1;
-    while (levels < DIRT_GPU_MAX_MIP_LEVELS && ((w >> levels) > 0 || (h >> levels) > 0))
-        levels++;
-    out->width = w;
-    out->height = h;
-    out->layers = count > 0 ? (int)count : 1;
-    out->levels = levels;
-    size_t total = 0;
-    for (int l = 0; l < levels; l++) {
-        out->level_offset[l] = total;
-        total += level_bytes(out, l) * (size_t)out->layers;
-    }
-    out->size = total;
-    out->pixels = malloc(total);
-    /* levels 1 and 2 (each the larger of the two alternates), and a row of 0 */
-    size_t n1 = (size_t)level_dim(w, 1) * (size_t)level_dim(h, 1) * 4;
-    size_t n2 = (size_t)level_dim(w, 2) * (size_t)level_dim(h, 2) * 4;
-    size_t nw = n1 + n2 > (size_t)w * 4 ? n1 + n2 : (size_t)w * 4;
-    float *work = malloc(nw * sizeof(float));
-    if (!out->pixels || !work) {
-        DIRT_ERROR("gpu tables: out of memory for a %dx%dx%d texture array", w, h, out->layers);
-        free(work);
-        dirt_gpu_texture_array_free(out);
+    /* Words after the header: the records, then the texels; the shader
+     * indexes them with 32-bit uints. */
+    const uint64_t max_words = UINT32_MAX;
+    uint64_t words = (uint64_t)count * 4;
+    for (size_t i = 0; i < count && words <= max_words; i++)
+        if (has_pixels(&textures[i]))
+            words += (uint64_t)textures[i].width * (uint64_t)textures[i].height;
+    if (words > max_words || words > SIZE_MAX / sizeof(uint32_t) - 4) {
+        DIRT_ERROR("gpu tables: the %zu textures need more than %llu texels and records, the "
+                   "most the shader can index", count, (unsigned long long)max_words);
         return false;
     }
-    for (int i = 0; i < out->layers; i++)
-        pack_layer(out, i, count > 0 ? &textures[i] : NULL, work);
-    free(work);
+    size_t header = sizeof(struct dirt_gpu_model_texels) / sizeof(uint32_t);
+    out->size = (header + (size_t)words) * sizeof(uint32_t);
+    out->words = malloc(out->size);
+    if (!out->words) {
+        DIRT_ERROR("gpu tables: out of memory for %zu bytes of texels", out->size);
+        out->size = 0;
+        return false;
+    }
+    struct dirt_gpu_model_texels hdr;
+    memset(&hdr, 0, sizeof(hdr));
+    hdr.counts = (dirt_u4){(uint32_t)count, (uint32_t)words, 0u, 0u};
+    memcpy(out->words, &hdr, sizeof(hdr));
+    uint32_t *body = out->words + header; /* word k of the shader */
+    uint32_t next = (uint32_t)count * 4;  /* first free texel word */
+    for (size_t i = 0; i < count; i++) {
+        const dirt_texture *t = &textures[i];
+        struct dirt_gpu_model_texture rec;
+        memset(&rec, 0, sizeof(rec));
+        if (has_pixels(t)) {
+            rec.extent = (dirt_u4){next, (uint32_t)t->width, (uint32_t)t->height, 0u};
+            size_t n = (size_t)t->width * (size_t)t->height;
+            /* The word's value, not its bytes: R low, whatever the host's
+             * byte order (GL reads buffer words in the host's order). */
+            for (size_t k = 0; k < n; k++) {
+                const uint8_t *c = t->rgba + 4 * k;
+                body[next + k] = (uint32_t)c[0] | (uint32_t)c[1] << 8 | (uint32_t)c[2] << 16 |
+                                 (uint32_t)c[3] << 24;
+            }
+            next += (uint32_t)n;
+            out->num_texels += n;
+        }
+        memcpy(body + 4 * i, &rec, sizeof(rec));
+    }
+    out->num_textures = count;
     return true;
 }
 
-void dirt_gpu_texture_array_free(dirt_gpu_texture_array *a)
+void dirt_gpu_texel_buffer_free(dirt_gpu_texel_buffer *b)
 {
-    if (!a)
+    if (!b)
         return;
-    free(a->pixels);
-    memset(a, 0, sizeof(*a));
+    free(b->words);
+    memset(b, 0, sizeof(*b));
 }
 
 /* ---- GL objects --------------------------------------------------------- */
 
-static void sampler_state(GLuint tex)
+bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, unsigned *buffer)
 {
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
-}
-
-bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texture_array *a,
-                              unsigned *tex_linear, unsigned *tex_srgb)
-{
-    *tex_linear = *tex_srgb = 0;
+    *buffer = 0;
     const dirt_gpu_caps *caps = dirt_gpu_get_caps(gpu);
-    if (caps && ((caps->max_array_layers > 0 && a->layers > caps->max_array_layers) ||
-                 (caps->max_texture_size > 0 &&
-                  (a->width > caps->max_texture_size || a->height > caps->max_texture_size)))) {
-        DIRT_ERROR("gpu tables: a %dx%d texture array of %d layers exceeds this GPU's limits "
-                   "(%d layers, %d texels)", a->width, a->height, a->layers,
-                   caps->max_array_layers, caps->max_texture_size);
+    if (caps && caps->max_ssbo_size > 0 && (uint64_t)b->size > (uint64_t)caps->max_ssbo_size) {
+        DIRT_ERROR("gpu tables: the scene's %zu textures need %zu bytes of texels (%zu texels), "
+                   "more than this GPU's maximum storage block size "
+                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes)", b->num_textures, b->size,
+                   b->num_texels, (long long)caps->max_ssbo_size);
         return false;
     }
-    GLuint tex = gl_texture_2d_array(GL_RGBA8, a->width, a->height, a->layers, a->levels,
-                                     "model textures (linear)");
-    if (!tex)
-        return false;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    for (int l = 0; l < a->levels; l++) {
-        int w = a->width >> l, h = a->height >> l;
-        glTextureSubImage3D(tex, l, 0, 0, 0, w > 0 ? w : 1, h > 0 ? h : 1, a->layers, GL_RGBA,
-                            GL_UNSIGNED_BYTE, a->pixels + a->level_offset[l]);
-    }
-    sampler_state(tex);
-    GLuint view = 0;
-    glGenTextures(1, &view);
-    glTextureView(view, GL_TEXTURE_2D_ARRAY, tex, GL_SRGB8_ALPHA8, 0, (GLuint)a->levels, 0,
-                  (GLuint)a->layers);
-    if (!gl_check("model texture upload")) {
-        DIRT_ERROR("gpu tables: could not upload the %dx%dx%d texture array", a->width,
-                   a->height, a->layers);
-        if (view)
-            glDeleteTextures(1, &view);
-        gl_texture_destroy(&tex);
-        return false;
-    }
-    sampler_state(view);
-    gl_label(GL_TEXTURE, view, "model textures (sRGB view)");
-    *tex_linear = tex;
-    *tex_srgb = view;
-    return true;
+    *buffer = gl_buffer_create(gpu, b->size, b->words, false, "model texels");
+    return *buffer != 0;
 }
 
 bool dirt_gpu_model_tables_set_frame(dirt_gpu *gpu, dirt_gpu_model_tables *t,
@@ -462,28 +307,29 @@ done:
 bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
                                   const dirt_frame *frame, const dirt_area_lights *area,
                                   const dirt_camera *camera, const float *specular,
-                                  int max_texture_size, dirt_gpu_model_tables *out)
+                                  dirt_gpu_model_tables *out)
 {
     memset(out, 0, sizeof(*out));
     bool ok = false;
-    dirt_gpu_texture_array ta = {0};
+    dirt_gpu_texel_buffer tb = {0};
     size_t nm = 0;
     struct dirt_gpu_model_material *mats = dirt_gpu_scene_materials(scene, specular, &nm);
     if (!mats) {
         DIRT_ERROR("gpu tables: out of memory");
         goto done;
     }
-    if (!dirt_gpu_textures_pack(dirt_scene_textures(scene), dirt_scene_num_textures(scene),
-                                max_texture_size, &ta))
+    if (!dirt_gpu_textures_pack(dirt_scene_textures(scene), dirt_scene_num_textures(scene), &tb))
         goto done;
     out->num_materials = nm;
+    out->num_textures = tb.num_textures;
     out->materials = gl_buffer_create(gpu, nm * sizeof(*mats), mats, false, "model materials");
-    if (!out->materials || !dirt_gpu_textures_upload(gpu, &ta, &out->tex_linear, &out->tex_srgb))
+    if (!out->materials || !dirt_gpu_textures_upload(gpu, &tb, &out->texels))
         goto done;
+    out->texel_bytes = tb.size;
     ok = dirt_gpu_model_tables_set_frame(gpu, out, frame, area, camera);
 done:
     free(mats);
-    dirt_gpu_texture_array_free(&ta);
+    dirt_gpu_texel_buffer_free(&tb);
     if (!ok)
         dirt_gpu_model_tables_destroy(out);
     return ok;
@@ -504,8 +350,7 @@ void dirt_gpu_model_tables_bind(const dirt_gpu_model_tables *t)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_AREA_PRIMS, t->area_prims);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_PUNCTUAL, t->punctual);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_CAMERA, t->camera);
-    glBindTextureUnit(DIRT_UNIT_MODEL_TEX_LINEAR, t->tex_linear);
-    glBindTextureUnit(DIRT_UNIT_MODEL_TEX_SRGB, t->tex_srgb);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, t->texels);
 }
 
 void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t)
@@ -518,7 +363,6 @@ void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t)
     b = t->area_prims; gl_buffer_destroy(&b);
     b = t->punctual; gl_buffer_destroy(&b);
     b = t->camera; gl_buffer_destroy(&b);
-    b = t->tex_srgb; gl_texture_destroy(&b);
-    b = t->tex_linear; gl_texture_destroy(&b);
+    b = t->texels; gl_buffer_destroy(&b);
     memset(t, 0, sizeof(*t));
 }

@@ -123,6 +123,12 @@ AT(dirt_gpu_model_camera, right, 2);
 AT(dirt_gpu_model_camera, up, 3);
 AT(dirt_gpu_model_camera, lens, 4);
 
+RECORD(dirt_gpu_model_texels, 1);
+AT(dirt_gpu_model_texels, counts, 0);
+
+RECORD(dirt_gpu_model_texture, 1);
+AT(dirt_gpu_model_texture, extent, 0);
+
 /* ---- common/mmrt_layout.h, common/mmrt_pt_layout.h ---- */
 RECORD(dirt_mmrt_gpu_params, 2);
 AT(dirt_mmrt_gpu_params, config, 0);

@@ -37,13 +37,30 @@
  *    spot cone edge, range window, cdf boundary); those are counted and
  *    must stay below 0.1%. Values are compared only where the booleans agree
  *    (and the function succeeded).
- *  - textures: the hardware filters with reduced-precision bilinear weights
- *    (8 fractional bits on current GPUs and llvmpipe): the error of a lookup
- *    is at most ~2 * 2^-9 * (largest neighbour difference) <= 2^-8, so
- *    texture values get TEX_TOL = 2^-7 absolute (scaled by the material
- *    factor that multiplies them; 2 r for alpha = r^2). A texture resized to
- *    the array's common size is reported, not checked (documented
- *    difference, doc/light-transport-gpu.md).
+ *  - textures and textured materials: the GLSL reads the same texels at
+ *    their own sizes and performs the C lookup's operations in the same
+ *    order (floor, wrap, the products and differences of the bilinear
+ *    filter: correctly rounded in GLSL, and `precise`, so no fused
+ *    multiply-add), so the only difference is the decode of each texel:
+ *    c / 255 (GLSL's division: 2.5 ulp) and, for sRGB slots, the curve's
+ *    division and pow (GPUs compute pow as exp2(y log2 x): on NVIDIA the
+ *    PTX bounds of lg2/ex2.approx plus the rounding of y log2 x give up to
+ *    ~1e-6 relative for the darkest decoded values; 5.6e-7 measured on
+ *    llvmpipe by the misc mode). The filter is a convex combination of the
+ *    four texels, so a lookup differs by at most the largest texel error:
+ *    |gpu - c| <= TEXEL_REL * M, M = the largest decoded value of that
+ *    texture (<= 1; a dark texture keeps the bound tight), TEXEL_REL = 2e-6
+ *    (2x that worst case). Measured on llvmpipe: linear lookups bit-exact,
+ *    sRGB lookups within 2.4e-7 M (0.12 of the tolerance), ~69% of all
+ *    lookups bit-exact. The hardware-filtered, resized lookup this replaced
+ *    was off by up to 0.0049 on same-size textures (8-bit filter weights)
+ *    and 0.32 on resized ones; emulating 8-bit weights, a 1e-4 texel offset
+ *    or pow(x, 2.4001) fails this comparison.
+ *    Material values scale it by the factor that multiplies the texture
+ *    (2 r for alpha = r^2); everything else of a material is the same
+ *    float operations on both sides and must be exact (ABS). No REL and no
+ *    perturbation spread: GPU and C compute the same operations on the
+ *    same bits, so a UV's conditioning does not enter.
  *
  * Last, the same comparison runs on a build of the shader with TEST_FAULT
  * (every result times 1.001 plus 0.01): it must fail nearly every case of
@@ -57,6 +74,7 @@
 #include "check.h"
 #include "dirt/gpu_tables.h"
 #include "dirt/integrator.h"
+#include "dirt/log.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"
@@ -66,7 +84,7 @@
 #define STRIDE 32 /* floats per record (8 vec4) */
 #define REL 1e-4
 #define ABS 1e-12
-#define TEX_TOL (1.0 / 128.0)
+#define TEXEL_REL 2e-6
 #define NEAR_THRESHOLD 1e-5
 #define PERTURB_TRIES 4
 /* Tolerances below this (absolute) do not count as loose. */
@@ -183,7 +201,7 @@ static size_t g_ntex;
 static const dirt_area_lights *g_area;
 static dirt_light g_lights[N];
 static dirt_camera g_cams[N];
-static int g_resized_layer = -1; /* texture layer that was resized (reported only) */
+static double g_tex_max[2][64]; /* [srgb] largest decoded value of texture i (<= 1) */
 
 static void put3(float *o, dirt_vec3 v)
 {
@@ -370,11 +388,13 @@ static void c_eval(int mode, const float *in, int idx, bool p, const float *gpu,
         break;
     }
     case MODE_TEXTURE: {
-        int layer = (int)in[0];
+        int t = (int)in[0];
         float u = in[2], v = in[3];
         if (p)
             u = perturb(u), v = perturb(v);
-        dirt_texture_sample(&g_tex[layer], in[1] != 0.0f, u, v, out);
+        /* out of range: NULL, white (as dirt_material_surface reads it) */
+        bool ok = t >= 0 && (size_t)t < g_ntex;
+        dirt_texture_sample(ok ? &g_tex[t] : NULL, in[1] != 0.0f, u, v, out);
         break;
     }
     }
@@ -424,32 +444,61 @@ static float c_margin(int mode, const float *in, int idx)
     return m;
 }
 
-/* Extra absolute tolerance of a field from texture filtering. */
+/* TEXEL_REL * the largest decoded value of texture t read with `srgb`
+ * (0 for none / out of range / no pixels: those read exactly 1). */
+static double texel_tol(int t, bool srgb)
+{
+    if (t < 0 || (size_t)t >= g_ntex)
+        return 0.0;
+    return TEXEL_REL * (t < 64 ? g_tex_max[srgb][t] : 1.0); /* values <= 1 */
+}
+
+/* Absolute tolerance of a field of a texture lookup or a textured
+ * material (the texel term, scaled by the factor that multiplies it). */
 static double tex_tol(int mode, const float *in, int off)
 {
     if (mode == MODE_TEXTURE)
-        return TEX_TOL;
+        return texel_tol((int)in[0], in[1] != 0.0f);
     if (mode != MODE_MATERIAL)
         return 0.0;
     const dirt_material *m = &g_mats[(int)in[0]];
-    bool bt = m->base_color_tex >= 0 && (size_t)m->base_color_tex < g_ntex;
-    bool mt = m->metallic_roughness_tex >= 0 && (size_t)m->metallic_roughness_tex < g_ntex;
-    bool et = m->emissive_tex >= 0 && (size_t)m->emissive_tex < g_ntex;
     switch (off) {
     case 0: /* base colour */
-        return bt ? TEX_TOL * fmax(m->base_color[0], fmax(m->base_color[1], m->base_color[2]))
-                  : 0.0;
+        return texel_tol(m->base_color_tex, true) *
+               fmax(m->base_color[0], fmax(m->base_color[1], m->base_color[2]));
     case 3: /* metallic */
-        return mt ? TEX_TOL * fabs(m->metallic) : 0.0;
+        return texel_tol(m->metallic_roughness_tex, false) * fabs(m->metallic);
     case 4: /* alpha = (roughness * g)^2 */
-        return mt ? 2.0 * TEX_TOL * fabs(m->roughness) * fmin(1.0, fabs(m->roughness)) : 0.0;
+        return 2.0 * texel_tol(m->metallic_roughness_tex, false) * fabs(m->roughness) *
+               fmin(1.0, fabs(m->roughness));
     case 8: /* emission */
-        return et ? TEX_TOL * fmax(m->emissive[0], fmax(m->emissive[1], m->emissive[2])) *
-                        m->emissive_strength
-                  : 0.0;
+        return texel_tol(m->emissive_tex, true) *
+               fmax(m->emissive[0], fmax(m->emissive[1], m->emissive[2])) * m->emissive_strength;
     }
     return 0.0;
 }
+
+/* The largest decoded value of each texture (g_tex_max), for texel_tol. */
+static void texture_maxima(void)
+{
+    memset(g_tex_max, 0, sizeof(g_tex_max));
+    for (size_t t = 0; t < g_ntex && t < 64; t++) {
+        const dirt_texture *x = &g_tex[t];
+        if (!x->rgba || x->width <= 0 || x->height <= 0)
+            continue;
+        size_t n = (size_t)x->width * (size_t)x->height * 4;
+        for (size_t k = 0; k < n; k++) {
+            float lin = (float)x->rgba[k] / 255.0f;
+            float srgb = k % 4 == 3 ? lin : dirt_srgb_to_linear(lin);
+            g_tex_max[0][t] = fmax(g_tex_max[0][t], lin);
+            g_tex_max[1][t] = fmax(g_tex_max[1][t], srgb);
+        }
+    }
+}
+
+/* Texture lookups and materials: the same float operations on both sides,
+ * compared with the texel term alone (header comment). */
+static bool texel_only(int mode) { return mode == MODE_TEXTURE || mode == MODE_MATERIAL; }
 
 /* Relative error the float evaluation of GGX D has near its peak, where the
  * input perturbation does not show it: D = a2 / (pi d^2) with
@@ -491,20 +540,6 @@ static double ggx_cond(int mode, const float *in, const float *gpu, int off)
 static bool field_applies(int mode, const float *c, int off)
 {
     return !(mode == MODE_EVAL && off == 6 && c[14] > 0.5f);
-}
-
-/* True when a record's values are excluded from the strict comparison (a
- * resized texture layer: reported only). */
-static bool reported_only(int mode, const float *in)
-{
-    if (mode == MODE_TEXTURE)
-        return (int)in[0] == g_resized_layer;
-    if (mode == MODE_MATERIAL && g_resized_layer >= 0) {
-        const dirt_material *m = &g_mats[(int)in[0]];
-        return m->base_color_tex == g_resized_layer ||
-               m->metallic_roughness_tex == g_resized_layer || m->emissive_tex == g_resized_layer;
-    }
-    return false;
 }
 
 /* ---- comparison --------------------------------------------------------- */
@@ -563,7 +598,8 @@ typedef struct field_stats {
 
 typedef struct compare_result {
     int cases, bool_fail, near, value_fail, ill, ill_excess;
-    double reported_max; /* largest error of reported-only records */
+    double texel_ratio; /* texture modes: largest |gpu - c| / (TEXEL_REL M) */
+    int exact;          /* texture modes: records equal bit for bit */
 } compare_result;
 
 static bool any_nonfinite(const float *c, int n)
@@ -579,7 +615,7 @@ static bool any_nonfinite(const float *c, int n)
 static compare_result compare(int mode, const float *in, const float *gpu, int n, bool quiet)
 {
     const mode_desc *d = mode_of(mode);
-    compare_result r = {n, 0, 0, 0, 0, 0, 0.0};
+    compare_result r = {n, 0, 0, 0, 0, 0, 0.0, 0};
     field_stats st[8];
     memset(st, 0, sizeof(st));
     int printed = 0;
@@ -615,12 +651,10 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
         }
         if (!agree || (d->valid_off >= 0 && !(c[d->valid_off] > 0.5f)))
             continue;
-        bool report_only = reported_only(mode, ci);
-
         /* Spread of the C results under input perturbation (only tries that
-         * make the same decisions). */
+         * make the same decisions; not for the texel-only modes). */
         double spread[8] = {0};
-        for (int t = 0; t < PERTURB_TRIES; t++) {
+        for (int t = 0; t < (texel_only(mode) ? 0 : PERTURB_TRIES); t++) {
             c_eval(mode, ci, i, true, g, cp);
             bool same = true;
             for (int f = 0; f < 8 && d->fields[f].name; f++)
@@ -661,18 +695,18 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
                     scale = fmax(scale, fabs(a));
                 }
                 cond = ggx_cond(mode, ci, g, fd->off) * scale;
-                double tol = REL * scale + ABS + tex_tol(mode, ci, fd->off) + cond + 2.0 * spread[f];
+                double tt = tex_tol(mode, ci, fd->off);
+                double tol = texel_only(mode)
+                                 ? ABS + tt
+                                 : REL * scale + ABS + tt + cond + 2.0 * spread[f];
                 ill_field = cond + 2.0 * spread[f] > 10.0 * REL * scale + ILL_FLOOR;
-                if (ill_field && !report_only) {
+                if (ill_field) {
                     st[f].ill++;
                     ill_case = true;
                 }
                 bad = !(err <= tol);
-            }
-            if (report_only) {
-                if (isfinite(err))
-                    r.reported_max = fmax(r.reported_max, err);
-                continue;
+                if (texel_only(mode) && tt > 0.0)
+                    r.texel_ratio = fmax(r.texel_ratio, err / tt);
             }
             st[f].compared++;
             double rel = err / fmax(scale, 1e-30);
@@ -698,6 +732,13 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
             }
         }
         r.ill += ill_case;
+        if (texel_only(mode)) {
+            bool same = true;
+            for (int f = 0; f < 8 && d->fields[f].name; f++)
+                same &= memcmp(c + d->fields[f].off, g + d->fields[f].off,
+                               (size_t)d->fields[f].n * sizeof(float)) == 0;
+            r.exact += same;
+        }
     }
     for (int f = 0; f < 8 && d->fields[f].name; f++) {
         double allowed = d->fields[f].max_ill > 0.0 ? d->fields[f].max_ill : 0.02;
@@ -749,7 +790,38 @@ static bool run_mode(dirt_gpu *gpu, GLuint prog, int mode, const float *in, int 
 
 /* ---- inputs ------------------------------------------------------------- */
 
-static void fill_inputs(int mode, float *in, int n, size_t num_materials, int num_layers)
+/* A texture coordinate: mostly uniform over [-3, 3] (repeat), else a case
+ * where wrapping and flooring decide: texel centres and edges of a w-texel
+ * axis (in float, as a scene would give them), multiples of 1/8, -0 and
+ * tiny negatives (u - floor(u) rounds to exactly 1), 1 - 2^-24, 1, large
+ * magnitudes (floor(u) = u), denormals, +-inf and NaN (read as 0). */
+static float random_uv(int w)
+{
+    int k = irange(40);
+    if (k >= 16)
+        return urange(-3.0f, 3.0f);
+    int i = irange(w + 1) - irange(2) * w;
+    switch (k) {
+    case 0: return ((float)i + 0.5f) / (float)w;        /* a texel centre */
+    case 1: return (float)i / (float)w;                 /* a texel edge */
+    case 2: return (float)irange(25) / 8.0f - 1.0f;
+    case 3: return -0.0f;
+    case 4: return -urange(1e-12f, 1e-7f);
+    case 5: return -FLT_MIN;
+    case 6: return 1.0f - 1.0f / 16777216.0f;
+    case 7: return 1.0f;
+    case 8: return urange(-1e5f, 1e5f);
+    case 9: return irange(2) ? 1e30f : -3e38f;
+    case 10: return FLT_MIN / 8.0f;                     /* denormal */
+    case 11: return INFINITY;
+    case 12: return -INFINITY;
+    case 13: return NAN;
+    case 14: return (float)i + 0.5f / (float)w;         /* the centre of texel 0 of a repeat */
+    default: return 1.0f + 1e-7f * urand();
+    }
+}
+
+static void fill_inputs(int mode, float *in, int n, size_t num_materials, int num_textures)
 {
     memset(in, 0, (size_t)n * STRIDE * sizeof(float));
     for (int i = 0; i < n; i++) {
@@ -835,10 +907,8 @@ static void fill_inputs(int mode, float *in, int n, size_t num_materials, int nu
         }
         case MODE_MATERIAL:
             r[0] = (float)irange((int)num_materials);
-            r[1] = urange(-3.0f, 3.0f);
-            r[2] = urange(-3.0f, 3.0f);
-            if (irange(20) == 0) /* exactly on texel centres / edges */
-                r[1] = (float)irange(16) / 8.0f, r[2] = (float)irange(16) / 8.0f;
+            r[1] = random_uv(1 + irange(17));
+            r[2] = random_uv(1 + irange(17));
             break;
         case MODE_CAMERA: {
             dirt_camera *c = &g_cams[i];
@@ -874,45 +944,53 @@ static void fill_inputs(int mode, float *in, int n, size_t num_materials, int nu
             r[25] = random_u();
             break;
         }
-        case MODE_TEXTURE:
-            r[0] = (float)irange(num_layers);
+        case MODE_TEXTURE: {
+            /* -1 and num_textures: out of range (white) */
+            int t = irange(num_textures + 2) - 1;
+            bool in_range = t >= 0 && (size_t)t < g_ntex;
+            int w = in_range && g_tex[t].width > 0 ? g_tex[t].width : 4;
+            int h = in_range && g_tex[t].height > 0 ? g_tex[t].height : 4;
+            r[0] = (float)t;
             r[1] = (float)irange(2);
-            r[2] = urange(-3.0f, 3.0f);
-            r[3] = urange(-3.0f, 3.0f);
-            if (irange(20) == 0)
-                r[2] = (float)irange(16) / 8.0f, r[3] = (float)irange(16) / 8.0f;
+            r[2] = random_uv(w);
+            r[3] = random_uv(h);
             break;
+        }
         }
     }
 }
 
 /* ---- synthetic scene data ------------------------------------------------ */
 
-#define NUM_TEX 6
+#define NUM_TEX 8
 #define NUM_MATS 64
-static uint8_t tex_pixels[NUM_TEX][8 * 4 * 4];
+#define TEX_MAX_TEXELS (64 * 33)
+static uint8_t tex_pixels[NUM_TEX][TEX_MAX_TEXELS * 4];
 static dirt_texture textures[NUM_TEX];
 static dirt_material materials[NUM_MATS];
 static float speculars[NUM_MATS];
 
-/* Five random 8x4 textures (sRGB and linear), one random 3x2 texture (resized
- * to 8x4 in the array) and one without pixels. */
+/* Random textures at their own sizes, none a power of two in both axes:
+ * 8x4, 3x5, 17x4, 1x1, a dark 5x3 (bytes 0-15: the relative bound must hold
+ * where the values are small), 1x7, 64x33, and one without pixels. The
+ * sRGB flag alternates (the lookup's slot decides the decode, not it). */
 static void make_textures(void)
 {
+    static const int size[NUM_TEX][2] = {{8, 4}, {3, 5}, {17, 4}, {1, 1},
+                                         {5, 3}, {1, 7}, {64, 33}, {0, 0}};
     for (int t = 0; t < NUM_TEX; t++) {
         dirt_texture *x = &textures[t];
         memset(x, 0, sizeof(*x));
         snprintf(x->name, sizeof(x->name), "t%d", t);
         x->srgb = t % 2 == 0;
-        if (t == NUM_TEX - 1)
+        if (size[t][0] == 0)
             continue; /* no pixels: reads white */
-        x->width = t == 4 ? 3 : 8;
-        x->height = t == 4 ? 2 : 4;
+        x->width = size[t][0];
+        x->height = size[t][1];
         for (int k = 0; k < x->width * x->height * 4; k++)
-            tex_pixels[t][k] = (uint8_t)(rnd32() & 255u);
+            tex_pixels[t][k] = (uint8_t)(rnd32() & (t == 4 ? 15u : 255u));
         x->rgba = tex_pixels[t];
     }
-    g_resized_layer = 4;
 }
 
 static int random_tex(void)
@@ -970,29 +1048,34 @@ static bool pass(const compare_result *r)
 }
 
 static void check_mode(dirt_gpu *gpu, GLuint prog, GLuint fault_prog, int mode, float *in,
-                       float *out, int n, size_t num_materials, int num_layers)
+                       float *out, int n, size_t num_materials, int num_textures)
 {
     const mode_desc *d = mode_of(mode);
-    fill_inputs(mode, in, n, num_materials, num_layers);
+    fill_inputs(mode, in, n, num_materials, num_textures);
     CHECK(run_mode(gpu, prog, mode, in, n, out));
     compare_result r = compare(mode, in, out, n, false);
-    if (mode == MODE_TEXTURE || mode == MODE_MATERIAL)
-        fprintf(stderr, "  %-14s resized texture (reported only): max abs err %.3g\n", d->name,
-                r.reported_max);
-    if (mode == MODE_TEXTURE) { /* filter error of sRGB and linear lookups */
-        double e[2] = {0.0, 0.0};
+    if (mode == MODE_TEXTURE) { /* the decode's error, by slot */
+        double e[2] = {0.0, 0.0}, q[2] = {0.0, 0.0};
         float c[STRIDE];
         for (int i = 0; i < n; i++) {
             const float *ci = in + (size_t)i * STRIDE, *g = out + (size_t)i * STRIDE;
-            if ((int)ci[0] == g_resized_layer)
-                continue;
+            bool srgb = ci[1] != 0.0f;
+            double tol = texel_tol((int)ci[0], srgb);
             c_eval(mode, ci, i, false, NULL, c);
-            for (int k = 0; k < 4; k++)
-                e[ci[1] != 0.0f] = fmax(e[ci[1] != 0.0f], fabs((double)g[k] - c[k]));
+            for (int k = 0; k < 4; k++) {
+                double err = fabs((double)g[k] - c[k]);
+                e[srgb] = fmax(e[srgb], err);
+                if (tol > 0.0)
+                    q[srgb] = fmax(q[srgb], err / (tol / TEXEL_REL));
+            }
         }
-        fprintf(stderr, "  %-14s max abs err: linear view %.3g, sRGB view %.3g (TEX_TOL %.3g)\n",
-                d->name, e[0], e[1], TEX_TOL);
+        fprintf(stderr, "  %-14s max abs err: linear %.3g, sRGB %.3g; relative to the "
+                "texture's largest texel: linear %.3g, sRGB %.3g (TEXEL_REL %.3g)\n", d->name,
+                e[0], e[1], q[0], q[1], TEXEL_REL);
     }
+    if (texel_only(mode))
+        fprintf(stderr, "  %-14s %d of %d records bit-exact; largest error %.3g of its "
+                "tolerance\n", d->name, r.exact, n, r.texel_ratio);
     CHECK_MSG(pass(&r), "%s: %d decision mismatches, %d value mismatches, %d near-threshold, "
               "%d ill-conditioned of %d (%d fields over their bound)", d->name, r.bool_fail,
               r.value_fail, r.near, r.ill, r.cases, r.ill_excess);
@@ -1006,38 +1089,79 @@ static void check_mode(dirt_gpu *gpu, GLuint prog, GLuint fault_prog, int mode, 
     }
 }
 
-/* The texture array packing: same-size layers verbatim, mips box-filtered,
- * empty textures white. */
-static void check_texture_pack(const dirt_gpu_texture_array *a)
+/* The texel buffer: header counts, one record per texture (texels packed
+ * in scene order after the records, 0 x 0 for no pixels), every texel word
+ * the texture's four bytes (R low), nothing else. */
+static void check_texel_pack(const dirt_gpu_texel_buffer *b)
 {
-    CHECK(a->width == 8 && a->height == 4 && a->layers == NUM_TEX && a->levels == 4);
+    size_t texels = 0;
+    for (int t = 0; t < NUM_TEX; t++)
+        texels += (size_t)textures[t].width * (size_t)textures[t].height;
+    CHECK(b->num_textures == NUM_TEX && b->num_texels == texels);
+    CHECK(b->size == 16 + NUM_TEX * 16 + texels * 4);
+    struct dirt_gpu_model_texels hdr;
+    memcpy(&hdr, b->words, sizeof(hdr));
+    CHECK(hdr.counts.x == NUM_TEX && hdr.counts.y == NUM_TEX * 4 + texels &&
+          hdr.counts.z == 0 && hdr.counts.w == 0);
+    const uint32_t *body = b->words + 4;
+    uint32_t next = NUM_TEX * 4;
+    int bad = 0;
     for (int t = 0; t < NUM_TEX; t++) {
-        const uint8_t *l0 = a->pixels + a->level_offset[0] + (size_t)t * 8 * 4 * 4;
-        if (t == NUM_TEX - 1) {
-            bool white = true;
-            for (int k = 0; k < 8 * 4 * 4; k++)
-                white &= l0[k] == 255;
-            CHECK(white);
-        } else if (t != 4) {
-            CHECK(memcmp(l0, tex_pixels[t], 8 * 4 * 4) == 0);
+        struct dirt_gpu_model_texture rec;
+        memcpy(&rec, body + 4 * t, sizeof(rec));
+        const dirt_texture *x = &textures[t];
+        if (!x->rgba) {
+            CHECK(rec.extent.x == 0 && rec.extent.y == 0 && rec.extent.z == 0);
+            continue;
         }
+        CHECK_MSG(rec.extent.x == next && rec.extent.y == (uint32_t)x->width &&
+                  rec.extent.z == (uint32_t)x->height && rec.extent.w == 0,
+                  "texture %d: record (%u, %u, %u, %u)", t, rec.extent.x, rec.extent.y,
+                  rec.extent.z, rec.extent.w);
+        for (int k = 0; k < x->width * x->height; k++) {
+            uint32_t w = body[rec.extent.x + (uint32_t)k];
+            for (int c = 0; c < 4; c++)
+                bad += ((w >> (8 * c)) & 255u) != x->rgba[4 * k + c];
+        }
+        next += (uint32_t)(x->width * x->height);
     }
-    /* Level 1 of the linear layer 1: 2x2 means of level 0 (+-1 rounding). */
-    const uint8_t *src = tex_pixels[1];
-    const uint8_t *l1 = a->pixels + a->level_offset[1] + 1 * 4 * 2 * 4;
-    int worst = 0;
-    for (int y = 0; y < 2; y++)
-        for (int x = 0; x < 4; x++)
-            for (int c = 0; c < 4; c++) {
-                int s = 0;
-                for (int dy = 0; dy < 2; dy++)
-                    for (int dx = 0; dx < 2; dx++)
-                        s += src[((2 * y + dy) * 8 + 2 * x + dx) * 4 + c];
-                int dlt = abs(l1[(y * 4 + x) * 4 + c] - (s + 2) / 4);
-                worst = dlt > worst ? dlt : worst;
-            }
-    CHECK(worst <= 1);
-    CHECK(a->level_offset[3] + (size_t)NUM_TEX * 1 * 1 * 4 == a->size);
+    CHECK_MSG(bad == 0, "%d texel bytes differ from the textures'", bad);
+    /* No textures: the header alone. */
+    dirt_gpu_texel_buffer none;
+    CHECK(dirt_gpu_textures_pack(NULL, 0, &none));
+    CHECK(none.size == 16 && none.words && none.words[0] == 0 && none.words[1] == 0);
+    dirt_gpu_texel_buffer_free(&none);
+}
+
+static int limit_errors;
+static void count_limit_errors(void *user, enum dirt_log_level level, const char *file, int line,
+                               const char *msg)
+{
+    (void)user, (void)file, (void)line;
+    if (level == DIRT_LOG_ERROR && strstr(msg, "GL_MAX_SHADER_STORAGE_BLOCK_SIZE"))
+        limit_errors++;
+    fprintf(stderr, "[log] %s\n", msg);
+}
+
+/* Texels over the GPU's storage-block limit (the limit lowered to one byte
+ * under the buffer's size) are refused with one error naming the limit. */
+static void check_texel_limit(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b)
+{
+    int64_t saved = gpu->caps.max_ssbo_size;
+    gpu->caps.max_ssbo_size = (int64_t)b->size - 1;
+    limit_errors = 0;
+    unsigned buf = 1;
+    dirt_log_set_callback(count_limit_errors, NULL);
+    bool ok = dirt_gpu_textures_upload(gpu, b, &buf);
+    dirt_log_set_callback(NULL, NULL);
+    gpu->caps.max_ssbo_size = saved;
+    CHECK(!ok && buf == 0 && limit_errors == 1);
+    gpu->caps.max_ssbo_size = (int64_t)b->size; /* exactly the limit: accepted */
+    ok = dirt_gpu_textures_upload(gpu, b, &buf);
+    gpu->caps.max_ssbo_size = saved;
+    CHECK(ok && buf != 0);
+    GLuint g = buf;
+    gl_buffer_destroy(&g);
 }
 
 int main(void)
@@ -1079,16 +1203,18 @@ int main(void)
     dirt_gpu_materials_pack(materials, NUM_MATS, speculars, NUM_TEX, gm);
     dirt_gpu_area_table at;
     CHECK(dirt_gpu_area_lights_pack(&area, 3, &at));
-    dirt_gpu_texture_array ta;
-    CHECK(dirt_gpu_textures_pack(textures, NUM_TEX, 0, &ta));
-    check_texture_pack(&ta);
+    texture_maxima();
+    dirt_gpu_texel_buffer tb;
+    CHECK(dirt_gpu_textures_pack(textures, NUM_TEX, &tb));
+    check_texel_pack(&tb);
+    check_texel_limit(gpu, &tb);
     dirt_gpu_model_tables tables = {0};
     tables.materials = gl_buffer_create(gpu, sizeof(gm), gm, false, "test materials");
     tables.area_cdf = gl_buffer_create(gpu, at.cdf_size, at.cdf, false, "test cdf");
     tables.area_prims = gl_buffer_create(gpu, at.prims_size, at.prims, false, "test prims");
     tables.punctual = gl_buffer_create(gpu, 64, NULL, false, "test lights");
     tables.camera = gl_buffer_create(gpu, 80, NULL, false, "test camera");
-    CHECK(dirt_gpu_textures_upload(gpu, &ta, &tables.tex_linear, &tables.tex_srgb));
+    CHECK(dirt_gpu_textures_upload(gpu, &tb, &tables.texels));
     dirt_gpu_model_tables_bind(&tables);
 
     static const int all[] = {MODE_WARPS,  MODE_VNDF,  MODE_ONB,      MODE_EVAL,
@@ -1098,7 +1224,7 @@ int main(void)
         check_mode(gpu, prog, fault, all[k], in, out, N, NUM_MATS, NUM_TEX);
     dirt_gpu_model_tables_destroy(&tables);
     dirt_gpu_area_table_free(&at);
-    dirt_gpu_texture_array_free(&ta);
+    dirt_gpu_texel_buffer_free(&tb);
 
     /* Part 2: the default scene through dirt_gpu_model_tables_create. */
     dirt_scene *scene = dirt_scene_create_default();
@@ -1114,7 +1240,7 @@ int main(void)
         else
             dirt_camera_auto(frame, &cam);
         dirt_gpu_model_tables st;
-        CHECK(dirt_gpu_model_tables_create(gpu, scene, frame, &sa, &cam, NULL, 0, &st));
+        CHECK(dirt_gpu_model_tables_create(gpu, scene, frame, &sa, &cam, NULL, &st));
         CHECK(st.num_materials == dirt_scene_num_materials(scene) && st.num_area == sa.count);
         dirt_gpu_model_tables_bind(&st);
         g_mats = dirt_scene_materials(scene);
@@ -1122,7 +1248,7 @@ int main(void)
         g_tex = dirt_scene_textures(scene);
         g_ntex = dirt_scene_num_textures(scene);
         g_area = &sa;
-        g_resized_layer = -1;
+        texture_maxima();
         fprintf(stderr, "default scene: %zu materials, %zu emissive triangles\n",
                 st.num_materials, sa.count);
         check_mode(gpu, prog, 0, MODE_MATERIAL, in, out, 1000, st.num_materials, 1);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "common/integrator_layout.h"
+#include "dirt/gpu_tables.h"
 #include "dirt/session.h"
 #include "gl/gl.h"
 #include "gpu.h"
@@ -116,6 +117,27 @@ static void check_restarts(dirt_gpu *gpu, const dirt_scene *scene)
     dirt_session_destroy(s);
 }
 
+/* The "model texels" buffer of the stats: listed once, used = allocated =
+ * the size of the scene's packed texel buffer. Returns its bytes. */
+static uint64_t model_texel_bytes(const dirt_session_stats *st, const dirt_scene *scene)
+{
+    dirt_gpu_texel_buffer tb;
+    CHECK(dirt_gpu_textures_pack(dirt_scene_textures(scene), dirt_scene_num_textures(scene), &tb));
+    uint64_t bytes = 0;
+    int listed = 0;
+    for (int i = 0; i < st->num_buffers; i++) {
+        if (strcmp(st->buffers[i].name, "model texels") != 0)
+            continue;
+        listed++;
+        bytes = st->buffers[i].used;
+        CHECK(st->buffers[i].allocated == st->buffers[i].used);
+    }
+    CHECK_MSG(listed == 1 && bytes == tb.size, "model texels listed %d times, %llu bytes, "
+              "packed %zu", listed, (unsigned long long)bytes, tb.size);
+    dirt_gpu_texel_buffer_free(&tb);
+    return bytes;
+}
+
 /* The stats record: build passes and the path tracer's, tagged with a clock;
  * the buffers add up to the totals and to the technique's own figures. */
 static void check_stats(dirt_gpu *gpu, const dirt_scene *scene)
@@ -133,9 +155,10 @@ static void check_stats(dirt_gpu *gpu, const dirt_scene *scene)
     }
     CHECK(used == st->bytes_total_used && allocated == st->bytes_total_allocated);
     CHECK(st->has_ads && st->ads.bytes_total_used < st->bytes_total_used);
-    /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 64 + 80 + 48 bytes per pixel,
-     * and the environment table (no environment: its header and one float). */
-    CHECK(st->bytes_total_used - st->ads.bytes_total_used ==
+    /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 64 + 80 + 48 bytes per
+     * pixel, the environment table (no environment: its header and one
+     * float) and the scene's textures. */
+    CHECK(st->bytes_total_used - st->ads.bytes_total_used - model_texel_bytes(st, scene) ==
           (uint64_t)W * H * 448 + ENV_NONE_BYTES);
     int build = 0, pt = 0;
     for (int i = 0; i < st->num_passes; i++) {
@@ -278,7 +301,8 @@ static void check_auto_camera(dirt_gpu *gpu)
  * (192 after rounding to work groups: 9 chunks of the 48x36 image, the last
  * partial), 1 + 1 + 2 samples give the unchunked 4-sample image bit for bit,
  * the display texture covers the whole image, and the bytes are one chunk's
- * buffers (400 B per pixel) plus the whole image's sums (48 B per pixel). */
+ * buffers (400 B per pixel) plus the whole image's sums (48 B per pixel)
+ * and the scene's textures. */
 static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_opts o,
                          const char *what)
 {
@@ -303,7 +327,7 @@ static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_op
     free(px);
     const dirt_session_stats *st = s ? dirt_session_get_stats(s) : NULL;
     if (st && st->has_ads)
-        CHECK(st->bytes_total_used - st->ads.bytes_total_used ==
+        CHECK(st->bytes_total_used - st->ads.bytes_total_used - model_texel_bytes(st, scene) ==
               (uint64_t)192 * 400 + (uint64_t)W * H * 48 + ENV_NONE_BYTES);
     fprintf(stderr, "%s: chunks of 192 pixels, 1+1+2 == unchunked 4, display == image\n",
             what);

@@ -82,63 +82,52 @@ void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size);
 
 /* ---- textures (pure C) -------------------------------------------------- */
 
-/* The scene's textures as one RGBA8 2D array: layer i = texture i, every
- * layer width x height with `levels` mip levels. Level l is
- * max(1, width >> l) x max(1, height >> l); pixels holds level 0 of every
- * layer (layer-major, rows top to bottom as in dirt_texture), then level 1 of
- * every layer, ... (level_offset[l] = byte offset of level l).
- *
- * width x height = the largest width and the largest height of the textures,
- * each clamped to max_size. A texture of exactly that size is copied
- * unchanged into level 0 (sampling it matches dirt_texture_sample up to the
- * hardware's filter precision); any other is resampled (documented
- * difference): each destination texel is the mean of k x k bilinear
- * samples (dirt_texture_sample, repeat) of the original, taken at the
- * centres of a k x k grid over the texel's footprint in uv (k = ceil(source /
- * destination size) per axis, 1 when enlarging), computed in linear space
- * (sRGB textures decoded, averaged, re-encoded) and rounded to 8 bits. Mip
- * levels are made the same way from the original. A texture with no pixels
- * becomes a white layer. With count 0 there is one white 1x1 layer (GL needs
- * one). */
-#define DIRT_GPU_MAX_MIP_LEVELS 16
-typedef struct dirt_gpu_texture_array {
-    int width, height, layers, levels;
-    uint8_t *pixels;
-    size_t size;                                 /* bytes of pixels */
-    size_t level_offset[DIRT_GPU_MAX_MIP_LEVELS];
-} dirt_gpu_texture_array;
+/* The scene's textures at their own sizes, as the texel buffer model.glsl
+ * reads (glsl/common/integrator_layout.h): header, one
+ * dirt_gpu_model_texture per texture (scene order), then every texture's
+ * RGBA8 texels, unchanged (row 0 first, R in the low byte of a word). A
+ * texture without pixels (rgba NULL or a size <= 0) gets a 0 x 0 record and
+ * no texels (it reads white, as in dirt_texture_sample). With count 0 the
+ * buffer is the header alone. */
+typedef struct dirt_gpu_texel_buffer {
+    uint32_t *words;       /* malloc'd, size bytes: header, records, texels */
+    size_t size;           /* bytes */
+    size_t num_textures;
+    size_t num_texels;     /* texels of every texture */
+} dirt_gpu_texel_buffer;
 
-/* max_size <= 0: 4096. False after logging on out-of-memory. */
-bool dirt_gpu_textures_pack(const dirt_texture *textures, size_t count, int max_size,
-                            dirt_gpu_texture_array *out);
-void dirt_gpu_texture_array_free(dirt_gpu_texture_array *a);
+/* False after logging (out of memory; more than 2^32 - 1 words: the
+ * shader's word index is 32-bit); out is then empty. */
+bool dirt_gpu_textures_pack(const dirt_texture *textures, size_t count,
+                            dirt_gpu_texel_buffer *out);
+void dirt_gpu_texel_buffer_free(dirt_gpu_texel_buffer *b);
 
 /* ---- GL objects --------------------------------------------------------- */
 
 /* Every table of model.glsl on the GPU. GL names (GLuint), 0 = none. */
 typedef struct dirt_gpu_model_tables {
     unsigned materials, area_cdf, area_prims, punctual, camera;
-    unsigned tex_linear; /* GL_TEXTURE_2D_ARRAY, GL_RGBA8, mipmapped */
-    unsigned tex_srgb;   /* GL_SRGB8_ALPHA8 view of tex_linear's storage */
-    size_t num_materials, num_area, num_punctual;
+    unsigned texels;     /* the texel buffer (dirt_gpu_texel_buffer) */
+    size_t texel_bytes;  /* its size: allocated = used */
+    size_t num_materials, num_area, num_punctual, num_textures;
 } dirt_gpu_model_tables;
 
-/* Uploads the texture array: tex_linear with immutable storage, tex_srgb a
- * texture view of it; both sample bilinear (GL_LINEAR mag,
- * GL_LINEAR_MIPMAP_LINEAR min) with GL_REPEAT. False after logging (too many
- * layers, too large, GL error); then both are 0. */
-bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texture_array *a,
-                              unsigned *tex_linear, unsigned *tex_srgb);
+/* Uploads a texel buffer into a new GL buffer (*buffer). False after
+ * logging, *buffer then 0: more bytes than this GPU's
+ * GL_MAX_SHADER_STORAGE_BLOCK_SIZE (caps.max_ssbo_size; the shader reads it
+ * as one storage block), or a GL error. */
+bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b,
+                              unsigned *buffer);
 
-/* Creates every buffer and the texture array for one frame of a scene:
- * materials (dirt_gpu_scene_materials with `specular`, NULL = 1), textures
- * (dirt_gpu_textures_pack, max_texture_size <= 0: 4096), the area-light
- * table of `area` (may be NULL), the frame's punctual lights and `camera`
- * (may be NULL: a zero record). False after logging; `out` is then all 0. */
+/* Creates every buffer for one frame of a scene: materials
+ * (dirt_gpu_scene_materials with `specular`, NULL = 1), the texel buffer of
+ * the scene's textures (dirt_gpu_textures_pack), the area-light table of
+ * `area` (may be NULL), the frame's punctual lights and `camera` (may be
+ * NULL: a zero record). False after logging; `out` is then all 0. */
 bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
                                   const dirt_frame *frame, const dirt_area_lights *area,
                                   const dirt_camera *camera, const float *specular,
-                                  int max_texture_size, dirt_gpu_model_tables *out);
+                                  dirt_gpu_model_tables *out);
 
 /* Replaces the per-frame tables (area-light table of `area`, may be NULL;
  * the frame's punctual lights; the camera, NULL: a zero record) of tables
@@ -152,8 +141,7 @@ bool dirt_gpu_model_tables_set_frame(dirt_gpu *gpu, dirt_gpu_model_tables *t,
 /* Replaces the camera record (glNamedBufferSubData). */
 bool dirt_gpu_model_tables_set_camera(dirt_gpu_model_tables *t, const dirt_camera *camera);
 
-/* Binds the buffers to DIRT_BIND_MODEL_* and the textures to
- * DIRT_UNIT_MODEL_TEX_*. */
+/* Binds the buffers to DIRT_BIND_MODEL_*. */
 void dirt_gpu_model_tables_bind(const dirt_gpu_model_tables *t);
 
 void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t);

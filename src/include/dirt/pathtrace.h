@@ -179,7 +179,8 @@ bool dirt_pt_render(dirt_pt *pt, const dirt_tracer *tracer, const dirt_frame *fr
                     dirt_pt_stats *stats);
 
 /* The integrator's buffers (and the tracer's own, when `tracer` is given)
- * for the current accumulation size: at most `max` records into `out`;
+ * for the current accumulation size, and the scene's texel buffer ("model
+ * texels", once samples were added): at most `max` records into `out`;
  * returns how many. */
 int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
                     int max);
