@@ -66,8 +66,9 @@ struct dirt_gpu_model_lights {
 
 /* Header of the environment light (32 bytes), first in the
  * DIRT_BIND_MODEL_ENV buffer, followed by float data[]: the dirt_env's
- * cdf[w h] at 0, row_cos[h + 1] at w h, rgb[3 w h] at w h + h + 1. Without
- * an environment: size 0 x 0 and one float of data. */
+ * cdf[w h] at 0, row_cos[h + 1] at w h, rgb[3 w h] at w h + h + 1,
+ * col_cos[w + 1] at 4 w h + h + 1 and col_sin[w + 1] after it. Without an
+ * environment: size 0 x 0 and one float of data. */
 struct dirt_gpu_model_env {
     DIRT_IV4 dims;       /* x width, y height (0: no environment), z 1 when
                             NEE samples it (dirt_env_samples), w 0 */

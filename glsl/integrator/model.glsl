@@ -522,7 +522,8 @@ uint dirt_area_lights_select_g(float u)
 
 layout(std430, binding = DIRT_BIND_MODEL_ENV) readonly buffer DirtModelEnv {
     dirt_gpu_model_env dirt_model_env;
-    float dirt_model_env_data[]; // cdf[w h], row_cos[h + 1], rgb[3 w h]
+    float dirt_model_env_data[]; // cdf[w h], row_cos[h + 1], rgb[3 w h],
+                                 // col_cos[w + 1], col_sin[w + 1]
 };
 
 // True when next-event estimation samples the map (= dirt_env_samples).
@@ -541,18 +542,43 @@ float dirt_env_row_cos_g(int j)
     return dirt_model_env_data[w * h + j];
 }
 
-// Texel (column, row) of unit world direction d (= dirt_env_texel).
+// sin(phi - phi_k) of the map-frame direction e (= side of env.c); precise:
+// the same rounding as C (no fused multiply-add).
+float dirt_env_side_g(vec3 e, int k)
+{
+    int w = dirt_model_env.dims.x, h = dirt_model_env.dims.y;
+    int base = 4 * w * h + h + 1;
+    precise float a = e.x * dirt_model_env_data[base + k];
+    precise float b = e.z * dirt_model_env_data[base + w + 1 + k];
+    precise float r = a + b;
+    return r;
+}
+
+// Texel (column, row) of unit world direction d (= dirt_env_texel): the
+// column by an atan guess corrected at its edges, the row by comparisons.
 ivec2 dirt_env_texel_g(vec3 d)
 {
     int w = dirt_model_env.dims.x, h = dirt_model_env.dims.y;
     float rc = dirt_model_env.params.x, rs = dirt_model_env.params.y;
-    vec3 e = vec3(rc * d.x - rs * d.z, d.y, rs * d.x + rc * d.z);
+    precise float ex0 = rc * d.x, ex1 = rs * d.z, ez0 = rs * d.x, ez1 = rc * d.z;
+    precise float ex = ex0 - ex1, ez = ez0 + ez1;
+    vec3 e = vec3(ex, d.y, ez);
     float x = (atan(e.x, -e.z) + DIRT_PI_G) * (1.0 / (2.0 * DIRT_PI_G)) * float(w);
     int i = int(floor(x));
     if (!(x >= 0.0) || (e.x == 0.0 && e.z == 0.0))
         i = 0; // also NaN, and the poles (atan(0, 0) is undefined)
     if (i > w - 1)
         i = w - 1;
+    if (w >= 4 && !(e.x == 0.0 && e.z == 0.0)) {
+        for (int step = 0; step < 2; step++) {
+            if (dirt_env_side_g(e, i) < 0.0)
+                i = i > 0 ? i - 1 : w - 1;
+            else if (dirt_env_side_g(e, i + 1) >= 0.0)
+                i = i < w - 1 ? i + 1 : 0;
+            else
+                break;
+        }
+    }
     int lo = 0, hi = h - 1;
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;

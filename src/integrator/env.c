@@ -26,6 +26,8 @@ void dirt_env_destroy(dirt_env *env)
     free(env->rgb);
     free(env->row_cos);
     free(env->cdf);
+    free(env->col_cos);
+    free(env->col_sin);
     free(env);
 }
 
@@ -57,8 +59,15 @@ dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_en
     env->rgb = malloc(3 * n * sizeof(float));
     env->row_cos = malloc(((size_t)height + 1) * sizeof(float));
     env->cdf = malloc(n * sizeof(float));
-    if (!env->rgb || !env->row_cos || !env->cdf)
+    env->col_cos = malloc(((size_t)width + 1) * sizeof(float));
+    env->col_sin = malloc(((size_t)width + 1) * sizeof(float));
+    if (!env->rgb || !env->row_cos || !env->cdf || !env->col_cos || !env->col_sin)
         goto oom;
+    for (int i = 0; i <= width; i++) {
+        double phi = 2.0 * PI_D * (double)i / (double)width - PI_D;
+        env->col_cos[i] = (float)cos(phi);
+        env->col_sin[i] = (float)sin(phi);
+    }
     for (size_t k = 0; k < 3 * n; k++)
         env->rgb[k] = rgb[k] * intensity;
     for (int j = 0; j <= height; j++)
@@ -209,15 +218,34 @@ static dirt_vec3 to_map(const dirt_env *env, dirt_vec3 d)
     return v3(env->rot_cos * d.x - env->rot_sin * d.z, d.y, env->rot_sin * d.x + env->rot_cos * d.z);
 }
 
+/* sin(phi - phi_k) of the map-frame direction e: >= 0 when phi lies in
+ * [phi_k, phi_k + pi). */
+static float side(const dirt_env *env, dirt_vec3 e, int k)
+{
+    return e.x * env->col_cos[k] + e.z * env->col_sin[k];
+}
+
 void dirt_env_texel(const dirt_env *env, dirt_vec3 d, int *col, int *row)
 {
     dirt_vec3 e = to_map(env, d);
-    float x = (atan2f(e.x, -e.z) + PI_F) * (1.0f / (2.0f * PI_F)) * (float)env->width;
+    int w = env->width;
+    float x = (atan2f(e.x, -e.z) + PI_F) * (1.0f / (2.0f * PI_F)) * (float)w;
     int i = (int)floorf(x);
     if (!(x >= 0.0f) || (e.x == 0.0f && e.z == 0.0f))
         i = 0; /* also NaN, and the poles (atan2(0, 0) is undefined in GLSL) */
-    if (i > env->width - 1)
-        i = env->width - 1;
+    if (i > w - 1)
+        i = w - 1;
+    if (w >= 4 && !(e.x == 0.0f && e.z == 0.0f)) {
+        /* The guess is at most a column off: move it until its edges hold phi. */
+        for (int step = 0; step < 2; step++) {
+            if (side(env, e, i) < 0.0f)
+                i = i > 0 ? i - 1 : w - 1;
+            else if (side(env, e, i + 1) >= 0.0f)
+                i = i < w - 1 ? i + 1 : 0;
+            else
+                break;
+        }
+    }
     /* The first row j whose lower edge row_cos[j + 1] <= e.y. */
     int lo = 0, hi = env->height - 1;
     while (lo < hi) {

@@ -150,7 +150,7 @@ void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size)
     if (env) {
         n = (size_t)env->width * (size_t)env->height;
         h = (size_t)env->height;
-        floats = n + h + 1 + 3 * n;
+        floats = n + h + 1 + 3 * n + 2 * ((size_t)env->width + 1);
         hdr.dims = (dirt_i4){env->width, env->height, dirt_env_samples(env) ? 1 : 0, 0};
         hdr.params = (dirt_f4){env->rot_cos, env->rot_sin, env->total, 0.0f};
     }
@@ -171,6 +171,9 @@ void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size)
         memcpy(d, env->cdf, n * sizeof(float));
         memcpy(d + n, env->row_cos, (h + 1) * sizeof(float));
         memcpy(d + n + h + 1, env->rgb, 3 * n * sizeof(float));
+        size_t w1 = (size_t)env->width + 1;
+        memcpy(d + 4 * n + h + 1, env->col_cos, w1 * sizeof(float));
+        memcpy(d + 4 * n + h + 1 + w1, env->col_sin, w1 * sizeof(float));
     }
     return out;
 }

@@ -5,11 +5,13 @@
  * rows and columns (zero-weight texels: cells of the cdf of width 0) turned
  * by -100 degrees.
  * - Lookup (dirt_env_texel / _eval / _pdf) of 20,000 directions, uniform on
- *   the sphere, plus the poles and the axes: the same texel, the same
- *   radiance bit for bit, the pdf within 1e-6 relative -- except where the
- *   direction lies within 1e-4 of a texel's column edge (atan2 is not
- *   correctly rounded in GLSL; such cases are counted and printed, at most
- *   1 %).
+ *   the sphere, plus the poles, the axes and 360 directions on the
+ *   map's column edges: the same texel, the same
+ *   radiance bit for bit, the pdf within 1e-6 relative, for every one: the
+ *   texel is decided by comparisons of the same floats on both sides (the
+ *   column's atan2 guess corrected at its edges). Printed: how many
+ *   directions lie within 1e-4 of a column edge (where the atan2 guess
+ *   alone flipped texels: 1 in 12,288 camera rays of the odd map did).
  * - Sampling (dirt_env_sample) of 20,000 uniform triples: the same verdict
  *   and texel for every one (the texel choice compares the same floats),
  *   radiance bit for bit, the pdf within 1e-6 relative, the direction within
@@ -99,6 +101,16 @@ static int compare(dirt_gpu *gpu, GLuint prog, const dirt_env *env, const char *
         if (i < 6) {
             float axes[6][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
             d = v3(axes[i][0], axes[i][1], axes[i][2]);
+        } else if (i < 6 + 40 * 9) {
+            /* On the column edges of the map (up to the rounding of the
+             * float direction), at 9 heights. */
+            int k = (i - 6) / 9, m = (i - 6) % 9;
+            double phi = 2.0 * PI * (k % (env->width + 1)) / env->width - PI,
+                   z = -0.8 + 0.2 * m;
+            double rot = atan2(env->rot_sin, env->rot_cos), s = sqrt(1.0 - z * z);
+            double ex = s * sin(phi), ez = -s * cos(phi);
+            d = v3((float)(cos(rot) * ex + sin(rot) * ez), (float)z,
+                   (float)(-sin(rot) * ex + cos(rot) * ez));
         } else {
             float z = 1.0f - 2.0f * urand(), phi = 2.0f * (float)PI * urand();
             float s = sqrtf(fmaxf(0.0f, 1.0f - z * z));
@@ -116,12 +128,9 @@ static int compare(dirt_gpu *gpu, GLuint prog, const dirt_env *env, const char *
         float pdf = dirt_env_pdf(env, d);
         bool same = o[0] == (float)col && o[1] == (float)row && rel_ok(o[2], pdf, 1e-6) &&
                     o[4] == e.x && o[5] == e.y && o[6] == e.z;
+        edge += column_edge_distance(env, d) < 1e-4;
         if (same)
             continue;
-        if (o[1] == (float)row && column_edge_distance(env, d) < 1e-4) {
-            edge++;
-            continue;
-        }
         if (report && bad < 5)
             fprintf(stderr, "  %s lookup %d: gpu (%g %g) pdf %g, C (%d %d) pdf %g\n", name, i,
                     o[0], o[1], o[2], col, row, pdf);
@@ -154,10 +163,9 @@ static int compare(dirt_gpu *gpu, GLuint prog, const dirt_env *env, const char *
     }
     if (report) {
         fprintf(stderr, "%-10s %dx%d: %d of %d lookups and %d samples (%d drawn) differ, "
-                "%d lookups at a column edge\n", name, env->width, env->height, bad, N, N,
-                sampled, edge);
+                "%d lookups within 1e-4 of a column edge\n", name, env->width, env->height, bad,
+                N, N, sampled, edge);
         CHECK_MSG(bad == 0, "%s: %d records differ", name, bad);
-        CHECK_MSG(edge <= N / 100, "%s: %d lookups at a column edge", name, edge);
         CHECK(sampled > N / 2);
     }
     free(in);

@@ -214,12 +214,17 @@ static inline unsigned dirt_nee_source_count(size_t num_area, size_t num_punctua
  * direction from infinitely far away, piecewise constant over its texels,
  * importance-sampled in next-event estimation (doc/light-transport.md,
  * "Environment"). Direction d (world, unit) is rotated by -rotation about
- * +Y into the map's frame, e = R_y(-rotation) d; its texel is column
- * floor(w (atan2(e.x, -e.z) + pi) / (2 pi)) (clamped to [0, w); 0 at the
- * poles, e.x = e.z = 0) and the row
- * j whose band row_cos[j + 1] <= e.y < row_cos[j] holds it (row 0 at +Y, the
- * first image row): the image's centre looks along -Z, the glTF camera's
- * default view. A constant background is the 1 x 1 map. */
+ * +Y into the map's frame, e = R_y(-rotation) d, at azimuth phi =
+ * atan2(e.x, -e.z). Its texel is the column i whose edges phi_i = 2 pi i /
+ * w - pi hold phi, and the row j whose band row_cos[j + 1] <= e.y <
+ * row_cos[j] holds e.y (row 0 at +Y, the first image row): the image's
+ * centre looks along -Z, the glTF camera's default view. Both are decided
+ * by comparisons of the same floats in C and GLSL, not by atan2 or acos
+ * (not correctly rounded in GLSL): the row by a binary search of row_cos,
+ * the column (for w >= 4) from a first guess by atan2 corrected by the sign
+ * of e.x cos(phi_k) + e.z sin(phi_k) = sin(phi - phi_k) at its edges
+ * (col_cos, col_sin). The poles (e.x = e.z = 0) read column 0. A constant
+ * background is the 1 x 1 map. */
 typedef struct dirt_env {
     int width, height;
     float *rgb;       /* width * height * 3: texel radiance (times intensity),
@@ -229,6 +234,8 @@ typedef struct dirt_env {
     float *cdf;       /* width * height, row-major: cumulative texel weights
                          luminance(rgb) * (row_cos[j] - row_cos[j + 1]),
                          summed in double */
+    float *col_cos, *col_sin; /* width + 1: cos and sin of the columns'
+                         edges phi_i (computed in double) */
     float total;      /* cdf[width * height - 1]; 0: nothing to sample */
     float rot_cos, rot_sin; /* cosf / sinf of the rotation (radians) */
 } dirt_env;
