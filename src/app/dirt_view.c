@@ -20,6 +20,7 @@
 #include "app/view_script.h"
 #include "dirt/clock.h"
 #include "dirt/file.h"
+#include "dirt/integrator.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 #include "dirt/ui.h"
@@ -71,6 +72,8 @@ typedef struct vopts {
     int scale;                  /* render at the window's size / scale */
     const char *script, *screenshot, *save_image, *report;
     long test_frames;
+    const char *env_path;       /* --env: a map file or "sky" */
+    float env_intensity, env_rotation;
 } vopts;
 
 /* Options with a value, by name (the command line's long names; the
@@ -102,6 +105,9 @@ static const vopt_spec specs[] = {
     {NULL, "--seed", 'u', OFF(s.seed), 0, 4294967295.0, NULL, true},
     {NULL, "--ao-distance", 'f', OFF(s.ao_distance), 0, 1e30, NULL, true},
     {NULL, "--background", 'b', OFF(s.background), 0, 0, NULL, true},
+    {NULL, "--env", 's', OFF(env_path), 0, 0, NULL, false},
+    {NULL, "--env-intensity", 'f', OFF(env_intensity), 1e-6, 1e6, NULL, true},
+    {NULL, "--env-rotation", 'f', OFF(env_rotation), -1e6, 1e6, NULL, true},
     {NULL, "--threads", 'i', OFF(s.threads), 1, 4096, NULL, true},
     {NULL, "--camera", 'i', OFF(camera), 0, 1000000, NULL, true},
     {NULL, "--eye", 'v', OFF(look.eye), 0, 0, NULL, true},
@@ -184,6 +190,7 @@ static void usage(FILE *f)
 "\n"
 "Technique (as dirt-render): --engine dirt|mmrt|embree|raster, --mode pt|ao,\n"
 "  --bounces K, --seed N, --ao-distance D, --background R,G,B, --threads N,\n"
+"  --env FILE.exr|FILE.hdr|sky [--env-intensity X] [--env-rotation DEG],\n"
 "  --views single|cube|cube+camera, -S/--tile S, -B/--buckets B, --face-size N,\n"
 "  --hiz-top L, --fetch compute|raster, --direct-visibility,\n"
 "  --no-conservative-raster, --march hiz|linear, --samples N, --thickness T,\n"
@@ -308,6 +315,15 @@ static bool check_paths(const vopts *o)
         cli_error(PROG, "a camera of its own needs both --eye and --look-at");
         return false;
     }
+    bool background = o->s.background[0] || o->s.background[1] || o->s.background[2];
+    if (o->env_path && background) {
+        cli_error(PROG, "--env and --background both set the environment: give one");
+        return false;
+    }
+    if (!o->env_path && (o->env_intensity != 0 || o->env_rotation != 0)) {
+        cli_error(PROG, "--env-intensity and --env-rotation need an --env map");
+        return false;
+    }
     char why[256];
     dirt_session_opts s = o->s;
     if (!s.width)
@@ -377,6 +393,8 @@ typedef struct viewer {
     dirt_ui *ui;
     dirt_scene *scene;
     char scene_name[4096];
+    dirt_env *env, *env_old;    /* --env (v->o.s.env), and the one it replaced */
+    float env_intensity, env_rotation; /* what env was made with */
     dirt_session *s, *cmp;
     int cmp_engine;             /* engine of cmp, -1 none */
     dirt_session *pre;          /* the raster preview shown while the camera moves */
@@ -561,8 +579,53 @@ static void render_size(viewer *v, int win_w, int win_h)
     }
 }
 
+/* Remakes the environment map when its intensity or rotation changed (the
+ * map bakes both in); the old one is kept until the sessions have the new
+ * one (v->env_old, freed at the end of sync_sessions). False when the map
+ * could not be remade (the old settings come back). */
+static bool sync_env(viewer *v)
+{
+    if (!v->o.env_path ||
+        (v->o.env_intensity == v->env_intensity && v->o.env_rotation == v->env_rotation))
+        return true;
+    char why[512];
+    dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation};
+    dirt_env *e = dirt_env_load(v->o.env_path, &eo, why, sizeof(why));
+    if (!e) {
+        set_status(v, "environment: %s", why);
+        v->o.env_intensity = v->env_intensity;
+        v->o.env_rotation = v->env_rotation;
+        return false;
+    }
+    dirt_env_destroy(v->env_old);
+    v->env_old = v->env;
+    v->env = e;
+    v->o.s.env = e;
+    v->env_intensity = v->o.env_intensity;
+    v->env_rotation = v->o.env_rotation;
+    return true;
+}
+
+static bool sync_all(viewer *v);
+
 /* Brings the sessions to the settings; restarts what changed. */
 static bool sync_sessions(viewer *v)
+{
+    sync_env(v);
+    bool ok = sync_all(v);
+    /* The replaced map goes once no session holds it. */
+    dirt_session *all[] = {v->s, v->cmp, v->pre};
+    bool held = false;
+    for (int i = 0; i < 3; i++)
+        held |= all[i] && dirt_session_get_opts(all[i])->env == v->env_old;
+    if (v->env_old && !held) {
+        dirt_env_destroy(v->env_old);
+        v->env_old = NULL;
+    }
+    return ok;
+}
+
+static bool sync_all(viewer *v)
 {
     dirt_session_opts want = wanted_opts(v, v->o.s.engine);
     if (memcmp(&want, &v->applied, sizeof(want)) != 0) {
@@ -868,8 +931,20 @@ static void render_args(const viewer *v, char *buf, size_t size)
         ADD(" --mode %s", modes[o->mode]);
     if (o->ao_distance > 0)
         ADD(" --ao-distance %.9g", o->ao_distance);
-    if (o->background[0] || o->background[1] || o->background[2])
+    if (v->o.env_path) {
+        /* Quoted for a shell only when it needs it. */
+        bool plain = true;
+        for (const char *c = v->o.env_path; *c; c++)
+            plain &= (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') ||
+                     (*c >= '0' && *c <= '9') || strchr("_./+-", *c) != NULL;
+        ADD(plain ? " --env %s" : " --env '%s'", v->o.env_path);
+        if (v->env_intensity != 0 && v->env_intensity != 1)
+            ADD(" --env-intensity %.9g", v->env_intensity);
+        if (v->env_rotation != 0)
+            ADD(" --env-rotation %.9g", v->env_rotation);
+    } else if (o->background[0] || o->background[1] || o->background[2]) {
         ADD(" --background %.9g,%.9g,%.9g", o->background[0], o->background[1], o->background[2]);
+    }
     if (o->views)
         ADD(" --views %s", views[o->views]);
     if (o->tile_size)
@@ -1192,7 +1267,16 @@ static void panel_settings(viewer *v)
             if (o->s.mode == DIRT_PT_AO)
                 dirt_ui_slider_float("AO distance (0 = inf)", &o->s.ao_distance, 0.0f, v->diag,
                                      "%.3f", false);
-            dirt_ui_color3("background", o->s.background);
+            if (o->env_path) {
+                dirt_ui_text("environment: %s", o->env_path);
+                float intensity = o->env_intensity > 0 ? o->env_intensity : 1.0f;
+                if (dirt_ui_slider_float("env intensity", &intensity, 0.01f, 100.0f, "%.3f", true))
+                    o->env_intensity = intensity;
+                dirt_ui_slider_float("env rotation", &o->env_rotation, -180.0f, 180.0f,
+                                     "%.1f deg", false);
+            } else {
+                dirt_ui_color3("background", o->s.background);
+            }
             int seed = (int)o->s.seed;
             if (dirt_ui_input_int("seed", &seed, 1) && seed >= 0)
                 o->s.seed = (uint32_t)seed;
@@ -1719,6 +1803,16 @@ int main(int argc, char **argv)
                   v->o.scene_path ? v->o.scene_path : "default");
         goto done;
     }
+    if (v->o.env_path) {
+        dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation};
+        if (!(v->env = dirt_env_load(v->o.env_path, &eo, why, sizeof(why)))) {
+            cli_error(PROG, "--env: %s", why);
+            goto done;
+        }
+        v->o.s.env = v->env;
+        v->env_intensity = v->o.env_intensity;
+        v->env_rotation = v->o.env_rotation;
+    }
     if (v->o.camera >= 0 && (size_t)v->o.camera >= dirt_scene_num_cameras(v->scene)) {
         cli_error(PROG, "--camera %d: the scene has %zu camera(s)", v->o.camera,
                   dirt_scene_num_cameras(v->scene));
@@ -1805,6 +1899,8 @@ done:
     dirt_session_destroy(v->s);
     dirt_ui_destroy(v->ui);
     dirt_gpu_destroy(v->gpu);
+    dirt_env_destroy(v->env);
+    dirt_env_destroy(v->env_old);
     dirt_scene_destroy(v->scene);
     vs_free(&v->script);
     free(v);

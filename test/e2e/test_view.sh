@@ -172,6 +172,26 @@ else
   done
 fi
 
+# 4c. The environment light: turned and dimmed while the window is open (the
+#     map is remade), the saved image equals dirt-render with the reported
+#     options; and it is not the image of the unturned map.
+if [ -r "$anim" ]; then
+  printf 'wait-samples 1\nset env-rotation 30\nset env-intensity 0.5\nwait-frames 1\nwait-samples 2\nsave-image %s\nreport %s\nquit\n' \
+    "$tmp/env.exr" "$tmp/env.json" >"$tmp/s.txt"
+  run_view env "$anim" --window 96x72 --no-ui --env sky --script "$tmp/s.txt" -q ||
+    fail "environment run failed"
+  args=$(json_field "$tmp/env.json" render_args) spp=$(json_field "$tmp/env.json" samples)
+  case "$args" in *"--env sky --env-intensity 0.5 --env-rotation 30"*) ok ;;
+    *) fail "render_args lack the environment: $args" ;; esac
+  # shellcheck disable=SC2086
+  "$render" "$anim" $args --spp "$spp" -q -o "$tmp/env-r.exr" || fail "dirt-render $args failed"
+  if "$check" same "$tmp/env.exr" "$tmp/env-r.exr"; then ok; else
+    fail "dirt-render $args is not the viewer's environment-lit image"; fi
+  "$render" "$anim" -W 96 -H 72 --env sky --spp "$spp" -q -o "$tmp/env-0.exr"
+  if "$check" same "$tmp/env.exr" "$tmp/env-0.exr" >/dev/null; then
+    fail "turning and dimming the map changed nothing"; else ok; fi
+fi
+
 # 5. Bad input exits 2 with a one-line reason, before any window.
 expect2() {
   local what=$1; shift
@@ -183,6 +203,8 @@ expect2() {
 echo 'not a gltf' >"$tmp/bad.gltf"
 expect2 "missing scene" "$tmp/none.glb" --test-frames 1
 expect2 "malformed scene" "$tmp/bad.gltf" --test-frames 1
+expect2 "missing environment map" --env "$tmp/none.exr" --test-frames 1
+expect2 "--env and --background" --env sky --background 1,1,1 --test-frames 1
 expect2 "bad option" --spp -3
 expect2 "unknown option" --frobnicate
 printf 'orbit 1\n' >"$tmp/bad.txt"
