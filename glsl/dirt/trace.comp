@@ -171,14 +171,12 @@ float cross_t(vec4 co, vec4 cd, int axis, float X)
 }
 
 // Parameter where the ray leaves the NDC slab [lo, hi] of one axis, moving
-// with NDC velocity sign `motion` at parameter t. When the crossing solves
-// to t or earlier, either the ray approaches its vanishing point inside the
-// slab and never leaves on this axis (1e30), or rounding put the crossing
-// just behind: leave now (t) — unless `allow_now` is false because leaving
-// now already failed to move the ray out of this cell (a ray running along
-// a cell boundary), then the axis is treated as never left.
-float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float hi,
-             bool allow_now)
+// with NDC velocity sign `motion`. When the crossing solves to t or earlier,
+// either the ray approaches its vanishing point inside the slab and never
+// leaves on this axis (1e30), or rounding put the crossing just behind:
+// leave now (t). Leaving now always makes progress: the march then forces
+// the next cell past the boundary (trace_view).
+float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float hi)
 {
     if (motion == 0.0)
         return 1e30;
@@ -187,7 +185,7 @@ float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float 
     if (s > t)
         return s;
     bool never = cd.w > 0.0 && (motion > 0.0 ? cd[axis] / cd.w <= X : cd[axis] / cd.w >= X);
-    return never || !allow_now ? 1e30 : t;
+    return never ? 1e30 : t;
 }
 
 struct best_hit {
@@ -263,6 +261,22 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
 
 // Marches the ray through one view over [t0, t1]. Returns false when the
 // march ran out of steps (the ray is then reported as aborted).
+//
+// The march covers [t0, t1] without gaps: a cell is entered at exactly the
+// parameter where the previous one was left, and its depth span starts
+// there. Which cell the ray is in at that parameter is not decided by
+// locating the point alone (on the boundary just crossed, rounding can put
+// it on either side): along each axis the tile index can only move in the
+// ray's NDC direction (NDC coordinates are monotonic along a segment with
+// w > 0), so the march keeps a bound per axis, the tile last visited, moved
+// past the boundary whenever a cell is left on that axis, and the located
+// tile is held to it. (Formerly t stepped past each exit by eps_t and the
+// point was located there: the next cell's depth span then began eps_t late
+// and missed a wall lying at the depth of that instant, one seen square-on
+// by a cube face, whose tiles' zmin = zmax; and where the ray moved slowly
+// in NDC the point could still locate in the old cell, whose exit had to be
+// given up as "never", and the march went on in the wrong tile column. Both
+// let rays leave the default scene's closed room.)
 bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0, float t1,
                 inout best_hit best)
 {
@@ -274,52 +288,61 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
     if (u_hiz_top >= 0)
         top = min(top, u_hiz_top);
     vec2 tiles = vec2(v.size.xy) / float(S);
-    // Step past a cell's exit by a millionth of the segment, and by at least
-    // 4 ulps of t so that t + eps_t > t in float (else the march stalls).
-    float eps_t = 1e-6 * (t1 - t0) + 4.8e-7 * max(abs(t0), abs(t1)) + 1e-30;
+    // Direction of motion in NDC: c.xy / c.w moves with the sign of
+    // cd.xy c.w - c.xy cd.w, which is the same for every t (the t terms
+    // cancel): one sign for the whole segment.
+    vec2 motion = cd.xy * co.w - co.xy * cd.w;
+    bvec2 back = lessThan(motion, vec2(0.0));
+    // The tile bound per axis (the tile index never goes below it when moving
+    // up, never above it when moving down); none at the start.
+    ivec2 bound = mix(ivec2(-1), v.size.zw, back);
+    bool tail = false;
     float t = t0;
     int d = top;
-    ivec2 last_tile = ivec2(-1);
-    bool last_now = false;
     for (int steps = 0; steps < MAX_STEPS; steps++) {
-        if (t > t1 || t >= best.t)
+        if (t >= best.t)
             return true;
         vec4 c = co + t * cd;
         vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
         ivec2 size = level_size(v, d);
-        // Direction of motion in NDC (constant along the segment, w > 0). A
-        // point on a cell boundary belongs to the cell it moves into.
-        vec2 motion = cd.xy * c.w - c.xy * cd.w;
-        ivec2 tile = ivec2(mix(floor(tc), ceil(tc) - 1.0, lessThan(motion, vec2(0.0))));
+        // A point on a cell boundary belongs to the cell it moves into.
+        ivec2 tile = ivec2(mix(floor(tc), ceil(tc) - 1.0, back));
+        tile = mix(max(tile, bound), min(tile, bound), back);
+        // A bound past the view's last tile: the ray has left the view on
+        // that axis within rounding of t1; the clamped cell takes the rest
+        // of the segment.
+        tail = tail || any(mix(greaterThanEqual(bound, v.size.zw), lessThan(bound, ivec2(0)), back));
+        tile = clamp(tile, ivec2(0), v.size.zw - 1);
+        bound = tile;
         ivec2 cell = clamp(tile >> d, ivec2(0), size - 1);
-        // "Leave now" that did not move the ray to another tile is not
-        // repeated (at any level).
-        bool allow_now = !(last_now && last_tile == tile);
         // The cell's NDC rectangle and the parameter where the ray leaves it.
         ivec2 plo = (cell << d) * S, phi = min(((cell + 1) << d) * S, v.size.xy);
         vec2 sz = vec2(v.size.xy);
         vec2 nlo = -1.0 + 2.0 * vec2(plo) / sz, nhi = -1.0 + 2.0 * vec2(phi) / sz;
-        float tx = exit_t(co, cd, 0, t, motion.x, nlo.x, nhi.x, allow_now);
-        float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y, allow_now);
-        float texit = max(min(min(tx, ty), t1), t);
-        last_tile = tile;
-        last_now = texit == t;
+        float tx = exit_t(co, cd, 0, t, motion.x, nlo.x, nhi.x);
+        float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y);
+        float texit = tail ? t1 : max(min(min(tx, ty), t1), t);
         float wa = co.w + t * cd.w, wb = co.w + texit * cd.w;
         uvec2 e = depth[level_base(v, d) + cell.y * size.x + cell.x];
         float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
-        if (max(wa, wb) < zlo || min(wa, wb) > zhi) {
-            t = texit + eps_t;
-            d = min(d + 1, top);
-            continue;
-        }
-        if (d > 0) {
+        bool skip = max(wa, wb) < zlo || min(wa, wb) > zhi;
+        if (!skip && d > 0) {
             d--;
             continue;
         }
-        uint gt = uint(v.placement.x + cell.y * v.size.z + cell.x);
-        if (walk_tile(rs, co, cd, v, view, cell, gt, wa, wb, tmin, best))
+        if (!skip) {
+            uint gt = uint(v.placement.x + cell.y * v.size.z + cell.x);
+            if (walk_tile(rs, co, cd, v, view, cell, gt, wa, wb, tmin, best))
+                return true;
+        }
+        // Leave the cell: the next one starts at texit, past the boundary of
+        // every axis left there.
+        if (texit >= t1)
             return true;
-        t = texit + eps_t;
+        ivec2 past = mix((cell + 1) << d, (cell << d) - 1, back);
+        bvec2 left = bvec2(tx <= texit, ty <= texit);
+        bound = mix(bound, past, left);
+        t = texit;
         d = min(d + 1, top);
     }
     return false;
