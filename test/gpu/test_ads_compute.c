@@ -13,7 +13,8 @@
  * also with the reference clip (DIRT_CLIP_SH) in both builds; pools: a
  * first build runs every pass once, a second needs no bound pass, a
  * candidate buffer of 1 reruns the depth pass (same lists); and the trace
- * through either structure gives the same hits, bit for bit. */
+ * through either structure gives the same hits, bit for bit, and a render
+ * session (dirt_session_opts.build) the same image. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,7 @@
 #include "ads_common.h"
 #include "common/layout.h"
 #include "dirt/scene.h"
+#include "dirt/session.h"
 #include "gpu.h"
 
 static int cmp_u64(const void *a, const void *b)
@@ -300,6 +302,40 @@ static void test_trace(dirt_gpu *gpu)
     dirt_scene_destroy(scene);
 }
 
+/* A session switched from the raster to the compute build remakes the
+ * structure and renders the same image, bit for bit. */
+static void test_session(dirt_gpu *gpu)
+{
+    dirt_scene *scene = dirt_scene_create_default();
+    enum { W = 80, H = 60 };
+    dirt_session_opts o = {.width = W, .height = H, .bounces = 2};
+    dirt_session *s = dirt_session_create(gpu, scene, &o);
+    CHECK(s != NULL);
+    float *img[2] = {NULL, NULL};
+    for (int i = 0; s && i < 2; i++) {
+        if (i) {
+            o.build = DIRT_BUILD_COMPUTE;
+            bool restarted = false;
+            CHECK(dirt_session_set_opts(s, &o, &restarted) && restarted);
+        }
+        CHECK(dirt_session_add_samples(s, 2, NULL, NULL));
+        const dirt_session_stats *st = dirt_session_get_stats(s);
+        CHECK(st->has_ads && st->ads.build == o.build && st->aborted == 0);
+        const dirt_image *im = dirt_session_image(s);
+        CHECK(im && im->width == W && im->height == H);
+        if (im) {
+            img[i] = malloc(sizeof(float) * 4 * W * H);
+            memcpy(img[i], im->rgba, sizeof(float) * 4 * W * H);
+        }
+    }
+    CHECK_MSG(img[0] && img[1] && memcmp(img[0], img[1], sizeof(float) * 4 * W * H) == 0,
+              "session: the compute build's image differs from the raster build's");
+    free(img[0]);
+    free(img[1]);
+    dirt_session_destroy(s);
+    dirt_scene_destroy(scene);
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -317,6 +353,7 @@ int main(void)
     }
     test_pools(gpu);
     test_trace(gpu);
+    test_session(gpu);
     CHECK(dirt_gpu_error_count(gpu) == 0);
     dirt_gpu_destroy(gpu);
     return check_finish();
