@@ -32,12 +32,15 @@
  * y * DIRT_GROUPS_ROW + x (the DIRT compute build's passes). */
 #define DIRT_GROUPS_ROW 65535
 /* The DIRT compute build (glsl/dirt/tiles.comp, range.comp): a work record
- * covers chunks of DIRT_BUILD_CHUNK candidate tiles of one (primitive,
- * view), one lane per tile of a chunk, DIRT_GROUP_SIZE / DIRT_BUILD_CHUNK
- * records per group; one footprint makes at most DIRT_BUILD_MAX_RECORDS
- * records (larger ones put several chunks in a record), which bounds the
- * loops of both passes (llvmpipe caps an invocation's loop iterations). */
+ * covers q chunks of DIRT_BUILD_CHUNK candidate tiles of one (primitive,
+ * view), one lane per tile of a chunk (so a lane takes q tiles),
+ * DIRT_GROUP_SIZE / DIRT_BUILD_CHUNK records per group. q is up to
+ * DIRT_BUILD_LANE_TILES (all the footprint's chunks up to that), more when
+ * a footprint would make more than DIRT_BUILD_MAX_RECORDS records, which
+ * bounds the loops of both passes (llvmpipe caps an invocation's loop
+ * iterations); glsl/dirt/footprint.glsl, dirt_build_chunks. */
 #define DIRT_BUILD_CHUNK 8
+#define DIRT_BUILD_LANE_TILES 4
 #define DIRT_BUILD_MAX_RECORDS 4096
 #if DIRT_GROUP_SIZE % DIRT_BUILD_CHUNK != 0
 #error "common/constants.h: DIRT_BUILD_CHUNK must divide DIRT_GROUP_SIZE"

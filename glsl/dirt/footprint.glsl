@@ -66,11 +66,14 @@ ivec4 dirt_footprint_tiles(vec2 lo, vec2 hi)
 }
 
 // Chunks (DIRT_BUILD_CHUNK tiles) per work record of the compute build for a
-// footprint of n tiles: 1, or more when one chunk per record would make more
-// than DIRT_BUILD_MAX_RECORDS records (which bounds the loops of both
-// passes; common/constants.h).
+// footprint of n tiles: all of them up to DIRT_BUILD_LANE_TILES (one record,
+// each lane takes up to that many tiles, so the vertices and the near/far
+// clip are computed once per lane, not per tile), more when records of
+// DIRT_BUILD_LANE_TILES chunks would be more than DIRT_BUILD_MAX_RECORDS
+// (which bounds the loops of both passes; common/constants.h).
 uint dirt_build_chunks(uint n)
 {
     uint chunks = (n + uint(DIRT_BUILD_CHUNK) - 1u) / uint(DIRT_BUILD_CHUNK);
-    return (chunks + uint(DIRT_BUILD_MAX_RECORDS) - 1u) / uint(DIRT_BUILD_MAX_RECORDS);
+    uint spread = (chunks + uint(DIRT_BUILD_MAX_RECORDS) - 1u) / uint(DIRT_BUILD_MAX_RECORDS);
+    return max(min(uint(DIRT_BUILD_LANE_TILES), chunks), spread);
 }
