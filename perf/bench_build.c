@@ -3,11 +3,14 @@
  * DIRT paper's Table 2: 1x1 tiles, same B; and DIRT with larger tiles).
  *   bench-build [SCENE ...] [-W 256 -H 256] [--views single|cube|cube+camera]
  *               [-F face] [-S 1,2] [-B 4] [--repeat N] [--reference-clip]
+ *               [--build raster|compute|both]
  * SCENE "default" is the embedded scene. Every structure is created and
  * built once first (that first build's total is reported: "first ms", with
  * the DIRT passes it ran), then the N rounds build each structure once in
  * turn (MMRT, DIRT at each S; with --reference-clip also DIRT with the plain
- * Sutherland-Hodgman clip of every candidate), so machine load hits all of
+ * Sutherland-Hodgman clip of every candidate; with --build compute the
+ * compute build instead of the raster one, with --build both each DIRT
+ * structure in both builds, side by side), so machine load hits all of
  * them alike; the minimum total of each over the rounds is reported, with
  * its passes. Times: the GPU's one clock (dirt_gpu_clock): timer queries
  * where the driver times rasterization, else CPU wall time around glFinish
@@ -24,7 +27,7 @@
 #include "dirt/scene.h"
 
 #define MAX_S 4
-#define MAX_T (2 + 2 * MAX_S)
+#define MAX_T (1 + 4 * MAX_S)
 #define MAX_PASSES 8
 
 static int parse_list(const char *s, int *out, int max)
@@ -96,6 +99,7 @@ int main(int argc, char **argv)
     int nscenes = 0, W = 256, H = 256, F = 0, repeat = 5, B = 4;
     int S[MAX_S] = {1, 2}, nS = 2;
     bool reference = false;
+    bool build_raster = true, build_compute = false; /* --build */
     enum dirt_view_mode mode = DIRT_VIEWS_SINGLE;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
@@ -106,13 +110,23 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "-B")) B = atoi(v), i++;
         else if (!strcmp(a, "--repeat")) repeat = atoi(v), i++;
         else if (!strcmp(a, "--reference-clip")) reference = true;
+        else if (!strcmp(a, "--build")) {
+            build_raster = !strcmp(v, "raster") || !strcmp(v, "both");
+            build_compute = !strcmp(v, "compute") || !strcmp(v, "both");
+            if (!build_raster && !build_compute) {
+                fprintf(stderr, "bench-build: --build raster|compute|both, got '%s'\n", v);
+                return 2;
+            }
+            i++;
+        }
         else if (!strcmp(a, "--views")) {
             mode = !strcmp(v, "cube") ? DIRT_VIEWS_CUBE
                  : !strcmp(v, "cube+camera") ? DIRT_VIEWS_CUBE_CAMERA : DIRT_VIEWS_SINGLE;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-build [SCENE|default ...] [-W N -H N] [--views MODE] [-F face] "
-                   "[-S 1,2] [-B 4] [--repeat N] [--reference-clip]\n");
+                   "[-S 1,2] [-B 4] [--repeat N] [--reference-clip] "
+                   "[--build raster|compute|both]\n");
             return 0;
         } else if (nscenes < 16) scenes[nscenes++] = a;
     }
@@ -121,6 +135,10 @@ int main(int argc, char **argv)
         return 2;
     }
 #ifdef DIRT_BENCH_OLD
+    if (build_compute) {
+        fprintf(stderr, "bench-build: --build compute needs the compute build\n");
+        return 2;
+    }
     if (reference) {
         fprintf(stderr, "bench-build: --reference-clip needs the candidate build\n");
         return 2;
@@ -159,14 +177,19 @@ int main(int argc, char **argv)
         snprintf(t[nt++].name, sizeof(t[0].name), "MMRT");
         for (int r = 0; r < (reference ? 2 : 1); r++) {
             for (int s = 0; s < nS; s++) {
-                dirt_ads_opts o = {.views = vo, .buckets = B};
-                o.views.tile_size = S[s];
+                for (int c = 0; c < 2; c++) {
+                    if (!(c ? build_compute : build_raster))
+                        continue;
+                    dirt_ads_opts o = {.views = vo, .buckets = B};
+                    o.views.tile_size = S[s];
 #ifndef DIRT_BENCH_OLD
-                o.reference_clip = r == 1;
+                    o.reference_clip = r == 1;
+                    o.build = c ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER;
 #endif
-                t[nt].ads = dirt_ads_create(gpu, &o);
-                snprintf(t[nt++].name, sizeof(t[0].name), "DIRT S=%d%s", S[s],
-                         r ? " (reference clip)" : "");
+                    t[nt].ads = dirt_ads_create(gpu, &o);
+                    snprintf(t[nt++].name, sizeof(t[0].name), "DIRT S=%d%s%s", S[s],
+                             c ? " compute" : "", r ? " (reference clip)" : "");
+                }
             }
         }
         for (int i = 0; i < nt; i++) {

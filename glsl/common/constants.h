@@ -27,6 +27,24 @@
  * DIRT_GROUPS_2D(h) groups cover a w x h image. */
 #define DIRT_GROUP_SIZE_2D 8
 #define DIRT_GROUPS_2D(n) (((n) + DIRT_GROUP_SIZE_2D - 1) / DIRT_GROUP_SIZE_2D)
+/* Groups per row of a long one-dimensional launch: GL promises 65535 groups
+ * per dimension, so more groups go in rows (y); group (x, y) is number
+ * y * DIRT_GROUPS_ROW + x (the DIRT compute build's passes). */
+#define DIRT_GROUPS_ROW 65535
+/* The DIRT compute build (glsl/dirt/tiles.comp, range.comp): a work record
+ * covers q chunks of DIRT_BUILD_CHUNK candidate tiles of one (primitive,
+ * view), one lane per tile of a chunk (so a lane takes q tiles),
+ * DIRT_GROUP_SIZE / DIRT_BUILD_CHUNK records per group. q is up to
+ * DIRT_BUILD_LANE_TILES (all the footprint's chunks up to that), more when
+ * a footprint would make more than DIRT_BUILD_MAX_RECORDS records, which
+ * bounds the loops of both passes (llvmpipe caps an invocation's loop
+ * iterations); glsl/dirt/footprint.glsl, dirt_build_chunks. */
+#define DIRT_BUILD_CHUNK 8
+#define DIRT_BUILD_LANE_TILES 4
+#define DIRT_BUILD_MAX_RECORDS 4096
+#if DIRT_GROUP_SIZE % DIRT_BUILD_CHUNK != 0
+#error "common/constants.h: DIRT_BUILD_CHUNK must divide DIRT_GROUP_SIZE"
+#endif
 
 /* ---- Node and entry sizes (bytes) ---- */
 

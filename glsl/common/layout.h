@@ -90,19 +90,35 @@ struct dirt_gpu_view {
 struct dirt_gpu_ads_params {
     DIRT_IV4 config;     /* views, tile size S, buckets B, tiles */
     DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas width, atlas height */
-    DIRT_UV4 cand;       /* x candidate capacity (records), yzw 0 */
+    DIRT_UV4 cand;       /* x candidate capacity (records), y work-record capacity
+                            (compute build: records after the candidates), z
+                            primitives, w 0 */
 };
 
-/* Counters of the build and the trace (32 bytes). */
+/* Counters of the build and the trace (48 bytes). */
 struct dirt_gpu_ads_counters {
     DIRT_UV4 fill;       /* x id nodes needed (count pass), y (primitive, tile) pairs
                             n_p (depth pass, also past the candidate capacity);
                             z rays aborted by the last trace, w active rays traced
                             since the host last reset it */
-    DIRT_UV4 build;      /* x candidate bound (bound pass), yzw 0 */
+    DIRT_UV4 build;      /* x candidate bound (bound pass; the compute build's
+                            candidate tiles pass: the tiles it examines), y work
+                            records (candidate tiles pass, also past their
+                            capacity), zw 0 */
+    DIRT_UV4 dispatch;   /* xyz the groups of the compute build's depth bounds
+                            pass (read by glDispatchComputeIndirect at
+                            DIRT_ADS_DISPATCH_OFFSET), w 0 */
 };
+#define DIRT_ADS_DISPATCH_OFFSET 32
 
-/* A candidate of the build (DIRT_CANDIDATE_BYTES, at DIRT_BIND_CANDIDATES):
+/* A work record of the compute build (DIRT_CANDIDATE_BYTES, at
+ * DIRT_BIND_CANDIDATES after the candidate capacity: entry params.cand.x +
+ * r), written by the candidate tiles pass as uvec4(primitive, view | k << 3,
+ * x0 | y0 << 16, nx | ny << 16): record k of the footprint of nx x ny tiles
+ * from tile (x0, y0) of the view (row-major tile e = k q C .. (k+1) q C - 1,
+ * C = DIRT_BUILD_CHUNK, q chunks per record, glsl/dirt/footprint.glsl).
+ *
+ * A candidate of the build (DIRT_CANDIDATE_BYTES, at DIRT_BIND_CANDIDATES):
  * one (primitive, tile) pair with a non-empty range, written by the depth
  * pass as uvec4(primitive, global tile, float bits of zmin, of zmax); the
  * count pass replaces zw by (first id node, first bucket | last bucket << 16)

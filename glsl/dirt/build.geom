@@ -13,6 +13,7 @@
 // candidates the depth pass will find (it sizes their buffer).
 #include "common/layout.h"
 #include "dirt/clip.glsl"
+#include "dirt/footprint.glsl"
 
 #ifndef DIRT_NUM_VIEWS
 #define DIRT_NUM_VIEWS 1
@@ -77,52 +78,19 @@ void main()
     for (int i = 0; i < 3; i++)
         c[i] = vp * vec4(vertices[3u * prim + uint(i)].position.xyz, 1.0);
 
-    // Trivial reject: all three vertices beyond one plane of the view
-    // frustum (moved out a little, so this never rejects a touching one).
-    float m = 1.0 + 1e-3;
-    if ((c[0].x > m * c[0].w && c[1].x > m * c[1].w && c[2].x > m * c[2].w) ||
-        (c[0].x < -m * c[0].w && c[1].x < -m * c[1].w && c[2].x < -m * c[2].w) ||
-        (c[0].y > m * c[0].w && c[1].y > m * c[1].w && c[2].y > m * c[2].w) ||
-        (c[0].y < -m * c[0].w && c[1].y < -m * c[1].w && c[2].y < -m * c[2].w) ||
-        (c[0].z > m * c[0].w && c[1].z > m * c[1].w && c[2].z > m * c[2].w) ||
-        (c[0].w < 0.5 * v.eye_near.w && c[1].w < 0.5 * v.eye_near.w &&
-         c[2].w < 0.5 * v.eye_near.w))
+    // The conservative footprint (dirt/footprint.glsl: shared with the
+    // compute build, so both examine the same tiles).
+    vec2 lo, hi;
+    bool crosses_near;
+    if (!dirt_footprint(v, params.config.y, c, lo, hi, crosses_near))
         return;
-
-    // Clip against w >= near / 2 (nothing nearer can be in a tile frustum)
-    // and project what is left to tile coordinates.
-    float wmin = 0.5 * v.eye_near.w;
-    vec2 lo = vec2(1e30), hi = vec2(-1e30);
     vec2 tiles = vec2(v.size.xy) / float(params.config.y);
-    bool crosses_near = false;
-    for (int i = 0; i < 3; i++) {
-        vec4 p = c[i], q = c[(i + 1) % 3];
-        if (p.w >= wmin) {
-            vec2 t = (p.xy / p.w * 0.5 + 0.5) * tiles;
-            lo = min(lo, t);
-            hi = max(hi, t);
-        } else {
-            crosses_near = true;
-        }
-        if ((p.w >= wmin) != (q.w >= wmin)) {
-            vec4 s = p + ((wmin - p.w) / (q.w - p.w)) * (q - p);
-            vec2 t = (s.xy / wmin * 0.5 + 0.5) * tiles;
-            lo = min(lo, t);
-            hi = max(hi, t);
-        }
-    }
-    vec2 tmax = vec2(v.size.zw);
-    lo = clamp(lo - 0.51, vec2(0.0), tmax);
-    hi = clamp(hi + 0.51, vec2(0.0), tmax);
-    if (lo.x >= hi.x || lo.y >= hi.y)
-        return;
 
 #ifdef DIRT_PASS_BOUND
-    // Tile centres in the quad widened by 0.01 (vertex snapping): at least
-    // the fragments it makes (and those of the hardware conservative path,
-    // whose tiles meet the triangle, so their centres lie within 0.5 of it).
-    vec2 n = max(floor(hi + 0.01 - 0.5) - ceil(lo - 0.01 - 0.5) + 1.0, vec2(0.0));
-    atomicAdd(counters.build.x, uint(n.x) * uint(n.y));
+    // The candidate tiles of the footprint: at least the fragments the quad
+    // makes (dirt_footprint_tiles).
+    ivec4 r = dirt_footprint_tiles(lo, hi);
+    atomicAdd(counters.build.x, uint(r.z) * uint(r.w));
     return;
 #endif
     vec4 poly[5];

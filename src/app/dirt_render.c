@@ -125,6 +125,8 @@ static void usage(FILE *out)
 "      --face-size N     cube face size in pixels (default max(W,H)/2)\n"
 "      --no-conservative-raster  emulate conservative rasterization even when\n"
 "                        GL_NV_conservative_raster is present\n"
+"      --build KIND      raster (default) or compute: how the structure is built\n"
+"                        (the same structure; doc/dirt-build.md)\n"
 "      --hiz-top L       highest Hi-Z level the march starts from; 0 = tiles\n"
 "                        only, no Hi-Z (default: the pyramid's top)\n"
 "      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
@@ -168,6 +170,7 @@ static void usage(FILE *out)
 static const char *const modes[] = {"pt", "ao", NULL};
 static const char *const views[] = {"", "single", "cube", "cube+camera", NULL};
 static const char *const fetches[] = {"compute", "raster", NULL};
+static const char *const builds[] = {"raster", "compute", NULL};
 static const char *const marches[] = {"hiz", "linear", NULL};
 
 static const char *const tonemaps[] = {"clamp", "reinhard", "aces", NULL};
@@ -293,6 +296,7 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--mode", NULL, 'c', &o->s.mode, 0, 0, modes},
         {NULL, "--views", NULL, 'c', &o->s.views, 0, 0, views},
         {NULL, "--fetch", NULL, 'c', &o->s.fetch, 0, 0, fetches},
+        {NULL, "--build", NULL, 'c', &o->s.build, 0, 0, builds},
         {NULL, "--march", NULL, 'c', &o->s.march, 0, 0, marches},
         {NULL, "--frames", NULL, 'F', o, 0, 0, NULL},
         {NULL, "--background", NULL, 'b', o->s.background, 0, 0, NULL},

@@ -14,10 +14,12 @@ struct dirt_ads {
     int num_views;
     bool use_nv;
     GLuint prog_depth, prog_bound, prog_mip, prog_count, prog_fill;
+    GLuint prog_tiles, prog_range; /* the compute build's (0 for the raster build) */
     /* frame graphs: build (clear, depth bounds, mip, count nodes, read
      * counters), fill (fill primitives) once the node pool is sized, and
      * bound (clear counters, candidate bound, read counters) when the
-     * candidate buffer's size is unknown */
+     * candidate buffer's size is unknown; the compute build has candidate
+     * tiles before depth bounds in build, and candidate tiles as bound */
     fg_graph *graph, *fill, *bound;
     fg_res r_vertices, r_views, r_params, r_depth, r_heads, r_nodes, r_counters, r_cands;
     int graph_atlas_w, graph_atlas_h;
@@ -27,6 +29,8 @@ struct dirt_ads {
     size_t vertices_size, depth_size, heads_size;
     size_t node_capacity;     /* nodes */
     size_t cand_capacity;     /* candidates (0: unknown, the bound pass sizes it) */
+    size_t rec_capacity;      /* compute build: work records, after the candidates in
+                                 the same buffer (0 for the raster build) */
     int cand_tiles;           /* tiles and primitives the capacity was bounded for */
     size_t cand_prims;
     dirt_view_set set;

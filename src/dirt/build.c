@@ -1,7 +1,9 @@
 /* DIRT build stage: depth bounds (the exact range of every candidate,
  * stored), Hi-Z mip, count nodes (the node pool's size) and fill
  * primitives passes; a candidate bound pass sizes the candidate buffer when
- * its size is unknown. doc/dirt-build.md. */
+ * its size is unknown. The depth bounds come from a raster pass (default)
+ * or, in the compute build, from a candidate tiles pass and a compute range
+ * pass; the later passes are the same. doc/dirt-build.md. */
 #include "views/hiz.h"
 #include "dirt/ads.h"
 
@@ -21,6 +23,7 @@
 
 const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
     "clear", "depth bounds", "mip", "fill primitives", "count nodes", "candidate bound",
+    "candidate tiles",
 };
 
 
@@ -49,7 +52,13 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         DIRT_ERROR("unknown view mode %d", (int)a->opts.views.mode);
         goto error;
     }
+    if (a->opts.build != DIRT_BUILD_RASTER && a->opts.build != DIRT_BUILD_COMPUTE) {
+        DIRT_ERROR("unknown build mode %d", (int)a->opts.build);
+        goto error;
+    }
+    bool compute = a->opts.build == DIRT_BUILD_COMPUTE;
     a->num_views = views_in_mode(a->opts.views.mode);
+    /* (also the raster Fetch's, whichever build) */
     a->use_nv = dirt_gpu_get_caps(gpu)->nv_conservative_raster && !a->opts.force_emulation;
 
     char nviews[8];
@@ -61,9 +70,21 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     if (a->opts.reference_clip)
         defs[ndefs++] = (glsl_define){"DIRT_CLIP_SH", "1"};
     const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
-    a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
-    defs[1].name = "DIRT_PASS_BOUND";
-    a->prog_bound = gl_program_create("dirt candidate bound", paths, defs, ndefs);
+    if (compute) {
+        /* the compute build's passes take DIRT_CLIP_SH only */
+        glsl_define sh = {"DIRT_CLIP_SH", "1"};
+        size_t nsh = a->opts.reference_clip ? 1 : 0;
+        a->prog_tiles = gl_program_compute("dirt/tiles.comp", &sh, nsh);
+        a->prog_range = gl_program_compute("dirt/range.comp", &sh, nsh);
+        if (!a->prog_tiles || !a->prog_range)
+            goto error;
+    } else {
+        a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
+        defs[1].name = "DIRT_PASS_BOUND";
+        a->prog_bound = gl_program_create("dirt candidate bound", paths, defs, ndefs);
+        if (!a->prog_depth || !a->prog_bound)
+            goto error;
+    }
     a->prog_count = gl_program_compute("dirt/count.comp", NULL, 0);
     a->prog_fill = gl_program_compute("dirt/fill.comp", NULL, 0);
     a->prog_mip = views_hiz_program();
@@ -72,7 +93,7 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     a->prog_fetch_miss = gl_program_compute("dirt/fetch_miss.comp", NULL, 0);
     defs[1].name = "DIRT_PASS_FETCH";
     a->prog_fetch_raster = gl_program_create("dirt fetch (raster)", paths, defs, ndefs);
-    if (!a->prog_depth || !a->prog_bound || !a->prog_count || !a->prog_fill || !a->prog_mip ||
+    if (!a->prog_count || !a->prog_fill || !a->prog_mip ||
         !a->prog_trace || !a->prog_fetch || !a->prog_fetch_miss || !a->prog_fetch_raster)
         goto error;
     const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
@@ -113,6 +134,8 @@ void dirt_ads_destroy(dirt_ads *a)
         return;
     gl_program_destroy(&a->prog_depth);
     gl_program_destroy(&a->prog_bound);
+    gl_program_destroy(&a->prog_tiles);
+    gl_program_destroy(&a->prog_range);
     gl_program_destroy(&a->prog_count);
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
@@ -203,7 +226,8 @@ static void upload_params(dirt_ads *a)
         .config = {a->set.count, a->set.tile_size, a->opts.buckets, a->set.num_tiles},
         .pool = {(unsigned)a->node_capacity, (unsigned)a->set.pyramid_size,
                  (unsigned)a->set.atlas_width, (unsigned)a->set.atlas_height},
-        .cand = {(unsigned)a->cand_capacity, 0, 0, 0},
+        .cand = {(unsigned)a->cand_capacity, (unsigned)a->rec_capacity,
+                 (unsigned)a->num_primitives, 0},
     };
     glNamedBufferSubData(a->params, 0, sizeof(p), &p);
 }
@@ -225,26 +249,39 @@ static bool ensure_nodes(dirt_ads *a, size_t nodes)
     return a->nodes != 0;
 }
 
-/* Candidate buffer of at least `cands` records (at least one, so the
- * buffer always exists); false (logged) past the GPU's limit. */
-static bool ensure_cands(dirt_ads *a, size_t cands)
+/* Candidate buffer of at least `cands` candidates (at least one, so the
+ * buffer always exists) followed by `recs` work records (the compute
+ * build's; 0 for the raster build); false (logged) past the GPU's limit.
+ * Growing either keeps the other capacity at least what it was. */
+static bool ensure_cands(dirt_ads *a, size_t cands, size_t recs)
 {
     if (cands < 1)
         cands = 1;
+    if (a->cands && cands < a->cand_capacity)
+        cands = a->cand_capacity;
+    if (a->cands && recs < a->rec_capacity)
+        recs = a->rec_capacity;
+    size_t total = cands + recs;
     int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)(cands * DIRT_CANDIDATE_BYTES) > max) {
-        DIRT_ERROR("the build needs %zu candidates (%.1f MB), more than this GPU's largest "
-                   "storage buffer (%.1f MB): use larger tiles or smaller views", cands,
-                   cands * DIRT_CANDIDATE_BYTES / 1e6, max / 1e6);
+    if (max > 0 && (int64_t)(total * DIRT_CANDIDATE_BYTES) > max) {
+        DIRT_ERROR("the build needs %zu candidates and %zu work records (%.1f MB), more than "
+                   "this GPU's largest storage buffer (%.1f MB): use larger tiles or smaller "
+                   "views", cands, recs, total * DIRT_CANDIDATE_BYTES / 1e6, max / 1e6);
         return false;
     }
-    if (a->cands && a->cand_capacity >= cands)
+    if (a->cands && a->cand_capacity == cands && a->rec_capacity == recs)
         return true;
     gl_buffer_destroy(&a->cands);
-    a->cands = gl_buffer_create(a->gpu, cands * DIRT_CANDIDATE_BYTES, NULL, false,
+    a->cands = gl_buffer_create(a->gpu, total * DIRT_CANDIDATE_BYTES, NULL, false,
                                 "dirt candidates");
     a->cand_capacity = a->cands ? cands : 0;
+    a->rec_capacity = a->cands ? recs : 0;
     return a->cands != 0;
+}
+
+static size_t cands_bytes(const dirt_ads *a)
+{
+    return (a->cand_capacity + a->rec_capacity) * DIRT_CANDIDATE_BYTES;
 }
 
 /* Grows a pool to `need` (plus a quarter, within the GPU's limit). */
@@ -273,7 +310,8 @@ static bool ensure_targets(dirt_ads *a)
         return false;
     if (!a->node_capacity)
         a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
-    if (!ensure_nodes(a, a->node_capacity) || !ensure_cands(a, a->cand_capacity))
+    if (!ensure_nodes(a, a->node_capacity) ||
+        !ensure_cands(a, a->cand_capacity, a->rec_capacity))
         return false;
     return true;
 }
@@ -337,6 +375,41 @@ static bool exec_depth(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     draw_views(user, ((dirt_ads *)user)->prog_depth);
+    return true;
+}
+
+/* A long one-dimensional launch of `groups` groups, in rows of
+ * DIRT_GROUPS_ROW (the shaders number group (x, y) as y * ROW + x and
+ * bound-check). */
+static void dispatch_rows(size_t groups)
+{
+    if (!groups)
+        return;
+    size_t rows = (groups + DIRT_GROUPS_ROW - 1) / DIRT_GROUPS_ROW;
+    glDispatchCompute((GLuint)(groups < DIRT_GROUPS_ROW ? groups : DIRT_GROUPS_ROW),
+                      (GLuint)rows, 1);
+}
+
+/* Compute build: the candidate tiles of every (primitive, view). */
+static bool exec_tiles(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_ads *a = user;
+    glUseProgram(a->prog_tiles);
+    dispatch_rows(DIRT_GROUPS(a->num_primitives * (size_t)a->num_views));
+    glUseProgram(0);
+    return true;
+}
+
+/* Compute build: the range of every candidate tile, groups from the
+ * candidate tiles pass (counters.dispatch, bound as the indirect buffer). */
+static bool exec_range(fg_ctx *ctx, void *user)
+{
+    (void)ctx;
+    dirt_ads *a = user;
+    glUseProgram(a->prog_range);
+    glDispatchComputeIndirect((GLintptr)DIRT_ADS_DISPATCH_OFFSET);
+    glUseProgram(0);
     return true;
 }
 
@@ -408,6 +481,21 @@ static void raster_size(dirt_ads *a, fg_pass *p)
                                          .height = a->set.atlas_height});
 }
 
+/* The compute build's candidate tiles pass, named `pass` (candidate tiles
+ * in the build graph; candidate bound in the bound graph, where its counts
+ * size the buffer and the records it writes, within the capacity, are
+ * written again by the build). */
+static void add_tiles(dirt_ads *a, fg_graph *g, int pass)
+{
+    fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[pass], FG_COMPUTE, exec_tiles, a);
+    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
+    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    use(p, a->r_cands, FG_SSBO_WRITE, DIRT_BIND_CANDIDATES);
+}
+
 /* Builds the three graphs over the structure's (imported) buffers. */
 static bool make_graphs(dirt_ads *a)
 {
@@ -430,8 +518,7 @@ static bool make_graphs(dirt_ads *a)
         a->r_nodes = fg_import_buffer(g, "id nodes", a->nodes, a->node_capacity * DIRT_NODE_BYTES);
         a->r_counters = fg_import_buffer(g, "counters", a->counters,
                                          sizeof(struct dirt_gpu_ads_counters));
-        a->r_cands = fg_import_buffer(g, "candidates", a->cands,
-                                      a->cand_capacity * DIRT_CANDIDATE_BYTES);
+        a->r_cands = fg_import_buffer(g, "candidates", a->cands, cands_bytes(a));
     }
     /* build: clear, depth bounds, mip, count nodes, read counters */
     fg_graph *g = a->graph;
@@ -439,8 +526,16 @@ static bool make_graphs(dirt_ads *a)
     fg_write(p, a->r_depth, FG_TRANSFER_WRITE);
     fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
-    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_RASTER, exec_depth, a);
-    raster_size(a, p);
+    bool compute = a->opts.build == DIRT_BUILD_COMPUTE;
+    if (compute) {
+        add_tiles(a, g, DIRT_ADS_PASS_TILES);
+        p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_COMPUTE, exec_range, a);
+        use(p, a->r_counters, FG_INDIRECT, 0);
+        use(p, a->r_cands, FG_SSBO_READ, DIRT_BIND_CANDIDATES);
+    } else {
+        p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_RASTER, exec_depth, a);
+        raster_size(a, p);
+    }
     use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
     use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
@@ -474,13 +569,17 @@ static bool make_graphs(dirt_ads *a)
     g = a->bound;
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear_counters, a);
     fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
-    p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_BOUND], FG_RASTER, exec_bound, a);
-    raster_size(a, p);
-    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
-    use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
-    use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
-    use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
-    use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    if (compute) {
+        add_tiles(a, g, DIRT_ADS_PASS_BOUND);
+    } else {
+        p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_BOUND], FG_RASTER, exec_bound, a);
+        raster_size(a, p);
+        use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+        use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
+        use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+        use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
+        use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
+    }
     add_read_counters(a, g);
     if (!fg_compile(a->graph) || !fg_compile(a->fill) || !fg_compile(a->bound))
         return false;
@@ -498,7 +597,7 @@ static void update_imports(dirt_ads *a)
         fg_set_import(graphs[i], a->r_depth, a->depth, a->depth_size);
         fg_set_import(graphs[i], a->r_heads, a->heads, a->heads_size);
         fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * DIRT_NODE_BYTES);
-        fg_set_import(graphs[i], a->r_cands, a->cands, a->cand_capacity * DIRT_CANDIDATE_BYTES);
+        fg_set_import(graphs[i], a->r_cands, a->cands, cands_bytes(a));
     }
 }
 
@@ -545,6 +644,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
      * (first build, other views or primitives), so the depth pass of a
      * first build never overflows it. */
     st->bound_pass = false;
+    bool compute = a->opts.build == DIRT_BUILD_COMPUTE;
     bool unknown = a->cand_tiles == 0 ? !a->opts.initial_candidates /* the caller's choice */
                                       : a->cand_tiles != a->set.num_tiles ||
                                             a->cand_prims != a->num_primitives;
@@ -556,10 +656,12 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         /* Past the GPU's limit the real count may still fit: the depth pass
          * tells (and ensure_cands fails clearly if it does not). */
         size_t bound = a->counters_cpu.build.x;
+        size_t recs = compute ? a->counters_cpu.build.y : 0;
         int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-        if (max > 0 && (int64_t)(bound * DIRT_CANDIDATE_BYTES) > max)
-            bound = (size_t)max / DIRT_CANDIDATE_BYTES;
-        if (!ensure_cands(a, bound))
+        if (max > 0 && (int64_t)((bound + recs) * DIRT_CANDIDATE_BYTES) > max)
+            bound = (size_t)max / DIRT_CANDIDATE_BYTES > recs
+                        ? (size_t)max / DIRT_CANDIDATE_BYTES - recs : 1;
+        if (!ensure_cands(a, bound, recs))
             goto done;
         upload_params(a);
         update_imports(a);
@@ -574,12 +676,21 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
             goto done;
         st->depth_runs++;
         size_t n = a->counters_cpu.fill.y;
-        if (n <= a->cand_capacity)
+        size_t r = compute ? a->counters_cpu.build.y : 0;
+        if (n <= a->cand_capacity && r <= a->rec_capacity)
             break;
-        size_t g = grown(a, n, DIRT_CANDIDATE_BYTES);
-        DIRT_INFO("candidate buffer grew from %zu to %zu (%.1f MB); depth pass rerun",
-                  a->cand_capacity, g, g * DIRT_CANDIDATE_BYTES / 1e6);
-        if (!ensure_cands(a, g))
+        /* Work records past their capacity leave candidates out (the range
+         * pass never saw them): both grow, the graph reruns. */
+        size_t g = n > a->cand_capacity ? grown(a, n, DIRT_CANDIDATE_BYTES) : a->cand_capacity;
+        /* (then the candidates the missing records hold are not counted
+         * either: the tiles the records cover bound them) */
+        if (r > a->rec_capacity && a->counters_cpu.build.x > g)
+            g = a->counters_cpu.build.x;
+        size_t gr = r > a->rec_capacity ? grown(a, r, DIRT_CANDIDATE_BYTES) : a->rec_capacity;
+        DIRT_INFO("candidate buffer grew from %zu + %zu to %zu + %zu records (%.1f MB); depth "
+                  "pass rerun", a->cand_capacity, a->rec_capacity, g, gr,
+                  (g + gr) * DIRT_CANDIDATE_BYTES / 1e6);
+        if (!ensure_cands(a, g, gr))
             goto done;
         upload_params(a);
         update_imports(a);
@@ -604,14 +715,16 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->samples = counters.fill.y;
     st->nodes = counters.fill.x;
     st->buckets_per_sample = st->samples ? (double)st->nodes / (double)st->samples : 0;
-    st->conservative_nv = a->use_nv;
+    st->conservative_nv = a->use_nv && !compute;
+    st->build = a->opts.build;
+    st->work_records = compute ? counters.build.y : 0;
     st->bytes_vertices = a->num_primitives * 3 * sizeof(struct dirt_gpu_vertex);
     st->bytes_depth = (uint64_t)a->set.pyramid_size * DIRT_DEPTH_ENTRY_BYTES;
     st->bytes_heads = (uint64_t)a->opts.buckets * (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES;
     st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
     st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
-    st->bytes_candidates_allocated = (uint64_t)a->cand_capacity * DIRT_CANDIDATE_BYTES;
-    st->bytes_candidates_used = st->samples * DIRT_CANDIDATE_BYTES;
+    st->bytes_candidates_allocated = cands_bytes(a);
+    st->bytes_candidates_used = (st->samples + st->work_records) * DIRT_CANDIDATE_BYTES;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                                 st->bytes_nodes_allocated + st->bytes_candidates_allocated;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +

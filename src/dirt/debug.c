@@ -128,9 +128,11 @@ void dirt_ads_print_stats(const dirt_ads *ads, void *out_)
     FILE *out = out_;
     const dirt_ads_stats *s = dirt_ads_get_stats(ads);
     const dirt_view_set *set = dirt_ads_views(ads);
-    fprintf(out, "DIRT structure: %d view(s), S=%d, B=%d, %d tiles, %s rasterization\n",
+    fprintf(out, "DIRT structure: %d view(s), S=%d, B=%d, %d tiles, %s\n",
             set->count, set->tile_size, dirt_ads_buckets(ads), set->num_tiles,
-            s->conservative_nv ? "GL_NV_conservative_raster" : "emulated conservative");
+            s->build == DIRT_BUILD_COMPUTE ? "compute build"
+            : s->conservative_nv           ? "GL_NV_conservative_raster rasterization"
+                                           : "emulated conservative rasterization");
     fprintf(out, "  primitives %llu, clipped primitive samples n_p %llu, buckets per sample c %.3f, "
             "nodes %llu; passes run: depth %d, fill %d, candidate bound %d\n",
             (unsigned long long)s->primitives, (unsigned long long)s->samples,

@@ -61,9 +61,12 @@ AT(dirt_gpu_ads_params, config, 0);
 AT(dirt_gpu_ads_params, pool, 1);
 AT(dirt_gpu_ads_params, cand, 2);
 
-RECORD(dirt_gpu_ads_counters, 2);
+RECORD(dirt_gpu_ads_counters, 3);
 AT(dirt_gpu_ads_counters, fill, 0);
 AT(dirt_gpu_ads_counters, build, 1);
+AT(dirt_gpu_ads_counters, dispatch, 2);
+_Static_assert(offsetof(struct dirt_gpu_ads_counters, dispatch) == DIRT_ADS_DISPATCH_OFFSET,
+               "the compute build's indirect dispatch");
 
 RECORD(dirt_gpu_ray, 2);
 AT(dirt_gpu_ray, origin_tmin, 0);

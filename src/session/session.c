@@ -85,6 +85,8 @@ bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
              o->hiz_levels < 0 || o->march_samples < 0 || o->thickness < 0 ||
              o->aperture < 0 || o->focus < 0 || o->ao_distance < 0 || o->threads < 0)
         snprintf(why, size, "a negative or out-of-range option");
+    else if (o->build != DIRT_BUILD_RASTER && o->build != DIRT_BUILD_COMPUTE)
+        snprintf(why, size, "build mode %d unknown", (int)o->build);
     else if (o->engine == DIRT_ENGINE_MMRT &&
              (o->fetch == DIRT_FETCH_RASTER || o->direct_visibility))
         snprintf(why, size, "the mmrt engine has no Fetch pass and no visibility buffer: the "
@@ -256,6 +258,7 @@ static bool make_engine(dirt_session *s)
                                              .views = vo,
                                              .buckets = buckets,
                                              .force_emulation = o->force_emulation,
+                                             .build = o->build,
                                          });
         if (!s->ads)
             return false;
@@ -365,7 +368,7 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
     bool structure = old.engine != n.engine || old.width != n.width || old.height != n.height ||
                   old.views != n.views || old.face_size != n.face_size ||
                   old.tile_size != n.tile_size || old.buckets != n.buckets ||
-                  old.force_emulation != n.force_emulation;
+                  old.force_emulation != n.force_emulation || old.build != n.build;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||

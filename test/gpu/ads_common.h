@@ -65,7 +65,7 @@ static inline void set_tri(dirt_frame *f, size_t t, const float a[3], const floa
 }
 
 /* Builds with `opts` and checks; returns false on any discrepancy. */
-static bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *f,
+static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                             const dirt_camera *cam, const dirt_ads_opts *opts)
 {
     dirt_ads *ads = dirt_ads_create(gpu, opts);

@@ -66,6 +66,7 @@ static const member members[] = {
     M(r_ads_params, dirt_gpu_ads_params, config), M(r_ads_params, dirt_gpu_ads_params, pool),
     M(r_ads_params, dirt_gpu_ads_params, cand),
     M(r_ads_counters, dirt_gpu_ads_counters, fill), M(r_ads_counters, dirt_gpu_ads_counters, build),
+    M(r_ads_counters, dirt_gpu_ads_counters, dispatch),
     M(r_ray, dirt_gpu_ray, origin_tmin), M(r_ray, dirt_gpu_ray, dir_tmax),
     M(r_hit, dirt_gpu_hit, ids), M(r_hit, dirt_gpu_hit, bary_t),
     M(r_gpoint, dirt_gpu_gpoint, pos_prim), M(r_gpoint, dirt_gpu_gpoint, n_mat),

@@ -27,8 +27,18 @@ extern "C" {
 
 typedef struct dirt_ads dirt_ads;
 
+/* How the structure is built (doc/dirt-build.md). Both give the same
+ * structure: the same primitives in every (tile, bucket) list (the order
+ * within a list comes from atomics), the same depth bounds and pyramid. */
+enum dirt_build_mode {
+    DIRT_BUILD_RASTER = 0,  /* a geometry-shader quad per (primitive, view), the range
+                               per fragment (default) */
+    DIRT_BUILD_COMPUTE,     /* compute passes only: candidate tiles per (primitive,
+                               view), the range per candidate tile */
+};
+
 /* Zero-initialised = single camera view 640x480, S = 2, B = 16, automatic
- * initial node capacity. */
+ * initial node capacity, raster build. */
 typedef struct dirt_ads_opts {
     dirt_view_opts views;
     int buckets;              /* B >= 1 (default 16) */
@@ -39,15 +49,18 @@ typedef struct dirt_ads_opts {
     bool reference_clip;      /* Sutherland-Hodgman clip of every candidate tile (the
                                  slow reference of the exact range, for checks and
                                  benchmarks; doc/dirt-build.md) */
+    enum dirt_build_mode build; /* raster (default) or compute passes */
 } dirt_ads_opts;
 
 /* The build's passes (doc/dirt-build.md): clear; depth bounds (exact range
  * per candidate, stored); mip; fill primitives (from the stored candidates);
  * count nodes (bucket ranges, node offsets: the node pool's size); candidate
  * bound (only when the candidate buffer's size is unknown: an upper bound of
- * the candidates, from the geometry stage). */
+ * the candidates, from the geometry stage, or in the compute build from the
+ * candidate tiles pass); candidate tiles (compute build only: the work
+ * records of every (primitive, view) footprint, before depth bounds). */
 enum { DIRT_ADS_PASS_CLEAR, DIRT_ADS_PASS_DEPTH, DIRT_ADS_PASS_MIP, DIRT_ADS_PASS_FILL,
-       DIRT_ADS_PASS_COUNT, DIRT_ADS_PASS_BOUND, DIRT_ADS_NUM_PASSES };
+       DIRT_ADS_PASS_COUNT, DIRT_ADS_PASS_BOUND, DIRT_ADS_PASS_TILES, DIRT_ADS_NUM_PASSES };
 
 typedef struct dirt_ads_stats {
     /* Counts of the last build. */
@@ -60,14 +73,18 @@ typedef struct dirt_ads_stats {
                                  outgrew their buffer (never on a first build) */
     bool bound_pass;          /* the candidate bound pass ran (first build, or the
                                  view set or the primitive count changed) */
-    bool conservative_nv;     /* the hardware conservative path was used */
+    bool conservative_nv;     /* the hardware conservative path was used (raster build) */
+    enum dirt_build_mode build; /* how it was built */
+    uint64_t work_records;    /* compute build: work records of the candidate tiles
+                                 (0 for the raster build) */
     /* Bytes. */
     uint64_t bytes_vertices;  /* vertex buffer */
     uint64_t bytes_depth;     /* depth bounds incl. pyramid: 8 B per entry */
     uint64_t bytes_heads;     /* 4 B * B * tiles */
     uint64_t bytes_nodes_allocated, bytes_nodes_used; /* 8 B per node */
     uint64_t bytes_candidates_allocated, bytes_candidates_used; /* 16 B per candidate
-                                 (build scratch: n_p records, not in Table 3) */
+                                 (build scratch: n_p records, not in Table 3), and
+                                 per work record in the compute build */
     uint64_t bytes_total_allocated, bytes_total_used;
     /* DIRT paper Table 3 per tile: 8 B * 1.33 (depth + mips) + 4 B * B
      * (heads) + 8 B * c * n_p / tiles (nodes), times the tiles. */

@@ -67,6 +67,7 @@ typedef struct dirt_session_opts {
     int tile_size;              /* DIRT's S in {1, 2, 4, 8} (0 = 2; MMRT is per pixel) */
     int buckets;                /* 0 = 16 for dirt, 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
+    enum dirt_build_mode build; /* dirt: raster (default) or compute build (same structure) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
     bool direct_visibility;     /* dirt: first hits from a visibility buffer */
