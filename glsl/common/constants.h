@@ -125,19 +125,20 @@
 #define DIRT_BIND_MODEL_CAMERA 28      /* one dirt_gpu_model_camera */
 #define DIRT_BIND_MODEL_TEXELS 29      /* dirt_gpu_model_texels header, texture records, RGBA8 texels */
 #define DIRT_BIND_MODEL_ENV 30         /* the environment light: header, cdfs, texels */
-#define DIRT_BIND_MODEL_LAST 30
+#define DIRT_BIND_MODEL_TANGENTS 31    /* per-vertex tangents (normal maps) */
+#define DIRT_BIND_MODEL_LAST 31
 
 /* Raster preview (src/raster/preview.c, glsl/raster/). */
-#define DIRT_BIND_PREVIEW_FIRST 31
-#define DIRT_BIND_PREVIEW_MATERIALS 31 /* dirt_gpu_material[materials] */
-#define DIRT_BIND_PREVIEW_LIGHTS 32    /* dirt_gpu_light[lights] */
-#define DIRT_BIND_PREVIEW_LAST 32
+#define DIRT_BIND_PREVIEW_FIRST 32
+#define DIRT_BIND_PREVIEW_MATERIALS 32 /* dirt_gpu_material[materials] */
+#define DIRT_BIND_PREVIEW_LIGHTS 33    /* dirt_gpu_light[lights] */
+#define DIRT_BIND_PREVIEW_LAST 33
 
 /* Test shaders (glsl/test/, glsl/graph_test/, integrator/test_model.comp). */
-#define DIRT_BIND_TEST_FIRST 33
-#define DIRT_BIND_TEST_IN 33           /* a test's input buffer */
-#define DIRT_BIND_TEST_OUT 34          /* a test's output buffer */
-#define DIRT_BIND_TEST_LAST 34
+#define DIRT_BIND_TEST_FIRST 34
+#define DIRT_BIND_TEST_IN 34           /* a test's input buffer */
+#define DIRT_BIND_TEST_OUT 35          /* a test's output buffer */
+#define DIRT_BIND_TEST_LAST 35
 
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
@@ -203,7 +204,8 @@
     !DIRT_BIND_IN(DIRT_BIND_MODEL_PUNCTUAL, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_MODEL_CAMERA, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_MODEL_TEXELS, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
-    !DIRT_BIND_IN(DIRT_BIND_MODEL_ENV, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST)
+    !DIRT_BIND_IN(DIRT_BIND_MODEL_ENV, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_MODEL_TANGENTS, DIRT_BIND_MODEL_FIRST, DIRT_BIND_MODEL_LAST)
 #error "common/constants.h: a model-table binding lies outside DIRT_BIND_MODEL_*"
 #endif
 #if !DIRT_BIND_IN(DIRT_BIND_PREVIEW_MATERIALS, DIRT_BIND_PREVIEW_FIRST, DIRT_BIND_PREVIEW_LAST) || \

@@ -44,7 +44,24 @@ void dirt_gpu_material_pack(const dirt_material *m, float specular, size_t num_t
     out->textures = (dirt_i4){texture_index(m->base_color_tex, num_textures),
                               texture_index(m->metallic_roughness_tex, num_textures),
                               texture_index(m->emissive_tex, num_textures), flags};
+    out->params.w = m->normal_scale;
+    out->textures2 = (dirt_i4){texture_index(m->normal_tex, num_textures),
+                               texture_index(m->transmission_tex, num_textures),
+                               texture_index(m->specular_tex, num_textures),
+                               texture_index(m->specular_color_tex, num_textures)};
+    out->params2 = (dirt_f4){m->transmission, m->ior, m->alpha_cutoff, (float)m->alpha_mode};
+    out->specular_color = (dirt_f4){m->specular_color[0], m->specular_color[1],
+                                    m->specular_color[2], 0.0f};
+    /* Texture transforms: the identity (KHR_texture_transform is not read
+     * yet). */
+    for (int k = 0; k < DIRT_MODEL_TEX_SLOTS; k++) {
+        out->xf[2 * k] = (dirt_f4){1.0f, 0.0f, 0.0f, 0.0f};
+        out->xf[2 * k + 1] = (dirt_f4){0.0f, 1.0f, 0.0f, 0.0f};
+    }
 }
+
+_Static_assert(DIRT_MODEL_TEX_SLOTS == DIRT_NUM_TEX_SLOTS,
+               "common/integrator_layout.h and dirt/scene.h: texture slots");
 
 void dirt_gpu_materials_pack(const dirt_material *materials, size_t count,
                              const float *specular, size_t num_textures,
@@ -66,12 +83,9 @@ struct dirt_gpu_model_material *dirt_gpu_scene_materials(const dirt_scene *scene
         return NULL;
     }
     if (n == 0) {
-        dirt_material white = {.base_color = {1.0f, 1.0f, 1.0f, 1.0f},
-                               .base_color_tex = DIRT_NO_TEXTURE,
-                               .roughness = 1.0f,
-                               .metallic_roughness_tex = DIRT_NO_TEXTURE,
-                               .emissive_strength = 1.0f,
-                               .emissive_tex = DIRT_NO_TEXTURE};
+        dirt_material white;
+        dirt_material_default(&white);
+        white.metallic = 0.0f;
         dirt_gpu_material_pack(&white, 1.0f, 0, out);
         *count = 1;
         return out;

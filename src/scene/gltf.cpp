@@ -618,16 +618,8 @@ float finite_or(double x, float fallback)
 
 void default_material(dirt_material *d, const char *name)
 {
-    memset(d, 0, sizeof(*d));
+    dirt_material_default(d); /* the glTF defaults */
     scene_copy_name(d->name, sizeof(d->name), name);
-    for (int k = 0; k < 4; k++)
-        d->base_color[k] = 1.0f;
-    d->base_color_tex = DIRT_NO_TEXTURE;
-    d->metallic = 1.0f; /* glTF defaults */
-    d->roughness = 1.0f;
-    d->metallic_roughness_tex = DIRT_NO_TEXTURE;
-    d->emissive_strength = 1.0f;
-    d->emissive_tex = DIRT_NO_TEXTURE;
 }
 
 void convert_materials(Loader &L, bool need_default)

@@ -407,16 +407,10 @@ bool texopt_default(const tinyobj::texture_option_t &o)
  * library defines): grey diffuse. */
 void default_material(dirt_material *d, const char *name)
 {
-    memset(d, 0, sizeof(*d));
+    dirt_material_default(d);
     scene_copy_name(d->name, sizeof(d->name), name);
     d->base_color[0] = d->base_color[1] = d->base_color[2] = 0.8f;
-    d->base_color[3] = 1.0f;
-    d->base_color_tex = DIRT_NO_TEXTURE;
     d->metallic = 0.0f;
-    d->roughness = 1.0f;
-    d->metallic_roughness_tex = DIRT_NO_TEXTURE;
-    d->emissive_strength = 1.0f;
-    d->emissive_tex = DIRT_NO_TEXTURE;
 }
 
 /* MTL -> metallic-roughness (doc/scenes.md, "MTL materials"). */

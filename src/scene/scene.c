@@ -75,6 +75,27 @@ void scene_mat4_from_trs(float out[16], const float t[3], const float q[4],
     out[15] = 1.0f;
 }
 
+void dirt_material_default(dirt_material *m)
+{
+    memset(m, 0, sizeof(*m));
+    for (int k = 0; k < 4; k++)
+        m->base_color[k] = 1.0f;
+    m->metallic = m->roughness = 1.0f;
+    m->emissive_strength = 1.0f;
+    m->base_color_tex = m->metallic_roughness_tex = m->emissive_tex = DIRT_NO_TEXTURE;
+    m->normal_tex = m->transmission_tex = m->specular_tex = m->specular_color_tex =
+        DIRT_NO_TEXTURE;
+    m->normal_scale = 1.0f;
+    m->alpha_mode = DIRT_ALPHA_OPAQUE;
+    m->alpha_cutoff = 0.5f;
+    m->ior = 1.5f;
+    m->specular = 1.0f;
+    for (int k = 0; k < 3; k++)
+        m->specular_color[k] = 1.0f;
+    for (int k = 0; k < DIRT_NUM_TEX_SLOTS; k++)
+        m->xf[k] = (dirt_tex_transform){.scale = {1.0f, 1.0f}};
+}
+
 static bool check_node_refs(const dirt_scene *s)
 {
     for (size_t i = 0; i < s->num_nodes; i++) {

@@ -99,11 +99,15 @@ AT(dirt_gpu_accum, albedo, 1);
 AT(dirt_gpu_accum, normal, 2);
 
 /* ---- common/integrator_layout.h ---- */
-RECORD(dirt_gpu_model_material, 4);
+RECORD(dirt_gpu_model_material, 7 + 2 * DIRT_MODEL_TEX_SLOTS);
 AT(dirt_gpu_model_material, base_color, 0);
 AT(dirt_gpu_model_material, emission, 1);
 AT(dirt_gpu_model_material, params, 2);
 AT(dirt_gpu_model_material, textures, 3);
+AT(dirt_gpu_model_material, textures2, 4);
+AT(dirt_gpu_model_material, params2, 5);
+AT(dirt_gpu_model_material, specular_color, 6);
+AT(dirt_gpu_model_material, xf, 7);
 
 RECORD(dirt_gpu_model_light, 4);
 AT(dirt_gpu_model_light, position, 0);
@@ -208,6 +212,7 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_MODEL_CAMERA, "MODEL"),
     B(DIRT_BIND_MODEL_TEXELS, "MODEL"),
     B(DIRT_BIND_MODEL_ENV, "MODEL"),
+    B(DIRT_BIND_MODEL_TANGENTS, "MODEL"),
     B(DIRT_BIND_PREVIEW_MATERIALS, "PREVIEW"),
     B(DIRT_BIND_PREVIEW_LIGHTS, "PREVIEW"),
     B(DIRT_BIND_TEST_IN, "TEST"),
@@ -278,6 +283,7 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_MODEL_CAMERA);
         CASE(DIRT_BIND_MODEL_TEXELS);
         CASE(DIRT_BIND_MODEL_ENV);
+        CASE(DIRT_BIND_MODEL_TANGENTS);
         CASE(DIRT_BIND_PREVIEW_MATERIALS);
         CASE(DIRT_BIND_PREVIEW_LIGHTS);
         CASE(DIRT_BIND_TEST_IN);

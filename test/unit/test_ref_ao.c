@@ -48,10 +48,9 @@ static void plane_y(mesh *m, float y, float half, bool up)
 static dirt_material grey(void)
 {
     dirt_material m;
-    memset(&m, 0, sizeof(m));
+    dirt_material_default(&m);
     m.base_color[0] = m.base_color[1] = m.base_color[2] = m.base_color[3] = 0.8f;
-    m.base_color_tex = m.metallic_roughness_tex = m.emissive_tex = DIRT_NO_TEXTURE;
-    m.roughness = 1.0f;
+    m.metallic = 0.0f;
     return m;
 }
 

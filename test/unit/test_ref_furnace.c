@@ -122,7 +122,7 @@ static void box_inward(mesh *m, uint32_t mat)
 static dirt_material mat_make(float albedo, float metallic, float roughness, float emission)
 {
     dirt_material m;
-    memset(&m, 0, sizeof(m));
+    dirt_material_default(&m);
     m.base_color[0] = m.base_color[1] = m.base_color[2] = albedo;
     m.base_color[3] = 1.0f;
     m.base_color_tex = m.metallic_roughness_tex = m.emissive_tex = DIRT_NO_TEXTURE;

@@ -68,7 +68,7 @@ static void check_textures(void)
     tex[1].width = tex[1].height = 1;
     tex[1].rgba = mr_px;
     dirt_material m;
-    memset(&m, 0, sizeof(m));
+    dirt_material_default(&m);
     m.base_color[0] = m.base_color[1] = m.base_color[2] = m.base_color[3] = 0.5f;
     m.base_color_tex = 0;
     m.metallic = 0.5f;

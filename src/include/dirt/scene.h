@@ -34,8 +34,34 @@ typedef struct dirt_texture {
     char name[64];
 } dirt_texture;
 
+/* glTF alphaMode. */
+enum dirt_alpha_mode { DIRT_ALPHA_OPAQUE = 0, DIRT_ALPHA_MASK = 1, DIRT_ALPHA_BLEND = 2 };
+
+/* A material's texture slots (the order of dirt_material.xf). */
+enum dirt_tex_slot {
+    DIRT_SLOT_BASE_COLOR = 0,
+    DIRT_SLOT_METALLIC_ROUGHNESS,
+    DIRT_SLOT_EMISSIVE,
+    DIRT_SLOT_NORMAL,
+    DIRT_SLOT_TRANSMISSION,
+    DIRT_SLOT_SPECULAR,
+    DIRT_SLOT_SPECULAR_COLOR,
+    DIRT_NUM_TEX_SLOTS
+};
+
+/* KHR_texture_transform of one texture slot (glTF: uv' = T(offset)
+ * R(rotation) S(scale) uv). `set` false: the identity. */
+typedef struct dirt_tex_transform {
+    bool set;
+    float offset[2];
+    float rotation;             /* radians */
+    float scale[2];
+} dirt_tex_transform;
+
 /* glTF metallic-roughness material. Texture fields are indices into the
- * scene's textures or DIRT_NO_TEXTURE. */
+ * scene's textures or DIRT_NO_TEXTURE. Make one with dirt_material_default
+ * (the glTF defaults) and change what the file gives: a zeroed struct has
+ * texture 0 in every slot. */
 typedef struct dirt_material {
     char name[64];
     float base_color[4];        /* linear RGBA factor */
@@ -46,7 +72,25 @@ typedef struct dirt_material {
     float emissive_strength;    /* KHR_materials_emissive_strength, 1 if absent */
     int emissive_tex;           /* sRGB */
     bool double_sided;
+    int normal_tex;             /* tangent-space normal map (linear RGB) */
+    float normal_scale;         /* normalTexture.scale, 1 if absent */
+    enum dirt_alpha_mode alpha_mode;
+    float alpha_cutoff;         /* MASK: alphaCutoff, 0.5 if absent */
+    float transmission;         /* KHR_materials_transmission factor, 0 if absent */
+    int transmission_tex;       /* its R channel (linear) */
+    float ior;                  /* KHR_materials_ior, 1.5 if absent */
+    float specular;             /* KHR_materials_specular specularFactor, 1 if absent */
+    int specular_tex;           /* its A channel (linear) */
+    float specular_color[3];    /* specularColorFactor, 1 if absent */
+    int specular_color_tex;     /* its RGB (sRGB) */
+    dirt_tex_transform xf[DIRT_NUM_TEX_SLOTS]; /* per slot (enum dirt_tex_slot) */
 } dirt_material;
+
+/* The glTF defaults: white base, metallic 1, roughness 1, no emission
+ * (strength 1), no texture in any slot, normal scale 1, opaque (cutoff
+ * 0.5), no transmission, ior 1.5, specular 1 of colour 1, identity
+ * transforms; the name empty. */
+void dirt_material_default(dirt_material *m);
 
 enum dirt_camera_type { DIRT_CAMERA_PERSPECTIVE = 0, DIRT_CAMERA_ORTHOGRAPHIC = 1 };
 
