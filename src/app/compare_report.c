@@ -131,6 +131,8 @@ static const char *const csv_cols[][2] = {
     {"dirt_rays", "dirt.rays"}, {"dirt_rel_mse", "dirt.rel_mse"},
     {"ratio_records", "ratios.records"}, {"ratio_memory", "ratios.memory"},
     {"ratio_build", "ratios.build"}, {"ratio_trace", "ratios.trace"},
+    {"mmrt_frame_median_ms", "mmrt.frame.median_ms"},
+    {"dirt_frame_median_ms", "dirt.frame.median_ms"}, {"ratio_frame", "ratios.frame"},
 };
 
 static void csv_field(buf *b, const cJSON *x)
@@ -223,7 +225,8 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
         bprintf(&b, "Machine: %s  \nRenderer: %s  \nCommit: %s  \nTimes: %s clock, median of "
                 "%g repeats after %g warm-up (min-max in results.csv/json); build = the "
                 "structure's passes, trace = every trace pass of spp samples of path "
-                "tracing.\n\n",
+                "tracing, frame = every pass: the build and spp whole samples (raygen, "
+                "traces, fetch, shade, resolve, accumulate).\n\n",
                 js(first, "environment.machine"), js(first, "environment.renderer"),
                 js(first, "environment.commit"), js(first, "environment.clock"),
                 jd(first, "settings.repeat"), jd(first, "settings.warmup"));
@@ -233,9 +236,9 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
     bprintf(&b, "| scene | triangles | resolution | views | S | B (D/M) | thickness | spp "
                 "| MMRT fragments | MMRT MB | MMRT build ms | MMRT trace ms | DIRT entries | "
                 "DIRT MB | DIRT build ms | DIRT trace ms | entries ratio | MB ratio | build "
-                "ratio | trace ratio | MMRT relMSE | DIRT relMSE | status |\n");
+                "ratio | trace ratio | frame ratio | MMRT relMSE | DIRT relMSE | status |\n");
     bprintf(&b, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-                "---|---|---|---|---|\n");
+                "---|---|---|---|---|---|\n");
     cJSON_ArrayForEach(r, rows)
     {
         bprintf(&b, "| %s | %.0f | %.0fx%.0f | %s | %.0f | %.0f/%.0f | %.4g | %.0f |",
@@ -247,17 +250,18 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
                                                     : jd(r, "mmrt.thickness_used"),
                 jd(r, "settings.spp"));
         if (!row_ok(r)) {
-            bprintf(&b, " | | | | | | | | | | | | | | | failed: %s |\n", js(r, "reason"));
+            bprintf(&b, " | | | | | | | | | | | | | | | | failed: %s |\n", js(r, "reason"));
             continue;
         }
         bprintf(&b, " %.0f | %.2f | %.2f | %.2f | %.0f | %.2f | %.2f | %.2f | %.3f | %.3f | "
-                    "%.3f | %.3f | %.3g | %.3g | ok |\n",
+                    "%.3f | %.3f | %.3f | %.3g | %.3g | ok |\n",
                 jd(r, "mmrt.records"), mb(jd(r, "mmrt.memory.structure_used")),
                 jd(r, "mmrt.build.median_ms"), jd(r, "mmrt.trace.median_ms"),
                 jd(r, "dirt.records"), mb(jd(r, "dirt.memory.structure_used")),
                 jd(r, "dirt.build.median_ms"), jd(r, "dirt.trace.median_ms"),
                 jd(r, "ratios.records"), jd(r, "ratios.memory"), jd(r, "ratios.build"),
-                jd(r, "ratios.trace"), jd(r, "mmrt.rel_mse"), jd(r, "dirt.rel_mse"));
+                jd(r, "ratios.trace"), jd(r, "ratios.frame"), jd(r, "mmrt.rel_mse"),
+                jd(r, "dirt.rel_mse"));
     }
     /* Memory against the formulas. */
     bprintf(&b, "\n## Memory against the analytic formulas\n\n"
