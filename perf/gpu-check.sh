@@ -10,7 +10,8 @@
 #   2. the GPU tests, run directly (no meson there), conservative raster
 #      (extension vs emulation: the same lists) included;
 #   3. the build and trace at 1024x512: DIRT build per pass (bench-ads, the
-#      raster build; S = 1, 2), DIRT vs MMRT (dirt-compare, no quality), and
+#      raster build; S = 1, 2), raster against compute build (bench-build),
+#      DIRT vs MMRT (dirt-compare, no quality, with the frame ratio), and
 #      Mrays/s per ray type, DIRT on the GPU vs Embree on the CPU's cores
 #      (bench-trace).
 set -u
@@ -48,7 +49,7 @@ part "device" 30 sh -c "nvidia-smi -L 2>/dev/null || echo 'no nvidia-smi'; \
 
 say ""; say "### GPU tests"; say ""
 say "| test | result | seconds |"; say "|---|---|---|"
-for t in gl_context timing layout_gpu conservative_raster ads_complete ads_edge ads_clip dirt_hits \
+for t in gl_context timing layout_gpu conservative_raster ads_complete ads_edge ads_clip ads_compute dirt_hits \
          dirt_visibility dirt_fetch dirt_pt mmrt_hits mmrt_store mmrt_trace mmrt_pt session memory; do
   exe=$build/test/gpu/test_$t
   [ -x "$exe" ] || { say "| $t | missing | |"; continue; }
@@ -65,6 +66,11 @@ done
 [ -x "$build/perf/bench-ads" ] &&
   part "DIRT build per pass, $res (bench-ads)" 90 "$build/perf/bench-ads" "${scenes[@]}" \
     -W "$W" -H "$H" -S 1,2 -B 16 --repeat 3
+# The default build per device comes from this: raster (the paper's
+# pipeline, hardware conservative raster) against compute passes.
+[ -x "$build/perf/bench-build" ] &&
+  part "DIRT raster vs compute build, $res (bench-build)" 60 "$build/perf/bench-build" \
+    "${scenes[@]}" -W "$W" -H "$H" --views cube+camera -S 1,2 -B 16 --repeat 3 --build both
 part "DIRT vs MMRT, $res (dirt-compare, no quality)" 150 "$build/src/app/dirt-compare" \
   "${scenes[@]}" -o "$out/compare" --res "$res" --tile 1,2 --repeat 3 --no-quality -q
 [ -f "$out/compare/table.md" ] && { say ""; cat "$out/compare/table.md" >>"$report"; }
