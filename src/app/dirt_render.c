@@ -125,8 +125,10 @@ static void usage(FILE *out)
 "      --face-size N     cube face size in pixels (default max(W,H)/2)\n"
 "      --no-conservative-raster  emulate conservative rasterization even when\n"
 "                        GL_NV_conservative_raster is present\n"
-"      --build KIND      raster (default) or compute: how the structure is built\n"
-"                        (the same structure; doc/dirt-build.md)\n"
+"      --build KIND      how the structure is built (the same structure either\n"
+"                        way; doc/dirt-build.md): raster, compute, or auto\n"
+"                        (default: compute on a software renderer, raster on\n"
+"                        a GPU, as measured)\n"
 "      --hiz-top L       highest Hi-Z level the march starts from; 0 = tiles\n"
 "                        only, no Hi-Z (default: the pyramid's top)\n"
 "      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
@@ -170,7 +172,7 @@ static void usage(FILE *out)
 static const char *const modes[] = {"pt", "ao", NULL};
 static const char *const views[] = {"", "single", "cube", "cube+camera", NULL};
 static const char *const fetches[] = {"compute", "raster", NULL};
-static const char *const builds[] = {"raster", "compute", NULL};
+static const char *const builds[] = {"auto", "raster", "compute", NULL};
 static const char *const marches[] = {"hiz", "linear", NULL};
 
 static const char *const tonemaps[] = {"clamp", "reinhard", "aces", NULL};

@@ -292,16 +292,8 @@ bool dirt_env_sample(const dirt_env *env, float u_sel, float u1, float u2, dirt_
 {
     if (!dirt_env_samples(env))
         return false;
-    float x = u_sel * env->total;
-    size_t n = (size_t)env->width * (size_t)env->height;
-    size_t lo = 0, hi = n - 1;
-    while (lo < hi) { /* first k with cdf[k] > x; the last one if none */
-        size_t mid = lo + (hi - lo) / 2;
-        if (env->cdf[mid] > x)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
+    size_t lo = dirt_cdf_find(env->cdf, (size_t)env->width * (size_t)env->height,
+                              u_sel * env->total);
     int i = (int)(lo % (size_t)env->width), j = (int)(lo / (size_t)env->width);
     float p = texel_pdf(env, i, j);
     if (!(p > 0.0f))

@@ -103,18 +103,22 @@ void dirt_area_lights_free(dirt_area_lights *lights)
     lights->total_area = 0.0f;
 }
 
-size_t dirt_area_lights_select(const dirt_area_lights *lights, float u)
+size_t dirt_cdf_find(const float *cdf, size_t n, float x)
 {
-    float x = u * lights->total_area;
-    size_t lo = 0, hi = lights->count - 1;
-    while (lo < hi) { /* first i with cdf[i] > x; the last one if none */
+    size_t lo = 0, hi = n - 1;
+    while (lo < hi) {
         size_t mid = lo + (hi - lo) / 2;
-        if (lights->cdf[mid] > x)
+        if (cdf[mid] > x)
             hi = mid;
         else
             lo = mid + 1;
     }
     return lo;
+}
+
+size_t dirt_area_lights_select(const dirt_area_lights *lights, float u)
+{
+    return dirt_cdf_find(lights->cdf, lights->count, u * lights->total_area);
 }
 
 void dirt_camera_ray(const dirt_camera *cam, int width, int height, float px,

@@ -85,7 +85,8 @@ bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
              o->hiz_levels < 0 || o->march_samples < 0 || o->thickness < 0 ||
              o->aperture < 0 || o->focus < 0 || o->ao_distance < 0 || o->threads < 0)
         snprintf(why, size, "a negative or out-of-range option");
-    else if (o->build != DIRT_BUILD_RASTER && o->build != DIRT_BUILD_COMPUTE)
+    else if (o->build != DIRT_SESSION_BUILD_AUTO && o->build != DIRT_SESSION_BUILD_RASTER &&
+             o->build != DIRT_SESSION_BUILD_COMPUTE)
         snprintf(why, size, "build mode %d unknown", (int)o->build);
     else if (o->engine == DIRT_ENGINE_MMRT &&
              (o->fetch == DIRT_FETCH_RASTER || o->direct_visibility))
@@ -244,6 +245,12 @@ static int auto_tile_size(dirt_session *s, dirt_view_opts vo, int buckets)
     return 8;
 }
 
+enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu)
+{
+    const dirt_gpu_caps *caps = gpu ? dirt_gpu_get_caps(gpu) : NULL;
+    return caps && caps->software ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER;
+}
+
 static bool make_engine(dirt_session *s)
 {
     const dirt_session_opts *o = &s->opts;
@@ -258,7 +265,11 @@ static bool make_engine(dirt_session *s)
                                              .views = vo,
                                              .buckets = buckets,
                                              .force_emulation = o->force_emulation,
-                                             .build = o->build,
+                                             .build = o->build == DIRT_SESSION_BUILD_RASTER
+                                                          ? DIRT_BUILD_RASTER
+                                                      : o->build == DIRT_SESSION_BUILD_COMPUTE
+                                                          ? DIRT_BUILD_COMPUTE
+                                                          : dirt_session_auto_build(s->gpu),
                                          });
         if (!s->ads)
             return false;

@@ -374,24 +374,33 @@ static void test_trace(dirt_gpu *gpu)
 }
 
 /* A session switched from the raster to the compute build remakes the
- * structure and renders the same image, bit for bit. */
+ * structure and renders the same image, bit for bit; the automatic build
+ * (the default) is dirt_session_auto_build's: compute on llvmpipe. */
 static void test_session(dirt_gpu *gpu)
 {
     dirt_scene *scene = dirt_scene_create_default();
     enum { W = 80, H = 60 };
     dirt_session_opts o = {.width = W, .height = H, .bounces = 2};
+    dirt_session *a = dirt_session_create(gpu, scene, &o);
+    CHECK(a && dirt_session_add_samples(a, 1, NULL, NULL));
+    CHECK(a && dirt_session_get_stats(a)->ads.build == dirt_session_auto_build(gpu));
+    CHECK(dirt_session_auto_build(gpu) == (dirt_gpu_get_caps(gpu)->software
+                                               ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER));
+    dirt_session_destroy(a);
+    o.build = DIRT_SESSION_BUILD_RASTER;
     dirt_session *s = dirt_session_create(gpu, scene, &o);
     CHECK(s != NULL);
     float *img[2] = {NULL, NULL};
     for (int i = 0; s && i < 2; i++) {
         if (i) {
-            o.build = DIRT_BUILD_COMPUTE;
+            o.build = DIRT_SESSION_BUILD_COMPUTE;
             bool restarted = false;
             CHECK(dirt_session_set_opts(s, &o, &restarted) && restarted);
         }
         CHECK(dirt_session_add_samples(s, 2, NULL, NULL));
         const dirt_session_stats *st = dirt_session_get_stats(s);
-        CHECK(st->has_ads && st->ads.build == o.build && st->aborted == 0);
+        CHECK(st->has_ads && st->aborted == 0 &&
+              st->ads.build == (i ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER));
         const dirt_image *im = dirt_session_image(s);
         CHECK(im && im->width == W && im->height == H);
         if (im) {

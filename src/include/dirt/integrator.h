@@ -189,6 +189,11 @@ bool dirt_area_lights_build(dirt_area_lights *out, const dirt_frame *frame,
                             const dirt_material *materials, size_t num_materials);
 void dirt_area_lights_free(dirt_area_lights *lights);
 
+/* The first i in [0, n) with cdf[i] > x, n - 1 when none (binary search of
+ * a non-decreasing cdf; n > 0): how the area lights and the environment
+ * pick their entry. */
+size_t dirt_cdf_find(const float *cdf, size_t n, float x);
+
 /* Index (into prim/cdf) of the triangle selected by u in [0,1): the first i
  * with cdf[i] > u * total_area (binary search). count must be > 0. */
 size_t dirt_area_lights_select(const dirt_area_lights *lights, float u);

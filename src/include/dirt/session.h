@@ -48,6 +48,23 @@ enum dirt_engine {
 
 extern const char *const dirt_engine_names[DIRT_NUM_ENGINES]; /* "dirt", "mmrt", ... */
 
+/* How DIRT's structure is built (doc/dirt-build.md; both give the same
+ * lists). AUTO: by measurement per device (dirt_session_auto_build). */
+enum dirt_session_build {
+    DIRT_SESSION_BUILD_AUTO = 0,
+    DIRT_SESSION_BUILD_RASTER,  /* DIRT_BUILD_RASTER */
+    DIRT_SESSION_BUILD_COMPUTE, /* DIRT_BUILD_COMPUTE */
+};
+
+/* The build AUTO picks on `gpu` (NULL: raster): the compute build on a
+ * software renderer (llvmpipe: measured 1.0-2.2x faster for the whole
+ * build, perf/results/build-compute-llvmpipe.md, and the faster frame on
+ * every scene measured, perf/results/defaults-llvmpipe.md), the raster build
+ * (the paper's pipeline, hardware conservative raster) on a hardware GPU
+ * until a measurement there says otherwise (perf/gpu-check.sh measures
+ * both). */
+enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu);
+
 /* Views of the structure; DEFAULT = camera view and cube faces. */
 enum dirt_session_views {
     DIRT_SESSION_VIEWS_DEFAULT = 0,
@@ -67,7 +84,7 @@ typedef struct dirt_session_opts {
     int tile_size;              /* DIRT's S in {1, 2, 4, 8} (0 = 2; MMRT is per pixel) */
     int buckets;                /* 0 = 16 for dirt, 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
-    enum dirt_build_mode build; /* dirt: raster (default) or compute build (same structure) */
+    enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
     bool direct_visibility;     /* dirt: first hits from a visibility buffer */
