@@ -32,6 +32,16 @@ static int views_in_mode(enum dirt_view_mode m)
     return m == DIRT_VIEWS_SINGLE ? 1 : m == DIRT_VIEWS_CUBE ? 6 : 7;
 }
 
+enum dirt_build_mode dirt_build_from_env(enum dirt_build_mode fallback)
+{
+    const char *e = getenv("DIRT_BUILD");
+    if (e && !strcmp(e, "compute"))
+        return DIRT_BUILD_COMPUTE;
+    if (e && !strcmp(e, "raster"))
+        return DIRT_BUILD_RASTER;
+    return fallback;
+}
+
 dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
 {
     dirt_ads *a = calloc(1, sizeof(*a));
@@ -52,6 +62,8 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         DIRT_ERROR("unknown view mode %d", (int)a->opts.views.mode);
         goto error;
     }
+    if (a->opts.build == DIRT_BUILD_DEFAULT)
+        a->opts.build = dirt_build_from_env(DIRT_BUILD_RASTER);
     if (a->opts.build != DIRT_BUILD_RASTER && a->opts.build != DIRT_BUILD_COMPUTE) {
         DIRT_ERROR("unknown build mode %d", (int)a->opts.build);
         goto error;
@@ -122,6 +134,8 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         goto error;
     a->node_capacity = a->opts.initial_nodes;
     a->cand_capacity = a->opts.initial_candidates;
+    /* (at most one work record per candidate tile examined) */
+    a->rec_capacity = compute ? a->opts.initial_candidates : 0;
     return a;
 error:
     dirt_ads_destroy(a);

@@ -248,7 +248,7 @@ static int auto_tile_size(dirt_session *s, dirt_view_opts vo, int buckets)
 enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu)
 {
     const dirt_gpu_caps *caps = gpu ? dirt_gpu_get_caps(gpu) : NULL;
-    return caps && caps->software ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER;
+    return dirt_build_from_env(caps && caps->software ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER);
 }
 
 static bool make_engine(dirt_session *s)

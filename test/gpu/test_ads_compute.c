@@ -384,8 +384,9 @@ static void test_session(dirt_gpu *gpu)
     dirt_session *a = dirt_session_create(gpu, scene, &o);
     CHECK(a && dirt_session_add_samples(a, 1, NULL, NULL));
     CHECK(a && dirt_session_get_stats(a)->ads.build == dirt_session_auto_build(gpu));
-    CHECK(dirt_session_auto_build(gpu) == (dirt_gpu_get_caps(gpu)->software
-                                               ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER));
+    CHECK(dirt_session_auto_build(gpu) ==
+          dirt_build_from_env(dirt_gpu_get_caps(gpu)->software ? DIRT_BUILD_COMPUTE
+                                                               : DIRT_BUILD_RASTER));
     dirt_session_destroy(a);
     o.build = DIRT_SESSION_BUILD_RASTER;
     dirt_session *s = dirt_session_create(gpu, scene, &o);

@@ -75,8 +75,9 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK_MSG(walked == st->nodes, "lists hold %llu nodes, stats say %llu",
               (unsigned long long)walked, (unsigned long long)st->nodes);
     uint64_t tiles = (uint64_t)set->num_tiles, pyramid = (uint64_t)set->pyramid_size;
+    /* (the compute build's work records, 16 B each, follow the candidates) */
     uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + 8 * walked +
-                       16 * pairs;
+                       16 * pairs + 16 * st->work_records;
     CHECK_MSG(st->bytes_total_used == formula, "DIRT used %llu B, formula %llu B",
               (unsigned long long)st->bytes_total_used, (unsigned long long)formula);
     double per_tile = (double)pyramid / (double)tiles;

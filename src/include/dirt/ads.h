@@ -31,11 +31,20 @@ typedef struct dirt_ads dirt_ads;
  * structure: the same primitives in every (tile, bucket) list (the order
  * within a list comes from atomics), the same depth bounds and pyramid. */
 enum dirt_build_mode {
-    DIRT_BUILD_RASTER = 0,  /* a geometry-shader quad per (primitive, view), the range
-                               per fragment (default) */
+    DIRT_BUILD_DEFAULT = 0, /* raster, unless the environment variable
+                               DIRT_BUILD=compute|raster says otherwise (how
+                               the test suites run every DIRT test with
+                               either build; explicit modes are never
+                               overridden) */
+    DIRT_BUILD_RASTER,      /* a geometry-shader quad per (primitive, view), the range
+                               per fragment */
     DIRT_BUILD_COMPUTE,     /* compute passes only: candidate tiles per (primitive,
                                view), the range per candidate tile */
 };
+
+/* The mode DIRT_BUILD_DEFAULT stands for: DIRT_BUILD=compute gives
+ * COMPUTE, DIRT_BUILD=raster RASTER, anything else `fallback`. */
+enum dirt_build_mode dirt_build_from_env(enum dirt_build_mode fallback);
 
 /* Zero-initialised = single camera view 640x480, S = 2, B = 16, automatic
  * initial node capacity, raster build. */
@@ -44,12 +53,14 @@ typedef struct dirt_ads_opts {
     int buckets;              /* B >= 1 (default 16) */
     size_t initial_nodes;     /* first node capacity (0 = automatic; the pool is sized
                                  from the count pass before the fill pass runs) */
-    size_t initial_candidates; /* first candidate capacity (0 = from the bound pass) */
+    size_t initial_candidates; /* first candidate capacity, and in the compute
+                                  build as many work records (0 = from the
+                                  bound pass) */
     bool force_emulation;     /* ignore GL_NV_conservative_raster */
     bool reference_clip;      /* Sutherland-Hodgman clip of every candidate tile (the
                                  slow reference of the exact range, for checks and
                                  benchmarks; doc/dirt-build.md) */
-    enum dirt_build_mode build; /* raster (default) or compute passes */
+    enum dirt_build_mode build; /* default (raster), raster or compute passes */
 } dirt_ads_opts;
 
 /* The build's passes (doc/dirt-build.md): clear; depth bounds (exact range
@@ -74,7 +85,7 @@ typedef struct dirt_ads_stats {
     bool bound_pass;          /* the candidate bound pass ran (first build, or the
                                  view set or the primitive count changed) */
     bool conservative_nv;     /* the hardware conservative path was used (raster build) */
-    enum dirt_build_mode build; /* how it was built */
+    enum dirt_build_mode build; /* how it was built (RASTER or COMPUTE) */
     uint64_t work_records;    /* compute build: work records of the candidate tiles
                                  (0 for the raster build) */
     /* Bytes. */

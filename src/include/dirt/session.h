@@ -62,7 +62,8 @@ enum dirt_session_build {
  * every scene measured, perf/results/defaults-llvmpipe.md), the raster build
  * (the paper's pipeline, hardware conservative raster) on a hardware GPU
  * until a measurement there says otherwise (perf/gpu-check.sh measures
- * both). */
+ * both). The environment variable DIRT_BUILD=raster|compute overrides it
+ * (dirt_build_from_env). */
 enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu);
 
 /* Views of the structure; DEFAULT = camera view and cube faces. */
