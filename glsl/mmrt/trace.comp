@@ -24,9 +24,13 @@
 // tail -> prev when it shrinks); the first fragment whose depth is within
 // u_thickness of the span is the hit. The hit's t is where the ray's depth
 // equals the fragment's, clamped to the span.
+// Alpha (u_alpha, integrator/alpha.glsl): a fragment of a MASK or BLEND
+// material that the alpha test rejects at its own uv (the pixel centre's)
+// is passed over, and the walk goes on with the next fragment.
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
+#include "integrator/alpha.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -82,6 +86,20 @@ struct hit_state {
 };
 
 uint g_steps = 0u;
+// The ray's alpha key (dirt_alpha_ray_key_g; set when u_alpha != 0).
+uint g_alpha_key = 0u;
+
+// Whether the ray sees the fragment of data node n (alpha test at the
+// fragment's uv).
+bool alpha_accept(uint n)
+{
+    if (u_alpha == 0)
+        return true;
+    dirt_mmrt_gpu_data d = data[n];
+    if (!dirt_material_alpha_tested_g(d.ids.y))
+        return true;
+    return dirt_alpha_accept_g(d.ids.y, d.attr.zw, g_alpha_key, d.ids.x);
+}
 uint g_pixels_tested = 0u;
 uint g_nodes_visited = 0u;
 
@@ -116,7 +134,7 @@ bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hi
             float z = uintBitsToFloat(ids[base + uint(DIRT_MMRT_ID_Z)]);
             if (forward ? z > hi : z < lo)
                 return false; // sorted: nothing further along can match
-            if (forward ? z >= lo : z <= hi) {
+            if ((forward ? z >= lo : z <= hi) && alpha_accept(n)) {
                 float t = 0.5 * (ta + tb);
                 if (cd.w != 0.0)
                     t = clamp((z - co.w) / cd.w, min(ta, tb), max(ta, tb));
@@ -279,6 +297,8 @@ void main()
     vec3 org = r.origin_tmin.xyz, dir = r.dir_tmax.xyz;
     float tmin = max(r.origin_tmin.w, 0.0);
     float tmax = min(r.dir_tmax.w, BIG);
+    if (u_alpha != 0)
+        g_alpha_key = dirt_alpha_ray_key_g(i);
     hit_state h;
     h.node = DIRT_LIST_END;
     h.view = -1;

@@ -29,6 +29,16 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
     glUniform1i(DIRT_LOC_TRACE_LINK, link ? 1 : 0);
+    /* Alpha test: the integrator's tables and the per-primitive materials. */
+    const dirt_trace_alpha *al = &opts.alpha;
+    glUniform1i(DIRT_LOC_ALPHA_ENABLED, al->materials ? 1 : 0);
+    if (al->materials) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, al->materials);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, al->texels);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
+        glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
+        glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
+    }
     /* Rays may come from a shader (the integrator's ray generation). */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* Timed here only when called on its own (stats requested); inside a

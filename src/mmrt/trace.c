@@ -59,6 +59,15 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glUniform1ui(DIRT_LOC_MMRT_TRACE_FIRST_RAY, o.first_ray);
     glUniform1i(DIRT_LOC_MMRT_TRACE_STATS, o.count ? 1 : 0);
     glUniform1i(DIRT_LOC_MMRT_TRACE_ALL_VIEWS, o.all_views ? 1 : 0);
+    /* Alpha test: the integrator's tables (the data nodes hold the rest). */
+    glUniform1i(DIRT_LOC_ALPHA_ENABLED, o.alpha.materials ? 1 : 0);
+    if (o.alpha.materials) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, o.alpha.materials);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, o.alpha.texels);
+        glUniform4ui(DIRT_LOC_ALPHA_KEY, o.alpha.seed, o.alpha.sample, o.alpha.bounce,
+                     o.alpha.dim);
+        glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, o.alpha.first_pixel);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     /* Timed only when stats are asked for: a caller timing its own pass (a
      * frame graph) may have a time query active, and they do not nest. */
