@@ -48,8 +48,9 @@ vec2 dirt_alpha_uv_g(vec2 t0, vec2 t1, vec2 t2, float b1, float b2)
 // linear lookup (alpha is never decoded).
 float dirt_material_coverage_g(uint material, vec2 uv)
 {
-    dirt_gpu_model_material m = dirt_model_materials[material];
-    return m.base_color.w * dirt_texture_sample_g(m.textures.x, false, uv).w;
+    // Two members, not the 336-byte record (the trace's inner loop).
+    float factor = dirt_model_materials[material].base_color.w;
+    return factor * dirt_texture_sample_g(dirt_model_materials[material].textures.x, false, uv).w;
 }
 
 // = dirt_material_alpha_tested.

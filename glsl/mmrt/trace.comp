@@ -24,8 +24,10 @@
 // tail -> prev when it shrinks); the first fragment whose depth is within
 // u_thickness of the span is the hit. The hit's t is where the ray's depth
 // equals the fragment's, clamped to the span.
-// Alpha (u_alpha, integrator/alpha.glsl): a fragment of a MASK or BLEND
-// material that the alpha test rejects is passed over, and the walk goes on
+// Alpha (built with DIRT_TRACE_ALPHA, for scenes with MASK or BLEND
+// materials: integrator/alpha.glsl, u_alpha; the opaque scenes' variant is
+// the trace without it): a fragment of such a material
+// that the alpha test rejects is passed over, and the walk goes on
 // with the next fragment. The test reads the texture where the ray meets the
 // fragment's primitive's plane (the fragment's own uv, at its pixel centre,
 // is up to half a pixel's footprint off: too coarse for masks a few pixels
@@ -33,13 +35,17 @@
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
+#ifdef DIRT_TRACE_ALPHA
 #include "integrator/alpha.glsl"
+#endif
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
+#ifdef DIRT_TRACE_ALPHA
 layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
     dirt_gpu_vertex vertices[]; // read only with u_alpha
 };
+#endif
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
@@ -102,6 +108,9 @@ vec3 g_org, g_dir;
 // uv when the ray is parallel to the plane.
 bool alpha_accept(uint n)
 {
+#ifndef DIRT_TRACE_ALPHA
+    return true;
+#else
     if (u_alpha == 0)
         return true;
     dirt_mmrt_gpu_data d = data[n];
@@ -121,6 +130,7 @@ bool alpha_accept(uint n)
                              vec2(v2.position.w, v2.normal.w), b1, b2);
     }
     return dirt_alpha_accept_g(d.ids.y, uv, g_alpha_key, p);
+#endif
 }
 uint g_pixels_tested = 0u;
 uint g_nodes_visited = 0u;
@@ -321,8 +331,10 @@ void main()
     float tmax = min(r.dir_tmax.w, BIG);
     g_org = org;
     g_dir = dir;
+#ifdef DIRT_TRACE_ALPHA
     if (u_alpha != 0)
         g_alpha_key = dirt_alpha_ray_key_g(i);
+#endif
     hit_state h;
     h.node = DIRT_LIST_END;
     h.view = -1;
