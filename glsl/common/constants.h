@@ -288,6 +288,12 @@
 #define DIRT_LOC_MMRT_TRACE_ALL_VIEWS 7  /* int: every view over the whole segment */
 #define DIRT_LOC_MMRT_TRACE_FIRST_RAY 8  /* uint: wavefront index of the batch's ray 0 */
 /* glsl/mmrt/pt_rays.comp */
+/* Both trace passes (glsl/dirt/trace.comp, glsl/mmrt/trace.comp) with the
+ * alpha test of glsl/integrator/alpha.glsl (dirt_trace_alpha, dirt/ray.h). */
+#define DIRT_LOC_ALPHA_ENABLED 16      /* int: 1 tests alpha-tested materials' hits */
+#define DIRT_LOC_ALPHA_KEY 17          /* uvec4: seed, sample, bounce, dim of the rays' keys */
+#define DIRT_LOC_ALPHA_FIRST_PIXEL 18  /* uint: pixel of the batch's ray 0 */
+
 #define DIRT_LOC_MMRT_PT_RAYS_COUNT 0    /* uint: rays */
 /* glsl/mmrt/to_gpoint.comp */
 #define DIRT_LOC_MMRT_TO_GPOINT_COUNT 0  /* uint: rays */

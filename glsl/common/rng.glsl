@@ -29,6 +29,10 @@
 #define DIRT_RNG_DIM_BSDF_U 5u
 #define DIRT_RNG_DIM_BSDF_V 6u
 #define DIRT_RNG_DIM_RR 7u
+// every bounce k >= 0: keys of the alpha BLEND decisions of the rays leaving
+// vertex k (0: the camera); doc/rng.md, "Alpha"
+#define DIRT_RNG_DIM_ALPHA_PATH 8u
+#define DIRT_RNG_DIM_ALPHA_SHADOW 9u
 
 // One bijective 32-bit mixing round (xor-shifts, odd multipliers mod 2^32).
 uint dirt_rng_mix(uint x)
@@ -77,6 +81,13 @@ float dirt_rng_float(uint seed, uint pixel, uint sample_index, uint bounce, uint
 float dirt_rng_next_float(uint key, uint dim)
 {
     return dirt_rng_to_float(dirt_rng_next(key, dim));
+}
+
+// Decision number of primitive `prim` for the ray of `ray_key`
+// (= dirt_rng_alpha of rng.h).
+float dirt_rng_alpha(uint ray_key, uint prim)
+{
+    return dirt_rng_to_float(dirt_rng_next(ray_key, prim));
 }
 
 #endif

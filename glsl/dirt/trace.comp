@@ -15,7 +15,15 @@
 // buckets can give a hit beyond the current slab; stopping there could skip
 // a nearer primitive of the next bucket). Cell exits are solved exactly in
 // clip space, where tile boundaries are planes linear in the ray parameter.
+// Alpha (built with DIRT_TRACE_ALPHA, for scenes with MASK or BLEND
+// materials: integrator/alpha.glsl, u_alpha): a candidate of such a material
+// that the alpha test rejects is not a hit, and the walk goes on as if it
+// were not in the list. The variant without it is the opaque scenes' trace,
+// untouched (the unused test in the inner loop cost llvmpipe 3x).
 #include "common/layout.h"
+#ifdef DIRT_TRACE_ALPHA
+#include "integrator/alpha.glsl"
+#endif
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -49,6 +57,11 @@ layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
 layout(std430, binding = DIRT_BIND_HIT_HEADS) buffer HitHeads {
     uint hit_heads[];
 };
+#ifdef DIRT_TRACE_ALPHA
+layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
+    uint prim_material[]; // read only with u_alpha
+};
+#endif
 
 layout(location = DIRT_LOC_TRACE_COUNT) uniform uint u_count;
 layout(location = DIRT_LOC_TRACE_HIZ_TOP) uniform int u_hiz_top;  // highest level to start from; < 0 = top
@@ -62,6 +75,27 @@ layout(location = DIRT_LOC_TRACE_LINK) uniform int u_link;     // 1: link hits p
 // 65535) and silently leaves loops past that; such rays are counted as
 // aborted instead of being reported as (possibly wrong) misses.
 bool g_cut = false;
+
+// The ray's alpha key (dirt_alpha_ray_key_g; set when u_alpha != 0).
+uint g_alpha_key = 0u;
+
+// Whether the ray sees primitive p at barycentrics (u, w) (alpha test).
+bool alpha_accept(uint p, float u, float w)
+{
+#ifndef DIRT_TRACE_ALPHA
+    return true;
+#else
+    if (u_alpha == 0)
+        return true;
+    uint m = prim_material[p];
+    if (!dirt_material_alpha_tested_g(m))
+        return true;
+    vec2 t0 = vec2(vertices[3u * p].position.w, vertices[3u * p].normal.w);
+    vec2 t1 = vec2(vertices[3u * p + 1u].position.w, vertices[3u * p + 1u].normal.w);
+    vec2 t2 = vec2(vertices[3u * p + 2u].position.w, vertices[3u * p + 2u].normal.w);
+    return dirt_alpha_accept_g(m, dirt_alpha_uv_g(t0, t1, t2, u, w), g_alpha_key, p);
+#endif
+}
 
 // ---- watertight ray-triangle test (Woop, Benthin, Wald, JCGT 2013) ----
 
@@ -235,6 +269,8 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             vec2 ndc = c.xy / c.w;
             if (c.w <= 0.0 || any(lessThan(ndc, rlo)) || any(greaterThan(ndc, rhi)))
                 continue;
+            if (!alpha_accept(p, u, w))
+                continue; // alpha-tested away: not a hit
             best.t = t;
             best.u = u;
             best.v = w;
@@ -366,6 +402,10 @@ void main()
     best.prim = DIRT_NO_HIT;
     best.view = -1;
     ray_setup rs = setup_ray(org, dir);
+#ifdef DIRT_TRACE_ALPHA
+    if (u_alpha != 0)
+        g_alpha_key = dirt_alpha_ray_key_g(i);
+#endif
 
     // Views and their entry parameters; camera view (index 0 when present)
     // first, the rest by entry parameter (insertion sort, at most 7).

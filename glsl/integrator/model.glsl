@@ -373,6 +373,10 @@ void dirt_camera_ray_g(dirt_gpu_model_camera cam, int width, int height, float p
 layout(std430, binding = DIRT_BIND_MODEL_MATERIALS) readonly buffer DirtModelMaterials {
     dirt_gpu_model_material dirt_model_materials[];
 };
+// DIRT_MODEL_SURFACE_ONLY: only the materials and the texels (and the
+// functions reading them), for shaders short of storage blocks (the traces'
+// alpha test, integrator/alpha.glsl).
+#ifndef DIRT_MODEL_SURFACE_ONLY
 layout(std430, binding = DIRT_BIND_MODEL_AREA_CDF) readonly buffer DirtModelAreaCdf {
     dirt_gpu_model_lights dirt_model_lights;
     float dirt_model_area_cdf[];
@@ -386,6 +390,7 @@ layout(std430, binding = DIRT_BIND_MODEL_PUNCTUAL) readonly buffer DirtModelPunc
 layout(std430, binding = DIRT_BIND_MODEL_CAMERA) readonly buffer DirtModelCamera {
     dirt_gpu_model_camera dirt_model_camera;
 };
+#endif // DIRT_MODEL_SURFACE_ONLY
 // The scene's textures at their own sizes (common/integrator_layout.h):
 // the header, then dirt_gpu_model_texture records (4 words each), then the
 // RGBA8 texels, one word each.
@@ -502,6 +507,7 @@ bool dirt_material_is_emissive_g(uint material)
     return (dirt_model_materials[material].textures.w & DIRT_MODEL_MAT_EMISSIVE) != 0;
 }
 
+#ifndef DIRT_MODEL_SURFACE_ONLY
 // Index (into the cdf/prim tables) of the emissive triangle selected by u in
 // [0,1): the first i with cdf[i] > u * total_area, the last one if none
 // (binary search). The table must not be empty (counts.x > 0).
@@ -662,6 +668,7 @@ bool dirt_env_sample_g(float u_sel, float u1, float u2, out vec3 d, out float pd
     radiance = dirt_env_rgb_g(lo);
     return true;
 }
+#endif // DIRT_MODEL_SURFACE_ONLY
 #endif // DIRT_MODEL_BUFFERS
 
 #endif

@@ -24,12 +24,28 @@
 // tail -> prev when it shrinks); the first fragment whose depth is within
 // u_thickness of the span is the hit. The hit's t is where the ray's depth
 // equals the fragment's, clamped to the span.
+// Alpha (built with DIRT_TRACE_ALPHA, for scenes with MASK or BLEND
+// materials: integrator/alpha.glsl, u_alpha; the opaque scenes' variant is
+// the trace without it): a fragment of such a material
+// that the alpha test rejects is passed over, and the walk goes on
+// with the next fragment. The test reads the texture where the ray meets the
+// fragment's primitive's plane (the fragment's own uv, at its pixel centre,
+// is up to half a pixel's footprint off: too coarse for masks a few pixels
+// wide seen by secondary rays).
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
+#ifdef DIRT_TRACE_ALPHA
+#include "integrator/alpha.glsl"
+#endif
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
+#ifdef DIRT_TRACE_ALPHA
+layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
+    dirt_gpu_vertex vertices[]; // read only with u_alpha
+};
+#endif
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
@@ -82,6 +98,40 @@ struct hit_state {
 };
 
 uint g_steps = 0u;
+// The ray and its alpha key (dirt_alpha_ray_key_g; set when u_alpha != 0).
+uint g_alpha_key = 0u;
+vec3 g_org, g_dir;
+
+// Whether the ray sees the fragment of data node n: the alpha test at the
+// UV where the ray meets the plane of the fragment's primitive (barycentrics
+// of that point, Moller-Trumbore without the bounds test), the fragment's
+// uv when the ray is parallel to the plane.
+bool alpha_accept(uint n)
+{
+#ifndef DIRT_TRACE_ALPHA
+    return true;
+#else
+    if (u_alpha == 0)
+        return true;
+    dirt_mmrt_gpu_data d = data[n];
+    if (!dirt_material_alpha_tested_g(d.ids.y))
+        return true;
+    uint p = d.ids.x;
+    dirt_gpu_vertex v0 = vertices[3u * p], v1 = vertices[3u * p + 1u],
+                    v2 = vertices[3u * p + 2u];
+    vec3 e1 = v1.position.xyz - v0.position.xyz, e2 = v2.position.xyz - v0.position.xyz;
+    vec3 pv = cross(g_dir, e2);
+    float det = dot(e1, pv);
+    vec2 uv = d.attr.zw;
+    if (det != 0.0) {
+        vec3 tv = g_org - v0.position.xyz;
+        float b1 = dot(tv, pv) / det, b2 = dot(g_dir, cross(tv, e1)) / det;
+        uv = dirt_alpha_uv_g(vec2(v0.position.w, v0.normal.w), vec2(v1.position.w, v1.normal.w),
+                             vec2(v2.position.w, v2.normal.w), b1, b2);
+    }
+    return dirt_alpha_accept_g(d.ids.y, uv, g_alpha_key, p);
+#endif
+}
 uint g_pixels_tested = 0u;
 uint g_nodes_visited = 0u;
 
@@ -116,7 +166,7 @@ bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hi
             float z = uintBitsToFloat(ids[base + uint(DIRT_MMRT_ID_Z)]);
             if (forward ? z > hi : z < lo)
                 return false; // sorted: nothing further along can match
-            if (forward ? z >= lo : z <= hi) {
+            if ((forward ? z >= lo : z <= hi) && alpha_accept(n)) {
                 float t = 0.5 * (ta + tb);
                 if (cd.w != 0.0)
                     t = clamp((z - co.w) / cd.w, min(ta, tb), max(ta, tb));
@@ -279,6 +329,12 @@ void main()
     vec3 org = r.origin_tmin.xyz, dir = r.dir_tmax.xyz;
     float tmin = max(r.origin_tmin.w, 0.0);
     float tmax = min(r.dir_tmax.w, BIG);
+    g_org = org;
+    g_dir = dir;
+#ifdef DIRT_TRACE_ALPHA
+    if (u_alpha != 0)
+        g_alpha_key = dirt_alpha_ray_key_g(i);
+#endif
     hit_state h;
     h.node = DIRT_LIST_END;
     h.view = -1;

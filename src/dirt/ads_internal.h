@@ -40,6 +40,7 @@ struct dirt_ads {
     dirt_ads_stats stats;
     /* trace */
     GLuint prog_trace;
+    GLuint prog_trace_alpha;  /* DIRT_TRACE_ALPHA: made on first use */
     GLuint rays, hits;
     size_t rays_size, hits_size;
     gl_timer trace_timer;

@@ -154,6 +154,7 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
     gl_program_destroy(&a->prog_trace);
+    gl_program_destroy(&a->prog_trace_alpha);
     gl_program_destroy(&a->prog_fetch);
     gl_program_destroy(&a->prog_fetch_miss);
     gl_program_destroy(&a->prog_fetch_raster);

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "dirt/ads_internal.h"
+#include "gl/program.h"
 
 /* Record sizes and offsets are checked in src/gl/layout_check.c. */
 
@@ -24,11 +25,31 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
-    glUseProgram(a->prog_trace);
+    /* Alpha-tested traversal: its own build of the shader (opaque scenes
+     * keep the trace without it). */
+    const dirt_trace_alpha *al = &opts.alpha;
+    if (al->materials && !a->prog_trace_alpha) {
+        glsl_define def = {"DIRT_TRACE_ALPHA", "1"};
+        a->prog_trace_alpha = gl_program_compute("dirt/trace.comp", &def, 1);
+        if (!a->prog_trace_alpha) {
+            gl_group_pop();
+            return false;
+        }
+    }
+    glUseProgram(al->materials ? a->prog_trace_alpha : a->prog_trace);
     glUniform1ui(DIRT_LOC_TRACE_COUNT, count);
     glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
     glUniform1i(DIRT_LOC_TRACE_LINK, link ? 1 : 0);
+    /* Alpha test: the integrator's tables and the per-primitive materials. */
+    if (al->materials) {
+        glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, al->materials);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, al->texels);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
+        glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
+        glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
+    }
     /* Rays may come from a shader (the integrator's ray generation). */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* Timed here only when called on its own (stats requested); inside a

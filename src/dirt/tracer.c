@@ -12,6 +12,12 @@ static bool tr_trace(void *self, uint32_t rays, uint32_t hits, uint32_t count, b
     return ads_trace_gl(a, rays, hits, count, &o, link, NULL);
 }
 
+static void tr_set_alpha(void *self, const dirt_trace_alpha *alpha)
+{
+    dirt_ads *a = self;
+    a->tracer_opts.trace.alpha = alpha ? *alpha : (dirt_trace_alpha){0};
+}
+
 static bool tr_visibility(void *self, uint32_t rays, uint32_t hits)
 {
     return ads_visibility_gl(self, rays, hits);
@@ -56,6 +62,7 @@ const dirt_tracer *dirt_ads_tracer(dirt_ads *a, const dirt_ads_tracer_opts *opts
         .bind_geometry = tr_bind_geometry,
         .reset_counts = tr_reset_counts,
         .read_counts = tr_read_counts,
+        .set_alpha = tr_set_alpha,
         .views = &a->set,
     };
     return &a->tracer;

@@ -12,9 +12,11 @@
 #include "core/vec3.h"
 #include "dirt/integrator.h"
 #include "gl/gl.h"
+#include "integrator/rng.h"
 
 bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
-                     int height, size_t batch, float *depth, float *ids)
+                     int height, size_t batch, const dirt_trace_alpha *alpha, float *depth,
+                     float *ids)
 {
     size_t pixels = (size_t)width * (size_t)height;
     if (!batch || batch > pixels)
@@ -36,6 +38,17 @@ bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera
             dirt_camera_ray(cam, width, height, (float)(p % (size_t)width) + 0.5f,
                             (float)(p / (size_t)width) + 0.5f, 0.0f, 0.0f, &org, &dir);
             rays[i] = (dirt_ray){{org.x, org.y, org.z}, 0.0f, {dir.x, dir.y, dir.z}, INFINITY};
+        }
+        if (tracer->set_alpha) {
+            dirt_trace_alpha a = {0};
+            if (alpha && alpha->materials) {
+                a = *alpha;
+                a.sample = DIRT_RNG_SAMPLE_AOV;
+                a.bounce = 0;
+                a.dim = DIRT_RNG_DIM_ALPHA_PATH;
+                a.first_pixel = (uint32_t)first;
+            }
+            tracer->set_alpha(tracer->self, &a);
         }
         ok = gl_buffer_write(rbuf, 0, n * sizeof(*rays), rays) &&
              tracer->trace(tracer->self, rbuf, hbuf, (uint32_t)n, false);

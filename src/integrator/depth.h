@@ -15,8 +15,12 @@
  * that hit as a float (exact below 2^24 triangles), -1 where it misses: the
  * reference's "ID". Traces through `tracer` in batches of at most
  * `batch` rays (the path tracer's chunk: they fit one storage block and one
- * dispatch). Blocking. False after logging. */
+ * dispatch). `alpha` (may be NULL: no test) gives the tables and seed of
+ * the alpha test; its rays are keyed (bounce 0, DIRT_RNG_DIM_ALPHA_PATH,
+ * sample DIRT_RNG_SAMPLE_AOV, pixel) as the reference's. Blocking. False
+ * after logging. */
 bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
-                     int height, size_t batch, float *depth, float *ids);
+                     int height, size_t batch, const dirt_trace_alpha *alpha, float *depth,
+                     float *ids);
 
 #endif

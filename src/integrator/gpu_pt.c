@@ -15,6 +15,7 @@
 #include "gl/program.h"
 #include "gl/graph_gl.h"
 #include "integrator/depth.h"
+#include "integrator/rng.h"
 
 const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
     [DIRT_PT_PASS_RAYGEN] = "raygen",
@@ -97,6 +98,7 @@ struct dirt_pt {
     int bounces;
     uint32_t sample;
     float ao_distance;
+    bool alpha;               /* the scene has alpha-tested materials */
 };
 
 dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
@@ -311,6 +313,22 @@ static void set_common(dirt_pt *pt, GLuint prog, int k)
 }
 
 
+/* The alpha test of the next trace (dirt_trace_alpha): rays leaving vertex
+ * `bounce` of this chunk, keyed with `dim` (doc/rng.md, "Alpha"); off when
+ * the scene has no alpha-tested material. */
+static void set_alpha(dirt_pt *pt, uint32_t bounce, uint32_t dim)
+{
+    if (!pt->tech->set_alpha)
+        return;
+    dirt_trace_alpha a = {0};
+    if (pt->alpha) {
+        a = (dirt_trace_alpha){.materials = pt->tables.materials, .texels = pt->tables.texels,
+                               .seed = pt->opts->seed, .sample = pt->sample, .bounce = bounce,
+                               .dim = dim, .first_pixel = (uint32_t)pt->cur_offset};
+    }
+    pt->tech->set_alpha(pt->tech->self, &a);
+}
+
 static GLuint groups(size_t n)
 {
     return (GLuint)DIRT_GROUPS(n);
@@ -331,6 +349,7 @@ static bool exec_pass(fg_ctx *ctx, void *user)
     case DIRT_PT_PASS_VISIBILITY:
         return pt->tech->visibility(pt->tech->self, pt->rays, pt->hits);
     case DIRT_PT_PASS_TRACE:
+        set_alpha(pt, (uint32_t)(c->k - 1), DIRT_RNG_DIM_ALPHA_PATH);
         return pt->tech->trace(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->cur_count, false);
     case DIRT_PT_PASS_FETCH:
         return pt->tech->fetch(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->cur_count,
@@ -345,6 +364,7 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     case DIRT_PT_PASS_SHADOW:
+        set_alpha(pt, (uint32_t)c->k, DIRT_RNG_DIM_ALPHA_SHADOW);
         return pt->tech->trace(pt->tech->self, pt->shadow_rays, pt->shadow_hits,
                                (uint32_t)pt->cur_count, true);
     case DIRT_PT_PASS_RESOLVE:
@@ -633,6 +653,18 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
                                              &pt->tables)) {
         goto done;
     }
+    /* Alpha-tested traversal (doc/light-transport.md section 1, Alpha). */
+    pt->alpha = dirt_materials_alpha_tested(dirt_scene_materials(pt->scene),
+                                            dirt_scene_num_materials(pt->scene));
+    if (pt->alpha && !tech->set_alpha) {
+        DIRT_ERROR("%s cannot test alpha, and the scene has MASK or BLEND materials", tech->name);
+        goto done;
+    }
+    if (pt->alpha && opts.direct_visibility) {
+        DIRT_ERROR("direct visibility rasterizes the camera view without an alpha test; the "
+                   "scene has MASK or BLEND materials: render without it");
+        goto done;
+    }
     /* AO: one event (the first hit); path tracing: K + 1 (the last one only
      * gathers emission). */
     int events = opts.mode == DIRT_PT_AO ? 1 : opts.bounces + 1;
@@ -672,8 +704,10 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             pt->ids = malloc(pt->pixels * sizeof(float));
             pt->depth_pixels = pt->depth && pt->ids ? pt->pixels : 0;
         }
+        dirt_trace_alpha za = {.materials = pt->alpha ? pt->tables.materials : 0,
+                               .texels = pt->tables.texels, .seed = opts.seed};
         if (!pt->depth_pixels || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height,
-                                                  pt->chunk, pt->depth, pt->ids))
+                                                  pt->chunk, &za, pt->depth, pt->ids))
             goto done;
         if (tech->restart)
             tech->restart(tech->self);

@@ -36,6 +36,15 @@
 #define DIRT_RNG_DIM_BSDF_U 5u       /* BSDF direction (also the AO direction) */
 #define DIRT_RNG_DIM_BSDF_V 6u
 #define DIRT_RNG_DIM_RR 7u           /* Russian roulette */
+/* every bounce k >= 0: keys of the stochastic-transparency (alpha BLEND)
+ * decisions of the rays leaving vertex k (k = 0: the camera), one key per
+ * ray (dirt_rng_u32 with these dims), one decision per primitive under it
+ * (dirt_rng_alpha); doc/rng.md, "Alpha" */
+#define DIRT_RNG_DIM_ALPHA_PATH 8u   /* the path ray (camera ray, BSDF sample) */
+#define DIRT_RNG_DIM_ALPHA_SHADOW 9u /* the shadow ray (next-event estimation, AO) */
+/* The sample index that keys the pinhole ray through the pixel centre of
+ * the Z and ID AOVs (its alpha decisions; it is no sample of the image). */
+#define DIRT_RNG_SAMPLE_AOV 0xFFFFFFFFu
 
 /* One 32-bit mixing round: bijective on uint32 (xor-shifts and odd
  * multipliers), full avalanche. Constants from Chris Wellons' hash-prospector
@@ -96,6 +105,16 @@ static inline float dirt_rng_float(uint32_t seed, uint32_t pixel, uint32_t sampl
 static inline float dirt_rng_next_float(uint32_t key, uint32_t dim)
 {
     return dirt_rng_to_float(dirt_rng_next(key, dim));
+}
+
+/* The uniform number in [0, 1) that decides whether primitive `prim` is
+ * seen by the ray of `ray_key` (= dirt_rng_u32(seed, pixel, sample, bounce,
+ * DIRT_RNG_DIM_ALPHA_*)): a pure function of the ray's key and the
+ * primitive, so it does not matter how often or in which order a traversal
+ * tests the primitive. */
+static inline float dirt_rng_alpha(uint32_t ray_key, uint32_t prim)
+{
+    return dirt_rng_to_float(dirt_rng_next(ray_key, prim));
 }
 
 #endif

@@ -101,6 +101,7 @@ void dirt_mmrt_destroy(dirt_mmrt *m)
     gl_program_destroy(&m->prog_mip);
     gl_program_destroy(&m->prog_reorder);
     gl_program_destroy(&m->prog_trace);
+    gl_program_destroy(&m->prog_trace_alpha);
     if (m->vao)
         glDeleteVertexArrays(1, &m->vao);
     if (m->fbo)

@@ -15,6 +15,7 @@ struct dirt_mmrt {
     dirt_mmrt_opts opts;
     int num_views;
     GLuint prog_depth, prog_store, prog_mip, prog_reorder, prog_trace;
+    GLuint prog_trace_alpha; /* DIRT_TRACE_ALPHA: made on first use */
     GLuint vao, fbo;
     int fbo_width, fbo_height;
     /* buffers and their capacities in bytes */

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/program.h"
 #include "mmrt_internal.h"
 
 /* Record sizes and offsets are checked in src/gl/layout_check.c. */
@@ -42,6 +43,13 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     int samples = o.samples == 0 ? MMRT_DEFAULT_SAMPLES : o.samples;
     int top = o.hiz_levels > 0 ? o.hiz_levels - 1 : DIRT_MAX_MIP_LEVELS;
 
+    /* Alpha-tested traversal: its own build of the shader. */
+    if (o.alpha.materials && !m->prog_trace_alpha) {
+        glsl_define def = {"DIRT_TRACE_ALPHA", "1"};
+        m->prog_trace_alpha = gl_program_compute("mmrt/trace.comp", &def, 1);
+        if (!m->prog_trace_alpha)
+            return false;
+    }
     gl_group_push("mmrt trace");
     static const uint32_t zero = 0;
     glClearNamedBufferSubData(m->counters, GL_R32UI, 16, 32, GL_RED_INTEGER, GL_UNSIGNED_INT,
@@ -49,7 +57,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     dirt_mmrt_bind(m);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
-    glUseProgram(m->prog_trace);
+    glUseProgram(o.alpha.materials ? m->prog_trace_alpha : m->prog_trace);
     glUniform1ui(DIRT_LOC_MMRT_TRACE_COUNT, count);
     glUniform1i(DIRT_LOC_MMRT_TRACE_MARCH, o.march == DIRT_MMRT_MARCH_HIZ ? 0 : 1);
     glUniform1i(DIRT_LOC_MMRT_TRACE_SAMPLES, samples);
@@ -59,6 +67,15 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     glUniform1ui(DIRT_LOC_MMRT_TRACE_FIRST_RAY, o.first_ray);
     glUniform1i(DIRT_LOC_MMRT_TRACE_STATS, o.count ? 1 : 0);
     glUniform1i(DIRT_LOC_MMRT_TRACE_ALL_VIEWS, o.all_views ? 1 : 0);
+    /* Alpha test: the integrator's tables (the data nodes hold the rest). */
+    if (o.alpha.materials) {
+        glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, o.alpha.materials);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, o.alpha.texels);
+        glUniform4ui(DIRT_LOC_ALPHA_KEY, o.alpha.seed, o.alpha.sample, o.alpha.bounce,
+                     o.alpha.dim);
+        glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, o.alpha.first_pixel);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     /* Timed only when stats are asked for: a caller timing its own pass (a
      * frame graph) may have a time query active, and they do not nest. */

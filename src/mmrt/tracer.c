@@ -100,6 +100,12 @@ static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t c
     return dirt_mmrt_trace(s->mmrt, rays, hits, count, &o, NULL);
 }
 
+static void mmrt_tech_set_alpha(void *self, const dirt_trace_alpha *alpha)
+{
+    pt_mmrt *s = self;
+    s->opts.alpha = alpha ? *alpha : (dirt_trace_alpha){0};
+}
+
 static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t count,
                             uint32_t gpoints, uint32_t slot)
 {
@@ -208,6 +214,7 @@ const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts 
         .read_counts = mmrt_tech_read_counts,
         .restart = mmrt_tech_restart,
         .begin_chunk = mmrt_tech_begin_chunk,
+        .set_alpha = mmrt_tech_set_alpha,
         .views = &mmrt->set,
         .bytes_extra = sizeof(struct dirt_mmrt_pt_counts),
         .surface_offset = s->offset,

@@ -150,19 +150,21 @@ static void make_vertex(const render_ctx *c, dirt_vec3 dir, const dirt_ref_hit *
     v->origin = v3_mad(v->p, ng, ray_epsilon(v->p));
 }
 
+/* `akey`: the ray's alpha key (doc/rng.md, "Alpha"). */
 static bool trace(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 dir, float tmax,
-                  dirt_ref_hit *hit)
+                  uint32_t akey, dirt_ref_hit *hit)
 {
     dirt_ref_ray r = {{org.x, org.y, org.z}, 0.0f, {dir.x, dir.y, dir.z}, tmax};
     (*rays)++;
-    return dirt_ref_intersect1(c->accel, &r, hit);
+    return dirt_ref_intersect1_key(c->accel, &r, akey, hit);
 }
 
-static bool occluded(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 dir, float tmax)
+static bool occluded(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 dir, float tmax,
+                     uint32_t akey)
 {
     dirt_ref_ray r = {{org.x, org.y, org.z}, 0.0f, {dir.x, dir.y, dir.z}, tmax};
     (*rays)++;
-    return dirt_ref_occluded1(c->accel, &r);
+    return dirt_ref_occluded1_key(c->accel, &r, akey);
 }
 
 /* Whether anything blocks the segment from v's ray origin to the light point
@@ -170,13 +172,15 @@ static bool occluded(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 dir
  * itself: a ray from the origin along the direction from v->p would end
  * ray_epsilon off y and could pass through the light (shadowing it by
  * itself) when the light is closer than the magnitude of the coordinates. */
-static bool occluded_to(render_ctx *c, uint64_t *rays, const vertex *v, dirt_vec3 y)
+static bool occluded_to(render_ctx *c, uint64_t *rays, const vertex *v, dirt_vec3 y,
+                        uint32_t akey)
 {
     dirt_vec3 d = v3_sub(y, v->origin);
     float len = v3_length(d);
     if (!(len > 0.0f))
         return false;
-    return occluded(c, rays, v->origin, v3_scale(d, 1.0f / len), len * (1.0f - SHADOW_SHORTEN));
+    return occluded(c, rays, v->origin, v3_scale(d, 1.0f / len), len * (1.0f - SHADOW_SHORTEN),
+                    akey);
 }
 
 /* Solid-angle pdf with which NEE picks direction `dir` towards a point of
@@ -210,6 +214,7 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
     unsigned n = c->num_sources;
     if (n == 0)
         return zero;
+    uint32_t akey = dirt_rng_next(key, DIRT_RNG_DIM_ALPHA_SHADOW); /* the shadow ray's */
     float us = dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_SELECT);
     unsigned s = (unsigned)(us * (float)n);
     if (s >= n)
@@ -249,7 +254,7 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
                               uv[0], uv[1], &ls);
         if (v3_is_zero(ls.emission))
             return zero;
-        if (occluded_to(c, rays, v, y))
+        if (occluded_to(c, rays, v, y, akey))
             return zero;
         float w = dirt_mis_power(pdf_l, dirt_bsdf_pdf(&v->surf.bsdf, v->wo, wl));
         return v3_scale(v3_mul(f, ls.emission), wl.z * w / pdf_l);
@@ -269,7 +274,7 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
         if (v3_is_zero(f))
             return zero;
         float pdf_l = pdf_e / (float)n;
-        if (occluded(c, rays, v->origin, wi, INFINITY))
+        if (occluded(c, rays, v->origin, wi, INFINITY, akey))
             return zero;
         float w = dirt_mis_power(pdf_l, dirt_bsdf_pdf(&v->surf.bsdf, v->wo, wl));
         return v3_scale(v3_mul(f, le), wl.z * w / pdf_l);
@@ -286,8 +291,8 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
     dirt_vec3 f = dirt_bsdf_eval(&v->surf.bsdf, v->wo, wl);
     if (v3_is_zero(f))
         return zero;
-    if (isinf(dist) ? occluded(c, rays, v->origin, wi, INFINITY)
-                    : occluded_to(c, rays, v, v3_mad(v->p, wi, dist)))
+    if (isinf(dist) ? occluded(c, rays, v->origin, wi, INFINITY, akey)
+                    : occluded_to(c, rays, v, v3_mad(v->p, wi, dist), akey))
         return zero;
     return v3_scale(v3_mul(f, li), wl.z * (float)n);
 }
@@ -305,9 +310,11 @@ static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint
     dirt_vec3 l = v3(0.0f, 0.0f, 0.0f), beta = v3(1.0f, 1.0f, 1.0f);
     float prev_pdf = 0.0f;
     bool prev_delta = true; /* the camera ray counts emission fully */
+    /* The alpha key of the ray leaving the previous vertex (0: the camera). */
+    uint32_t akey = dirt_rng_u32(c->seed, pixel, sample, 0u, DIRT_RNG_DIM_ALPHA_PATH);
     for (int k = 1;; k++) {
         dirt_ref_hit h;
-        if (!trace(c, rays, org, dir, INFINITY, &h)) {
+        if (!trace(c, rays, org, dir, INFINITY, akey, &h)) {
             dirt_vec3 le = dirt_env_eval(c->env, dir);
             float w = 1.0f;
             if (!prev_delta && !v3_is_zero(le))
@@ -357,6 +364,7 @@ static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint
         }
         org = v.origin;
         dir = v3_normalize(wi);
+        akey = dirt_rng_next(key, DIRT_RNG_DIM_ALPHA_PATH);
     }
     return l;
 }
@@ -366,7 +374,8 @@ static float ao_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint32_t s
                        dirt_vec3 org, dirt_vec3 dir, first_hit *fh)
 {
     dirt_ref_hit h;
-    if (!trace(c, rays, org, dir, INFINITY, &h))
+    if (!trace(c, rays, org, dir, INFINITY,
+               dirt_rng_u32(c->seed, pixel, sample, 0u, DIRT_RNG_DIM_ALPHA_PATH), &h))
         return 1.0f;
     vertex v;
     make_vertex(c, dir, &h, &v);
@@ -379,7 +388,8 @@ static float ao_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint32_t s
     dirt_vec3 wi = v3_normalize(v3_from_local(wl, v.t, v.b, v.n));
     if (v3_dot(wi, v.ng) <= 0.0f)
         return 0.0f; /* enters the surface itself */
-    return occluded(c, rays, v.origin, wi, c->ao_distance) ? 0.0f : 1.0f;
+    return occluded(c, rays, v.origin, wi, c->ao_distance,
+                    dirt_rng_next(key, DIRT_RNG_DIM_ALPHA_SHADOW)) ? 0.0f : 1.0f;
 }
 
 static void render_pixel(render_ctx *c, uint64_t *rays, int x, int y)
@@ -434,7 +444,8 @@ static void render_pixel(render_ctx *c, uint64_t *rays, int x, int y)
     dirt_camera_ray(c->cam, c->width, c->height, (float)x + 0.5f, (float)y + 0.5f, 0.0f, 0.0f,
                     &org, &dir);
     dirt_ref_hit h;
-    if (trace(c, rays, org, dir, INFINITY, &h)) {
+    if (trace(c, rays, org, dir, INFINITY,
+              dirt_rng_u32(c->seed, pixel, DIRT_RNG_SAMPLE_AOV, 0u, DIRT_RNG_DIM_ALPHA_PATH), &h)) {
         dirt_vec3 p = v3_mad(org, dir, h.t);
         c->depth[i] = v3_dot(v3_sub(p, v3_load(c->cam->eye)), v3_normalize(v3_load(c->cam->forward)));
         c->ids[i] = (float)h.prim;
@@ -573,16 +584,25 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     atomic_init(&c.rays, 0);
     atomic_init(&c.invalid, 0);
 
+    bool alpha = false; /* a triangle has an alpha-tested material */
+    for (size_t p = 0; p < frame->num_triangles && !alpha; p++)
+        alpha = dirt_material_alpha_tested(&materials->materials[frame->material[p]]);
     if (o.accel) {
         if (dirt_ref_accel_num_prims(o.accel) != frame->num_triangles) {
             DIRT_ERROR("reference render: accel has %zu triangles, frame %zu",
                        dirt_ref_accel_num_prims(o.accel), frame->num_triangles);
             goto error;
         }
+        if (alpha && !dirt_ref_accel_alpha_tested(o.accel)) {
+            DIRT_ERROR("reference render: the frame has MASK or BLEND materials but the given "
+                       "accel was built without them (dirt_ref_accel_opts.alpha)");
+            goto error;
+        }
         c.accel = o.accel;
     } else {
         dirt_ref_accel_opts ao = {0};
         ao.threads = o.threads;
+        ao.alpha = materials;
         own = dirt_ref_accel_create(frame, &ao);
         if (!own)
             goto error;

@@ -658,6 +658,20 @@ void convert_materials(Loader &L, bool need_default)
                           L.path.c_str(), name.c_str());
         }
         d->double_sided = src.doubleSided;
+        /* alphaMode / alphaCutoff (doc/light-transport.md section 1, Alpha). */
+        if (src.alphaMode == "MASK") {
+            d->alpha_mode = DIRT_ALPHA_MASK;
+        } else if (src.alphaMode == "BLEND") {
+            d->alpha_mode = DIRT_ALPHA_BLEND;
+        } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+            DIRT_WARN("%s: material '%s': unknown alphaMode '%s' read as OPAQUE", L.path.c_str(),
+                      name.c_str(), src.alphaMode.c_str());
+        }
+        if (std::isfinite(src.alphaCutoff) && src.alphaCutoff >= 0.0)
+            d->alpha_cutoff = (float)src.alphaCutoff;
+        else
+            DIRT_WARN("%s: material '%s': invalid alphaCutoff ignored (0.5)", L.path.c_str(),
+                      name.c_str());
         d->base_color_tex = texture_slot(L, pbr.baseColorTexture, true, "baseColorTexture",
                                          name);
         d->metallic_roughness_tex = texture_slot(L, pbr.metallicRoughnessTexture, false,

@@ -485,14 +485,23 @@ bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_
         L.notes.add("illum 10 (shadow matte) is not supported", name);
     else if (illum < 0 || illum > 10)
         L.notes.add("unknown illum " + std::to_string(illum) + " read as illum 2", name);
-    if (finite_or(src.dissolve, 1.0f) < 1.0f)
-        L.notes.add("d / Tr (transparency) ignored: every surface is opaque", name);
+    /* Dissolve (doc/scenes.md): d (or 1 - Tr) below 1 is BLEND coverage
+     * (stochastic transparency) with that alpha; map_d naming map_Kd's own
+     * image is that texture's alpha channel (coverage = d * alpha). */
+    float dissolve = finite_or(src.dissolve, 1.0f);
+    bool map_d_kd = !src.alpha_texname.empty() && has_map_kd &&
+                    src.alpha_texname == src.diffuse_texname;
+    if (dissolve < 1.0f || map_d_kd) {
+        d->alpha_mode = DIRT_ALPHA_BLEND;
+        d->base_color[3] = clamp01(dissolve);
+    }
     if (!src.bump_texname.empty() || !src.normal_texname.empty())
         L.notes.add("bump / norm maps ignored (no normal maps in the model)", name);
     if (!src.specular_texname.empty() || !src.specular_highlight_texname.empty())
         L.notes.add("map_Ks / map_Ns ignored", name);
-    if (!src.alpha_texname.empty())
-        L.notes.add("map_d ignored: every surface is opaque", name);
+    if (!src.alpha_texname.empty() && !map_d_kd)
+        L.notes.add("map_d ignored unless it names the map_Kd image (whose alpha is then the "
+                    "coverage)", name);
     if (!src.displacement_texname.empty() || !src.reflection_texname.empty())
         L.notes.add("disp / refl maps ignored", name);
     if (!src.roughness_texname.empty() || !src.metallic_texname.empty() ||

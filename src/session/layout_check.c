@@ -396,7 +396,9 @@ static const dirt_layout_uniform u_test_model[] = {
     U("u_mode", DIRT_LOC_TEST_MODEL_MODE), U("u_count", DIRT_LOC_TEST_MODEL_COUNT)};
 static const dirt_layout_uniform u_trace[] = {
     U("u_count", DIRT_LOC_TRACE_COUNT), U("u_hiz_top", DIRT_LOC_TRACE_HIZ_TOP),
-    U("u_any_hit", DIRT_LOC_TRACE_ANY_HIT), U("u_link", DIRT_LOC_TRACE_LINK)};
+    U("u_any_hit", DIRT_LOC_TRACE_ANY_HIT), U("u_link", DIRT_LOC_TRACE_LINK),
+    U("u_alpha", DIRT_LOC_ALPHA_ENABLED), U("u_alpha_key", DIRT_LOC_ALPHA_KEY),
+    U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL)};
 static const dirt_layout_uniform u_mip[] = {U("u_level", DIRT_LOC_MIP_LEVEL)};
 static const dirt_layout_uniform u_vis[] = {U("u_view", DIRT_LOC_VISIBILITY_VIEW)};
 static const dirt_layout_uniform u_vis_resolve[] = {U("u_view", DIRT_LOC_VIS_RESOLVE_VIEW)};
@@ -405,7 +407,9 @@ static const dirt_layout_uniform u_mmrt_trace[] = {
     U("u_samples", DIRT_LOC_MMRT_TRACE_SAMPLES),     U("u_top_level", DIRT_LOC_MMRT_TRACE_TOP_LEVEL),
     U("u_thickness", DIRT_LOC_MMRT_TRACE_THICKNESS), U("u_seed", DIRT_LOC_MMRT_TRACE_SEED),
     U("u_stats", DIRT_LOC_MMRT_TRACE_STATS),         U("u_all_views", DIRT_LOC_MMRT_TRACE_ALL_VIEWS),
-    U("u_first_ray", DIRT_LOC_MMRT_TRACE_FIRST_RAY)};
+    U("u_first_ray", DIRT_LOC_MMRT_TRACE_FIRST_RAY),
+    U("u_alpha", DIRT_LOC_ALPHA_ENABLED), U("u_alpha_key", DIRT_LOC_ALPHA_KEY),
+    U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL)};
 static const dirt_layout_uniform u_pt_rays[] = {
     U("u_count", DIRT_LOC_MMRT_PT_RAYS_COUNT)};
 static const dirt_layout_uniform u_to_gpoint[] = {
@@ -438,11 +442,17 @@ const dirt_layout_program dirt_layout_programs[] = {
     P("integrator/accumulate.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_accum),
     P("integrator/test_model.comp", NULL, DIRT_RANGE_TEST | DIRT_RANGE_MODEL, u_test_model),
     P("dirt/trace.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_trace),
+    /* The traces' alpha-tested builds read the model's materials and texels. */
+    {{"dirt/trace.comp", NULL, NULL}, "DIRT_TRACE_ALPHA",
+     SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE | DIRT_RANGE_MODEL, u_trace,
+     sizeof(u_trace) / sizeof(u_trace[0])},
     P("views/hiz.comp", NULL, SH, u_mip),
     P("integrator/display.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_display),
     P("dirt/visibility.vert", "dirt/visibility.frag", SH, u_vis),
     P("dirt/visibility_resolve.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_vis_resolve),
     P("mmrt/trace.comp", NULL, SH | DIRT_RANGE_MMRT, u_mmrt_trace),
+    {{"mmrt/trace.comp", NULL, NULL}, "DIRT_TRACE_ALPHA", SH | DIRT_RANGE_MMRT | DIRT_RANGE_MODEL,
+     u_mmrt_trace, sizeof(u_mmrt_trace) / sizeof(u_mmrt_trace[0])},
     P("mmrt/pt_rays.comp", NULL, SH | DIRT_RANGE_MMRT | DIRT_RANGE_MMRT_PT, u_pt_rays),
     P("mmrt/to_gpoint.comp", NULL, SH | DIRT_RANGE_MMRT, u_to_gpoint),
     P("raster/preview.vert", "raster/preview.frag", DIRT_RANGE_PREVIEW, u_preview),

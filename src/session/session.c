@@ -37,6 +37,7 @@ struct dirt_session {
     dirt_raster *raster;
     dirt_pt *pt;
     dirt_ref_accel *accel;
+    dirt_ref_materials accel_alpha; /* the scene's materials, for the accel's alpha test */
     const dirt_tracer *tracer; /* of the current build */
     bool built;               /* the structure matches frame, camera and options */
     double build_ms;
@@ -625,9 +626,15 @@ static bool build(dirt_session *s)
         break;
     }
     case DIRT_ENGINE_EMBREE:
+        s->accel_alpha = (dirt_ref_materials){
+            .materials = dirt_scene_materials(s->scene),
+            .num_materials = dirt_scene_num_materials(s->scene),
+            .textures = dirt_scene_textures(s->scene),
+            .num_textures = dirt_scene_num_textures(s->scene)};
         if (s->accel ? !dirt_ref_accel_update(s->accel, s->frame)
                      : !(s->accel = dirt_ref_accel_create(
-                             s->frame, &(dirt_ref_accel_opts){.threads = o->threads})))
+                             s->frame, &(dirt_ref_accel_opts){.threads = o->threads,
+                                                              .alpha = &s->accel_alpha})))
             return false;
         break;
     case DIRT_ENGINE_RASTER:

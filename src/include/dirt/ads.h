@@ -141,6 +141,7 @@ void dirt_ads_data_free(dirt_ads_data *data);
 typedef struct dirt_trace_opts {
     int hiz_levels;   /* 0 = start at the pyramid's top; n > 0: at level n - 1 */
     bool any_hit;     /* visibility rays: stop at the first hit found */
+    dirt_trace_alpha alpha; /* alpha-tested traversal (dirt/ray.h); zero = none */
 } dirt_trace_opts;
 
 typedef struct dirt_trace_stats {

@@ -158,6 +158,30 @@ void dirt_material_surface(const dirt_material *m, float specular,
  * its triangles are area lights. */
 bool dirt_material_is_emissive(const dirt_material *m);
 
+/* ---- alpha coverage (src/integrator/texture.c; doc/light-transport.md
+ * section 1, "Alpha") ----------------------------------------------------- */
+
+/* Coverage at UV (u, v): base_color[3] * T(base_color_tex).a (linear: alpha
+ * is never sRGB-decoded), not clamped. 1 x the factor without a texture. */
+float dirt_material_coverage(const dirt_material *m, const dirt_texture *textures,
+                             size_t num_textures, float u, float v);
+
+/* True when the material's hits are tested during traversal (MASK, BLEND). */
+bool dirt_material_alpha_tested(const dirt_material *m);
+
+/* Whether a ray sees the hit of primitive `prim` at UV (u, v) of material m:
+ * OPAQUE (or an unknown mode) always; MASK when coverage >= alpha_cutoff;
+ * BLEND when dirt_rng_alpha(ray_key, prim) < coverage (stochastic
+ * transparency: the hit is ignored with probability 1 - coverage).
+ * `ray_key` = dirt_rng_u32(seed, pixel, sample, bounce,
+ * DIRT_RNG_DIM_ALPHA_PATH or _SHADOW) (integrator/rng.h, doc/rng.md). An
+ * ignored hit is not a hit: traversal goes on to the next one. */
+bool dirt_alpha_accept(const dirt_material *m, const dirt_texture *textures,
+                       size_t num_textures, float u, float v, uint32_t ray_key, uint32_t prim);
+
+/* True when any of the materials is alpha-tested. */
+bool dirt_materials_alpha_tested(const dirt_material *materials, size_t count);
+
 /* ---- lights (src/integrator/lights.c) ----------------------------------- */
 
 /* Incident light at point p from a punctual light: *wi = unit direction from

@@ -171,6 +171,8 @@ typedef struct dirt_mmrt_trace_opts {
                          hit (default: each part of the ray in one view, the
                          first of camera, faces whose frustum holds it) */
     bool count;       /* count pixels tested / nodes visited (atomics) */
+    dirt_trace_alpha alpha; /* alpha-tested traversal (dirt/ray.h): the fragments
+                           of hits it rejects are passed over; zero = none */
 } dirt_mmrt_trace_opts;
 
 typedef struct dirt_mmrt_trace_stats {

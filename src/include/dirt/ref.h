@@ -29,12 +29,22 @@ extern "C" {
 /* ---- ray casting -------------------------------------------------------- */
 
 typedef struct dirt_ref_accel dirt_ref_accel;
+struct dirt_ref_materials;
 
 /* Zero-initialised = defaults. */
 typedef struct dirt_ref_accel_opts {
     int threads;       /* Embree build threads; 0 = every online CPU */
     bool high_quality; /* RTC_BUILD_QUALITY_HIGH (spatial splits) instead of
                           MEDIUM; slower build, faster traversal */
+    /* Alpha-tested traversal (doc/light-transport.md section 1, "Alpha"):
+     * the materials and textures of the frames' triangles (borrowed: they
+     * must outlive the accel; the frame's per-triangle materials and UVs
+     * are copied at every build). A hit of a MASK or BLEND material that
+     * dirt_alpha_accept rejects is no hit (an Embree filter function), for
+     * closest-hit and occlusion queries alike; BLEND decisions use the
+     * query's key (dirt_ref_intersect1_key). NULL, or no alpha-tested
+     * material in the frame: every surface is opaque and no filter runs. */
+    const struct dirt_ref_materials *alpha;
 } dirt_ref_accel_opts;
 
 /* Timing of the last build (create or update). */
@@ -65,6 +75,10 @@ void dirt_ref_accel_stats(const dirt_ref_accel *accel, dirt_ref_build_stats *out
 /* Number of triangles the accel was built from. */
 size_t dirt_ref_accel_num_prims(const dirt_ref_accel *accel);
 
+/* True when the last build installed the alpha test (opts.alpha given and a
+ * triangle of the frame has a MASK or BLEND material). */
+bool dirt_ref_accel_alpha_tested(const dirt_ref_accel *accel);
+
 #define DIRT_REF_MISS UINT32_MAX
 
 /* A ray: points org + t dir for t in [tmin, tmax]. dir need not be unit
@@ -93,12 +107,27 @@ bool dirt_ref_intersect1(const dirt_ref_accel *accel, const dirt_ref_ray *ray,
 /* True when anything blocks the ray within [tmin, tmax]. */
 bool dirt_ref_occluded1(const dirt_ref_accel *accel, const dirt_ref_ray *ray);
 
+/* The same with the ray's alpha key (dirt_rng_u32(seed, pixel, sample,
+ * bounce, DIRT_RNG_DIM_ALPHA_PATH / _SHADOW), doc/rng.md) for its BLEND
+ * decisions; the functions above use key 0. */
+bool dirt_ref_intersect1_key(const dirt_ref_accel *accel, const dirt_ref_ray *ray,
+                             uint32_t alpha_key, dirt_ref_hit *hit);
+bool dirt_ref_occluded1_key(const dirt_ref_accel *accel, const dirt_ref_ray *ray,
+                            uint32_t alpha_key);
+
 /* Batches on `threads` threads (0 = every online CPU; the caller's thread
  * works too). hits[i] / occluded[i] (1 = blocked, 0 = free) answer rays[i]. */
 void dirt_ref_intersect(const dirt_ref_accel *accel, const dirt_ref_ray *rays,
                         dirt_ref_hit *hits, size_t count, int threads);
 void dirt_ref_occluded(const dirt_ref_accel *accel, const dirt_ref_ray *rays,
                        uint8_t *occluded, size_t count, int threads);
+/* The same with alpha keys: keys[i] for rays[i] (NULL: every key 0). */
+void dirt_ref_intersect_keys(const dirt_ref_accel *accel, const dirt_ref_ray *rays,
+                             const uint32_t *keys, dirt_ref_hit *hits, size_t count,
+                             int threads);
+void dirt_ref_occluded_keys(const dirt_ref_accel *accel, const dirt_ref_ray *rays,
+                            const uint32_t *keys, uint8_t *occluded, size_t count,
+                            int threads);
 
 /* ---- rendering ---------------------------------------------------------- */
 

@@ -61,6 +61,11 @@ typedef struct dirt_tracer {
      * ray keys them by (call of the sample, pixel), so that the chunking
      * changes no result. NULL when there is nothing to key. */
     void (*begin_chunk)(void *self, uint32_t first);
+    /* Alpha-tested traversal for the traces that follow (dirt/ray.h; the
+     * integrator sets it before each trace: its keys differ per ray kind
+     * and path event). A zeroed `alpha` (or NULL) turns the test off.
+     * NULL when the technique cannot test alpha. */
+    void (*set_alpha)(void *self, const dirt_trace_alpha *alpha);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
     /* World distance by which rays leaving a surface start off it along its
