@@ -92,8 +92,10 @@ void dirt_material_default(dirt_material *m)
     m->specular = 1.0f;
     for (int k = 0; k < 3; k++)
         m->specular_color[k] = 1.0f;
+    /* (field by field: a struct assignment may leave padding undefined, and
+     * materials are compared bytewise) */
     for (int k = 0; k < DIRT_NUM_TEX_SLOTS; k++)
-        m->xf[k] = (dirt_tex_transform){.scale = {1.0f, 1.0f}};
+        m->xf[k].scale[0] = m->xf[k].scale[1] = 1.0f;
 }
 
 static bool check_node_refs(const dirt_scene *s)
