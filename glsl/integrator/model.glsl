@@ -373,13 +373,14 @@ void dirt_camera_ray_g(dirt_gpu_model_camera cam, int width, int height, float p
 // Shading normal a normal map gives (= dirt_normal_map_apply): n the unit
 // interpolated normal (front side), t the interpolated tangent, w its
 // handedness (sign): t' = normalize(t - n (n . t)), b = cross(n, t') sign(w),
-// normalize(t' n_ts.x + b n_ts.y + n n_ts.z); n itself when t' is zero or
-// not finite, or the result is zero.
+// normalize(t' n_ts.x + b n_ts.y + n n_ts.z); n itself when |t - n (n . t)|
+// is not above 1e-3 |t| (no tangent, or one along n) or the result is zero.
 vec3 dirt_normal_map_apply_g(vec3 n, vec3 t, float w, vec3 n_ts)
 {
-    vec3 to = dirt_normalize_g(t - n * dot(n, t));
-    if (dirt_is_zero_g(to) || !dirt_is_finite_g(to))
+    vec3 tp = t - n * dot(n, t);
+    if (!(sqrt(dot(tp, tp)) > 1e-3 * sqrt(dot(t, t))))
         return n;
+    vec3 to = dirt_normalize_g(tp);
     vec3 b = cross(n, to) * (w < 0.0 ? -1.0 : 1.0);
     vec3 r = dirt_normalize_g(to * n_ts.x + b * n_ts.y + n * n_ts.z);
     if (dirt_is_zero_g(r) || !dirt_is_finite_g(r))

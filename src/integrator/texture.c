@@ -191,9 +191,11 @@ bool dirt_material_normal_ts(const dirt_material *m, const dirt_texture *texture
 
 dirt_vec3 dirt_normal_map_apply(dirt_vec3 n, dirt_vec3 t, float w, dirt_vec3 n_ts)
 {
-    dirt_vec3 to = v3_normalize(v3_sub(t, v3_scale(n, v3_dot(n, t))));
-    if (v3_is_zero(to) || !v3_is_finite(to))
+    dirt_vec3 tp = v3_sub(t, v3_scale(n, v3_dot(n, t)));
+    /* Not finite, zero, or (nearly) along n: what is left is rounding. */
+    if (!(v3_length(tp) > 1e-3f * v3_length(t)))
         return n;
+    dirt_vec3 to = v3_normalize(tp);
     dirt_vec3 b = v3_scale(v3_cross(n, to), w < 0.0f ? -1.0f : 1.0f);
     dirt_vec3 r = v3_scale(to, n_ts.x);
     r = v3_mad(r, b, n_ts.y);

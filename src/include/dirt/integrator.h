@@ -190,8 +190,9 @@ bool dirt_material_normal_ts(const dirt_material *m, const dirt_texture *texture
  * tangent (any length), w its handedness (only the sign counts):
  *   t' = normalize(t - n (n . t)),  b = cross(n, t') (w < 0 ? -1 : 1),
  *   result = normalize(t' n_ts.x + b n_ts.y + n n_ts.z).
- * Returns n itself when t' is zero or not finite (no tangent frame there)
- * or the result is zero. */
+ * Returns n itself when |t - n (n . t)| is not above 1e-3 |t| (no tangent
+ * there, a non-finite one, or one (nearly) along n: what is left of it is
+ * rounding) or the result is zero. */
 dirt_vec3 dirt_normal_map_apply(dirt_vec3 n, dirt_vec3 t, float w, dirt_vec3 n_ts);
 
 /* ---- lights (src/integrator/lights.c) ----------------------------------- */
