@@ -181,7 +181,7 @@ enum { MAT_WHITE, MAT_RED, MAT_GREEN, MAT_LIGHT, MAT_METAL, MAT_GLOSSY, NUM_MATE
 static void set_material(dirt_material *m, const char *name, float r, float g, float b,
                          float metallic, float roughness)
 {
-    memset(m, 0, sizeof(*m));
+    dirt_material_default(m); /* the glTF defaults of every other field */
     scene_copy_name(m->name, sizeof(m->name), name);
     m->base_color[0] = r;
     m->base_color[1] = g;

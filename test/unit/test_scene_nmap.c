@@ -13,7 +13,9 @@
  *   each slot read (offset, rotation, scale; texCoord override); a texCoord
  *   other than 0 warns; the extension, used or required, is supported (no
  *   "ignores" warning, no UNSUPPORTED).
- * - A scene without normal maps and without TANGENT has no tangent array. */
+ * - A scene without normal maps and without TANGENT has no tangent array.
+ * - OBJ: `norm` is read as a normal map (tangents generated), `map_bump`
+ *   warns. */
 #include "check.h"
 #include "test_scene_util.h"
 
@@ -286,6 +288,36 @@ static void test_none(const char *buffer)
     dirt_scene_destroy(s);
 }
 
+/* OBJ: `norm` is a tangent-space normal map (its -bm the scale), tangents
+ * are generated (vt (x, y) is stored as (x, 1 - y): tangent +x, handedness
+ * -1); `map_bump` (a height map) only warns. */
+static void test_obj(void)
+{
+    write_text(tmp_file("nm.mtl"), "newmtl bumpy\nKd 0.5 0.5 0.5\nnorm -bm 0.5 nm.png\n"
+                                   "map_bump nm.png\n");
+    write_text(tmp_file("nm.obj"), "mtllib nm.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                   "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                                   "usemtl bumpy\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+    log_len = 0;
+    log_buf[0] = '\0';
+    dirt_scene *s = dirt_scene_load(tmp_file("nm.obj"), NULL);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    const dirt_material *m = &dirt_scene_materials(s)[0];
+    CHECK(m->normal_tex >= 0 && m->normal_scale == 0.5f &&
+          !dirt_scene_textures(s)[m->normal_tex].srgb);
+    CHECK(warn_lines_with("map_bump (height) maps ignored") == 1);
+    dirt_frame *f = dirt_scene_evaluate(s, 0.0f, NULL);
+    CHECK(f && f->num_triangles == 2 && f->tangent);
+    if (f && f->tangent) {
+        check_tangent(f, 0, 1, 0, 0, -1, "OBJ");
+        check_tangent(f, 1, 1, 0, 0, -1, "OBJ");
+    }
+    dirt_frame_destroy(f);
+    dirt_scene_destroy(s);
+}
+
 /* The generator on its own: a quad whose uvs are (y, x) (tangent +y,
  * bitangent +x = -cross(n, t): handedness -1) and one with degenerate uvs
  * (every vertex (0.5, 0.5): no tangent, (0, 0, 0, 1)). */
@@ -324,10 +356,11 @@ int main(void)
     test_generated(buffer);
     test_file_tangents(buffer);
     test_none(buffer);
+    test_obj();
     test_generator();
     free(buffer);
     static const char *const files[] = {"nm.png", "gen.gltf", "req.gltf", "tan.gltf",
-                                        "plain_tan.gltf", "none.gltf"};
+                                        "plain_tan.gltf", "none.gltf", "nm.mtl", "nm.obj"};
     tmp_cleanup(files, sizeof(files) / sizeof(files[0]));
     return check_finish();
 }
