@@ -126,4 +126,15 @@ struct dirt_gpu_model_texture {
                             (1,1,1,1), as dirt_texture_sample), w 0 */
 };
 
+/* The frame's tangents for normal maps, at DIRT_BIND_MODEL_TANGENTS: one
+ * record per frame vertex, entry 3 p + k = vertex k of primitive p (the
+ * order of dirt_frame.tangent and of the vertex buffer). A frame without
+ * tangents, or a scene whose materials have no normal map, uploads one
+ * zero record instead; the shader reads entries only for a normal-mapped
+ * material and only below the array's length (16 bytes each). */
+struct dirt_gpu_model_tangent {
+    DIRT_V4 tangent;     /* xyz unit world tangent (0 where the mesh has
+                            none), w handedness +1 / -1 (= dirt_frame) */
+};
+
 #endif

@@ -50,7 +50,9 @@ float dirt_material_coverage_g(uint material, vec2 uv)
 {
     // Two members, not the 336-byte record (the trace's inner loop).
     float factor = dirt_model_materials[material].base_color.w;
-    return factor * dirt_texture_sample_g(dirt_model_materials[material].textures.x, false, uv).w;
+    vec2 t = dirt_slot_uv_rows_g(dirt_model_materials[material].xf[0],
+                                 dirt_model_materials[material].xf[1], uv);
+    return factor * dirt_texture_sample_g(dirt_model_materials[material].textures.x, false, t).w;
 }
 
 // = dirt_material_alpha_tested.

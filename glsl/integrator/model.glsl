@@ -17,7 +17,8 @@
 // to get the scene tables (materials, textures, area and punctual lights,
 // camera; bindings in common/integrator_layout.h) and the functions that read
 // them: dirt_material_surface_g, dirt_texture_sample_g,
-// dirt_area_lights_select_g.
+// dirt_material_normal_ts_g, dirt_area_lights_select_g (and the tangents,
+// dirt_model_tangents).
 #ifndef DIRT_MODEL_GLSL
 #define DIRT_MODEL_GLSL
 
@@ -367,6 +368,26 @@ void dirt_camera_ray_g(dirt_gpu_model_camera cam, int width, int height, float p
     }
 }
 
+// ---- normal maps (texture.c) --------------------------------------------
+
+// Shading normal a normal map gives (= dirt_normal_map_apply): n the unit
+// interpolated normal (front side), t the interpolated tangent, w its
+// handedness (sign): t' = normalize(t - n (n . t)), b = cross(n, t') sign(w),
+// normalize(t' n_ts.x + b n_ts.y + n n_ts.z); n itself when |t - n (n . t)|
+// is not above 1e-3 |t| (no tangent, or one along n) or the result is zero.
+vec3 dirt_normal_map_apply_g(vec3 n, vec3 t, float w, vec3 n_ts)
+{
+    vec3 tp = t - n * dot(n, t);
+    if (!(sqrt(dot(tp, tp)) > 1e-3 * sqrt(dot(t, t))))
+        return n;
+    vec3 to = dirt_normalize_g(tp);
+    vec3 b = cross(n, to) * (w < 0.0 ? -1.0 : 1.0);
+    vec3 r = dirt_normalize_g(to * n_ts.x + b * n_ts.y + n * n_ts.z);
+    if (dirt_is_zero_g(r) || !dirt_is_finite_g(r))
+        return n;
+    return r;
+}
+
 #ifdef DIRT_MODEL_BUFFERS
 // ---- scene tables -------------------------------------------------------
 
@@ -397,6 +418,10 @@ layout(std430, binding = DIRT_BIND_MODEL_CAMERA) readonly buffer DirtModelCamera
 layout(std430, binding = DIRT_BIND_MODEL_TEXELS) readonly buffer DirtModelTexels {
     dirt_gpu_model_texels dirt_model_texels;
     uint dirt_model_texel_words[];
+};
+// The frame's tangents (dirt_gpu_model_tangent, entry 3 prim + vertex).
+layout(std430, binding = DIRT_BIND_MODEL_TANGENTS) readonly buffer DirtModelTangents {
+    dirt_gpu_model_tangent dirt_model_tangents[];
 };
 
 // Record of texture `tex` (0 <= tex < counts.x).
@@ -474,15 +499,39 @@ vec4 dirt_texture_sample_g(int tex, bool srgb, vec2 uv)
     return r;
 }
 
-// Textured surface of material `material` at uv (= dirt_material_surface):
+// The uv of a texture slot whose transform has the rows r0, r1 (xf[2 slot],
+// xf[2 slot + 1] of a material record): the rows applied (= dirt_tex_transform_apply of the
+// packed dirt_tex_transform_matrix): non-finite u or v read as 0, then
+// (m00 u + m01 v) + m02 and (m10 u + m11 v) + m12, each step separately
+// rounded.
+vec2 dirt_slot_uv_rows_g(vec4 r0, vec4 r1, vec2 uv)
+{
+    precise float u = uv.x, v = uv.y;
+    if (isnan(u) || isinf(u))
+        u = 0.0;
+    if (isnan(v) || isinf(v))
+        v = 0.0;
+    precise float a = r0.x * u, b = r0.y * v, c = r1.x * u, d = r1.y * v;
+    precise float x = (a + b) + r0.z, y = (c + d) + r1.z;
+    return vec2(x, y);
+}
+
+// The same for the slot of a material record.
+vec2 dirt_slot_uv_g(dirt_gpu_model_material m, int slot, vec2 uv)
+{
+    return dirt_slot_uv_rows_g(m.xf[2 * slot], m.xf[2 * slot + 1], uv);
+}
+
+// Textured surface of material `material` at uv (= dirt_material_surface),
+// each slot's lookup at its transformed uv (dirt_slot_uv_g):
 //   base = clamp(base_color * sRGB(base tex)), roughness = clamp(roughness *
 //   mr.g), metallic = clamp(metallic * mr.b), alpha = roughness^2,
 //   emission = (emissive * strength) * sRGB(emissive tex) when emissive.
 dirt_surface_g dirt_material_surface_g(uint material, vec2 uv)
 {
     dirt_gpu_model_material m = dirt_model_materials[material];
-    vec4 bc = dirt_texture_sample_g(m.textures.x, true, uv);
-    vec4 mr = dirt_texture_sample_g(m.textures.y, false, uv);
+    vec4 bc = dirt_texture_sample_g(m.textures.x, true, dirt_slot_uv_g(m, 0, uv));
+    vec4 mr = dirt_texture_sample_g(m.textures.y, false, dirt_slot_uv_g(m, 1, uv));
     dirt_surface_g s;
     s.bsdf.base_color = vec3(dirt_clamp01_g(m.base_color.x * bc.x),
                              dirt_clamp01_g(m.base_color.y * bc.y),
@@ -493,12 +542,33 @@ dirt_surface_g dirt_material_surface_g(uint material, vec2 uv)
     s.bsdf.specular = m.params.z;
     s.double_sided = (m.textures.w & DIRT_MODEL_MAT_DOUBLE_SIDED) != 0;
     if ((m.textures.w & DIRT_MODEL_MAT_EMISSIVE) != 0) {
-        vec4 em = dirt_texture_sample_g(m.textures.z, true, uv);
+        vec4 em = dirt_texture_sample_g(m.textures.z, true, dirt_slot_uv_g(m, 2, uv));
         s.emission = m.emission.xyz * em.xyz;
     } else {
         s.emission = vec3(0.0);
     }
     return s;
+}
+
+// Tangent-space normal of the material's normal map at uv (=
+// dirt_material_normal_ts): c = linear lookup at the normal slot's uv,
+// n_ts = normalize(((2 c.r - 1) s, (2 c.g - 1) s, 2 c.b - 1)), s = the
+// normal scale (params.w). False without a normal map (textures2.x < 0) or
+// when n_ts is zero or not finite.
+bool dirt_material_normal_ts_g(uint material, vec2 uv, out vec3 n_ts)
+{
+    dirt_gpu_model_material m = dirt_model_materials[material];
+    n_ts = vec3(0.0, 0.0, 1.0);
+    if (m.textures2.x < 0)
+        return false;
+    vec4 c = dirt_texture_sample_g(m.textures2.x, false, dirt_slot_uv_g(m, 3, uv));
+    precise float x = 2.0 * c.x - 1.0, y = 2.0 * c.y - 1.0, z = 2.0 * c.z - 1.0;
+    precise vec3 q = vec3(x * m.params.w, y * m.params.w, z);
+    vec3 n = dirt_normalize_g(q);
+    if (dirt_is_zero_g(n) || !dirt_is_finite_g(n))
+        return false;
+    n_ts = n;
+    return true;
 }
 
 // True when the material emits (its triangles are area lights).

@@ -106,8 +106,10 @@ vec3 from_local(vec3 w, vec3 t, vec3 b, vec3 n)
 }
 
 // Builds the vertex from a fetched shading point; `dir` is the unit
-// direction of the arriving ray.
-pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir)
+// direction of the arriving ray, `bary` the barycentrics of vertices 1 and
+// 2 of the hit (its dirt_gpu_hit's bary_t.xy), which interpolate the
+// tangents of a normal-mapped material.
+pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir, vec2 bary)
 {
     pt_vertex v;
     v.prim = floatBitsToUint(g.pos_prim.w);
@@ -119,6 +121,20 @@ pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir)
     v.ng = ng;
     vec3 ns = ng;
     vec3 n = g.n_mat.xyz;
+    uint mat = floatBitsToUint(g.n_mat.w);
+    vec2 uv = vec2(g.ng_u.w, g.wo_v.w);
+    vec3 n_ts;
+    uint t0 = 3u * v.prim;
+    if (t0 + 2u < uint(dirt_model_tangents.length()) && dirt_material_normal_ts_g(mat, uv, n_ts)) {
+        // Normal map (= make_vertex of the reference): the front side's
+        // normal, flipped below like the interpolated one.
+        float b0 = 1.0 - bary.x - bary.y;
+        vec4 a = dirt_model_tangents[t0].tangent, b = dirt_model_tangents[t0 + 1u].tangent,
+             c = dirt_model_tangents[t0 + 2u].tangent;
+        vec3 t = a.xyz * b0 + b.xyz * bary.x + c.xyz * bary.y;
+        float w = b0 * a.w + bary.x * b.w + bary.y * c.w;
+        n = dirt_normal_map_apply_g(n, t, w, n_ts);
+    }
     if (!v.front)
         n = -n;
     if (dirt_is_finite_g(n) && dot(n, n) > 0.0 && dot(n, ng) > 0.0)
@@ -132,7 +148,7 @@ pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir)
         dirt_onb_g(ng, v.t, v.b);
         v.wo = to_local(wo_world, v.t, v.b, v.n);
     }
-    v.surf = dirt_material_surface_g(floatBitsToUint(g.n_mat.w), vec2(g.ng_u.w, g.wo_v.w));
+    v.surf = dirt_material_surface_g(mat, uv);
     v.le = (v.front || v.surf.double_sided) ? v.surf.emission : vec3(0.0);
     v.origin = v.p + ng * ray_epsilon(v.p);
     if (u_surface_offset > 0.0)

@@ -176,7 +176,7 @@ void main()
         paths[p] = s;
         return;
     }
-    pt_vertex v = make_vertex(g, dir);
+    pt_vertex v = make_vertex(g, dir, hits[p].bary_t.xy);
     if (u_bounce == 1u) {
         s.first_albedo = vec4(v.surf.bsdf.base_color, 0.0);
         s.first_normal = vec4(v.n, 0.0);

@@ -27,6 +27,7 @@ layout(std430, binding = DIRT_BIND_TEST_OUT) buffer Records {
     dirt_gpu_model_camera r_model_camera;
     dirt_gpu_model_texels r_model_texels;
     dirt_gpu_model_texture r_model_texture;
+    dirt_gpu_model_tangent r_model_tangent;
     dirt_mmrt_gpu_params r_mmrt_params;
     dirt_mmrt_gpu_data r_mmrt_data;
     dirt_mmrt_gpu_counters r_mmrt_counters;
@@ -45,6 +46,7 @@ void main()
     r_accum.normal.z = 3.0;
     r_model_camera.lens.w = 2.5;
     r_model_texture.extent.z = 17u;
+    r_model_tangent.tangent.w = -1.0;
     r_mmrt_counters.trace2.x = 77u;
     r_mmrt_pt_counts.counts.y = 99u;
 }

@@ -12,10 +12,13 @@ float dirt_material_coverage(const dirt_material *m, const dirt_texture *texture
     int t = m->base_color_tex;
     if (!textures || t < 0 || (size_t)t >= num_textures)
         return m->base_color[3];
-    float c[4];
-    /* The linear lookup: alpha is never decoded, so it equals the sRGB
-     * slot's alpha, and the RGB decode is not paid for. */
-    dirt_texture_sample(&textures[t], false, u, v, c);
+    float c[4], x[6], uv[2];
+    /* At the base colour slot's uv (its KHR_texture_transform); the linear
+     * lookup: alpha is never decoded, so it equals the sRGB slot's alpha,
+     * and the RGB decode is not paid for. */
+    dirt_tex_transform_matrix(&m->xf[DIRT_SLOT_BASE_COLOR], x);
+    dirt_tex_transform_apply(x, u, v, uv);
+    dirt_texture_sample(&textures[t], false, uv[0], uv[1], c);
     return m->base_color[3] * c[3];
 }
 

@@ -562,6 +562,8 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
         /* the scene's textures (made with the first samples) */
         {"model texels", pt->tables.texel_bytes, 0},
+        /* the frame's tangents (normal maps; 16 B when none are used) */
+        {"model tangents", pt->tables.tangent_bytes, 0},
     };
     int n = 0;
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]) && n < max; i++) {

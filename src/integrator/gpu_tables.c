@@ -52,11 +52,13 @@ void dirt_gpu_material_pack(const dirt_material *m, float specular, size_t num_t
     out->params2 = (dirt_f4){m->transmission, m->ior, m->alpha_cutoff, (float)m->alpha_mode};
     out->specular_color = (dirt_f4){m->specular_color[0], m->specular_color[1],
                                     m->specular_color[2], 0.0f};
-    /* Texture transforms: the identity (KHR_texture_transform is not read
-     * yet). */
+    /* Texture transforms: the matrix the C model forms per lookup, made
+     * by the same function (the same cosf / sinf bits). */
     for (int k = 0; k < DIRT_MODEL_TEX_SLOTS; k++) {
-        out->xf[2 * k] = (dirt_f4){1.0f, 0.0f, 0.0f, 0.0f};
-        out->xf[2 * k + 1] = (dirt_f4){0.0f, 1.0f, 0.0f, 0.0f};
+        float x[6];
+        dirt_tex_transform_matrix(&m->xf[k], x);
+        out->xf[2 * k] = (dirt_f4){x[0], x[1], x[2], 0.0f};
+        out->xf[2 * k + 1] = (dirt_f4){x[3], x[4], x[5], 0.0f};
     }
 }
 
@@ -281,11 +283,41 @@ bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, uns
     return *buffer != 0;
 }
 
+/* (Re)uploads the frame's tangents (dirt_gpu_model_tangent per frame
+ * vertex) when a material has a normal map and the frame has tangents, else
+ * one zero record. False after logging. */
+static bool upload_tangents(dirt_gpu *gpu, dirt_gpu_model_tables *t, const dirt_frame *frame)
+{
+    gl_buffer_destroy(&t->tangents);
+    t->tangent_bytes = 0;
+    size_t n = t->normal_maps && frame && frame->tangent ? 3 * frame->num_triangles : 0;
+    size_t bytes = (n > 0 ? n : 1) * sizeof(struct dirt_gpu_model_tangent);
+    const dirt_gpu_caps *caps = dirt_gpu_get_caps(gpu);
+    if (caps && caps->max_ssbo_size > 0 && (uint64_t)bytes > (uint64_t)caps->max_ssbo_size) {
+        DIRT_ERROR("gpu tables: the frame's tangents need %zu bytes (%zu triangles), more "
+                   "than this GPU's maximum storage block size "
+                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes)", bytes,
+                   frame->num_triangles, (long long)caps->max_ssbo_size);
+        return false;
+    }
+    /* dirt_frame.tangent is float[4] per vertex: the record's layout. */
+    _Static_assert(sizeof(struct dirt_gpu_model_tangent) == 4 * sizeof(float), "tangent record");
+    static const struct dirt_gpu_model_tangent zero;
+    t->tangents = gl_buffer_create(gpu, bytes, n > 0 ? (const void *)frame->tangent : &zero, false,
+                                   "model tangents");
+    if (!t->tangents)
+        return false;
+    t->tangent_bytes = bytes;
+    return true;
+}
+
 bool dirt_gpu_model_tables_set_frame(dirt_gpu *gpu, dirt_gpu_model_tables *t,
                                      const dirt_frame *frame, const dirt_area_lights *area,
                                      const dirt_camera *camera)
 {
     bool ok = false;
+    if (!upload_tangents(gpu, t, frame))
+        return false;
     dirt_gpu_area_table at = {0};
     size_t nl = frame ? frame->num_lights : 0;
     struct dirt_gpu_model_light *lights = calloc(nl > 0 ? nl : 1, sizeof(*lights));
@@ -343,6 +375,8 @@ bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
     if (!out->materials || !dirt_gpu_textures_upload(gpu, &tb, &out->texels))
         goto done;
     out->texel_bytes = tb.size;
+    for (size_t i = 0; i < nm; i++)
+        out->normal_maps |= mats[i].textures2.x >= 0;
     ok = dirt_gpu_model_tables_set_frame(gpu, out, frame, area, camera);
 done:
     free(mats);
@@ -368,6 +402,7 @@ void dirt_gpu_model_tables_bind(const dirt_gpu_model_tables *t)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_PUNCTUAL, t->punctual);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_CAMERA, t->camera);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, t->texels);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TANGENTS, t->tangents);
 }
 
 void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t)
@@ -381,5 +416,6 @@ void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t)
     b = t->punctual; gl_buffer_destroy(&b);
     b = t->camera; gl_buffer_destroy(&b);
     b = t->texels; gl_buffer_destroy(&b);
+    b = t->tangents; gl_buffer_destroy(&b);
     memset(t, 0, sizeof(*t));
 }

@@ -80,21 +80,64 @@ static const dirt_texture *texture_at(const dirt_texture *textures, size_t n, in
     return &textures[index];
 }
 
+void dirt_tex_transform_matrix(const dirt_tex_transform *xf, float m[6])
+{
+    if (!xf || !xf->set) {
+        m[0] = 1.0f, m[1] = 0.0f, m[2] = 0.0f;
+        m[3] = 0.0f, m[4] = 1.0f, m[5] = 0.0f;
+        return;
+    }
+    float c = cosf(xf->rotation), s = sinf(xf->rotation);
+    m[0] = xf->scale[0] * c;
+    m[1] = xf->scale[1] * s;
+    m[2] = xf->offset[0];
+    m[3] = -(xf->scale[0] * s);
+    m[4] = xf->scale[1] * c;
+    m[5] = xf->offset[1];
+}
+
+void dirt_tex_transform_apply(const float m[6], float u, float v, float out[2])
+{
+    if (!isfinite(u))
+        u = 0.0f;
+    if (!isfinite(v))
+        v = 0.0f;
+    /* Separate statements: no contraction into fused multiply-adds (the
+     * GLSL twin is `precise`). */
+    float a = m[0] * u, b = m[1] * v;
+    float c = m[3] * u, d = m[4] * v;
+    out[0] = (a + b) + m[2];
+    out[1] = (c + d) + m[5];
+}
+
+/* The uv of slot `slot`'s lookup (its transform applied). */
+static void slot_uv(const dirt_material *m, enum dirt_tex_slot slot, float u, float v,
+                      float out[2])
+{
+    float x[6];
+    dirt_tex_transform_matrix(&m->xf[slot], x);
+    dirt_tex_transform_apply(x, u, v, out);
+}
+
 void dirt_material_surface(const dirt_material *m, float specular,
                            const dirt_texture *textures, size_t num_textures,
                            float u, float v, dirt_surface *out)
 {
-    float bc[4], mr[4], em[4];
+    float bc[4], mr[4], em[4], uv[2];
     const dirt_texture *t;
 
     t = texture_at(textures, num_textures, m->base_color_tex);
-    if (t)
-        dirt_texture_sample(t, true, u, v, bc);
+    if (t) {
+        slot_uv(m, DIRT_SLOT_BASE_COLOR, u, v, uv);
+        dirt_texture_sample(t, true, uv[0], uv[1], bc);
+    }
     else
         bc[0] = bc[1] = bc[2] = bc[3] = 1.0f;
     t = texture_at(textures, num_textures, m->metallic_roughness_tex);
-    if (t)
-        dirt_texture_sample(t, false, u, v, mr);
+    if (t) {
+        slot_uv(m, DIRT_SLOT_METALLIC_ROUGHNESS, u, v, uv);
+        dirt_texture_sample(t, false, uv[0], uv[1], mr);
+    }
     else
         mr[0] = mr[1] = mr[2] = mr[3] = 1.0f;
 
@@ -109,8 +152,10 @@ void dirt_material_surface(const dirt_material *m, float specular,
     float s = m->emissive_strength;
     if (dirt_material_is_emissive(m)) {
         t = texture_at(textures, num_textures, m->emissive_tex);
-        if (t)
-            dirt_texture_sample(t, true, u, v, em);
+        if (t) {
+            slot_uv(m, DIRT_SLOT_EMISSIVE, u, v, uv);
+            dirt_texture_sample(t, true, uv[0], uv[1], em);
+        }
         else
             em[0] = em[1] = em[2] = 1.0f;
         out->emission = v3(m->emissive[0] * s * em[0], m->emissive[1] * s * em[1],
@@ -124,4 +169,38 @@ bool dirt_material_is_emissive(const dirt_material *m)
 {
     float e = fmaxf(m->emissive[0], fmaxf(m->emissive[1], m->emissive[2]));
     return e > 0.0f && m->emissive_strength > 0.0f && isfinite(e * m->emissive_strength);
+}
+
+bool dirt_material_normal_ts(const dirt_material *m, const dirt_texture *textures,
+                             size_t num_textures, float u, float v, dirt_vec3 *n_ts)
+{
+    const dirt_texture *t = texture_at(textures, num_textures, m->normal_tex);
+    if (!t)
+        return false;
+    float c[4], uv[2];
+    slot_uv(m, DIRT_SLOT_NORMAL, u, v, uv);
+    dirt_texture_sample(t, false, uv[0], uv[1], c);
+    float s = m->normal_scale;
+    float x = 2.0f * c[0] - 1.0f, y = 2.0f * c[1] - 1.0f;
+    dirt_vec3 n = v3_normalize(v3(x * s, y * s, 2.0f * c[2] - 1.0f));
+    if (v3_is_zero(n) || !v3_is_finite(n))
+        return false;
+    *n_ts = n;
+    return true;
+}
+
+dirt_vec3 dirt_normal_map_apply(dirt_vec3 n, dirt_vec3 t, float w, dirt_vec3 n_ts)
+{
+    dirt_vec3 tp = v3_sub(t, v3_scale(n, v3_dot(n, t)));
+    /* Not finite, zero, or (nearly) along n: what is left is rounding. */
+    if (!(v3_length(tp) > 1e-3f * v3_length(t)))
+        return n;
+    dirt_vec3 to = v3_normalize(tp);
+    dirt_vec3 b = v3_scale(v3_cross(n, to), w < 0.0f ? -1.0f : 1.0f);
+    dirt_vec3 r = v3_scale(to, n_ts.x);
+    r = v3_mad(r, b, n_ts.y);
+    r = v3_normalize(v3_mad(r, n, n_ts.z));
+    if (v3_is_zero(r) || !v3_is_finite(r))
+        return n;
+    return r;
 }

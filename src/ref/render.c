@@ -119,6 +119,9 @@ static void make_vertex(const render_ctx *c, dirt_vec3 dir, const dirt_ref_hit *
         ng = v3_neg(ng);
     v->ng = ng;
 
+    float uv[2];
+    tri_uv(f, prim, h->u, h->v, uv);
+    uint32_t m = f->material[prim];
     dirt_vec3 ns = ng;
     if (f->normal) {
         float b0 = 1.0f - h->u - h->v;
@@ -126,6 +129,18 @@ static void make_vertex(const render_ctx *c, dirt_vec3 dir, const dirt_ref_hit *
         dirt_vec3 n1 = v3_load(f->normal[3 * (size_t)prim + 1]);
         dirt_vec3 n2 = v3_load(f->normal[3 * (size_t)prim + 2]);
         dirt_vec3 n = v3_normalize(v3_mad(v3_mad(v3_scale(n0, b0), n1, h->u), n2, h->v));
+        dirt_vec3 n_ts;
+        if (f->tangent && dirt_material_normal_ts(&c->mats->materials[m], c->mats->textures,
+                                                  c->mats->num_textures, uv[0], uv[1], &n_ts)) {
+            /* Normal map (doc/light-transport.md, section 1): the front
+             * side's normal, flipped below like the interpolated one. */
+            const float *t0 = f->tangent[3 * (size_t)prim], *t1 = f->tangent[3 * (size_t)prim + 1],
+                        *t2 = f->tangent[3 * (size_t)prim + 2];
+            dirt_vec3 t = v3_mad(v3_mad(v3_scale(v3_load(t0), b0), v3_load(t1), h->u),
+                                 v3_load(t2), h->v);
+            float w = b0 * t0[3] + h->u * t1[3] + h->v * t2[3];
+            n = dirt_normal_map_apply(n, t, w, n_ts);
+        }
         if (!v->front)
             n = v3_neg(n);
         if (v3_is_finite(n) && v3_dot(n, ng) > 0.0f)
@@ -141,9 +156,6 @@ static void make_vertex(const render_ctx *c, dirt_vec3 dir, const dirt_ref_hit *
         v->wo = v3_to_local(wo_world, v->t, v->b, v->n);
     }
 
-    float uv[2];
-    tri_uv(f, prim, h->u, h->v, uv);
-    uint32_t m = f->material[prim];
     dirt_material_surface(&c->mats->materials[m], mat_specular(c, m), c->mats->textures,
                           c->mats->num_textures, uv[0], uv[1], &v->surf);
     v->le = (v->front || v->surf.double_sided) ? v->surf.emission : v3(0.0f, 0.0f, 0.0f);

@@ -24,6 +24,7 @@ typedef struct frame_impl {
     float (*joint)[16];   /* per skin joint: jointWorld * inverseBind */
     float (*vpos)[3];     /* per vertex of the primitive being emitted */
     float (*vnrm)[3];
+    float (*vtan)[4];     /* tangents (xyz not normalised, w handedness) */
 } frame_impl;
 
 /* ---- small vector / quaternion helpers ---------------------------------- */
@@ -119,6 +120,16 @@ static void apply_normal(float out[3], const float nm[9], const float n[3])
     float r[3];
     for (int i = 0; i < 3; i++)
         r[i] = nm[0 + i] * n[0] + nm[3 + i] * n[1] + nm[6 + i] * n[2];
+    memcpy(out, r, sizeof(r));
+}
+
+/* The direction d through the upper-left 3x3 block of column-major m
+ * (tangents: they follow the surface like its edges). */
+static void transform_dir(float out[3], const float m[16], const float d[3])
+{
+    float r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = m[i] * d[0] + m[4 + i] * d[1] + m[8 + i] * d[2];
     memcpy(out, r, sizeof(r));
 }
 
@@ -241,12 +252,18 @@ static void apply_clip(const dirt_scene *s, const scene_clip *clip, float t,
 /* ---- geometry ----------------------------------------------------------- */
 
 /* Morphed, then skinned or rigidly transformed vertices of one primitive into
- * fi->vpos / fi->vnrm (normals not normalised; zero when absent). */
+ * fi->vpos / fi->vnrm (normals not normalised; zero when absent) and, when
+ * the primitive has tangents, fi->vtan: morphed by target_tangent, then
+ * through the vertex's matrix as directions, the handedness w times the
+ * sign of the matrix's determinant (a mirroring transform reverses the
+ * bitangent cross(n, t) makes). `det` is the determinant of `world`. */
 static void transform_prim(frame_impl *fi, const scene_prim *p, const float *weights,
-                           const float *world, const float *nmat, const scene_skin *skin)
+                           const float *world, const float *nmat, float det,
+                           const scene_skin *skin)
 {
     size_t nv = p->num_vertices;
     float (*vp)[3] = fi->vpos, (*vn)[3] = fi->vnrm;
+    float (*vt)[4] = p->tangent ? fi->vtan : NULL;
 
     for (size_t v = 0; v < nv; v++) {
         memcpy(vp[v], p->position[v], sizeof(vp[v]));
@@ -254,6 +271,8 @@ static void transform_prim(frame_impl *fi, const scene_prim *p, const float *wei
             memcpy(vn[v], p->normal[v], sizeof(vn[v]));
         else
             vn[v][0] = vn[v][1] = vn[v][2] = 0.0f;
+        if (vt)
+            memcpy(vt[v], p->tangent[v], sizeof(vt[v]));
     }
     for (size_t k = 0; k < p->num_targets && weights; k++) {
         float w = weights[k];
@@ -275,6 +294,14 @@ static void transform_prim(frame_impl *fi, const scene_prim *p, const float *wei
                 vn[v][2] += w * d[v][2];
             }
         }
+        if (p->target_tangent && vt) {
+            const float (*d)[3] = (const float (*)[3])p->target_tangent + k * nv;
+            for (size_t v = 0; v < nv; v++) {
+                vt[v][0] += w * d[v][0];
+                vt[v][1] += w * d[v][1];
+                vt[v][2] += w * d[v][2];
+            }
+        }
     }
 
     if (skin && p->joints) {
@@ -291,9 +318,15 @@ static void transform_prim(frame_impl *fi, const scene_prim *p, const float *wei
             }
             float nm[9];
             transform_point(vp[v], m, vp[v]);
-            if (p->normal) {
-                normal_matrix(nm, m);
-                apply_normal(vn[v], nm, vn[v]);
+            if (p->normal || vt) {
+                float d = normal_matrix(nm, m);
+                if (p->normal)
+                    apply_normal(vn[v], nm, vn[v]);
+                if (vt) {
+                    transform_dir(vt[v], m, vt[v]);
+                    if (d < 0.0f)
+                        vt[v][3] = -vt[v][3];
+                }
             }
         }
     } else {
@@ -301,6 +334,11 @@ static void transform_prim(frame_impl *fi, const scene_prim *p, const float *wei
             transform_point(vp[v], world, vp[v]);
             if (p->normal)
                 apply_normal(vn[v], nmat, vn[v]);
+            if (vt) {
+                transform_dir(vt[v], world, vt[v]);
+                if (det < 0.0f)
+                    vt[v][3] = -vt[v][3];
+            }
         }
     }
 }
@@ -336,6 +374,18 @@ static void emit_prim(frame_impl *fi, const scene_prim *p, size_t first, uint32_
             memcpy(n, fi->vnrm[idx[k]], 3 * sizeof(float));
             if (!normalize3(n))
                 memcpy(n, flat, sizeof(flat));
+            if (f->tangent) {
+                float *tg = f->tangent[3 * tri + k];
+                if (p->tangent) {
+                    memcpy(tg, fi->vtan[idx[k]], 4 * sizeof(float));
+                    if (!normalize3(tg))
+                        tg[0] = tg[1] = tg[2] = 0.0f;
+                    tg[3] = tg[3] < 0.0f ? -1.0f : 1.0f;
+                } else {
+                    tg[0] = tg[1] = tg[2] = 0.0f;
+                    tg[3] = 1.0f;
+                }
+            }
             float *uv = f->uv[3 * tri + k];
             if (p->uv) {
                 uv[0] = p->uv[idx[k]][0];
@@ -490,7 +540,7 @@ static void eval_frame(const dirt_scene *s, float t, const dirt_eval_opts *opts,
         for (size_t p = 0; p < m->num_prims; p++) {
             const scene_prim *pr = &m->prims[p];
             bool skinned = skin && pr->joints;
-            transform_prim(fi, pr, weights, world, nmat, skinned ? skin : NULL);
+            transform_prim(fi, pr, weights, world, nmat, det, skinned ? skin : NULL);
             emit_prim(fi, pr, first, (uint32_t)i, !skinned && det < 0.0f);
             first += pr->num_triangles;
         }
@@ -528,6 +578,7 @@ void dirt_frame_destroy(dirt_frame *f)
     free(f->position);
     free(f->normal);
     free(f->uv);
+    free(f->tangent);
     free(f->material);
     free(f->instance);
     free(f->node_world);
@@ -538,7 +589,19 @@ void dirt_frame_destroy(dirt_frame *f)
     free(fi->joint);
     free(fi->vpos);
     free(fi->vnrm);
+    free(fi->vtan);
     free(fi);
+}
+
+/* Whether any primitive of the scene has tangents (the frame then has a
+ * tangent array). */
+static bool scene_has_tangents(const dirt_scene *s)
+{
+    for (size_t m = 0; m < s->num_meshes; m++)
+        for (size_t p = 0; p < s->meshes[m].num_prims; p++)
+            if (s->meshes[m].prims[p].tangent)
+                return true;
+    return false;
 }
 
 /* malloc of n elements of `size` bytes, at least one element so that an empty
@@ -567,6 +630,8 @@ dirt_frame *dirt_scene_evaluate(const dirt_scene *s, float t, const dirt_eval_op
     f->position = alloc_n(nv, sizeof(*f->position));
     f->normal = alloc_n(nv, sizeof(*f->normal));
     f->uv = alloc_n(nv, sizeof(*f->uv));
+    if (scene_has_tangents(s))
+        f->tangent = alloc_n(nv, sizeof(*f->tangent));
     f->material = alloc_n(s->num_triangles, sizeof(*f->material));
     f->instance = alloc_n(s->num_triangles, sizeof(*f->instance));
     f->node_world = alloc_n(s->num_nodes, sizeof(*f->node_world));
@@ -577,9 +642,11 @@ dirt_frame *dirt_scene_evaluate(const dirt_scene *s, float t, const dirt_eval_op
     fi->joint = alloc_n(s->total_joints, sizeof(*fi->joint));
     fi->vpos = alloc_n(s->max_prim_vertices, sizeof(*fi->vpos));
     fi->vnrm = alloc_n(s->max_prim_vertices, sizeof(*fi->vnrm));
+    fi->vtan = alloc_n(s->max_prim_vertices, sizeof(*fi->vtan));
     if (!f->position || !f->normal || !f->uv || !f->material || !f->instance ||
         !f->node_world || !f->cameras || !f->lights || !fi->trs || !fi->weights ||
-        !fi->joint || !fi->vpos || !fi->vnrm)
+        !fi->joint || !fi->vpos || !fi->vnrm || !fi->vtan ||
+        (scene_has_tangents(s) && !f->tangent))
         goto error;
     eval_frame(s, t, opts, fi);
     return f;

@@ -33,6 +33,8 @@ const char *const supported_extensions[] = {
     "KHR_materials_emissive_strength", /* emissiveStrength (convert_materials) */
     "KHR_mesh_quantization",           /* integer attributes (read_floats takes every
                                           component type, normalized or not) */
+    "KHR_texture_transform",           /* uv transforms of the texture slots read
+                                          (read_tex_transform) */
     nullptr,
 };
 
@@ -599,16 +601,73 @@ int get_texture(Loader &L, int tex, bool srgb, const char *what)
     return slot;
 }
 
-int texture_slot(Loader &L, const tinygltf::TextureInfo &ti, bool srgb, const char *slot,
-                 const std::string &mat)
+/* A KHR_texture_transform of a textureInfo (its extensions `ext`) into *xf
+ * (left the identity, set false, without one): offset, rotation, scale as
+ * given; a member that is not a finite number (pair) is warned about and
+ * keeps its default. Returns the texCoord the transform overrides with,
+ * -1 when it has none. */
+int read_tex_transform(Loader &L, const tinygltf::ExtensionMap &ext, const std::string &what,
+                       dirt_tex_transform *xf)
 {
-    if (ti.index < 0)
+    auto it = ext.find("KHR_texture_transform");
+    if (it == ext.end() || !it->second.IsObject())
+        return -1;
+    const tinygltf::Value &v = it->second;
+    xf->set = true;
+    auto pair = [&](const char *key, float out[2]) {
+        if (!v.Has(key))
+            return;
+        const tinygltf::Value &a = v.Get(key);
+        if (a.IsArray() && a.ArrayLen() == 2 && a.Get(0).IsNumber() && a.Get(1).IsNumber() &&
+            std::isfinite(a.Get(0).GetNumberAsDouble()) &&
+            std::isfinite(a.Get(1).GetNumberAsDouble())) {
+            out[0] = (float)a.Get(0).GetNumberAsDouble();
+            out[1] = (float)a.Get(1).GetNumberAsDouble();
+        } else {
+            DIRT_WARN("%s: %s: invalid KHR_texture_transform %s ignored", L.path.c_str(),
+                      what.c_str(), key);
+        }
+    };
+    pair("offset", xf->offset);
+    pair("scale", xf->scale);
+    if (v.Has("rotation")) {
+        const tinygltf::Value &r = v.Get("rotation");
+        if (r.IsNumber() && std::isfinite(r.GetNumberAsDouble()))
+            xf->rotation = (float)r.GetNumberAsDouble();
+        else
+            DIRT_WARN("%s: %s: invalid KHR_texture_transform rotation ignored",
+                      L.path.c_str(), what.c_str());
+    }
+    if (v.Has("texCoord") && v.Get("texCoord").IsNumber())
+        return (int)v.Get("texCoord").GetNumberAsDouble();
+    return -1;
+}
+
+/* The scene texture of a textureInfo (index, texCoord, extensions) and, when
+ * `xf` is given, its KHR_texture_transform. Only TEXCOORD_0 exists: another
+ * set (the textureInfo's, or the transform's override) is warned about and
+ * read as set 0. */
+int texture_slot(Loader &L, int index, int tex_coord, const tinygltf::ExtensionMap &ext,
+                 bool srgb, const char *slot, const std::string &mat, dirt_tex_transform *xf)
+{
+    if (index < 0)
         return DIRT_NO_TEXTURE;
     std::string what = "material '" + mat + "' " + slot;
-    if (ti.texCoord != 0)
+    if (xf) {
+        int over = read_tex_transform(L, ext, what, xf);
+        if (over >= 0)
+            tex_coord = over;
+    }
+    if (tex_coord != 0)
         DIRT_WARN("%s: %s uses TEXCOORD_%d; only TEXCOORD_0 is supported", L.path.c_str(),
-                  what.c_str(), ti.texCoord);
-    return get_texture(L, ti.index, srgb, what.c_str());
+                  what.c_str(), tex_coord);
+    return get_texture(L, index, srgb, what.c_str());
+}
+
+int texture_slot(Loader &L, const tinygltf::TextureInfo &ti, bool srgb, const char *slot,
+                 const std::string &mat, dirt_tex_transform *xf = nullptr)
+{
+    return texture_slot(L, ti.index, ti.texCoord, ti.extensions, srgb, slot, mat, xf);
 }
 
 float finite_or(double x, float fallback)
@@ -673,10 +732,21 @@ void convert_materials(Loader &L, bool need_default)
             DIRT_WARN("%s: material '%s': invalid alphaCutoff ignored (0.5)", L.path.c_str(),
                       name.c_str());
         d->base_color_tex = texture_slot(L, pbr.baseColorTexture, true, "baseColorTexture",
-                                         name);
+                                         name, &d->xf[DIRT_SLOT_BASE_COLOR]);
         d->metallic_roughness_tex = texture_slot(L, pbr.metallicRoughnessTexture, false,
-                                                 "metallicRoughnessTexture", name);
-        d->emissive_tex = texture_slot(L, src.emissiveTexture, true, "emissiveTexture", name);
+                                                 "metallicRoughnessTexture", name,
+                                                 &d->xf[DIRT_SLOT_METALLIC_ROUGHNESS]);
+        d->emissive_tex = texture_slot(L, src.emissiveTexture, true, "emissiveTexture", name,
+                                       &d->xf[DIRT_SLOT_EMISSIVE]);
+        const tinygltf::NormalTextureInfo &nt = src.normalTexture;
+        d->normal_tex = texture_slot(L, nt.index, nt.texCoord, nt.extensions, false,
+                                     "normalTexture", name, &d->xf[DIRT_SLOT_NORMAL]);
+        if (d->normal_tex != DIRT_NO_TEXTURE) {
+            d->normal_scale = finite_or(nt.scale, 1.0f);
+            if (!std::isfinite(nt.scale))
+                DIRT_WARN("%s: material '%s': invalid normalTexture scale read as 1",
+                          L.path.c_str(), name.c_str());
+        }
     }
     s->num_materials = n;
     L.default_material = (uint32_t)n;
@@ -774,6 +844,26 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
             dst->normal = (float(*)[3])dup_array(nrm);
     }
 
+    int a_tan = attr("TANGENT");
+    if (a_tan >= 0) {
+        std::vector<float> tan;
+        ctx = std::string(what) + " TANGENT";
+        if (!read_floats(m, a_tan, ctx.c_str(), 4, &tan))
+            return false;
+        if (tan.size() / 4 != nv) {
+            SCENE_FAIL(RANGE, "%s: TANGENT has %zu elements, POSITION %zu", what,
+                       tan.size() / 4, nv);
+            return false;
+        }
+        if (!all_finite(tan)) {
+            DIRT_WARN("%s: non-finite tangents ignored", what);
+        } else {
+            for (size_t v = 0; v < nv; v++) /* w: handedness, +1 or -1 */
+                tan[4 * v + 3] = tan[4 * v + 3] < 0.0f ? -1.0f : 1.0f;
+            dst->tangent = (float(*)[4])dup_array(tan);
+        }
+    }
+
     int a_uv = attr("TEXCOORD_0");
     if (a_uv >= 0) {
         std::vector<float> uv;
@@ -853,26 +943,29 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
     size_t nt = src.targets.size();
     if (nt > 0) {
         dst->num_targets = nt;
-        bool any_pos = false, any_nrm = false;
+        bool any_pos = false, any_nrm = false, any_tan = false;
         for (const auto &t : src.targets) {
             any_pos |= t.count("POSITION") > 0;
             any_nrm |= t.count("NORMAL") > 0;
+            any_tan |= t.count("TANGENT") > 0 && dst->tangent;
         }
         if (nv > SCENE_MAX_COUNT / (nt ? nt : 1)) {
             SCENE_FAIL(TOO_LARGE, "%s: too many morph target vertices", what);
             return false;
         }
-        if (!charge(nt * nv, (any_pos + any_nrm) * sizeof(float[3]), what))
+        if (!charge(nt * nv, (any_pos + any_nrm + any_tan) * sizeof(float[3]), what))
             return false;
         if (any_pos)
             dst->target_position = alloc_zeroed<float[3]>(nt * nv);
         if (any_nrm)
             dst->target_normal = alloc_zeroed<float[3]>(nt * nv);
+        if (any_tan) /* TANGENT deltas (xyz) of a primitive that has tangents */
+            dst->target_tangent = alloc_zeroed<float[3]>(nt * nv);
         for (size_t k = 0; k < nt; k++) {
-            for (int which = 0; which < 2; which++) {
-                const char *name = which == 0 ? "POSITION" : "NORMAL";
+            for (int which = 0; which < 3; which++) {
+                const char *name = which == 0 ? "POSITION" : which == 1 ? "NORMAL" : "TANGENT";
                 auto it = src.targets[k].find(name);
-                if (it == src.targets[k].end())
+                if (it == src.targets[k].end() || (which == 2 && !any_tan))
                     continue;
                 std::vector<float> d;
                 ctx = std::string(what) + " target " + std::to_string(k) + " " + name;
@@ -887,7 +980,8 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
                     SCENE_FAIL(NOT_FINITE, "%s: non-finite (NaN/Inf) morph target delta", ctx.c_str());
                     return false;
                 }
-                float(*out)[3] = which == 0 ? dst->target_position : dst->target_normal;
+                float(*out)[3] = which == 0 ? dst->target_position
+                                 : which == 1 ? dst->target_normal : dst->target_tangent;
                 memcpy(out + k * nv, d.data(), d.size() * sizeof(float));
             }
         }
@@ -920,6 +1014,14 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
     convert_triangles(idx, mode, what, &tris);
     dst->num_triangles = tris.size() / 3;
     dst->indices = dup_array(tris);
+
+    /* A normal map needs tangents: made when the file has none. */
+    if (!dst->tangent && dst->uv && L.s->materials[dst->material].normal_tex != DIRT_NO_TEXTURE) {
+        if (!charge(nv, sizeof(float[4]), what))
+            return false;
+        if (!scene_prim_generate_tangents(dst))
+            throw std::bad_alloc();
+    }
     return true;
 }
 

@@ -495,8 +495,22 @@ bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_
         d->alpha_mode = DIRT_ALPHA_BLEND;
         d->base_color[3] = clamp01(dissolve);
     }
-    if (!src.bump_texname.empty() || !src.normal_texname.empty())
-        L.notes.add("bump / norm maps ignored (no normal maps in the model)", name);
+    /* norm: a tangent-space normal map (linear RGB, as glTF's), its -bm
+     * the normal scale; bump / map_bump are height maps, which the model
+     * has no place for. */
+    if (!src.normal_texname.empty()) {
+        int t = get_texture(L, i, src.normal_texname, false, "norm", nm);
+        if (t == -2)
+            return false;
+        d->normal_tex = t;
+        float bm = finite_or(src.normal_texopt.bump_multiplier, 1.0f);
+        d->normal_scale = bm;
+        if (!texopt_default(src.normal_texopt))
+            L.notes.add("norm options (-s, -o, -clamp, -mm) ignored", name);
+    }
+    if (!src.bump_texname.empty())
+        L.notes.add("bump / map_bump (height) maps ignored (norm, a tangent-space normal map, "
+                    "is read)", name);
     if (!src.specular_texname.empty() || !src.specular_highlight_texname.empty())
         L.notes.add("map_Ks / map_Ns ignored", name);
     if (!src.alpha_texname.empty() && !map_d_kd)
@@ -834,6 +848,17 @@ bool convert(Loader &L, const std::vector<tinyobj::shape_t> &shapes,
     node->skin = node->camera = node->light = -1;
     node->rotation[3] = 1.0f;
     node->scale[0] = node->scale[1] = node->scale[2] = 1.0f;
+    /* Normal maps need tangents: OBJ has none, they are generated. */
+    for (size_t p = 0; p < mesh->num_prims; p++) {
+        scene_prim *pr = &mesh->prims[p];
+        if (!pr->uv || pr->material >= s->num_materials ||
+            s->materials[pr->material].normal_tex == DIRT_NO_TEXTURE)
+            continue;
+        if (!charge(pr->num_vertices, sizeof(float[4]), "the OBJ tangents"))
+            return false;
+        if (!scene_prim_generate_tangents(pr))
+            throw std::bad_alloc();
+    }
     return scene_finalize(s, nullptr, 0);
 }
 

@@ -431,6 +431,8 @@ static void free_prim(scene_prim *p)
     free(p->weights);
     free(p->target_position);
     free(p->target_normal);
+    free(p->tangent);
+    free(p->target_tangent);
     free(p->indices);
 }
 

@@ -54,6 +54,11 @@ typedef struct scene_prim {
     float (*target_position)[3]; /* num_targets * num_vertices deltas,
                                     target-major, NULL if no target has one */
     float (*target_normal)[3];   /* same layout, NULL if none */
+    float (*tangent)[4];         /* TANGENT: xyz unit (or 0 where degenerate),
+                                    w handedness +1 / -1; from the file or
+                                    scene_prim_generate_tangents. NULL: none */
+    float (*target_tangent)[3];  /* morph deltas of tangent.xyz, the layout of
+                                    target_normal, NULL if none */
     size_t num_triangles;
     uint32_t *indices;           /* 3 * num_triangles */
 } scene_prim;
@@ -179,6 +184,19 @@ dirt_scene *scene_new(const char *name);
  * scene to show; NULL with num_roots 0 means every parentless node. Returns
  * false (logged) on an invalid scene. */
 bool scene_finalize(dirt_scene *scene, const int *roots, size_t num_roots);
+
+/* Makes p->tangent (which must be NULL) for a normal map when the file
+ * gives none: per vertex, the sum over its triangles of the UV-derivative
+ * tangent T = (e1 dv2 - e2 dv1) / r and bitangent B = (e2 du1 - e1 du2) / r
+ * (e = edges from the first corner, (du, dv) their UV differences, r = du1
+ * dv2 - du2 dv1; triangles with r 0 or not finite add nothing), summed in
+ * double; then t = normalize(T - n (n . T)) with n the vertex normal (the
+ * sum of the adjacent triangles' cross(e1, e2) when the primitive has no
+ * normals), w = dot(cross(n, t), B) < 0 ? -1 : 1; a vertex where t is 0
+ * or not finite gets (0, 0, 0, 1) (no normal map there). Nothing to do
+ * (true, tangent stays NULL) without UVs or vertices. False (logged) on
+ * out-of-memory. doc/light-transport.md, "Normal maps". */
+bool scene_prim_generate_tangents(scene_prim *p);
 
 /* Copies `src` into a fixed-size name field, truncating, always terminated. */
 void scene_copy_name(char *dst, size_t size, const char *src);

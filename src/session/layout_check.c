@@ -136,6 +136,9 @@ AT(dirt_gpu_model_texels, counts, 0);
 RECORD(dirt_gpu_model_texture, 1);
 AT(dirt_gpu_model_texture, extent, 0);
 
+RECORD(dirt_gpu_model_tangent, 1);
+AT(dirt_gpu_model_tangent, tangent, 0);
+
 /* ---- common/mmrt_layout.h, common/mmrt_pt_layout.h ---- */
 RECORD(dirt_mmrt_gpu_params, 2);
 AT(dirt_mmrt_gpu_params, config, 0);

@@ -39,6 +39,7 @@ struct records {
     struct dirt_gpu_model_camera r_model_camera;
     struct dirt_gpu_model_texels r_model_texels;
     struct dirt_gpu_model_texture r_model_texture;
+    struct dirt_gpu_model_tangent r_model_tangent;
     struct dirt_mmrt_gpu_params r_mmrt_params;
     struct dirt_mmrt_gpu_data r_mmrt_data;
     struct dirt_mmrt_gpu_counters r_mmrt_counters;
@@ -95,6 +96,7 @@ static const member members[] = {
     M(r_model_camera, dirt_gpu_model_camera, lens),
     M(r_model_texels, dirt_gpu_model_texels, counts),
     M(r_model_texture, dirt_gpu_model_texture, extent),
+    M(r_model_tangent, dirt_gpu_model_tangent, tangent),
     M(r_mmrt_params, dirt_mmrt_gpu_params, config), M(r_mmrt_params, dirt_mmrt_gpu_params, pool),
     M(r_mmrt_data, dirt_mmrt_gpu_data, ids), M(r_mmrt_data, dirt_mmrt_gpu_data, attr),
     M(r_mmrt_counters, dirt_mmrt_gpu_counters, build),
@@ -158,6 +160,7 @@ static void test_record_layout(dirt_gpu *gpu)
         CHECK(out.r_accum.normal.z == 3.0f);
         CHECK(out.r_model_camera.lens.w == 2.5f);
         CHECK(out.r_model_texture.extent.z == 17u);
+        CHECK(out.r_model_tangent.tangent.w == -1.0f);
         CHECK(out.r_mmrt_counters.trace2.x == 77u);
         CHECK(out.r_mmrt_pt_counts.counts.y == 99u);
         gl_buffer_destroy(&buf);

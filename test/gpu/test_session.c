@@ -15,6 +15,9 @@
 
 /* The environment table without an environment (dirt_gpu_env_pack). */
 #define ENV_NONE_BYTES (sizeof(struct dirt_gpu_model_env) + sizeof(float))
+/* The model's tangent table of a scene without normal maps: one zero record
+ * (dirt_gpu_model_tangent). */
+#define TANGENTS_NONE_BYTES 16
 
 #define W 48
 #define H 36
@@ -157,9 +160,10 @@ static void check_stats(dirt_gpu *gpu, const dirt_scene *scene)
     CHECK(st->has_ads && st->ads.bytes_total_used < st->bytes_total_used);
     /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 64 + 80 + 48 bytes per
      * pixel, the environment table (no environment: its header and one
-     * float) and the scene's textures. */
+     * float), the tangent table (no normal maps: one record) and the
+     * scene's textures. */
     CHECK(st->bytes_total_used - st->ads.bytes_total_used - model_texel_bytes(st, scene) ==
-          (uint64_t)W * H * 448 + ENV_NONE_BYTES);
+          (uint64_t)W * H * 448 + ENV_NONE_BYTES + TANGENTS_NONE_BYTES);
     int build = 0, pt = 0;
     for (int i = 0; i < st->num_passes; i++) {
         const dirt_pass_time *p = &st->passes[i];
@@ -328,7 +332,8 @@ static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_op
     const dirt_session_stats *st = s ? dirt_session_get_stats(s) : NULL;
     if (st && st->has_ads)
         CHECK(st->bytes_total_used - st->ads.bytes_total_used - model_texel_bytes(st, scene) ==
-              (uint64_t)192 * 400 + (uint64_t)W * H * 48 + ENV_NONE_BYTES);
+              (uint64_t)192 * 400 + (uint64_t)W * H * 48 + ENV_NONE_BYTES +
+                  TANGENTS_NONE_BYTES);
     fprintf(stderr, "%s: chunks of 192 pixels, 1+1+2 == unchunked 4, display == image\n",
             what);
     dirt_session_destroy(s);

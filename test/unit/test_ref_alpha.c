@@ -106,6 +106,13 @@ static void test_coverage(void)
     CHECK_NEAR(dirt_material_coverage(&m, &mt, 1, 0.25f, 0.5f), 1.0, 1e-7);
     CHECK_NEAR(dirt_material_coverage(&m, &mt, 1, 0.75f, 0.5f), 0.0, 1e-7);
     CHECK_NEAR(dirt_material_coverage(&m, &mt, 1, 0.5f, 0.5f), 0.5, 1e-7);
+    /* At the base colour slot's transformed uv (KHR_texture_transform):
+     * offset u by 0.5 and the opaque half reads the clear one. */
+    m.xf[DIRT_SLOT_BASE_COLOR].set = true;
+    m.xf[DIRT_SLOT_BASE_COLOR].offset[0] = 0.5f;
+    CHECK_NEAR(dirt_material_coverage(&m, &mt, 1, 0.25f, 0.5f), 0.0, 1e-7);
+    CHECK_NEAR(dirt_material_coverage(&m, &mt, 1, 0.75f, 0.5f), 1.0, 1e-7);
+    m.xf[DIRT_SLOT_BASE_COLOR].set = false;
 
     /* MASK: coverage >= cutoff is seen. */
     m.alpha_cutoff = 0.5f;

@@ -110,6 +110,11 @@ typedef struct dirt_gpu_model_tables {
     unsigned texels;     /* the texel buffer (dirt_gpu_texel_buffer) */
     size_t texel_bytes;  /* its size: allocated = used */
     size_t num_materials, num_area, num_punctual, num_textures;
+    unsigned tangents;   /* the frame's tangents (dirt_gpu_model_tangent per
+                            frame vertex; one zero record when no material
+                            has a normal map or the frame has no tangents) */
+    size_t tangent_bytes;
+    bool normal_maps;    /* a material has a normal map */
 } dirt_gpu_model_tables;
 
 /* Uploads a texel buffer into a new GL buffer (*buffer). False after
@@ -121,7 +126,7 @@ bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b,
 
 /* Creates every buffer for one frame of a scene: materials
  * (dirt_gpu_scene_materials with `specular`, NULL = 1), the texel buffer of
- * the scene's textures (dirt_gpu_textures_pack), the area-light table of
+ * the scene's textures (dirt_gpu_textures_pack), the frame's tangents, the area-light table of
  * `area` (may be NULL), the frame's punctual lights and `camera` (may be
  * NULL: a zero record). False after logging; `out` is then all 0. */
 bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
@@ -129,7 +134,7 @@ bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
                                   const dirt_camera *camera, const float *specular,
                                   dirt_gpu_model_tables *out);
 
-/* Replaces the per-frame tables (area-light table of `area`, may be NULL;
+/* Replaces the per-frame tables (the tangents; area-light table of `area`, may be NULL;
  * the frame's punctual lights; the camera, NULL: a zero record) of tables
  * made by dirt_gpu_model_tables_create, keeping the per-scene ones
  * (materials, textures). False after logging (the tables must then be

@@ -143,7 +143,8 @@ typedef struct dirt_surface {
     bool double_sided;
 } dirt_surface;
 
-/* Textures a material at (u, v):
+/* Textures a material at (u, v), each slot's lookup at its own transformed
+ * uv (dirt_tex_transform_apply of the slot's dirt_tex_transform_matrix):
  *   base     = base_color.rgb * sRGB(base_color_tex).rgb
  *   roughness= clamp(roughness * mr_tex.g), metallic = clamp(metallic * mr_tex.b)
  *   alpha    = roughness^2
@@ -181,6 +182,42 @@ bool dirt_alpha_accept(const dirt_material *m, const dirt_texture *textures,
 
 /* True when any of the materials is alpha-tested. */
 bool dirt_materials_alpha_tested(const dirt_material *materials, size_t count);
+
+/* ---- texture transforms and normal maps (src/integrator/texture.c) ------ */
+
+/* The uv matrix of a KHR_texture_transform, uv' = M (u, v, 1), as its two
+ * rows m = (m00, m01, m02, m10, m11, m12): M = T(offset) R(rotation)
+ * S(scale) with the rotation of the extension's prose and examples (the
+ * uvs turn counter-clockwise in the image, whose v runs down):
+ *   c = cosf(rotation), s = sinf(rotation)
+ *   m = (scale.x c, scale.y s, offset.x,  -(scale.x s), scale.y c, offset.y)
+ * The identity (no trigonometry) when xf is NULL or not set. */
+void dirt_tex_transform_matrix(const dirt_tex_transform *xf, float m[6]);
+
+/* uv' = M (u, v, 1) of a matrix from dirt_tex_transform_matrix, u and v
+ * read as 0 when not finite (as a lookup reads them):
+ *   out[0] = (m00 u + m01 v) + m02,  out[1] = (m10 u + m11 v) + m12
+ * (each product rounded, no fused multiply-add). The identity returns
+ * (u, v) exactly (-0 as +0). */
+void dirt_tex_transform_apply(const float m[6], float u, float v, float out[2]);
+
+/* The tangent-space normal of the material's normal map at (u, v), the
+ * normal slot's transform applied: c = T(normal_tex, uv') (linear RGB),
+ *   n_ts = normalize(((2 c.r - 1) s, (2 c.g - 1) s, 2 c.b - 1)),
+ * s = normal_scale. False (n_ts unset) when the material has no normal map
+ * (index outside [0, num_textures)) or n_ts is zero or not finite. */
+bool dirt_material_normal_ts(const dirt_material *m, const dirt_texture *textures,
+                             size_t num_textures, float u, float v, dirt_vec3 *n_ts);
+
+/* The shading normal a normal map gives at a point: n = the unit
+ * interpolated vertex normal (the front side's), t = the interpolated
+ * tangent (any length), w its handedness (only the sign counts):
+ *   t' = normalize(t - n (n . t)),  b = cross(n, t') (w < 0 ? -1 : 1),
+ *   result = normalize(t' n_ts.x + b n_ts.y + n n_ts.z).
+ * Returns n itself when |t - n (n . t)| is not above 1e-3 |t| (no tangent
+ * there, a non-finite one, or one (nearly) along n: what is left of it is
+ * rounding) or the result is zero. */
+dirt_vec3 dirt_normal_map_apply(dirt_vec3 n, dirt_vec3 t, float w, dirt_vec3 n_ts);
 
 /* ---- lights (src/integrator/lights.c) ----------------------------------- */
 

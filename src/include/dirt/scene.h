@@ -314,6 +314,10 @@ typedef struct dirt_frame {
     float (*position)[3];
     float (*normal)[3];       /* unit length, world space */
     float (*uv)[2];           /* UV0, (0,0) when the mesh has none */
+    float (*tangent)[4];      /* xyz unit world tangent (0 where the mesh has
+                                 none), w handedness +1 / -1 (the bitangent is
+                                 cross(normal, tangent.xyz) * w); NULL when no
+                                 mesh of the scene has tangents */
     uint32_t *material;       /* per triangle, index into the scene's materials */
     uint32_t *instance;       /* per triangle, mesh instance it came from */
     float bounds_min[3], bounds_max[3]; /* of all positions; 0 if no triangles */
