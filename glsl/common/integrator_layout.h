@@ -42,16 +42,18 @@ struct dirt_gpu_model_material {
     DIRT_V4 emission;    /* rgb emissive * emissive_strength (float product as
                             in C), (0,0,0) when not emissive; w unused */
     DIRT_V4 params;      /* x metallic, y roughness (factors, unclamped),
-                            z dielectric specular weight clamped to [0,1],
+                            z dielectric specular weight (the packer's extra
+                            factor times specularFactor) clamped to [0,1],
                             w normal scale */
     DIRT_IV4 textures;   /* x base colour, y metallic-roughness, z emissive
                             texture (index of dirt_gpu_model_texture; -1:
                             none / out of range), w DIRT_MODEL_MAT_* flags */
     DIRT_IV4 textures2;  /* x normal, y transmission, z specular, w specular
                             colour texture (as `textures`) */
-    DIRT_V4 params2;     /* x transmission factor, y ior, z alpha cutoff,
-                            w alpha mode (enum dirt_alpha_mode, exact) */
-    DIRT_V4 specular_color; /* rgb specularColorFactor, w 0 */
+    DIRT_V4 params2;     /* x transmission factor, y the ior refraction uses
+                            (dirt_ior_eta), z alpha cutoff, w alpha mode
+                            (enum dirt_alpha_mode, exact) */
+    DIRT_V4 specular_color; /* rgb specularColorFactor, w dirt_ior_f0(ior) */
     DIRT_V4 xf[2 * DIRT_MODEL_TEX_SLOTS]; /* per slot s: xf[2s] = (m00, m01,
                             m02, 0), xf[2s + 1] = (m10, m11, m12, 0): the
                             slot's KHR_texture_transform as uv' = M (u, v, 1)

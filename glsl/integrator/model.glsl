@@ -28,6 +28,7 @@
 #define DIRT_INV_PI_G 0.31830988618379067154
 #define DIRT_ALPHA_DELTA_G 1e-3
 #define DIRT_DIELECTRIC_F0_G 0.04
+#define DIRT_ETA_MATCHED_G 1e-3
 #define DIRT_RR_START_VERTEX_G 3
 #define DIRT_INFINITY_G uintBitsToFloat(0x7F800000u)
 
@@ -37,6 +38,9 @@ struct dirt_bsdf_g {
     float metallic;  // [0,1]
     float alpha;     // GGX alpha = roughness^2; < DIRT_ALPHA_DELTA_G: mirror
     float specular;  // dielectric specular weight in [0,1]
+    vec3 f0;         // dielectric F0 colour before the weight, each in [0,1]
+    float transmission; // [0,1]
+    float eta;       // relative ior n(far side) / n(wo's side), > 0
 };
 
 // Surface description at a hit (= dirt_surface).
@@ -65,6 +69,15 @@ bool dirt_is_finite_g(vec3 a) { return !any(isnan(a)) && !any(isinf(a)); }
 
 bool dirt_bsdf_is_delta_g(dirt_bsdf_g b) { return b.alpha < DIRT_ALPHA_DELTA_G; }
 
+bool dirt_bsdf_transmission_is_delta_g(dirt_bsdf_g b)
+{
+    return b.alpha < DIRT_ALPHA_DELTA_G || abs(b.eta - 1.0) < DIRT_ETA_MATCHED_G;
+}
+
+bool dirt_bsdf_transmits_g(dirt_bsdf_g b) { return b.transmission > 0.0 && b.metallic < 1.0; }
+
+float dirt_max_comp_g(vec3 a) { return max(a.x, max(a.y, a.z)); }
+
 // (1 - c)^5 with c clamped to [0,1].
 float dirt_schlick_weight_g(float c)
 {
@@ -73,23 +86,62 @@ float dirt_schlick_weight_g(float c)
     return m2 * m2 * m;
 }
 
-// Dielectric Fresnel F_d(c) = specular (0.04 + 0.96 (1 - c)^5).
+// Dielectric Schlick Fresnel per channel: s (f0 + (1 - f0) x(c)).
+vec3 dirt_bsdf_fresnel_d_rgb_g(dirt_bsdf_g b, float c)
+{
+    float x = dirt_schlick_weight_g(c);
+    vec3 f0 = b.f0;
+    return vec3(b.specular * (f0.x + (1.0 - f0.x) * x), b.specular * (f0.y + (1.0 - f0.y) * x),
+                b.specular * (f0.z + (1.0 - f0.z) * x));
+}
+
+// The cosine Schlick takes at an interface of relative index eta met at
+// cos c from the wo side: c when eta >= 1, else the refracted direction's;
+// false on total internal reflection.
+bool dirt_interface_cos_g(float eta, float c, out float cf)
+{
+    cf = c;
+    if (eta >= 1.0)
+        return true;
+    float sin2 = (1.0 - c * c) / (eta * eta);
+    if (!(sin2 < 1.0))
+        return false;
+    cf = sqrt(1.0 - sin2);
+    return true;
+}
+
+// The interface's Fresnel F_t(c) (RGB), 1 on total internal reflection.
+vec3 dirt_bsdf_fresnel_t_rgb_g(dirt_bsdf_g b, float c)
+{
+    float cf;
+    if (!dirt_interface_cos_g(b.eta, c, cf))
+        return vec3(1.0);
+    return dirt_bsdf_fresnel_d_rgb_g(b, cf);
+}
+
+// Dielectric Fresnel F_d(c), scalar (largest channel).
 float dirt_bsdf_fresnel_dielectric_g(dirt_bsdf_g b, float c)
 {
-    return b.specular * (DIRT_DIELECTRIC_F0_G + (1.0 - DIRT_DIELECTRIC_F0_G) * dirt_schlick_weight_g(c));
+    return dirt_max_comp_g(dirt_bsdf_fresnel_d_rgb_g(b, c));
+}
+
+// The interface's F_t(c), scalar (largest channel).
+float dirt_bsdf_fresnel_interface_g(dirt_bsdf_g b, float c)
+{
+    return dirt_max_comp_g(dirt_bsdf_fresnel_t_rgb_g(b, c));
 }
 
 // Fresnel of the whole specular lobe (RGB):
-// (1 - m) F_d(c) + m (base + (1 - base)(1 - c)^5).
+// (1 - m) ((1 - t) F_d(c) + t F_t(c)) + m (base + (1 - base)(1 - c)^5).
 vec3 dirt_bsdf_fresnel_g(dirt_bsdf_g b, float c)
 {
     float x = dirt_schlick_weight_g(c);
-    float fd = b.specular * (DIRT_DIELECTRIC_F0_G + (1.0 - DIRT_DIELECTRIC_F0_G) * x);
-    float m = b.metallic;
+    vec3 fd = dirt_bsdf_fresnel_d_rgb_g(b, c), ft = dirt_bsdf_fresnel_t_rgb_g(b, c);
+    float m = b.metallic, t = b.transmission;
     vec3 base = b.base_color;
-    return vec3((1.0 - m) * fd + m * (base.x + (1.0 - base.x) * x),
-                (1.0 - m) * fd + m * (base.y + (1.0 - base.y) * x),
-                (1.0 - m) * fd + m * (base.z + (1.0 - base.z) * x));
+    return vec3((1.0 - m) * ((1.0 - t) * fd.x + t * ft.x) + m * (base.x + (1.0 - base.x) * x),
+                (1.0 - m) * ((1.0 - t) * fd.y + t * ft.y) + m * (base.y + (1.0 - base.y) * x),
+                (1.0 - m) * ((1.0 - t) * fd.z + t * ft.z) + m * (base.z + (1.0 - base.z) * x));
 }
 
 // GGX normal distribution D(h), h a unit local half vector.
@@ -118,29 +170,96 @@ float dirt_ggx_g2_g(float alpha, vec3 wo, vec3 wi)
     return 1.0 / (1.0 + dirt_ggx_lambda_g(alpha, wo) + dirt_ggx_lambda_g(alpha, wi));
 }
 
+// Fresnel of the reflection lobe sampled on its own (= fresnel_opaque):
+// (1 - m)(1 - t) F_d(c) + m (base + (1 - base) x(c)).
+vec3 dirt_bsdf_fresnel_opaque_g(dirt_bsdf_g b, float c)
+{
+    float x = dirt_schlick_weight_g(c);
+    vec3 fd = dirt_bsdf_fresnel_d_rgb_g(b, c);
+    float m = b.metallic, t = b.transmission;
+    vec3 base = b.base_color;
+    return vec3((1.0 - m) * ((1.0 - t) * fd.x) + m * (base.x + (1.0 - base.x) * x),
+                (1.0 - m) * ((1.0 - t) * fd.y) + m * (base.y + (1.0 - base.y) * x),
+                (1.0 - m) * ((1.0 - t) * fd.z) + m * (base.z + (1.0 - base.z) * x));
+}
+
+// Lobe probabilities from wo (= dirt_bsdf_lobe_probabilities): p_spec,
+// p_trans (the interface); diffuse takes max(0, 1 - p_spec - p_trans).
+void dirt_bsdf_lobe_probabilities_g(dirt_bsdf_g b, vec3 wo, out float p_spec, out float p_trans)
+{
+    float m = b.metallic, t = b.transmission;
+    float ws = dirt_luminance_g(dirt_bsdf_fresnel_opaque_g(b, wo.z));
+    float fd = dirt_bsdf_fresnel_dielectric_g(b, wo.z);
+    float wd = (1.0 - m) * (1.0 - t) * dirt_luminance_g(b.base_color) * (1.0 - fd);
+    float ft = dirt_bsdf_fresnel_interface_g(b, wo.z);
+    float wt = (1.0 - m) * t * (ft + (1.0 - ft) * dirt_luminance_g(b.base_color));
+    float sum = ws + wd + wt;
+    p_spec = sum > 0.0 ? ws / sum : 0.5;
+    p_trans = sum > 0.0 ? wt / sum : 0.0;
+}
+
 // Probability of choosing the specular lobe when sampling from wo.
 float dirt_bsdf_spec_probability_g(dirt_bsdf_g b, vec3 wo)
 {
-    float ws = dirt_luminance_g(dirt_bsdf_fresnel_g(b, wo.z));
-    float wd = (1.0 - b.metallic) * dirt_luminance_g(b.base_color) *
-               (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wo.z));
-    float sum = ws + wd;
-    return sum > 0.0 ? ws / sum : 0.5;
+    float ps, pt;
+    dirt_bsdf_lobe_probabilities_g(b, wo, ps, pt);
+    return ps;
 }
 
-// (1 - m) (1 - F_d(wi.z)) (1 - F_d(wo.z)) / pi.
+// (1 - m) (1 - t) (1 - F_d(wi.z)) (1 - F_d(wo.z)) / pi.
 float dirt_bsdf_diffuse_factor_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
 {
-    return (1.0 - b.metallic) * (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wi.z)) *
+    return (1.0 - b.metallic) * (1.0 - b.transmission) *
+           (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wi.z)) *
            (1.0 - dirt_bsdf_fresnel_dielectric_g(b, wo.z)) * DIRT_INV_PI_G;
 }
 
-// f(wo, wi) of the non-delta part (diffuse + GGX; diffuse only for a mirror).
-// Zero when wo.z <= 0 or wi.z <= 0.
+// Generalized half vector of a refraction pair: h = normalize(wo + eta wi)
+// turned to +z, co = wo.h, ci = wi.h; false unless co > 0 > ci.
+bool dirt_refraction_half_g(dirt_bsdf_g b, vec3 wo, vec3 wi, out vec3 h, out float co,
+                            out float ci)
+{
+    h = dirt_normalize_g(wo + wi * b.eta);
+    if (h.z < 0.0)
+        h = -h;
+    co = dot(wo, h);
+    ci = dot(wi, h);
+    return co > 0.0 && ci < 0.0;
+}
+
+// Rough transmission (scalar, without base colour), radiance form:
+// (1 - m) t (1 - F_t(wo.h)) D G2 |wo.h| |wi.h| / (wo.z |wi.z| (wo.h + eta wi.h)^2).
+float dirt_bsdf_transmission_factor_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
+{
+    vec3 h;
+    float co, ci;
+    if (!dirt_refraction_half_g(b, wo, wi, h, co, ci))
+        return 0.0;
+    float d = dirt_ggx_d_g(b.alpha, h);
+    float g = dirt_ggx_g2_g(b.alpha, wo, wi);
+    float ft = dirt_bsdf_fresnel_interface_g(b, co);
+    float den = co + b.eta * ci;
+    return (1.0 - b.metallic) * b.transmission * (1.0 - ft) * d * g * co * -ci /
+           (wo.z * -wi.z * den * den);
+}
+
+bool dirt_bsdf_has_rough_transmission_g(dirt_bsdf_g b)
+{
+    return dirt_bsdf_transmits_g(b) && !dirt_bsdf_transmission_is_delta_g(b);
+}
+
+// f(wo, wi) of the non-delta part: wi.z > 0 diffuse + GGX reflection
+// (diffuse only for a mirror), wi.z < 0 the rough transmission. Zero when
+// wo.z <= 0 or wi.z == 0.
 vec3 dirt_bsdf_eval_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
 {
-    if (wo.z <= 0.0 || wi.z <= 0.0)
+    if (wo.z <= 0.0 || wi.z == 0.0 || isnan(wi.z))
         return vec3(0.0);
+    if (wi.z < 0.0) {
+        if (!dirt_bsdf_has_rough_transmission_g(b))
+            return vec3(0.0);
+        return b.base_color * dirt_bsdf_transmission_factor_g(b, wo, wi);
+    }
     vec3 f = b.base_color * dirt_bsdf_diffuse_factor_g(b, wo, wi);
     if (!dirt_bsdf_is_delta_g(b)) {
         vec3 h = dirt_normalize_g(wo + wi);
@@ -160,17 +279,68 @@ float dirt_bsdf_pdf_vndf_g(float alpha, vec3 wo, vec3 wi)
     return dirt_ggx_d_g(alpha, h) * g1 / (4.0 * wo.z);
 }
 
+// Solid-angle pdf of a refracted wi (wi.z < 0): G1(wo) (wo.h) D(h) / wo.z
+// times eta^2 |wi.h| / (wo.h + eta wi.h)^2.
+float dirt_bsdf_pdf_vndf_refract_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
+{
+    vec3 h;
+    float co, ci;
+    if (!dirt_refraction_half_g(b, wo, wi, h, co, ci))
+        return 0.0;
+    float g1 = 1.0 / (1.0 + dirt_ggx_lambda_g(b.alpha, wo));
+    float den = co + b.eta * ci;
+    return g1 * co * dirt_ggx_d_g(b.alpha, h) / wo.z * (b.eta * b.eta * -ci / (den * den));
+}
+
+// The share of the interface lobe that reflects at the microfacet of
+// cosine c (= interface_reflect): F_t(c), F_t(wo.z) for a delta transmission.
+float dirt_bsdf_interface_reflect_g(dirt_bsdf_g b, vec3 wo, float c)
+{
+    return dirt_bsdf_fresnel_interface_g(b, dirt_bsdf_transmission_is_delta_g(b) ? wo.z : c);
+}
+
 // Solid-angle pdf of dirt_bsdf_sample_dir_g for the non-delta part:
-// p_spec pdf_vndf + (1 - p_spec) wi.z / pi. Zero when wo.z <= 0 or wi.z <= 0.
+// wi.z > 0 (p_spec + p_trans F_t) pdf_vndf + p_diff wi.z / pi, wi.z < 0
+// p_trans (1 - F_t) pdf of the refracted visible normal. Zero when wo.z <= 0
+// or wi.z == 0.
 float dirt_bsdf_pdf_g(dirt_bsdf_g b, vec3 wo, vec3 wi)
 {
-    if (wo.z <= 0.0 || wi.z <= 0.0)
+    if (wo.z <= 0.0 || wi.z == 0.0 || isnan(wi.z))
         return 0.0;
-    float p = dirt_bsdf_spec_probability_g(b, wo);
-    float pdf = (1.0 - p) * wi.z * DIRT_INV_PI_G;
-    if (!dirt_bsdf_is_delta_g(b))
-        pdf += p * dirt_bsdf_pdf_vndf_g(b.alpha, wo, wi);
+    float p, pt;
+    dirt_bsdf_lobe_probabilities_g(b, wo, p, pt);
+    if (wi.z < 0.0) {
+        if (!(pt > 0.0) || !dirt_bsdf_has_rough_transmission_g(b))
+            return 0.0;
+        vec3 h;
+        float co, ci;
+        if (!dirt_refraction_half_g(b, wo, wi, h, co, ci))
+            return 0.0;
+        return pt * (1.0 - dirt_bsdf_fresnel_interface_g(b, co)) *
+               dirt_bsdf_pdf_vndf_refract_g(b, wo, wi);
+    }
+    float pdf = max(0.0, 1.0 - p - pt) * wi.z * DIRT_INV_PI_G;
+    if (!dirt_bsdf_is_delta_g(b)) {
+        float ps = p;
+        if (pt > 0.0)
+            ps += pt * dirt_bsdf_interface_reflect_g(b, wo, dot(wo, dirt_normalize_g(wo + wi)));
+        pdf += ps * dirt_bsdf_pdf_vndf_g(b.alpha, wo, wi);
+    }
     return pdf;
+}
+
+// wo refracted through the microfacet h (wo.h = c > 0) into the side of
+// relative index eta: -wo / eta + (c / eta - cos_t) h; false on total
+// internal reflection.
+bool dirt_refract_dir_g(vec3 wo, vec3 h, float c, float eta, out vec3 wi)
+{
+    wi = vec3(0.0);
+    float sin2 = (1.0 - c * c) / (eta * eta);
+    if (!(sin2 < 1.0))
+        return false;
+    float ct = sqrt(1.0 - sin2);
+    wi = h * (c / eta - ct) - wo * (1.0 / eta);
+    return true;
 }
 
 // ---- warps and frames (bsdf.c) -----------------------------------------
@@ -222,10 +392,14 @@ void dirt_onb_g(vec3 n, out vec3 t, out vec3 b)
     b = vec3(c, s + n.y * n.y * a, -n.y);
 }
 
-// Samples wi from wo: u_lobe < p_spec picks the specular lobe, (u1, u2) the
-// direction. False when wo.z <= 0, the sample is below the surface or its
-// weight is zero; the outs are then unspecified. For the mirror lobe: wi the
-// reflection, weight F(wo.z) / p_spec, pdf 0, delta true.
+// Samples wi from wo (= dirt_bsdf_sample_dir): u_lobe < p_spec picks the
+// specular lobe, u_lobe >= p_spec + p_diff (p_trans > 0) the interface
+// (reflect when the rescaled u_lobe < F_t, else refract), else diffuse;
+// (u1, u2) the direction. False when wo.z <= 0, the sample is on the wrong
+// side, refraction is impossible or its weight is zero; the outs are then
+// unspecified. Delta lobes (pdf 0, delta true): the mirror (F_opaque(wo.z) /
+// p_spec), the interface's mirror ((1 - m) t F_t(wo.z) / (p_trans F_t)) and
+// the smooth refraction ((1 - m) t base / (eta^2 p_trans)).
 bool dirt_bsdf_sample_dir_g(dirt_bsdf_g b, vec3 wo, float u_lobe, float u1, float u2,
                             out vec3 wi, out vec3 weight, out float pdf, out bool delta)
 {
@@ -235,26 +409,63 @@ bool dirt_bsdf_sample_dir_g(dirt_bsdf_g b, vec3 wo, float u_lobe, float u1, floa
     delta = false;
     if (wo.z <= 0.0)
         return false;
-    float p = dirt_bsdf_spec_probability_g(b, wo);
+    float p, pt;
+    dirt_bsdf_lobe_probabilities_g(b, wo, p, pt);
+    float pd = max(0.0, 1.0 - p - pt);
+    bool trans = false;
     if (u_lobe < p) {
         if (dirt_bsdf_is_delta_g(b)) {
             wi = vec3(-wo.x, -wo.y, wo.z);
-            weight = dirt_bsdf_fresnel_g(b, wo.z) * (1.0 / p);
+            weight = dirt_bsdf_fresnel_opaque_g(b, wo.z) * (1.0 / p);
             delta = true;
             return !dirt_is_zero_g(weight);
         }
         vec3 h = dirt_sample_ggx_vndf_g(b.alpha, wo, u1, u2);
         wi = h * (2.0 * dot(wo, h)) - wo;
+    } else if (pt > 0.0 && u_lobe >= p + pd) {
+        float ut = (u_lobe - (p + pd)) / pt;
+        float m = b.metallic, t = b.transmission;
+        if (dirt_bsdf_transmission_is_delta_g(b)) {
+            float fr = dirt_bsdf_fresnel_interface_g(b, wo.z);
+            if (ut < fr) {
+                if (dirt_bsdf_is_delta_g(b)) {
+                    wi = vec3(-wo.x, -wo.y, wo.z);
+                    weight = dirt_bsdf_fresnel_t_rgb_g(b, wo.z) * ((1.0 - m) * t / (pt * fr));
+                    delta = true;
+                    return !dirt_is_zero_g(weight) && dirt_is_finite_g(weight);
+                }
+                vec3 h = dirt_sample_ggx_vndf_g(b.alpha, wo, u1, u2);
+                wi = h * (2.0 * dot(wo, h)) - wo;
+            } else {
+                if (!dirt_refract_dir_g(wo, vec3(0.0, 0.0, 1.0), wo.z, b.eta, wi))
+                    return false;
+                weight = b.base_color * ((1.0 - m) * t / (b.eta * b.eta * pt));
+                delta = true;
+                return wi.z < 0.0 && !dirt_is_zero_g(weight) && dirt_is_finite_g(weight);
+            }
+        } else {
+            vec3 h = dirt_sample_ggx_vndf_g(b.alpha, wo, u1, u2);
+            float c = dot(wo, h);
+            if (!(c > 0.0))
+                return false;
+            if (ut < dirt_bsdf_fresnel_interface_g(b, c)) {
+                wi = h * (2.0 * c) - wo;
+            } else {
+                trans = true;
+                if (!dirt_refract_dir_g(wo, h, c, b.eta, wi))
+                    return false;
+            }
+        }
     } else {
         wi = dirt_sample_cosine_g(u1, u2);
     }
-    if (wi.z <= 0.0)
+    if (trans ? !(wi.z < 0.0) : !(wi.z > 0.0))
         return false;
     pdf = dirt_bsdf_pdf_g(b, wo, wi);
     if (!(pdf > 0.0))
         return false;
     vec3 f = dirt_bsdf_eval_g(b, wo, wi);
-    weight = f * (wi.z / pdf);
+    weight = f * (abs(wi.z) / pdf);
     return !dirt_is_zero_g(weight) && dirt_is_finite_g(weight);
 }
 
@@ -526,7 +737,10 @@ vec2 dirt_slot_uv_g(dirt_gpu_model_material m, int slot, vec2 uv)
 // each slot's lookup at its transformed uv (dirt_slot_uv_g):
 //   base = clamp(base_color * sRGB(base tex)), roughness = clamp(roughness *
 //   mr.g), metallic = clamp(metallic * mr.b), alpha = roughness^2,
-//   emission = (emissive * strength) * sRGB(emissive tex) when emissive.
+//   emission = (emissive * strength) * sRGB(emissive tex) when emissive,
+//   specular = clamp(params.z * spec tex.a), f0 = clamp(f0(ior) *
+//   specular_color * sRGB(spec colour tex).rgb), transmission =
+//   clamp(transmission * trans tex.r), eta = the front side's.
 dirt_surface_g dirt_material_surface_g(uint material, vec2 uv)
 {
     dirt_gpu_model_material m = dirt_model_materials[material];
@@ -541,6 +755,18 @@ dirt_surface_g dirt_material_surface_g(uint material, vec2 uv)
     s.bsdf.alpha = roughness * roughness;
     s.bsdf.specular = m.params.z;
     s.double_sided = (m.textures.w & DIRT_MODEL_MAT_DOUBLE_SIDED) != 0;
+    // KHR_materials_specular, _transmission, _ior (params2.y = dirt_ior_eta,
+    // specular_color.w = dirt_ior_f0, computed by the packer).
+    vec4 sa = dirt_texture_sample_g(m.textures2.z, false, dirt_slot_uv_g(m, 5, uv));
+    s.bsdf.specular = dirt_clamp01_g(s.bsdf.specular * sa.w);
+    vec4 sc = dirt_texture_sample_g(m.textures2.w, true, dirt_slot_uv_g(m, 6, uv));
+    float f0 = m.specular_color.w;
+    s.bsdf.f0 = vec3(dirt_clamp01_g(f0 * m.specular_color.x * sc.x),
+                     dirt_clamp01_g(f0 * m.specular_color.y * sc.y),
+                     dirt_clamp01_g(f0 * m.specular_color.z * sc.z));
+    vec4 tr = dirt_texture_sample_g(m.textures2.y, false, dirt_slot_uv_g(m, 4, uv));
+    s.bsdf.transmission = dirt_clamp01_g(m.params2.x * tr.x);
+    s.bsdf.eta = m.params2.y;
     if ((m.textures.w & DIRT_MODEL_MAT_EMISSIVE) != 0) {
         vec4 em = dirt_texture_sample_g(m.textures.z, true, dirt_slot_uv_g(m, 2, uv));
         s.emission = m.emission.xyz * em.xyz;

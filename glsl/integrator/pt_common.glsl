@@ -93,6 +93,7 @@ struct pt_vertex {
     bool front;
     dirt_surface_g surf;
     vec3 le, origin;
+    vec3 origin_below; // origin of rays transmitted through the surface (-ng side)
 };
 
 vec3 to_local(vec3 w, vec3 t, vec3 b, vec3 n)
@@ -149,11 +150,29 @@ pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir, vec2 bary)
         v.wo = to_local(wo_world, v.t, v.b, v.n);
     }
     v.surf = dirt_material_surface_g(mat, uv);
+    if (!v.front) // leaving the material: the relative index inverts
+        v.surf.bsdf.eta = 1.0 / v.surf.bsdf.eta;
     v.le = (v.front || v.surf.double_sided) ? v.surf.emission : vec3(0.0);
     v.origin = v.p + ng * ray_epsilon(v.p);
-    if (u_surface_offset > 0.0)
+    v.origin_below = v.p + ng * -ray_epsilon(v.p);
+    if (u_surface_offset > 0.0) {
         v.origin += ng * u_surface_offset;
+        v.origin_below -= ng * u_surface_offset;
+    }
     return v;
+}
+
+// Whether light from world direction wi can reach v's BSDF, and on which
+// side (= light_side of the reference): above the geometric surface, or
+// below it (below) when the BSDF transmits; the local wl must agree.
+bool light_side(pt_vertex v, vec3 wi, out vec3 wl, out bool below)
+{
+    float d = dot(wi, v.ng);
+    wl = to_local(wi, v.t, v.b, v.n);
+    below = d < 0.0;
+    if (d > 0.0)
+        return wl.z > 0.0;
+    return below && dirt_bsdf_transmits_g(v.surf.bsdf) && wl.z < 0.0;
 }
 
 uint path_flags(dirt_gpu_path s)

@@ -27,24 +27,28 @@ layout(std430, binding = DIRT_BIND_SHADOW_RAYS) writeonly buffer ShadowRays {
     dirt_gpu_ray shadow_rays[];
 };
 
-// The shadow ray from v's ray origin to the light point y, stopping
+// The shadow ray from a vertex's ray origin `org` (origin, or origin_below
+// for light through the surface) to the light point y, stopping
 // SHADOW_SHORTEN short of it (= occluded_to of the reference): aimed from
 // the origin itself, not along the direction from v.p, which would end the
 // ray ray_epsilon off y and could take it through the light.
-void shadow_to(pt_vertex v, vec3 y, out vec3 dir, out float tmax)
+void shadow_to(vec3 org, vec3 y, out vec3 dir, out float tmax)
 {
-    vec3 d = y - v.origin;
+    vec3 d = y - org;
     float len = length(d);
     dir = len > 0.0 ? d * (1.0 / len) : vec3(0.0, 0.0, 1.0);
     tmax = len > 0.0 ? len * (1.0 - SHADOW_SHORTEN) : -1.0; // -1: unoccluded
 }
 
 // Next-event estimation at v (= sample_light of the reference): returns the
-// contribution (before the throughput) and sets the shadow ray's direction
-// and length (from v.origin); false when nothing can be sampled.
-bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out float tmax)
+// contribution (before the throughput) and sets the shadow ray's origin
+// (v.origin, or v.origin_below for light through the surface), direction
+// and length; false when nothing can be sampled.
+bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 org_out, out vec3 wi_out,
+                  out float tmax)
 {
     contrib = vec3(0.0);
+    org_out = v.origin;
     wi_out = vec3(0.0, 0.0, 1.0);
     tmax = -1.0;
     uint n = dirt_nee_sources_g();
@@ -67,14 +71,16 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
         if (!(dist > 0.0))
             return false;
         vec3 wi = to / dist;
-        if (dot(wi, v.ng) <= 0.0)
+        vec3 wl;
+        bool below;
+        if (!light_side(v, wi, wl, below))
             return false;
+        org_out = below ? v.origin_below : v.origin;
         float cos_l = -dot(tri_normal_ng(prim), wi);
         uint m = prim_material[prim];
         bool two = (dirt_model_materials[m].textures.w & DIRT_MODEL_MAT_DOUBLE_SIDED) != 0;
         if (cos_l < 0.0 && !two)
             return false;
-        vec3 wl = to_local(wi, v.t, v.b, v.n);
         vec3 f = dirt_bsdf_eval_g(v.surf.bsdf, v.wo, wl);
         if (dirt_is_zero_g(f))
             return false;
@@ -85,7 +91,7 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
         if (dirt_is_zero_g(ls.emission))
             return false;
         float w = dirt_mis_power_g(pdf_l, dirt_bsdf_pdf_g(v.surf.bsdf, v.wo, wl));
-        contrib = f * ls.emission * (wl.z * w / pdf_l);
+        contrib = f * ls.emission * (abs(wl.z) * w / pdf_l);
         if (u_surface_offset > 0.0) {
             // Stop the shadow ray u_surface_offset off the light's plane
             // (the tracer accepts surfaces within a thickness of the ray);
@@ -95,14 +101,15 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
             if (dot(nl, v.p - y) < 0.0)
                 nl = -nl;
             float off = u_surface_offset;
-            if (dot(y - v.p, v.ng) < 2.0 * off || dot(v.p - y, nl) < 2.0 * off) {
+            vec3 side = below ? -v.ng : v.ng;
+            if (dot(y - v.p, side) < 2.0 * off || dot(v.p - y, nl) < 2.0 * off) {
                 wi_out = wi;
                 tmax = -1.0;
                 return true;
             }
             y += nl * off;
         }
-        shadow_to(v, y, wi_out, tmax);
+        shadow_to(org_out, y, wi_out, tmax);
         return true;
     }
     if (dirt_env_samples_g() && s == n - 1u) {
@@ -112,15 +119,17 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
                                dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_U),
                                dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_V), wi, pdf_e, le))
             return false;
-        if (dot(wi, v.ng) <= 0.0)
+        vec3 wl;
+        bool below;
+        if (!light_side(v, wi, wl, below))
             return false;
-        vec3 wl = to_local(wi, v.t, v.b, v.n);
+        org_out = below ? v.origin_below : v.origin;
         vec3 f = dirt_bsdf_eval_g(v.surf.bsdf, v.wo, wl);
         if (dirt_is_zero_g(f))
             return false;
         float pdf_l = pdf_e / float(n);
         float w = dirt_mis_power_g(pdf_l, dirt_bsdf_pdf_g(v.surf.bsdf, v.wo, wl));
-        contrib = f * le * (wl.z * w / pdf_l);
+        contrib = f * le * (abs(wl.z) * w / pdf_l);
         wi_out = wi;
         tmax = DIRT_INFINITY_G;
         return true;
@@ -130,17 +139,19 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 wi_out, out 
     float dist;
     if (!dirt_punctual_light_g(light, v.p, wi, dist, li))
         return false;
-    if (dot(wi, v.ng) <= 0.0)
+    vec3 wl;
+    bool below;
+    if (!light_side(v, wi, wl, below))
         return false;
-    vec3 wl = to_local(wi, v.t, v.b, v.n);
+    org_out = below ? v.origin_below : v.origin;
     vec3 f = dirt_bsdf_eval_g(v.surf.bsdf, v.wo, wl);
     if (dirt_is_zero_g(f))
         return false;
-    contrib = f * li * (wl.z * float(n));
+    contrib = f * li * (abs(wl.z) * float(n));
     wi_out = wi;
     tmax = DIRT_INFINITY_G;
     if (!isinf(dist))
-        shadow_to(v, v.p + wi * dist, wi_out, tmax);
+        shadow_to(org_out, v.p + wi * dist, wi_out, tmax);
     return true;
 }
 
@@ -207,10 +218,10 @@ void main()
         return;
     }
     uint key = dirt_rng_key(u_seed, u_pixel_offset + p, u_sample, u_bounce);
-    vec3 contrib, lwi;
+    vec3 contrib, lorg, lwi;
     float ltmax;
-    if (sample_light(v, key, contrib, lwi, ltmax)) {
-        shadow_rays[p].origin_tmin = vec4(v.origin, 0.0);
+    if (sample_light(v, key, contrib, lorg, lwi, ltmax)) {
+        shadow_rays[p].origin_tmin = vec4(lorg, 0.0);
         shadow_rays[p].dir_tmax = vec4(lwi, ltmax);
         s.pending = vec4(beta * contrib, 1.0);
     }
@@ -223,8 +234,10 @@ void main()
                                         dirt_rng_next_float(key, DIRT_RNG_DIM_BSDF_V),
                                         wi_l, weight, pdf, delta);
     vec3 wi = from_local(wi_l, v.t, v.b, v.n);
-    if (alive && dot(wi, v.ng) <= 0.0)
-        alive = false; // below the geometric surface: no transmission
+    bool below = wi_l.z < 0.0; // transmitted through the surface
+    float side = dot(wi, v.ng);
+    if (alive && (below ? !(side < 0.0) : side <= 0.0))
+        alive = false; // the shading and geometric sides disagree
     if (alive) {
         beta *= weight;
         s.beta_pdf = vec4(beta, pdf);
@@ -240,7 +253,7 @@ void main()
         }
     }
     if (alive) {
-        rays[p].origin_tmin = vec4(v.origin, 0.0);
+        rays[p].origin_tmin = vec4(below ? v.origin_below : v.origin, 0.0);
         rays[p].dir_tmax = vec4(dirt_normalize_g(wi), DIRT_INFINITY_G);
     } else {
         flags &= ~DIRT_PATH_ALIVE;

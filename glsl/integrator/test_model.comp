@@ -37,6 +37,9 @@ layout(location = DIRT_LOC_TEST_MODEL_COUNT) uniform uint u_count;
 #define MODE_CAMERA 9   // in0..4 camera record, in5 (width, height, px, py),
                         // in6 (lens_u, lens_v) -> o0 org, o1 dir
 #define MODE_TEXTURE 10 // in0 (texture, srgb, u, v) -> o0 rgba
+#define MODE_TRANS 11   // in0, in1 as EVAL (in1 (alpha, specular, transmission, eta),
+                        // in4 f0), in2 wo, in3 (c) -> o0 (p_trans, F_t(c), transmits,
+                        //    transmission delta), o1 (p_spec)
 
 dirt_bsdf_g read_bsdf(uint b)
 {
@@ -45,6 +48,9 @@ dirt_bsdf_g read_bsdf(uint b)
     r.metallic = in_data[b].w;
     r.alpha = in_data[b + 1u].x;
     r.specular = in_data[b + 1u].y;
+    r.transmission = in_data[b + 1u].z;
+    r.eta = in_data[b + 1u].w;
+    r.f0 = in_data[b + 4u].xyz;
     return r;
 }
 
@@ -124,7 +130,16 @@ void main()
         o[0] = vec4(s.bsdf.base_color, s.bsdf.metallic);
         o[1] = vec4(s.bsdf.alpha, s.bsdf.specular, flag(s.double_sided),
                     flag(dirt_material_is_emissive_g(m)));
-        o[2].xyz = s.emission;
+        o[2] = vec4(s.emission, s.bsdf.eta);
+        o[3] = vec4(s.bsdf.f0, s.bsdf.transmission);
+    } else if (u_mode == MODE_TRANS) {
+        dirt_bsdf_g bs = read_bsdf(b);
+        vec3 wo = in_data[b + 2u].xyz;
+        float ps, pt;
+        dirt_bsdf_lobe_probabilities_g(bs, wo, ps, pt);
+        o[0] = vec4(pt, dirt_bsdf_fresnel_interface_g(bs, in_data[b + 3u].x),
+                    flag(dirt_bsdf_transmits_g(bs)), flag(dirt_bsdf_transmission_is_delta_g(bs)));
+        o[1].x = ps;
     } else if (u_mode == MODE_CAMERA) {
         dirt_gpu_model_camera c;
         c.eye = in_data[b];

@@ -31,7 +31,7 @@ void dirt_gpu_material_pack(const dirt_material *m, float specular, size_t num_t
     memset(out, 0, sizeof(*out));
     out->base_color = (dirt_f4){m->base_color[0], m->base_color[1], m->base_color[2],
                                 m->base_color[3]};
-    out->params = (dirt_f4){m->metallic, m->roughness, clamp01f(specular), 0.0f};
+    out->params = (dirt_f4){m->metallic, m->roughness, clamp01f(specular * m->specular), 0.0f};
     int flags = m->double_sided ? DIRT_MODEL_MAT_DOUBLE_SIDED : 0;
     if (dirt_material_is_emissive(m)) {
         float s = m->emissive_strength;
@@ -49,9 +49,10 @@ void dirt_gpu_material_pack(const dirt_material *m, float specular, size_t num_t
                                texture_index(m->transmission_tex, num_textures),
                                texture_index(m->specular_tex, num_textures),
                                texture_index(m->specular_color_tex, num_textures)};
-    out->params2 = (dirt_f4){m->transmission, m->ior, m->alpha_cutoff, (float)m->alpha_mode};
+    out->params2 = (dirt_f4){m->transmission, dirt_ior_eta(m->ior), m->alpha_cutoff,
+                             (float)m->alpha_mode};
     out->specular_color = (dirt_f4){m->specular_color[0], m->specular_color[1],
-                                    m->specular_color[2], 0.0f};
+                                    m->specular_color[2], dirt_ior_f0(m->ior)};
     /* Texture transforms: the matrix the C model forms per lookup, made
      * by the same function (the same cosf / sinf bits). */
     for (int k = 0; k < DIRT_MODEL_TEX_SLOTS; k++) {

@@ -146,8 +146,39 @@ void dirt_material_surface(const dirt_material *m, float specular,
     float roughness = clamp01(m->roughness * mr[1]);
     out->bsdf.metallic = clamp01(m->metallic * mr[2]);
     out->bsdf.alpha = roughness * roughness;
-    out->bsdf.specular = clamp01(specular);
+    out->bsdf.specular = clamp01(specular * m->specular);
     out->double_sided = m->double_sided;
+
+    /* KHR_materials_specular, _transmission, _ior. */
+    float sa[4], sc[4], tr[4];
+    t = texture_at(textures, num_textures, m->specular_tex);
+    if (t) {
+        slot_uv(m, DIRT_SLOT_SPECULAR, u, v, uv);
+        dirt_texture_sample(t, false, uv[0], uv[1], sa);
+    }
+    else
+        sa[0] = sa[1] = sa[2] = sa[3] = 1.0f;
+    out->bsdf.specular = clamp01(out->bsdf.specular * sa[3]);
+    t = texture_at(textures, num_textures, m->specular_color_tex);
+    if (t) {
+        slot_uv(m, DIRT_SLOT_SPECULAR_COLOR, u, v, uv);
+        dirt_texture_sample(t, true, uv[0], uv[1], sc);
+    }
+    else
+        sc[0] = sc[1] = sc[2] = sc[3] = 1.0f;
+    float f0 = dirt_ior_f0(m->ior);
+    out->bsdf.f0 = v3(clamp01(f0 * m->specular_color[0] * sc[0]),
+                      clamp01(f0 * m->specular_color[1] * sc[1]),
+                      clamp01(f0 * m->specular_color[2] * sc[2]));
+    t = texture_at(textures, num_textures, m->transmission_tex);
+    if (t) {
+        slot_uv(m, DIRT_SLOT_TRANSMISSION, u, v, uv);
+        dirt_texture_sample(t, false, uv[0], uv[1], tr);
+    }
+    else
+        tr[0] = tr[1] = tr[2] = tr[3] = 1.0f;
+    out->bsdf.transmission = clamp01(m->transmission * tr[0]);
+    out->bsdf.eta = dirt_ior_eta(m->ior);
 
     float s = m->emissive_strength;
     if (dirt_material_is_emissive(m)) {

@@ -60,7 +60,10 @@ typedef struct vertex {
     bool front;        /* the ray hit the winding-front side */
     dirt_surface surf;
     dirt_vec3 le;      /* emitted radiance towards the previous vertex */
-    dirt_vec3 origin;  /* p offset along ng: origin of rays leaving the vertex */
+    dirt_vec3 origin;  /* p offset along ng: origin of rays leaving the vertex
+                          on the side of the incoming ray */
+    dirt_vec3 origin_below; /* p offset along -ng: origin of rays transmitted
+                          through the surface */
 } vertex;
 
 /* Offset of spawned ray origins along the geometric normal (doc: "Rays"). */
@@ -158,8 +161,25 @@ static void make_vertex(const render_ctx *c, dirt_vec3 dir, const dirt_ref_hit *
 
     dirt_material_surface(&c->mats->materials[m], mat_specular(c, m), c->mats->textures,
                           c->mats->num_textures, uv[0], uv[1], &v->surf);
+    if (!v->front) /* leaving the material: the relative index inverts */
+        v->surf.bsdf.eta = 1.0f / v->surf.bsdf.eta;
     v->le = (v->front || v->surf.double_sided) ? v->surf.emission : v3(0.0f, 0.0f, 0.0f);
     v->origin = v3_mad(v->p, ng, ray_epsilon(v->p));
+    v->origin_below = v3_mad(v->p, ng, -ray_epsilon(v->p));
+}
+
+/* Whether light from world direction wi can reach v's BSDF, and on which
+ * side: above the geometric surface (dot(wi, ng) > 0), or below it when the
+ * BSDF transmits (*below); the local direction *wl must lie on the same
+ * side of the shading frame (wl.z of the same sign). */
+static bool light_side(const vertex *v, dirt_vec3 wi, dirt_vec3 *wl, bool *below)
+{
+    float d = v3_dot(wi, v->ng);
+    *wl = v3_to_local(wi, v->t, v->b, v->n);
+    *below = d < 0.0f;
+    if (d > 0.0f)
+        return wl->z > 0.0f;
+    return *below && dirt_bsdf_transmits(&v->surf.bsdf) && wl->z < 0.0f;
 }
 
 /* `akey`: the ray's alpha key (doc/rng.md, "Alpha"). */
@@ -179,19 +199,20 @@ static bool occluded(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 dir
     return dirt_ref_occluded1_key(c->accel, &r, akey);
 }
 
-/* Whether anything blocks the segment from v's ray origin to the light point
- * y (the shadow ray stops SHADOW_SHORTEN short of y). Aimed from the origin
- * itself: a ray from the origin along the direction from v->p would end
- * ray_epsilon off y and could pass through the light (shadowing it by
+/* Whether anything blocks the segment from a vertex's ray origin `org`
+ * (origin, or origin_below for light through the surface) to the light
+ * point y (the shadow ray stops SHADOW_SHORTEN short of y). Aimed from the
+ * origin itself: a ray from the origin along the direction from v->p would
+ * end ray_epsilon off y and could pass through the light (shadowing it by
  * itself) when the light is closer than the magnitude of the coordinates. */
-static bool occluded_to(render_ctx *c, uint64_t *rays, const vertex *v, dirt_vec3 y,
+static bool occluded_to(render_ctx *c, uint64_t *rays, dirt_vec3 org, dirt_vec3 y,
                         uint32_t akey)
 {
-    dirt_vec3 d = v3_sub(y, v->origin);
+    dirt_vec3 d = v3_sub(y, org);
     float len = v3_length(d);
     if (!(len > 0.0f))
         return false;
-    return occluded(c, rays, v->origin, v3_scale(d, 1.0f / len), len * (1.0f - SHADOW_SHORTEN),
+    return occluded(c, rays, org, v3_scale(d, 1.0f / len), len * (1.0f - SHADOW_SHORTEN),
                     akey);
 }
 
@@ -243,8 +264,9 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
         float dist = v3_length(to);
         if (!(dist > 0.0f))
             return zero;
-        dirt_vec3 wi = v3_scale(to, 1.0f / dist);
-        if (v3_dot(wi, v->ng) <= 0.0f)
+        dirt_vec3 wi = v3_scale(to, 1.0f / dist), wl;
+        bool below;
+        if (!light_side(v, wi, &wl, &below))
             return zero;
         dirt_vec3 nl = tri_normal_ng(c->frame, prim);
         float cos_l = -v3_dot(nl, wi);
@@ -252,7 +274,6 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
         const dirt_material *mat = &c->mats->materials[m];
         if (cos_l < 0.0f && !mat->double_sided)
             return zero; /* back of a one-sided emitter */
-        dirt_vec3 wl = v3_to_local(wi, v->t, v->b, v->n);
         dirt_vec3 f = dirt_bsdf_eval(&v->surf.bsdf, v->wo, wl);
         if (v3_is_zero(f))
             return zero;
@@ -266,10 +287,10 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
                               uv[0], uv[1], &ls);
         if (v3_is_zero(ls.emission))
             return zero;
-        if (occluded_to(c, rays, v, y, akey))
+        if (occluded_to(c, rays, below ? v->origin_below : v->origin, y, akey))
             return zero;
         float w = dirt_mis_power(pdf_l, dirt_bsdf_pdf(&v->surf.bsdf, v->wo, wl));
-        return v3_scale(v3_mul(f, ls.emission), wl.z * w / pdf_l);
+        return v3_scale(v3_mul(f, ls.emission), fabsf(wl.z) * w / pdf_l);
     }
 
     if (dirt_env_samples(c->env) && s == n - 1) {
@@ -279,17 +300,18 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
                              dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_U),
                              dirt_rng_next_float(key, DIRT_RNG_DIM_LIGHT_V), &wi, &pdf_e, &le))
             return zero;
-        if (v3_dot(wi, v->ng) <= 0.0f)
+        dirt_vec3 wl;
+        bool below;
+        if (!light_side(v, wi, &wl, &below))
             return zero;
-        dirt_vec3 wl = v3_to_local(wi, v->t, v->b, v->n);
         dirt_vec3 f = dirt_bsdf_eval(&v->surf.bsdf, v->wo, wl);
         if (v3_is_zero(f))
             return zero;
         float pdf_l = pdf_e / (float)n;
-        if (occluded(c, rays, v->origin, wi, INFINITY, akey))
+        if (occluded(c, rays, below ? v->origin_below : v->origin, wi, INFINITY, akey))
             return zero;
         float w = dirt_mis_power(pdf_l, dirt_bsdf_pdf(&v->surf.bsdf, v->wo, wl));
-        return v3_scale(v3_mul(f, le), wl.z * w / pdf_l);
+        return v3_scale(v3_mul(f, le), fabsf(wl.z) * w / pdf_l);
     }
 
     const dirt_light *light = &c->frame->lights[s - (c->area.count > 0 ? 1u : 0u)];
@@ -297,16 +319,18 @@ static dirt_vec3 sample_light(render_ctx *c, uint64_t *rays, const vertex *v, ui
     float dist;
     if (!dirt_punctual_light(light, v->p, &wi, &dist, &li))
         return zero;
-    if (v3_dot(wi, v->ng) <= 0.0f)
+    dirt_vec3 wl;
+    bool below;
+    if (!light_side(v, wi, &wl, &below))
         return zero;
-    dirt_vec3 wl = v3_to_local(wi, v->t, v->b, v->n);
     dirt_vec3 f = dirt_bsdf_eval(&v->surf.bsdf, v->wo, wl);
     if (v3_is_zero(f))
         return zero;
-    if (isinf(dist) ? occluded(c, rays, v->origin, wi, INFINITY, akey)
-                    : occluded_to(c, rays, v, v3_mad(v->p, wi, dist), akey))
+    dirt_vec3 org = below ? v->origin_below : v->origin;
+    if (isinf(dist) ? occluded(c, rays, org, wi, INFINITY, akey)
+                    : occluded_to(c, rays, org, v3_mad(v->p, wi, dist), akey))
         return zero;
-    return v3_scale(v3_mul(f, li), wl.z * (float)n);
+    return v3_scale(v3_mul(f, li), fabsf(wl.z) * (float)n);
 }
 
 /* First-hit data of one sample (AOVs). */
@@ -361,8 +385,10 @@ static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint
                                   dirt_rng_next_float(key, DIRT_RNG_DIM_BSDF_V), &s))
             break;
         dirt_vec3 wi = v3_from_local(s.wi, v.t, v.b, v.n);
-        if (v3_dot(wi, v.ng) <= 0.0f)
-            break; /* below the geometric surface: no transmission */
+        bool below = s.wi.z < 0.0f; /* transmitted through the surface */
+        float side = v3_dot(wi, v.ng);
+        if (below ? !(side < 0.0f) : side <= 0.0f)
+            break; /* the shading and geometric sides disagree */
         beta = v3_mul(beta, s.weight);
         prev_pdf = s.pdf;
         prev_delta = s.delta;
@@ -374,7 +400,7 @@ static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint
                 beta = v3_scale(beta, 1.0f / q);
             }
         }
-        org = v.origin;
+        org = below ? v.origin_below : v.origin;
         dir = v3_normalize(wi);
         akey = dirt_rng_next(key, DIRT_RNG_DIM_ALPHA_PATH);
     }

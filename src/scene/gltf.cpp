@@ -31,6 +31,11 @@ namespace {
 const char *const supported_extensions[] = {
     "KHR_lights_punctual",             /* lights of nodes (convert_cameras_lights) */
     "KHR_materials_emissive_strength", /* emissiveStrength (convert_materials) */
+    "KHR_materials_ior",               /* ior (convert_materials) */
+    "KHR_materials_specular",          /* specularFactor/ColorFactor and their
+                                          textures (convert_materials) */
+    "KHR_materials_transmission",      /* transmissionFactor/Texture
+                                          (convert_materials) */
     "KHR_mesh_quantization",           /* integer attributes (read_floats takes every
                                           component type, normalized or not) */
     "KHR_texture_transform",           /* uv transforms of the texture slots read
@@ -675,6 +680,96 @@ float finite_or(double x, float fallback)
     return std::isfinite(x) ? (float)x : fallback;
 }
 
+/* A number member `key` of extension object `ext` into *out when it is
+ * finite and within [lo, hi]; otherwise a warning and *out unchanged.
+ * Absent: unchanged, quietly. */
+void ext_number(Loader &L, const tinygltf::Value &ext, const char *key, double lo, double hi,
+                const std::string &mat, float *out)
+{
+    if (!ext.Has(key))
+        return;
+    const tinygltf::Value &v = ext.Get(key);
+    double x = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+    if (std::isfinite(x) && x >= lo && x <= hi)
+        *out = (float)x;
+    else
+        DIRT_WARN("%s: material '%s': invalid %s ignored", L.path.c_str(), mat.c_str(), key);
+}
+
+/* A textureInfo member `key` of an extension object: its texture (or
+ * DIRT_NO_TEXTURE), with the checks of texture_slot / get_texture (an index
+ * out of range warns and keeps the factor). */
+int ext_texture(Loader &L, const tinygltf::Value &ext, const char *key, bool srgb,
+                const std::string &mat, dirt_tex_transform *xf)
+{
+    if (!ext.Has(key))
+        return DIRT_NO_TEXTURE;
+    const tinygltf::Value &v = ext.Get(key);
+    if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsInt()) {
+        DIRT_WARN("%s: material '%s': invalid %s ignored", L.path.c_str(), mat.c_str(), key);
+        return DIRT_NO_TEXTURE;
+    }
+    tinygltf::TextureInfo ti;
+    ti.index = v.Get("index").GetNumberAsInt();
+    if (v.Has("texCoord") && v.Get("texCoord").IsInt())
+        ti.texCoord = v.Get("texCoord").GetNumberAsInt();
+    /* its own extensions (KHR_texture_transform) */
+    if (v.Has("extensions") && v.Get("extensions").IsObject()) {
+        const tinygltf::Value &e = v.Get("extensions");
+        for (const std::string &k : e.Keys())
+            ti.extensions[k] = e.Get(k);
+    }
+    return texture_slot(L, ti, srgb, key, mat, xf); /* range checked there */
+}
+
+/* KHR_materials_transmission, _ior, _specular of material `src` into d. */
+void convert_material_exts(Loader &L, const tinygltf::Material &src, const std::string &name,
+                           dirt_material *d)
+{
+    auto ext = src.extensions.find("KHR_materials_transmission");
+    if (ext != src.extensions.end() && ext->second.IsObject()) {
+        ext_number(L, ext->second, "transmissionFactor", 0.0, 1.0, name, &d->transmission);
+        d->transmission_tex = ext_texture(L, ext->second, "transmissionTexture", false, name,
+                                          &d->xf[DIRT_SLOT_TRANSMISSION]);
+    }
+    ext = src.extensions.find("KHR_materials_ior");
+    if (ext != src.extensions.end() && ext->second.IsObject()) {
+        float ior = d->ior;
+        ext_number(L, ext->second, "ior", 0.0, INFINITY, name, &ior);
+        /* glTF allows ior >= 1, or 0 (F0 = 1, the specular-glossiness
+         * conversion) */
+        if (ior == 0.0f || ior >= 1.0f)
+            d->ior = ior;
+        else
+            DIRT_WARN("%s: material '%s': ior %g below 1 ignored", L.path.c_str(), name.c_str(),
+                      (double)ior);
+    }
+    ext = src.extensions.find("KHR_materials_specular");
+    if (ext != src.extensions.end() && ext->second.IsObject()) {
+        const tinygltf::Value &e = ext->second;
+        ext_number(L, e, "specularFactor", 0.0, 1.0, name, &d->specular);
+        d->specular_tex = ext_texture(L, e, "specularTexture", false, name,
+                                      &d->xf[DIRT_SLOT_SPECULAR]);
+        if (e.Has("specularColorFactor")) {
+            const tinygltf::Value &c = e.Get("specularColorFactor");
+            bool ok = c.IsArray() && c.ArrayLen() == 3;
+            float col[3];
+            for (int k = 0; ok && k < 3; k++) {
+                double x = c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : NAN;
+                ok = std::isfinite(x) && x >= 0.0;
+                col[k] = (float)x;
+            }
+            if (ok)
+                std::memcpy(d->specular_color, col, sizeof(col));
+            else
+                DIRT_WARN("%s: material '%s': invalid specularColorFactor ignored",
+                          L.path.c_str(), name.c_str());
+        }
+        d->specular_color_tex = ext_texture(L, e, "specularColorTexture", true, name,
+                                            &d->xf[DIRT_SLOT_SPECULAR_COLOR]);
+    }
+}
+
 void default_material(dirt_material *d, const char *name)
 {
     dirt_material_default(d); /* the glTF defaults */
@@ -747,6 +842,7 @@ void convert_materials(Loader &L, bool need_default)
                 DIRT_WARN("%s: material '%s': invalid normalTexture scale read as 1",
                           L.path.c_str(), name.c_str());
         }
+        convert_material_exts(L, src, name, d);
     }
     s->num_materials = n;
     L.default_material = (uint32_t)n;

@@ -115,6 +115,7 @@ std::string resolve(const std::string &dir, std::string name)
 struct MtlStated {
     bool kd = false, ks = false, ke = false, ns = false, pr = false, pm = false;
     bool illum = false;
+    bool ni = false, tf = false; /* glass: the index and the filter colour */
 };
 
 bool is_space(char c)
@@ -172,6 +173,10 @@ void scan_stated(const std::string &text, std::vector<MtlStated> *out)
             cur.pr = true;
         else if (t[0] == 'P' && t[1] == 'm')
             cur.pm = true;
+        else if (t[0] == 'N' && t[1] == 'i')
+            cur.ni = true;
+        else if (t[0] == 'T' && t[1] == 'f')
+            cur.tf = true;
     }
     out->push_back(cur);
 }
@@ -224,6 +229,7 @@ public:
             /* Not read the way LoadMtl read it: take every value as stated. */
             MtlStated all;
             all.kd = all.ks = all.ke = all.ns = all.pr = all.pm = all.illum = true;
+            all.ni = all.tf = true;
             s.assign(materials->size() - before, all);
         }
         stated.insert(stated.end(), s.begin(), s.end());
@@ -477,11 +483,29 @@ bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_
             L.notes.add("map_Ke options (-s, -o, -clamp, -mm) ignored", name);
     }
 
+    /* Glass (illum 4, 6, 7, 9: transparency or refraction on): a clear
+     * dielectric (KHR_materials_transmission 1) of index Ni when stated (and
+     * >= 1), tinted by the filter colour Tf when stated (else clear), not
+     * metallic; the highlight's roughness as above. Opaque materials keep
+     * ior 1.5: exporters write "Ni 1" by default, which would remove their
+     * reflection (F0 0). */
+    if (illum == 4 || illum == 6 || illum == 7 || illum == 9) {
+        d->transmission = 1.0f;
+        d->metallic = 0.0f;
+        for (int k = 0; k < 3; k++)
+            d->base_color[k] = st.tf ? clamp01(finite_or(src.transmittance[k], 1.0f)) : 1.0f;
+        if (st.ni) {
+            float ni = finite_or(src.ior, 1.5f);
+            if (ni >= 1.0f)
+                d->ior = ni;
+            else
+                L.notes.add("Ni below 1 ignored (ior 1.5)", name);
+        }
+        if (has_map_kd)
+            L.notes.add("map_Kd of a glass material tints its transmission", name);
+    }
     /* What the model has no place for. */
-    if (illum == 4 || illum == 6 || illum == 7 || illum == 9)
-        L.notes.add("illum " + std::to_string(illum) +
-                        " (glass, refraction) is not supported: rendered opaque", name);
-    else if (illum == 10)
+    if (illum == 10)
         L.notes.add("illum 10 (shadow matte) is not supported", name);
     else if (illum < 0 || illum > 10)
         L.notes.add("unknown illum " + std::to_string(illum) + " read as illum 2", name);
@@ -491,7 +515,13 @@ bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_
     float dissolve = finite_or(src.dissolve, 1.0f);
     bool map_d_kd = !src.alpha_texname.empty() && has_map_kd &&
                     src.alpha_texname == src.diffuse_texname;
-    if (dissolve < 1.0f || map_d_kd) {
+    bool glass = d->transmission > 0.0f;
+    if (glass && (dissolve < 1.0f || map_d_kd)) {
+        /* A glass's transparency is its transmission: its d is not also
+         * coverage (that would let light through twice). */
+        L.notes.add("d / Tr of a glass material ignored: its transmission is its "
+                    "transparency", name);
+    } else if (dissolve < 1.0f || map_d_kd) {
         d->alpha_mode = DIRT_ALPHA_BLEND;
         d->base_color[3] = clamp01(dissolve);
     }

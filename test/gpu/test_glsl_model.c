@@ -89,6 +89,8 @@
 #define PERTURB_TRIES 4
 /* Tolerances below this (absolute) do not count as loose. */
 #define ILL_FLOOR 1e-6
+/* Fields a mode compares, at most. */
+#define MAX_FIELDS 12
 
 enum {
     MODE_WARPS = 0,
@@ -102,6 +104,7 @@ enum {
     MODE_MATERIAL = 8,
     MODE_CAMERA = 9,
     MODE_TEXTURE = 10,
+    MODE_TRANS = 11,
 };
 
 /* ---- random numbers ----------------------------------------------------- */
@@ -123,6 +126,22 @@ static float urand(void) { return (float)(rnd32() >> 8) * (1.0f / 16777216.0f); 
 static float urange(float a, float b) { return a + (b - a) * urand(); }
 static int irange(int n) { return (int)(rnd32() % (uint32_t)n); }
 
+/* A second stream for the inputs added with transmission, ior and the
+ * specular colour, so the cases drawn before them stay what they were. */
+static uint64_t rng2_state = 0x13198a2e03707344ull;
+static uint32_t rnd32b(void)
+{
+    rng2_state = rng2_state * 6364136223846793005ull + 1442695040888963407ull;
+    uint64_t x = rng2_state;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ull;
+    x ^= x >> 33;
+    return (uint32_t)x;
+}
+static float urand2(void) { return (float)(rnd32b() >> 8) * (1.0f / 16777216.0f); }
+static float urange2(float a, float b) { return a + (b - a) * urand2(); }
+static int irange2(int n) { return (int)(rnd32b() % (uint32_t)n); }
+
 /* x moved by up to 4 ulp (relative 2^-23 steps). */
 static float perturb(float x)
 {
@@ -134,6 +153,13 @@ static dirt_vec3 perturb3(dirt_vec3 v) { return v3(perturb(v.x), perturb(v.y), p
  * uniform numbers (leaving it measures a different function). */
 static float perturb01(float x) { return fminf(fmaxf(perturb(x), 0.0f), 1.0f); }
 static float perturb_u(float x) { return fminf(fmaxf(perturb(x), 0.0f), 1.0f - 1.0f / 16777216.0f); }
+/* The same, but 0 is moved along the RNG's grid (a relative step leaves it
+ * 0): for the VNDF's u2, whose cap top z = 1 at u2 = 0 is where
+ * sqrt(1 - z^2) amplifies an ulp of z to ~3e-4 on either side. */
+static float perturb_u0(float x)
+{
+    return x == 0.0f ? (float)irange2(5) / 16777216.0f : perturb_u(x);
+}
 
 /* Unit direction in the upper hemisphere: mostly uniform in z, some grazing,
  * some exactly the normal. */
@@ -190,6 +216,18 @@ static void random_bsdf(dirt_bsdf *b)
     }
     k = irange(10);
     b->specular = k < 2 ? 1.0f : (k == 2 ? 0.0f : urand());
+    /* KHR_materials_specular colour, transmission, ior: glTF's defaults,
+     * clear glass and random; eta on the front (ior) and the back (1 / ior),
+     * index-matched (1, 1 + 5e-4: a delta) and the specular-glossiness
+     * ior 0 (eta 1, F0 1). */
+    k = irange2(4);
+    float f0 = dirt_ior_f0(1.5f);
+    b->f0 = k < 2 ? v3(f0, f0, f0) : (k == 2 ? v3(1.0f, 1.0f, 1.0f) : v3(urand2(), urand2(), urand2()));
+    k = irange2(4);
+    b->transmission = k < 2 ? 0.0f : (k == 2 ? 1.0f : urand2());
+    k = irange2(8);
+    float ior = k < 2 ? 1.5f : (k == 2 ? 1.0f : (k == 3 ? 1.0005f : urange2(1.0f, 2.5f)));
+    b->eta = irange2(2) ? ior : 1.0f / ior;
 }
 
 /* ---- the scene data the C side evaluates --------------------------------- */
@@ -230,6 +268,9 @@ static dirt_bsdf read_bsdf(const float *in)
     b.metallic = in[3];
     b.alpha = in[4];
     b.specular = in[5];
+    b.transmission = in[6];
+    b.eta = in[7];
+    b.f0 = get3(in + 16);
     return b;
 }
 
@@ -294,7 +335,7 @@ static void c_eval(int mode, const float *in, int idx, bool p, const float *gpu,
         float ul = in[12], u1 = in[13], u2 = in[14];
         if (p) {
             wo = perturb3(wo);
-            ul = perturb_u(ul), u1 = perturb_u(u1), u2 = perturb_u(u2);
+            ul = perturb_u(ul), u1 = perturb_u(u1), u2 = perturb_u0(u2);
         }
         dirt_bsdf_sample s;
         memset(&s, 0, sizeof(s));
@@ -310,9 +351,26 @@ static void c_eval(int mode, const float *in, int idx, bool p, const float *gpu,
                 dirt_vec3 wg = get3(gpu + 4);
                 float pdf = dirt_bsdf_pdf(&b, wo, wg);
                 out[3] = pdf;
-                put3(out + 8, v3_scale(dirt_bsdf_eval(&b, wo, wg), wg.z / pdf));
+                put3(out + 8, v3_scale(dirt_bsdf_eval(&b, wo, wg), fabsf(wg.z) / pdf));
             }
         }
+        break;
+    }
+    case MODE_TRANS: {
+        dirt_bsdf b = read_bsdf(in);
+        dirt_vec3 wo = get3(in + 8);
+        float c = in[12];
+        if (p) {
+            wo = perturb3(wo);
+            c = perturb01(c);
+        }
+        float ps, pt;
+        dirt_bsdf_lobe_probabilities(&b, wo, &ps, &pt);
+        out[0] = pt;
+        out[1] = dirt_bsdf_fresnel_interface(&b, c);
+        out[2] = dirt_bsdf_transmits(&b) ? 1.0f : 0.0f;
+        out[3] = dirt_bsdf_transmission_is_delta(&b) ? 1.0f : 0.0f;
+        out[4] = ps;
         break;
     }
     case MODE_MISC: {
@@ -366,6 +424,9 @@ static void c_eval(int mode, const float *in, int idx, bool p, const float *gpu,
         out[6] = s.double_sided ? 1.0f : 0.0f;
         out[7] = dirt_material_is_emissive(&g_mats[m]) ? 1.0f : 0.0f;
         put3(out + 8, s.emission);
+        out[11] = s.bsdf.eta;
+        put3(out + 12, s.bsdf.f0);
+        out[15] = s.bsdf.transmission;
         break;
     }
     case MODE_CAMERA: {
@@ -409,16 +470,44 @@ static float c_margin(int mode, const float *in, int idx)
         dirt_bsdf b = read_bsdf(in);
         dirt_vec3 wo = get3(in + 8);
         float ul = in[12], u1 = in[13], u2 = in[14];
-        float ps = dirt_bsdf_spec_probability(&b, wo);
+        float ps, pt;
+        dirt_bsdf_lobe_probabilities(&b, wo, &ps, &pt);
+        float pd = fmaxf(0.0f, 1.0f - ps - pt);
         m = fabsf(ul - ps);
+        if (pt > 0.0f)
+            m = fminf(m, fabsf(ul - (ps + pd)));
         dirt_vec3 wi = v3(0, 0, 1);
-        if (ul >= ps) {
+        if (pt > 0.0f && ul >= ps + pd) {
+            /* the interface: reflect or refract by the rescaled u against
+             * F_t, refraction impossible at sin2 = 1 */
+            float ut = (ul - (ps + pd)) / pt;
+            bool dt = dirt_bsdf_transmission_is_delta(&b);
+            dirt_vec3 h = dt && dirt_bsdf_is_delta(&b) ? v3(0, 0, 1)
+                                                      : dirt_sample_ggx_vndf(b.alpha, wo, u1, u2);
+            float c = v3_dot(wo, h), fr = dirt_bsdf_fresnel_interface(&b, dt ? wo.z : c);
+            m = fminf(m, fabsf(ut - fr) * pt);
+            if (ut < fr) {
+                wi = v3_sub(v3_scale(h, 2.0f * c), wo);
+            } else {
+                if (dt)
+                    h = v3(0, 0, 1), c = wo.z;
+                float sin2 = (1.0f - c * c) / (b.eta * b.eta);
+                m = fminf(m, fminf(fabsf(1.0f - sin2), fabsf(c)));
+                if (sin2 < 1.0f)
+                    wi = v3_sub(v3_scale(h, c / b.eta - sqrtf(1.0f - sin2)), v3_scale(wo, 1.0f / b.eta));
+            }
+        } else if (ul >= ps) {
             wi = dirt_sample_cosine(u1, u2);
         } else if (!dirt_bsdf_is_delta(&b)) {
             dirt_vec3 h = dirt_sample_ggx_vndf(b.alpha, wo, u1, u2);
             wi = v3_sub(v3_scale(h, 2.0f * v3_dot(wo, h)), wo);
         }
         m = fminf(m, fabsf(wi.z));
+    } else if (mode == MODE_TRANS) {
+        dirt_bsdf b = read_bsdf(in);
+        float c = in[12], sin2 = (1.0f - c * c) / (b.eta * b.eta);
+        m = fabsf(1.0f - sin2); /* total internal reflection */
+        m = fminf(m, fminf(fabsf(b.alpha - DIRT_ALPHA_DELTA), fabsf(fabsf(b.eta - 1.0f) - DIRT_ETA_MATCHED)));
     } else if (mode == MODE_LIGHT) {
         const dirt_light *l = &g_lights[idx];
         if (l->type == DIRT_LIGHT_DIRECTIONAL)
@@ -474,6 +563,13 @@ static double tex_tol(int mode, const float *in, int off)
     case 8: /* emission */
         return texel_tol(m->emissive_tex, true) *
                fmax(m->emissive[0], fmax(m->emissive[1], m->emissive[2])) * m->emissive_strength;
+    case 5: /* specular = clamp(s) * specular_tex.a */
+        return texel_tol(m->specular_tex, false);
+    case 12: /* f0 = f0(ior) specular_color sRGB(tex) */
+        return texel_tol(m->specular_color_tex, true) * dirt_ior_f0(m->ior) *
+               fmax(m->specular_color[0], fmax(m->specular_color[1], m->specular_color[2]));
+    case 15: /* transmission */
+        return texel_tol(m->transmission_tex, false) * fabs(m->transmission);
     }
     return 0.0;
 }
@@ -517,6 +613,11 @@ static double ggx_cond(int mode, const float *in, const float *gpu, int off)
         return 0.0;
     dirt_vec3 wo = get3(in + 8), wi = eval ? get3(in + 12) : get3(gpu + 4);
     dirt_vec3 h = v3_normalize(v3_add(wo, wi));
+    if (wi.z < 0.0f) { /* transmission: the generalized half vector */
+        h = v3_normalize(v3_mad(wo, wi, b.eta));
+        if (h.z < 0.0f)
+            h = v3_neg(h);
+    }
     double a2 = (double)b.alpha * b.alpha, hz = h.z;
     double d = (1.0 - hz * hz) + hz * hz * a2;
     double cond = d > 0.0 ? 2.0 * 16.0 / 16777216.0 / d : INFINITY;
@@ -555,7 +656,7 @@ typedef struct mode_desc {
     const char *name;
     int mode;
     int valid_off; /* offset of the C success flag gating the values, or -1 */
-    field fields[8];
+    field fields[MAX_FIELDS];
 } mode_desc;
 
 static const mode_desc modes[] = {
@@ -578,7 +679,13 @@ static const mode_desc modes[] = {
     {"material", MODE_MATERIAL, -1,
      {{"base colour", 0, 3, 'v'}, {"metallic", 3, 1, 'v'}, {"alpha", 4, 1, 'v'},
       {"specular", 5, 1, 'v'}, {"double sided", 6, 1, 'b'}, {"emissive", 7, 1, 'b'},
-      {"emission", 8, 3, 'v'}}},
+      {"emission", 8, 3, 'v'}, {"eta", 11, 1, 'v'}, {"f0", 12, 3, 'v'},
+      {"transmission", 15, 1, 'v'}}},
+    {"transmission", MODE_TRANS, -1,
+     /* c at the critical angle in 1 of 10 cases on purpose, where
+      * sqrt(1 - (1 - c^2) / eta^2) is ill-conditioned: up to 10% */
+     {{"p_trans", 0, 1, 'v'}, {"fresnel interface", 1, 1, 'v', 0.1}, {"transmits", 2, 1, 'b'},
+      {"delta", 3, 1, 'b'}, {"p_spec", 4, 1, 'v'}}},
     {"camera", MODE_CAMERA, -1, {{"org", 0, 3, 'v'}, {"dir", 4, 3, 'v'}}},
     {"texture", MODE_TEXTURE, -1, {{"rgba", 0, 4, 'v'}}},
 };
@@ -616,7 +723,7 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
 {
     const mode_desc *d = mode_of(mode);
     compare_result r = {n, 0, 0, 0, 0, 0, 0.0, 0};
-    field_stats st[8];
+    field_stats st[MAX_FIELDS];
     memset(st, 0, sizeof(st));
     int printed = 0;
     for (int i = 0; i < n; i++) {
@@ -625,7 +732,7 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
         c_eval(mode, ci, i, false, g, c);
         bool agree = true;
         float margin = -1.0f;
-        for (int f = 0; f < 8 && d->fields[f].name; f++) {
+        for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++) {
             const field *fd = &d->fields[f];
             bool mismatch;
             if (fd->kind == 'b')
@@ -653,17 +760,17 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
             continue;
         /* Spread of the C results under input perturbation (only tries that
          * make the same decisions; not for the texel-only modes). */
-        double spread[8] = {0};
+        double spread[MAX_FIELDS] = {0};
         for (int t = 0; t < (texel_only(mode) ? 0 : PERTURB_TRIES); t++) {
             c_eval(mode, ci, i, true, g, cp);
             bool same = true;
-            for (int f = 0; f < 8 && d->fields[f].name; f++)
+            for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++)
                 if (d->fields[f].kind == 'b' &&
                     (cp[d->fields[f].off] > 0.5f) != (c[d->fields[f].off] > 0.5f))
                     same = false;
             if (!same)
                 continue;
-            for (int f = 0; f < 8 && d->fields[f].name; f++) {
+            for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++) {
                 const field *fd = &d->fields[f];
                 if (fd->kind != 'v' || any_nonfinite(c + fd->off, fd->n) ||
                     any_nonfinite(cp + fd->off, fd->n))
@@ -674,7 +781,7 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
         }
 
         bool ill_case = false;
-        for (int f = 0; f < 8 && d->fields[f].name; f++) {
+        for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++) {
             const field *fd = &d->fields[f];
             if (fd->kind != 'v' || !field_applies(mode, c, fd->off))
                 continue;
@@ -734,19 +841,19 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
         r.ill += ill_case;
         if (texel_only(mode)) {
             bool same = true;
-            for (int f = 0; f < 8 && d->fields[f].name; f++)
+            for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++)
                 same &= memcmp(c + d->fields[f].off, g + d->fields[f].off,
                                (size_t)d->fields[f].n * sizeof(float)) == 0;
             r.exact += same;
         }
     }
-    for (int f = 0; f < 8 && d->fields[f].name; f++) {
+    for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++) {
         double allowed = d->fields[f].max_ill > 0.0 ? d->fields[f].max_ill : 0.02;
         if (st[f].ill > allowed * n)
             r.ill_excess++;
     }
     if (!quiet) {
-        for (int f = 0; f < 8 && d->fields[f].name; f++) {
+        for (int f = 0; f < MAX_FIELDS && d->fields[f].name; f++) {
             const field *fd = &d->fields[f];
             if (fd->kind == 'v')
                 fprintf(stderr,
@@ -821,6 +928,10 @@ static float random_uv(int w)
     }
 }
 
+/* The tangential part of wo's smooth refraction (-wo.xy / eta) of record r. */
+static float wo_refr_x(const float *r) { return r[8] / r[7]; }
+static float wo_refr_y(const float *r) { return r[9] / r[7]; }
+
 static void fill_inputs(int mode, float *in, int n, size_t num_materials, int num_textures)
 {
     memset(in, 0, (size_t)n * STRIDE * sizeof(float));
@@ -843,16 +954,28 @@ static void fill_inputs(int mode, float *in, int n, size_t num_materials, int nu
             put3(r, random_sphere());
             break;
         case MODE_EVAL:
-        case MODE_SAMPLE: {
+        case MODE_SAMPLE:
+        case MODE_TRANS: {
             dirt_bsdf b;
             random_bsdf(&b);
             put3(r, b.base_color);
             r[3] = b.metallic;
             r[4] = b.alpha;
             r[5] = b.specular;
+            r[6] = b.transmission;
+            r[7] = b.eta;
+            put3(r + 16, b.f0);
             put3(r + 8, random_upper());
             if (mode == MODE_EVAL) {
-                put3(r + 12, random_upper());
+                dirt_vec3 wi = random_upper();
+                if (b.transmission > 0.0f && irange2(2)) /* through the surface */
+                    wi.z = -wi.z;
+                if (b.transmission > 0.0f && irange2(20) == 0) /* near the refraction of wo */
+                    wi = v3_normalize(v3(-wo_refr_x(r), -wo_refr_y(r), -sqrtf(fmaxf(0.0f,
+                        1.0f - (r[8] * r[8] + r[9] * r[9]) / (b.eta * b.eta))) - 1e-3f * urand2()));
+                put3(r + 12, wi);
+            } else if (mode == MODE_TRANS) {
+                r[12] = irange2(10) == 0 ? sqrtf(fmaxf(0.0f, 1.0f - b.eta * b.eta)) : random_u();
             } else {
                 r[12] = random_u();
                 r[13] = random_u();
@@ -1021,6 +1144,17 @@ static void make_materials(void)
         m->emissive_tex = random_tex();
         m->double_sided = irange(2);
         speculars[i] = urange(-0.2f, 1.2f);
+        /* KHR_materials_specular, _transmission, _ior */
+        m->specular = irange2(3) == 0 ? 1.0f : urange2(0.0f, 1.2f);
+        m->specular_tex = random_tex();
+        for (int c = 0; c < 3; c++)
+            m->specular_color[c] = irange2(3) == 0 ? 1.0f : urange2(0.0f, 30.0f);
+        m->specular_color_tex = random_tex();
+        k = irange2(4);
+        m->transmission = k == 0 ? 0.0f : (k == 1 ? 1.0f : urange2(0.0f, 1.2f));
+        m->transmission_tex = random_tex();
+        k = irange2(6);
+        m->ior = k == 0 ? 1.5f : (k == 1 ? 0.0f : (k == 2 ? 1.0f : urange2(1.0f, 3.0f)));
     }
 }
 
@@ -1219,7 +1353,7 @@ int main(void)
 
     static const int all[] = {MODE_WARPS,  MODE_VNDF,  MODE_ONB,      MODE_EVAL,
                               MODE_SAMPLE, MODE_MISC,  MODE_LIGHT,    MODE_AREA,
-                              MODE_CAMERA, MODE_TEXTURE, MODE_MATERIAL};
+                              MODE_CAMERA, MODE_TEXTURE, MODE_MATERIAL, MODE_TRANS};
     for (size_t k = 0; k < sizeof(all) / sizeof(all[0]); k++)
         check_mode(gpu, prog, fault, all[k], in, out, N, NUM_MATS, NUM_TEX);
     dirt_gpu_model_tables_destroy(&tables);

@@ -131,6 +131,19 @@ static void test_material_slots(void)
     m.xf[DIRT_SLOT_BASE_COLOR].set = false;
     dirt_material_surface(&m, 1.0f, tex, 1, 0.125f, 0.5f, &s);
     CHECK(s.bsdf.base_color.x == 0.0f);
+    /* The extension slots too: transmission (R) shifted by a quarter reads
+     * texel 1 at texel 0's centre, specular (A: 255 everywhere) stays 1. */
+    m.transmission = 1.0f;
+    m.transmission_tex = 0;
+    m.specular_tex = 0;
+    dirt_material_surface(&m, 1.0f, tex, 1, 0.125f, 0.5f, &s);
+    CHECK(s.bsdf.transmission == 0.0f);
+    m.xf[DIRT_SLOT_TRANSMISSION] = (dirt_tex_transform){.set = true, .offset = {0.25f, 0},
+                                                        .scale = {1, 1}};
+    dirt_material_surface(&m, 1.0f, tex, 1, 0.125f, 0.5f, &s);
+    CHECK_MSG(near(s.bsdf.transmission, 85.0f / 255.0f, 1e-6), "transmission slot: %g",
+              s.bsdf.transmission);
+    CHECK(s.bsdf.specular == 1.0f);
 }
 
 static void test_normal_ts(void)

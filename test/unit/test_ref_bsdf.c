@@ -30,7 +30,8 @@ static dirt_vec3 dir_from_mu(float mu, float phi)
 
 static dirt_bsdf material(float r, float g, float b, float metallic, float roughness, float spec)
 {
-    dirt_bsdf m = {{r, g, b}, metallic, roughness * roughness, spec};
+    dirt_bsdf m = {{r, g, b}, metallic, roughness * roughness, spec,
+                   {DIRT_DIELECTRIC_F0, DIRT_DIELECTRIC_F0, DIRT_DIELECTRIC_F0}, 0.0f, 1.5f};
     return m;
 }
 

@@ -8,6 +8,8 @@
 #include "check.h"
 #include "test_scene_util.h"
 
+#include "dirt/image.h"
+#include "dirt/integrator.h"
 #include "dirt/scene.h"
 
 #include <stdio.h>
@@ -248,6 +250,62 @@ static void test_quantization(void)
     free(j);
 }
 
+/* KHR_materials_transmission, _ior, _specular: factors and textures read
+ * (the specular colour texture as sRGB, the others linear), invalid values
+ * warned and left at the glTF defaults, ior 0 (F0 1) accepted, ior below 1
+ * refused; required, they load. */
+static void test_materials(void)
+{
+    uint8_t px[8] = {200, 10, 20, 128, 40, 50, 60, 255};
+    CHECK(dirt_write_png_rgba8(tmp_file("mat_ext.png"), 2, 1, px));
+    char *j = quad(
+        "\"extensionsUsed\":[\"KHR_materials_transmission\",\"KHR_materials_ior\","
+        "\"KHR_materials_specular\"],\"extensionsRequired\":[\"KHR_materials_transmission\"],"
+        "\"images\":[{\"uri\":\"mat_ext.png\"}],\"textures\":[{\"source\":0}],"
+        "\"materials\":["
+        "{\"name\":\"glass\",\"extensions\":{"
+        "\"KHR_materials_transmission\":{\"transmissionFactor\":0.8,"
+        "\"transmissionTexture\":{\"index\":0}},"
+        "\"KHR_materials_ior\":{\"ior\":1.33},"
+        "\"KHR_materials_specular\":{\"specularFactor\":0.5,\"specularTexture\":{\"index\":0},"
+        "\"specularColorFactor\":[2,0.5,0],\"specularColorTexture\":{\"index\":0}}}},"
+        "{\"name\":\"bad\",\"extensions\":{"
+        "\"KHR_materials_transmission\":{\"transmissionFactor\":2},"
+        "\"KHR_materials_ior\":{\"ior\":0.5},"
+        "\"KHR_materials_specular\":{\"specularFactor\":\"x\",\"specularColorFactor\":[1,-1,1],"
+        "\"specularTexture\":{\"index\":7}}}},"
+        "{\"name\":\"specgloss\",\"extensions\":{\"KHR_materials_ior\":{\"ior\":0}}}],",
+        ",\"material\":0", NULL);
+    dirt_scene *s = load_text("mat_ext.gltf", j);
+    CHECK(s != NULL && dirt_scene_num_materials(s) >= 3);
+    if (s && dirt_scene_num_materials(s) >= 3) {
+        const dirt_material *m = dirt_scene_materials(s);
+        CHECK(m[0].transmission == 0.8f && m[0].transmission_tex >= 0);
+        CHECK(m[0].ior == 1.33f);
+        CHECK(m[0].specular == 0.5f && m[0].specular_tex >= 0);
+        CHECK(m[0].specular_color[0] == 2.0f && m[0].specular_color[1] == 0.5f &&
+              m[0].specular_color[2] == 0.0f && m[0].specular_color_tex >= 0);
+        const dirt_texture *t = dirt_scene_textures(s);
+        CHECK(m[0].specular_tex == m[0].transmission_tex && !t[m[0].specular_tex].srgb);
+        CHECK(m[0].specular_color_tex != m[0].specular_tex && t[m[0].specular_color_tex].srgb);
+        CHECK(m[1].transmission == 0.0f && m[1].ior == 1.5f && m[1].specular == 1.0f &&
+              m[1].specular_color[1] == 1.0f && m[1].specular_tex == DIRT_NO_TEXTURE);
+        CHECK(m[2].ior == 0.0f);
+        /* what the renderer reads: transmission = 0.8 x R, specular = 0.5 x A
+         * (texel 0 at uv (0.25, 0.5)) */
+        dirt_surface sf;
+        dirt_material_surface(&m[0], 1.0f, t, dirt_scene_num_textures(s), 0.25f, 0.5f, &sf);
+        CHECK_NEAR(sf.bsdf.transmission, 0.8 * 200.0 / 255.0, 1e-6);
+        CHECK_NEAR(sf.bsdf.specular, 0.5 * 128.0 / 255.0, 1e-6);
+        CHECK(sf.bsdf.eta == 1.33f);
+    }
+    CHECK(lines_with('W', "material 'bad'") == 5); /* every warning names it */
+    CHECK(lines_with('W', "transmissionFactor") == 1 && lines_with('W', "ior") == 1);
+    CHECK(log_err == 0 && log_warn == 5); /* 4 values, texture 7 out of range */
+    dirt_scene_destroy(s);
+    free(j);
+}
+
 /* doc/scenes.md lists, between its gltf-extensions markers, exactly the
  * loader's extensions (as `NAME` at the start of a table row). */
 static void test_doc_list(void)
@@ -306,11 +364,12 @@ int main(void)
     test_required();
     test_used();
     test_quantization();
+    test_materials();
     test_doc_list();
     dirt_log_set_callback(NULL, NULL);
     static const char *const files[] = {"draco.gltf", "two.gltf", "meshopt_broken.gltf",
                                         "draco.glb", "used.gltf", "required_ok.gltf",
-                                        "quantized.gltf"};
+                                        "quantized.gltf", "mat_ext.gltf", "mat_ext.png"};
     tmp_cleanup(files, sizeof(files) / sizeof(files[0]));
     return check_finish();
 }

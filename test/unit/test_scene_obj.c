@@ -106,7 +106,7 @@ static float roughness_of_ns(float ns)
 
 static const char mapping_mtl[] =
     "# materials for test_scene_obj\n"
-    "newmtl diffuse\n  Kd 0.5 0.25 0.125\n  Ks 0 0 0\n  Ns 100\n  illum 2\n"
+    "newmtl diffuse\n  Kd 0.5 0.25 0.125\n  Ks 0 0 0\n  Ns 100\n  illum 2\n  Ni 1.0\n"
     "newmtl glossy\n  Kd 0.2 0.2 0.2\n  Ks 0.5 0.5 0.5\n  Ns 98\n  illum 2\n"
     "newmtl mirror\n  Kd 0 0 0\n  Ks 0.9 0.8 0.7\n  Ns 1000\n  illum 3\n"
     "newmtl pbr\n  Kd 1 1 1\n  Pr 0\n  Pm 1\n"
@@ -116,7 +116,7 @@ static const char mapping_mtl[] =
     "newmtl textured\n  map_Kd tex.png\n"
     "newmtl tinted\n\tKd 0.5 0.5 0.5\n\tmap_Kd sub\\tex2.png\n"
     "newmtl glass\n  Kd 1 1 1\n  illum 7\n  d 0.5\n  map_bump nm.png\n"
-    "newmtl glass2\n  Kd 1 1 1\n  illum 4\n  Tr 0.5\n"
+    "newmtl glass2\n  Kd 1 1 1\n  illum 4\n  Tr 0.5\n  Ni 1.33\n  Tf 0.5 0.8 1\n"
     "newmtl missing\n  Kd 0.5 0.5 0.5\n  map_Kd nothere.png\n  Xy 1 2 3\n";
 
 /* A quad per material (corners 1..4 of z = 0, UVs, one normal), a triangle
@@ -217,15 +217,29 @@ static void test_mapping(void)
     m = find_material(s, "default");
     CHECK(m && m->base_color[0] == 0.8f && m->metallic == 0.0f && m->roughness == 1.0f);
 
-    /* What has no place in the model warns once per kind, naming it. */
-    CHECK(log_lines_with("W", "illum 7") == 1);
-    CHECK(log_lines_with("W", "illum 4") == 1);
-    /* d / Tr below 1: BLEND coverage (doc/scenes.md), no warning. */
-    CHECK(log_lines_with("W", "d / Tr") == 0);
+    /* Glass (illum 4, 6, 7, 9): transmission 1 of index Ni (when stated),
+     * tinted by Tf (when stated); an opaque material keeps ior 1.5 whatever
+     * its Ni. */
     m = find_material(s, "glass");
-    CHECK(m && m->alpha_mode == DIRT_ALPHA_BLEND && m->base_color[3] == 0.5f);
+    CHECK(m && m->transmission == 1.0f && m->ior == 1.5f && m->metallic == 0.0f &&
+          m->base_color[0] == 1.0f && m->base_color[2] == 1.0f);
     m = find_material(s, "glass2");
-    CHECK(m && m->alpha_mode == DIRT_ALPHA_BLEND && m->base_color[3] == 0.5f);
+    CHECK(m && m->transmission == 1.0f && m->ior == 1.33f && m->base_color[0] == 0.5f &&
+          m->base_color[1] == 0.8f && m->base_color[2] == 1.0f);
+    m = find_material(s, "diffuse");
+    CHECK(m && m->transmission == 0.0f && m->ior == 1.5f);
+    /* What has no place in the model warns once per kind, naming it. */
+    /* Glass is transmission, no warning of its illum; its d / Tr is not
+     * also coverage (warned once, naming the first); other materials' d / Tr
+     * are BLEND coverage (test_scene_alpha). */
+    CHECK(log_lines_with("W", "illum 7") == 0);
+    CHECK(log_lines_with("W", "illum 4") == 0);
+    CHECK(log_lines_with("W", "d / Tr") == 1);
+    CHECK(log_lines_with("W", "2 materials, first 'glass'") == 1);
+    m = find_material(s, "glass");
+    CHECK(m && m->alpha_mode == DIRT_ALPHA_OPAQUE && m->base_color[3] == 1.0f);
+    m = find_material(s, "glass2");
+    CHECK(m && m->alpha_mode == DIRT_ALPHA_OPAQUE && m->base_color[3] == 1.0f);
     CHECK(log_lines_with("W", "bump") == 1);
     CHECK(log_lines_with("W", "nothere.png") == 1);
     CHECK(log_lines_with("W", "'Xy'") == 1);

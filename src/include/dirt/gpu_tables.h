@@ -28,7 +28,10 @@ extern "C" {
  * [0, num_textures) become -1 (the white default, as dirt_material_surface
  * reads them); emission = emissive * emissive_strength (the float product
  * dirt_material_surface computes) and the EMISSIVE flag when
- * dirt_material_is_emissive, else (0,0,0); specular = clamp01(specular). */
+ * dirt_material_is_emissive, else (0,0,0); specular = clamp01(specular *
+ * m->specular) (the extra factor times the material's specularFactor, as
+ * dirt_material_surface forms it); params2.y = dirt_ior_eta(ior),
+ * specular_color.w = dirt_ior_f0(ior). */
 void dirt_gpu_material_pack(const dirt_material *m, float specular, size_t num_textures,
                             struct dirt_gpu_model_material *out);
 

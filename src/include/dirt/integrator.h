@@ -32,6 +32,10 @@ extern "C" {
 #define DIRT_ALPHA_DELTA 1e-3f
 /* Dielectric normal-incidence reflectance of glTF (IOR 1.5). */
 #define DIRT_DIELECTRIC_F0 0.04f
+/* Relative index of refraction within this of 1: an index-matched
+ * interface, whose transmission is a delta (the straight-through
+ * refraction) however rough the surface (doc/light-transport.md). */
+#define DIRT_ETA_MATCHED 1e-3f
 /* Russian roulette starts at path vertex DIRT_RR_START_VERTEX + 1
  * (i.e. after this many scattering events). */
 #define DIRT_RR_START_VERTEX 3
@@ -41,29 +45,72 @@ typedef struct dirt_bsdf {
     dirt_vec3 base_color; /* linear, each in [0,1] */
     float metallic;       /* [0,1] */
     float alpha;          /* GGX alpha = roughness^2; < DIRT_ALPHA_DELTA: mirror */
-    float specular;       /* dielectric specular weight (KHR_materials_specular
-                             factor) in [0,1]; glTF default 1 */
+    float specular;       /* dielectric specular weight s (KHR_materials_specular
+                             specularFactor x specularTexture.a) in [0,1];
+                             glTF default 1 */
+    dirt_vec3 f0;         /* dielectric F0 colour before the weight:
+                             min(dirt_ior_f0(ior) x specularColor, 1) per
+                             channel, each in [0,1]; glTF default 0.04 */
+    float transmission;   /* KHR_materials_transmission t in [0,1]: the share
+                             of the dielectric base that is specular
+                             transmission instead of diffuse; 0 = opaque */
+    float eta;            /* relative index of refraction across the surface,
+                             n(far side) / n(wo's side), > 0: the material's
+                             dirt_ior_eta(ior) when wo is on the front
+                             (winding) side, its inverse on the back (the
+                             integrators flip it; dirt_material_surface
+                             gives the front's) */
 } dirt_bsdf;
 
 /* Result of dirt_bsdf_sample. */
 typedef struct dirt_bsdf_sample {
-    dirt_vec3 wi;     /* sampled direction, local frame, wi.z > 0 */
-    dirt_vec3 weight; /* f * wi.z / pdf (for a delta lobe: F / p_spec) */
+    dirt_vec3 wi;     /* sampled direction, local frame: wi.z > 0 reflected,
+                         wi.z < 0 transmitted (through the surface) */
+    dirt_vec3 weight; /* f * |wi.z| / pdf (for the mirror: F / p_spec; for
+                         the delta transmission: (1 - m) t (1 - F_t) base /
+                         (eta^2 p_trans)) */
     float pdf;        /* solid-angle pdf of the non-delta part (0 when delta) */
-    bool delta;       /* the mirror lobe was chosen */
+    bool delta;       /* a delta lobe (mirror or smooth transmission) was chosen */
 } dirt_bsdf_sample;
 
 /* ---- BSDF (src/integrator/bsdf.c) --------------------------------------- */
 
 /* True when the specular lobe is a perfect mirror (alpha < DIRT_ALPHA_DELTA). */
 bool dirt_bsdf_is_delta(const dirt_bsdf *b);
+/* True when the transmission lobe is a delta: a smooth surface (alpha <
+ * DIRT_ALPHA_DELTA) or an index-matched one (|eta - 1| < DIRT_ETA_MATCHED). */
+bool dirt_bsdf_transmission_is_delta(const dirt_bsdf *b);
+
+/* True when the BSDF can send light through the surface (t > 0 and
+ * metallic < 1): the integrators then accept directions below the
+ * geometric surface (next-event estimation, path continuation). */
+bool dirt_bsdf_transmits(const dirt_bsdf *b);
+
+/* F0 of an interface between air and index `ior` (KHR_materials_ior):
+ * ((ior - 1) / (ior + 1))^2 computed in double (1.5 -> exactly 0.04f); 0
+ * and +inf give 1 (the specular-glossiness conversion), NaN or negative
+ * the glTF default 0.04. */
+float dirt_ior_f0(float ior);
+/* The index refraction uses: ior when >= 1 and finite, else 1 (index
+ * matched: glTF allows only ior >= 1, or 0 for F0 = 1). */
+float dirt_ior_eta(float ior);
 
 /* Schlick Fresnel of the whole specular lobe at cos theta = c (RGB):
- *   F(c) = (1 - metallic) * F_d(c) + metallic * (base + (1 - base)(1 - c)^5),
- *   F_d(c) = specular * (0.04 + 0.96 (1 - c)^5)          (dielectric) */
+ *   F(c) = (1 - m) ((1 - t) F_d(c) + t F_t(c)) + m (base + (1 - base) x(c)),
+ *   F_d(c) = s (f0 + (1 - f0) x(c))   (dielectric, per channel),
+ *   F_t(c) = F_d(c_t), c_t = c when eta >= 1, else the cosine of the
+ *            refracted direction sqrt(1 - (1 - c^2) / eta^2); 1 on total
+ *            internal reflection            (the transmissive interface),
+ * x(c) = (1 - clamp(c, 0, 1))^5. On the front of a glTF material (eta =
+ * ior >= 1) F_t = F_d. */
 dirt_vec3 dirt_bsdf_fresnel(const dirt_bsdf *b, float c);
-/* The dielectric part F_d(c) alone (scalar). */
+/* The dielectric part F_d(c) alone, scalar: its largest channel (glTF
+ * KHR_materials_specular's max_value; the diffuse base is weighted by 1
+ * minus it). */
 float dirt_bsdf_fresnel_dielectric(const dirt_bsdf *b, float c);
+/* The interface's F_t(c), scalar (largest channel); 1 on total internal
+ * reflection. The transmission lobe is weighted by 1 minus it. */
+float dirt_bsdf_fresnel_interface(const dirt_bsdf *b, float c);
 
 /* GGX normal distribution D(h) for the local half vector h (unit). */
 float dirt_ggx_d(float alpha, dirt_vec3 h);
@@ -72,23 +119,39 @@ float dirt_ggx_lambda(float alpha, dirt_vec3 w);
 /* Height-correlated Smith masking-shadowing G2 = 1 / (1 + L(wo) + L(wi)). */
 float dirt_ggx_g2(float alpha, dirt_vec3 wo, dirt_vec3 wi);
 
-/* Probability of choosing the specular lobe when sampling from wo. */
+/* Probability of choosing the specular (reflection) lobe when sampling
+ * from wo. */
 float dirt_bsdf_spec_probability(const dirt_bsdf *b, dirt_vec3 wo);
+/* The lobe probabilities from wo: *p_spec (reflection), *p_trans
+ * (transmission); diffuse takes max(0, 1 - p_spec - p_trans). From the
+ * weights w_s = Y(F(wo.z)), w_d = (1 - m)(1 - t) Y(base)(1 - F_d(wo.z)),
+ * w_t = (1 - m) t Y(base)(1 - F'(wo.z)), F' = F_t for a delta
+ * transmission, F_d for a rough one; p = w / sum (p_spec 1/2, p_trans 0
+ * when all are 0). */
+void dirt_bsdf_lobe_probabilities(const dirt_bsdf *b, dirt_vec3 wo, float *p_spec,
+                                  float *p_trans);
 
-/* f(wo, wi) of the non-delta part (diffuse + GGX; diffuse only when the
- * specular lobe is a delta). Zero when wo.z <= 0 or wi.z <= 0. Symmetric in
- * wo and wi. */
+/* f(wo, wi) of the non-delta part: for wi.z > 0 diffuse + GGX reflection
+ * (diffuse only when the specular lobe is a delta), symmetric in wo and wi;
+ * for wi.z < 0 the rough GGX transmission (Walter et al. 2007, radiance
+ * form: f(wi, wo) with 1 / eta = eta^2 f(wo, wi)), zero when it is a delta
+ * or t = 0. Zero when wo.z <= 0 or wi.z == 0. */
 dirt_vec3 dirt_bsdf_eval(const dirt_bsdf *b, dirt_vec3 wo, dirt_vec3 wi);
 
 /* Solid-angle pdf with which dirt_bsdf_sample returns wi from wo, for the
- * non-delta part: p_spec * pdf_vndf + (1 - p_spec) * wi.z / pi (the first
- * term absent for a delta lobe). Zero when wo.z <= 0 or wi.z <= 0. */
+ * non-delta part: for wi.z > 0 p_spec * pdf_vndf + p_diff * wi.z / pi (the
+ * first term absent for a mirror), for wi.z < 0 p_trans * pdf of the
+ * refracted visible normal (absent for a delta transmission). Zero when
+ * wo.z <= 0 or wi.z == 0. */
 float dirt_bsdf_pdf(const dirt_bsdf *b, dirt_vec3 wo, dirt_vec3 wi);
 
 /* Samples wi from wo with three uniform numbers in [0,1): u_lobe picks the
- * lobe (specular when u_lobe < p_spec), (u1, u2) the direction (GGX visible
- * normals or cosine). False when wo.z <= 0, when the sample falls below the
- * surface or when its weight is zero (the path ends). */
+ * lobe (specular when u_lobe < p_spec, transmission when p_trans > 0 and
+ * u_lobe >= p_spec + p_diff, else diffuse), (u1, u2) the direction (GGX
+ * visible normals, reflected or refracted, or cosine). False when wo.z <=
+ * 0, when the sample falls on the wrong side of the surface (or refraction
+ * is impossible: total internal reflection) or when its weight is zero (the
+ * path ends). */
 bool dirt_bsdf_sample_dir(const dirt_bsdf *b, dirt_vec3 wo, float u_lobe,
                           float u1, float u2, dirt_bsdf_sample *out);
 
@@ -149,8 +212,13 @@ typedef struct dirt_surface {
  *   roughness= clamp(roughness * mr_tex.g), metallic = clamp(metallic * mr_tex.b)
  *   alpha    = roughness^2
  *   emission = emissive * emissive_strength * sRGB(emissive_tex).rgb
+ *   specular = clamp(clamp(specular * m->specular) * specular_tex.a)
+ *   f0       = clamp((dirt_ior_f0(ior) * specular_color) * sRGB(specular_color_tex).rgb)
+ *   transmission = clamp(transmission * transmission_tex.r)
+ *   eta      = dirt_ior_eta(ior)   (the front side's)
  * Texture indices out of [0, num_textures) read as the white default.
- * `specular` is the dielectric specular weight (1 for plain glTF). */
+ * `specular` is an extra factor on the material's specular weight (1 for
+ * plain glTF; 0 turns the dielectric reflection off: exactly Lambert). */
 void dirt_material_surface(const dirt_material *m, float specular,
                            const dirt_texture *textures, size_t num_textures,
                            float u, float v, dirt_surface *out);

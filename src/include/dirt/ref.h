@@ -183,8 +183,10 @@ typedef struct dirt_ref_materials {
     size_t num_materials;
     const dirt_texture *textures;
     size_t num_textures;
-    /* Per material dielectric specular weight (KHR_materials_specular
-     * specularFactor, see doc/light-transport.md); NULL = 1 for every one. */
+    /* Per material extra factor on the dielectric specular weight: it
+     * multiplies the material's own specularFactor (KHR_materials_specular,
+     * doc/light-transport.md section 2; 0 = no dielectric reflection, exactly
+     * Lambert); NULL = 1 for every one. */
     const float *specular;
 } dirt_ref_materials;
 
