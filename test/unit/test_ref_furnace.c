@@ -584,7 +584,8 @@ static void tri_out(mesh *m, const float a[3], const float b[3], const float c[3
  * with total 0: pure BSDF sampling, MIS weight 1) must have the same mean
  * within 5 combined standard errors: NEE and MIS through the surface add
  * nothing and lose nothing. */
-static double glass_mean(float roughness, bool nee, double *se_out, uint64_t *invalid)
+static double sphere_mean(const dirt_material *mat, const float *spec, int bounces, bool nee,
+                          const char *what, double *se_out, uint64_t *invalid)
 {
     enum { NU = 48, NV = 24 };
     mesh m;
@@ -602,17 +603,14 @@ static double glass_mean(float roughness, bool nee, double *se_out, uint64_t *in
             tri_out(&m, p[j][i], p[j][i + 1], p[j + 1][i + 1], 0);
             tri_out(&m, p[j][i], p[j + 1][i + 1], p[j + 1][i], 0);
         }
-    dirt_material mat = mat_make(1.0f, 0.0f, roughness, 0.0f);
-    mat.transmission = 1.0f;
-    mat.ior = 1.5f;
-    dirt_ref_materials mats = {&mat, 1, NULL, 0, NULL};
+    dirt_ref_materials mats = {mat, 1, NULL, 0, spec};
     dirt_camera cam;
     look(&cam, 0.4f, 0.9f, 3.2f, 0.0f, 0.0f, 0.0f, 0.75f);
     dirt_ref_opts o = {0};
     o.width = 32;
     o.height = 32;
     o.spp = 64;
-    o.bounces = 500;
+    o.bounces = bounces;
     o.seed = 11u;
     const float one[3] = {1.0f, 1.0f, 1.0f};
     dirt_env *env = dirt_env_constant(one);
@@ -649,8 +647,8 @@ static double glass_mean(float roughness, bool nee, double *se_out, uint64_t *in
         }
         mean = s / (double)n;
         se = sqrt(fmax(s2 / n - mean * mean, 0.0) / (n - 1));
-        fprintf(stderr, "glass furnace (roughness %.2f, %s): %zu sphere pixels, mean %.5f, "
-                "s.e. %.5f\n", roughness, nee ? "NEE" : "no NEE", n, mean, se);
+        fprintf(stderr, "%s furnace (roughness %.2f, %s): %zu sphere pixels, mean %.5f, "
+                "s.e. %.5f\n", what, mat->roughness, nee ? "NEE" : "no NEE", n, mean, se);
         CHECK(n > 200);
         *invalid = st.invalid;
     }
@@ -659,6 +657,36 @@ static double glass_mean(float roughness, bool nee, double *se_out, uint64_t *in
     mesh_free(&m);
     *se_out = se;
     return mean;
+}
+
+static double glass_mean(float roughness, bool nee, double *se_out, uint64_t *invalid)
+{
+    dirt_material mat = mat_make(1.0f, 0.0f, roughness, 0.0f);
+    mat.transmission = 1.0f;
+    mat.ior = 1.5f;
+    return sphere_mean(&mat, NULL, 500, nee, "glass", se_out, invalid);
+}
+
+/* The issue's furnace: the same sphere white and diffuse (Lambert: albedo
+ * 1, metallic 0, dielectric specular weight 0) in the uniform environment
+ * of radiance 1 reflects 1 (a convex body: every reflected direction sees
+ * the environment): with NEE (MIS of light and BSDF samples) within 5
+ * standard errors; without it every path is exactly 1 (zero variance). */
+static void diffuse_sphere_furnace(void)
+{
+    dirt_material mat = mat_make(1.0f, 0.0f, 1.0f, 0.0f);
+    float spec = 0.0f;
+    for (int nee = 1; nee >= 0; nee--) {
+        double se = 1.0;
+        uint64_t bad = 1;
+        double mean = sphere_mean(&mat, &spec, 4, nee, "white diffuse sphere", &se, &bad);
+        CHECK(bad == 0 && se < 0.01);
+        /* Without NEE every path is the cosine-sampled Lambert weight 1
+         * times the environment's 1: exactly 1 up to float rounding. */
+        double tol = nee ? 5.0 * se : 1e-5;
+        CHECK_MSG(fabs(mean - 1.0) < tol, "white diffuse sphere (%s): mean %.5f, s.e. %.5f",
+                  nee ? "NEE" : "no NEE", mean, se);
+    }
 }
 
 static void glass_furnace(float roughness, double loss)
@@ -744,6 +772,7 @@ int main(void)
     env_floor();
     near_light(0.0f);
     near_light(20.0f);
+    diffuse_sphere_furnace();
     glass_furnace(0.0f, 0.0);
     glass_furnace(0.1f, 0.01);
     glass_furnace(0.3f, 0.08);
