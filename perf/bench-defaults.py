@@ -88,7 +88,8 @@ def main():
         print("| %d | %d | %s | %.3f |" % (c[0], c[1], c[2], g))
     if a.json:
         with open(a.json, "w") as f:
-            json.dump([{"scene": k[0], "S": k[1], "B": k[2], "build": k[3], **v}
+            json.dump([{"scene": k[0], "S": k[1], "B": k[2], "mode": k[3], "build_ms": v["build"],
+                        "frame_ms": v["frame"], "mb": v["mb"], "clock": v["clock"]}
                        for k, v in best.items()], f, indent=1)
 
 

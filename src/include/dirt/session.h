@@ -58,8 +58,8 @@ enum dirt_session_build {
 
 /* The build AUTO picks on `gpu` (NULL: raster): the compute build on a
  * software renderer (llvmpipe: measured 1.0-2.2x faster for the whole
- * build, perf/results/build-compute-llvmpipe.md, and the faster frame on
- * every scene measured, perf/results/defaults-llvmpipe.md), the raster build
+ * build, perf/results/build-compute-llvmpipe.md; the faster build in 71 of
+ * 72 cells of perf/results/defaults-llvmpipe.md), the raster build
  * (the paper's pipeline, hardware conservative raster) on a hardware GPU
  * until a measurement there says otherwise (perf/gpu-check.sh measures
  * both). The environment variable DIRT_BUILD=raster|compute overrides it
