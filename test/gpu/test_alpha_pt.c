@@ -29,6 +29,7 @@
 #include "dirt/ref.h"
 #include "dirt/session.h"
 #include "gpu.h"
+#include "session_util.h"
 #include "integrator/rng.h"
 
 #define AGREE_T_TOL 1e-4
@@ -217,34 +218,12 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
     dirt_frame_destroy(f);
 }
 
-static double mean_luminance(const dirt_image *img)
-{
-    double s = 0.0;
-    for (int i = 0; i < img->width * img->height; i++)
-        s += 0.2126 * img->rgba[4 * i] + 0.7152 * img->rgba[4 * i + 1] +
-             0.0722 * img->rgba[4 * i + 2];
-    return s / (img->width * img->height);
-}
-
 /* A copy of the session's image after SPP samples of `engine`. */
 static dirt_image *render(dirt_gpu *gpu, const dirt_scene *scene, enum dirt_engine engine)
 {
     dirt_session_opts o = {.engine = engine, .width = W, .height = H, .bounces = 3, .seed = 5,
                            .background = {0.3f, 0.3f, 0.35f}};
-    dirt_session *s = dirt_session_create(gpu, scene, &o);
-    CHECK(s != NULL);
-    if (!s)
-        return NULL;
-    dirt_image *copy = NULL;
-    if (dirt_session_add_samples(s, SPP, NULL, NULL)) {
-        const dirt_image *img = dirt_session_image(s);
-        CHECK(img && img->width == W && img->height == H);
-        if (img && (copy = dirt_image_create(W, H)))
-            memcpy(copy->rgba, img->rgba, sizeof(float) * 4 * W * H);
-    }
-    CHECK(copy != NULL);
-    dirt_session_destroy(s);
-    return copy;
+    return test_session_render(gpu, scene, &o, SPP);
 }
 
 static void sessions(dirt_gpu *gpu, const dirt_scene *scene, const dirt_scene *opaque)
@@ -262,7 +241,7 @@ static void sessions(dirt_gpu *gpu, const dirt_scene *scene, const dirt_scene *o
         }
         double rd = dirt_image_rel_mse(d, e), rm = dirt_image_rel_mse(m, e);
         double ro = dirt_image_rel_mse(eo, e);
-        double le = mean_luminance(e), lm = mean_luminance(m);
+        double le = test_mean_luminance(e), lm = test_mean_luminance(m);
         fprintf(stderr, "alpha scene %dx%d %d spp: DIRT relMSE %.3g, MMRT relMSE %.3g (mean %.4f "
                 "vs Embree %.4f); opaque planes vs alpha: relMSE %.3g\n", W, H, SPP, rd, rm, lm,
                 le, ro);

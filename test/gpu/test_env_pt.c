@@ -19,6 +19,7 @@
 #include "dirt/integrator.h"
 #include "dirt/session.h"
 #include "gpu.h"
+#include "session_util.h"
 
 #define W 64
 #define H 48
@@ -27,35 +28,13 @@
 /* MMRT's thickness error, as test_mmrt_pt bounds it on the default scene. */
 #define MMRT_MAX_REL_MSE 0.6
 
-static double mean_luminance(const dirt_image *img)
-{
-    double s = 0.0;
-    for (int i = 0; i < img->width * img->height; i++)
-        s += 0.2126 * img->rgba[4 * i] + 0.7152 * img->rgba[4 * i + 1] +
-             0.0722 * img->rgba[4 * i + 2];
-    return s / (img->width * img->height);
-}
-
 /* A copy of the session's image after SPP samples of `engine`. */
 static dirt_image *render(dirt_gpu *gpu, const dirt_scene *scene, enum dirt_engine engine,
                           const dirt_env *env)
 {
     dirt_session_opts o = {.engine = engine, .width = W, .height = H, .bounces = 3, .seed = 5,
                            .env = env};
-    dirt_session *s = dirt_session_create(gpu, scene, &o);
-    CHECK(s != NULL);
-    if (!s)
-        return NULL;
-    dirt_image *copy = NULL;
-    if (dirt_session_add_samples(s, SPP, NULL, NULL)) {
-        const dirt_image *img = dirt_session_image(s);
-        CHECK(img && img->width == W && img->height == H);
-        if (img && (copy = dirt_image_create(W, H)))
-            memcpy(copy->rgba, img->rgba, sizeof(float) * 4 * W * H);
-    }
-    CHECK(copy != NULL);
-    dirt_session_destroy(s);
-    return copy;
+    return test_session_render(gpu, scene, &o, SPP);
 }
 
 static void compare(dirt_gpu *gpu, const char *label, const dirt_scene *scene,
@@ -66,7 +45,7 @@ static void compare(dirt_gpu *gpu, const char *label, const dirt_scene *scene,
     dirt_image *m = render(gpu, scene, DIRT_ENGINE_MMRT, env);
     if (e && d && m) {
         double rd = dirt_image_rel_mse(d, e), rm = dirt_image_rel_mse(m, e);
-        double le = mean_luminance(e), lm = mean_luminance(m);
+        double le = test_mean_luminance(e), lm = test_mean_luminance(m);
         fprintf(stderr, "%-28s DIRT relMSE %.3g, MMRT relMSE %.3g (mean %.4f vs Embree %.4f)\n",
                 label, rd, rm, lm, le);
         CHECK(le > 0.01); /* lit by the map alone */

@@ -78,6 +78,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"
+#include "model_shader.h"
 #include "core/vec3.h"
 
 #define N 10000
@@ -876,23 +877,7 @@ static compare_result compare(int mode, const float *in, const float *gpu, int n
 /* Runs `prog` in `mode` over n records of `in`; the results go to `out`. */
 static bool run_mode(dirt_gpu *gpu, GLuint prog, int mode, const float *in, int n, float *out)
 {
-    size_t bytes = (size_t)n * STRIDE * sizeof(float);
-    GLuint bin = gl_buffer_create(gpu, bytes, in, false, "model test in");
-    GLuint bout = gl_buffer_create(gpu, bytes, NULL, true, "model test out");
-    bool ok = bin && bout;
-    if (ok) {
-        glUseProgram(prog);
-        glProgramUniform1i(prog, DIRT_LOC_TEST_MODEL_MODE, mode);
-        glProgramUniform1ui(prog, DIRT_LOC_TEST_MODEL_COUNT, (GLuint)n);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_IN, bin);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, bout);
-        glDispatchCompute((GLuint)DIRT_GROUPS(n), 1, 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        ok = gl_buffer_read(bout, 0, bytes, out) && gl_check("model test dispatch");
-    }
-    gl_buffer_destroy(&bin);
-    gl_buffer_destroy(&bout);
-    return ok;
+    return test_run_model_shader(gpu, prog, mode, in, STRIDE, n, out, STRIDE);
 }
 
 /* ---- inputs ------------------------------------------------------------- */

@@ -32,6 +32,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"
+#include "model_shader.h"
 
 #define N 20000
 #define NUM_MATERIALS 64
@@ -105,23 +106,7 @@ static float special_uv(int k)
 /* Runs the shader over n records (3 vec4 in, 2 vec4 out). */
 static bool run(dirt_gpu *gpu, GLuint prog, int mode, const float *in, int n, float *out)
 {
-    GLuint bin = gl_buffer_create(gpu, (size_t)n * 12 * sizeof(float), in, false, "nmap test in");
-    GLuint bout = gl_buffer_create(gpu, (size_t)n * 8 * sizeof(float), NULL, true,
-                                   "nmap test out");
-    bool ok = bin && bout;
-    if (ok) {
-        glUseProgram(prog);
-        glProgramUniform1i(prog, DIRT_LOC_TEST_MODEL_MODE, mode);
-        glProgramUniform1ui(prog, DIRT_LOC_TEST_MODEL_COUNT, (GLuint)n);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_IN, bin);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, bout);
-        glDispatchCompute((GLuint)DIRT_GROUPS(n), 1, 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        ok = gl_buffer_read(bout, 0, (size_t)n * 8 * sizeof(float), out) && gl_check("nmap test");
-    }
-    gl_buffer_destroy(&bin);
-    gl_buffer_destroy(&bout);
-    return ok;
+    return test_run_model_shader(gpu, prog, mode, in, 12, n, out, 8);
 }
 
 static bool same_bits(float a, float b) { return memcmp(&a, &b, sizeof(a)) == 0; }

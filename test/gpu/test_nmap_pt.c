@@ -29,6 +29,7 @@
 #include "dirt/integrator.h"
 #include "dirt/session.h"
 #include "gpu.h"
+#include "session_util.h"
 
 #define W 64
 #define H 48
@@ -37,35 +38,13 @@
 #define MMRT_MAX_REL_MSE 0.6
 #define MIN_MAP_EFFECT 1e-3
 
-static double mean_luminance(const dirt_image *img)
-{
-    double s = 0.0;
-    for (int i = 0; i < img->width * img->height; i++)
-        s += 0.2126 * img->rgba[4 * i] + 0.7152 * img->rgba[4 * i + 1] +
-             0.0722 * img->rgba[4 * i + 2];
-    return s / (img->width * img->height);
-}
-
 /* A copy of the session's image after SPP samples of `engine`. */
 static dirt_image *render(dirt_gpu *gpu, const dirt_scene *scene, enum dirt_engine engine,
                           const dirt_env *env)
 {
     dirt_session_opts o = {.engine = engine, .width = W, .height = H, .bounces = 3, .seed = 11,
                            .env = env};
-    dirt_session *s = dirt_session_create(gpu, scene, &o);
-    CHECK(s != NULL);
-    if (!s)
-        return NULL;
-    dirt_image *copy = NULL;
-    if (dirt_session_add_samples(s, SPP, NULL, NULL)) {
-        const dirt_image *img = dirt_session_image(s);
-        CHECK(img && img->width == W && img->height == H);
-        if (img && (copy = dirt_image_create(W, H)))
-            memcpy(copy->rgba, img->rgba, sizeof(float) * 4 * W * H);
-    }
-    CHECK(copy != NULL);
-    dirt_session_destroy(s);
-    return copy;
+    return test_session_render(gpu, scene, &o, SPP);
 }
 
 typedef struct images {
@@ -80,7 +59,7 @@ static images compare(dirt_gpu *gpu, const char *label, const dirt_scene *scene,
                 render(gpu, scene, DIRT_ENGINE_MMRT, env)};
     if (r.embree && r.dirt && r.mmrt) {
         double rd = dirt_image_rel_mse(r.dirt, r.embree), rm = dirt_image_rel_mse(r.mmrt, r.embree);
-        double le = mean_luminance(r.embree), lm = mean_luminance(r.mmrt);
+        double le = test_mean_luminance(r.embree), lm = test_mean_luminance(r.mmrt);
         fprintf(stderr, "%-34s DIRT relMSE %.3g, MMRT relMSE %.3g (mean %.4f vs Embree %.4f)\n",
                 label, rd, rm, lm, le);
         CHECK(le > 0.01);

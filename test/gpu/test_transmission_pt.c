@@ -28,6 +28,7 @@
 #include "dirt/integrator.h"
 #include "dirt/session.h"
 #include "gpu.h"
+#include "session_util.h"
 
 #ifndef DIRT_TEST_DATA_DIR
 #error "DIRT_TEST_DATA_DIR must name the data/ folder"
@@ -41,32 +42,10 @@
  * opaque default scene (same settings). */
 #define MMRT_REL_FACTOR 1.5
 
-static double mean_luminance(const dirt_image *img)
-{
-    double s = 0.0;
-    for (int i = 0; i < img->width * img->height; i++)
-        s += 0.2126 * img->rgba[4 * i] + 0.7152 * img->rgba[4 * i + 1] +
-             0.0722 * img->rgba[4 * i + 2];
-    return s / (img->width * img->height);
-}
-
 static dirt_image *render(dirt_gpu *gpu, const dirt_scene *scene, enum dirt_engine engine)
 {
     dirt_session_opts o = {.engine = engine, .width = W, .height = H, .bounces = 6, .seed = 7};
-    dirt_session *s = dirt_session_create(gpu, scene, &o);
-    CHECK(s != NULL);
-    if (!s)
-        return NULL;
-    dirt_image *copy = NULL;
-    if (dirt_session_add_samples(s, SPP, NULL, NULL)) {
-        const dirt_image *img = dirt_session_image(s);
-        CHECK(img && img->width == W && img->height == H);
-        if (img && (copy = dirt_image_create(W, H)))
-            memcpy(copy->rgba, img->rgba, sizeof(float) * 4 * W * H);
-    }
-    CHECK(copy != NULL);
-    dirt_session_destroy(s);
-    return copy;
+    return test_session_render(gpu, scene, &o, SPP);
 }
 
 static char *read_text(const char *path, size_t *len)
@@ -134,7 +113,7 @@ static void compare(dirt_gpu *gpu, const char *label, const dirt_scene *scene,
     dirt_image *m = render(gpu, scene, DIRT_ENGINE_MMRT);
     if (e && d && m) {
         double rd = dirt_image_rel_mse(d, e), rm = dirt_image_rel_mse(m, e);
-        double le = mean_luminance(e), lm = mean_luminance(m);
+        double le = test_mean_luminance(e), lm = test_mean_luminance(m);
         double ro = opaque ? dirt_image_rel_mse(e, opaque) : 0.0;
         fprintf(stderr, "%-26s DIRT relMSE %.3g, MMRT relMSE %.3g (mean %.4f vs Embree %.4f), "
                 "vs the opaque scene %.3g\n", label, rd, rm, lm, le, ro);
