@@ -1,13 +1,17 @@
 /* Allocation helpers of the scene layer's C++ loaders (gltf.cpp, obj.cpp):
  * C heap arrays (freed by the C side with free()) that throw
- * std::bad_alloc on failure, for the loaders' one catch. */
+ * std::bad_alloc on failure, for the loaders' one catch; and their one
+ * image decoder. */
 #ifndef DIRT_SCENE_CPP_ALLOC_HPP
 #define DIRT_SCENE_CPP_ALLOC_HPP
 
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <new>
 #include <vector>
+
+#include <stb_image.h>
 
 namespace dirt_scene_cpp {
 
@@ -29,6 +33,32 @@ template <typename T> T *alloc_zeroed(size_t n)
     if (!p)
         throw std::bad_alloc();
     return p;
+}
+
+/* The image file in bytes[0, size) (size <= INT32_MAX) decoded by
+ * stb_image to 8-bit RGBA, rows top to bottom, in a malloc'd buffer (the C
+ * side frees it), its size in *w, *h; nullptr when it cannot be decoded,
+ * with stb's reason in *why. Throws std::bad_alloc. */
+inline uint8_t *decode_rgba8(const unsigned char *bytes, size_t size, int *w, int *h,
+                             const char **why)
+{
+    int comp = 0;
+    unsigned char *pixels = stbi_load_from_memory(bytes, (int)size, w, h, &comp, 4);
+    if (!pixels || *w <= 0 || *h <= 0) {
+        *why = stbi_failure_reason() ? stbi_failure_reason() : "unknown format";
+        if (pixels)
+            stbi_image_free(pixels);
+        return nullptr;
+    }
+    size_t n = (size_t)*w * (size_t)*h * 4u;
+    uint8_t *rgba = (uint8_t *)malloc(n);
+    if (!rgba) {
+        stbi_image_free(pixels);
+        throw std::bad_alloc();
+    }
+    memcpy(rgba, pixels, n);
+    stbi_image_free(pixels);
+    return rgba;
 }
 
 } // namespace dirt_scene_cpp

@@ -516,6 +516,7 @@ bool all_finite(const std::vector<float> &v)
 }
 
 using dirt_scene_cpp::alloc_zeroed;
+using dirt_scene_cpp::decode_rgba8;
 using dirt_scene_cpp::dup_array;
 
 /* ---- textures and materials -------------------------------------------- */
@@ -576,25 +577,15 @@ int get_texture(Loader &L, int tex, bool srgb, const char *what)
         L.s->stats.textures_failed++;
         return slot;
     }
-    int w = 0, h = 0, comp = 0;
-    unsigned char *pixels = stbi_load_from_memory(bytes, (int)size, &w, &h, &comp, 4);
-    if (!pixels || w <= 0 || h <= 0) {
+    int w = 0, h = 0;
+    const char *why = "";
+    uint8_t *rgba = decode_rgba8(bytes, size, &w, &h, &why);
+    if (!rgba) {
         DIRT_WARN("%s: %s: cannot decode image '%s' (%s); using the factor",
-                  L.path.c_str(), what, label.c_str(),
-                  stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
-        if (pixels)
-            stbi_image_free(pixels);
+                  L.path.c_str(), what, label.c_str(), why);
         L.s->stats.textures_failed++;
         return slot;
     }
-    size_t nbytes = (size_t)w * (size_t)h * 4u;
-    uint8_t *rgba = (uint8_t *)malloc(nbytes);
-    if (!rgba) {
-        stbi_image_free(pixels);
-        throw std::bad_alloc();
-    }
-    memcpy(rgba, pixels, nbytes);
-    stbi_image_free(pixels);
 
     dirt_texture *t = &L.s->textures[L.s->num_textures];
     t->width = w;

@@ -48,6 +48,7 @@ bool charge(size_t count, size_t each, const char *what)
 }
 
 using dirt_scene_cpp::alloc_zeroed;
+using dirt_scene_cpp::decode_rgba8;
 using dirt_scene_cpp::dup_array;
 
 /* A read-only stream buffer over bytes in memory (no copy). */
@@ -375,22 +376,14 @@ int get_texture(Loader &L, size_t m, const std::string &name, bool srgb, const c
     }
     if (!charge((size_t)w * (size_t)h, 4, path.c_str()))
         return -2;
-    unsigned char *pixels = stbi_load_from_memory(b, (int)bytes.size(), &w, &h, &comp, 4);
-    if (!pixels) {
+    const char *why = "";
+    uint8_t *rgba = decode_rgba8(b, bytes.size(), &w, &h, &why);
+    if (!rgba) {
         DIRT_WARN("%s: material '%s' %s: cannot decode '%s' (%s); using the factor",
-                  L.label.c_str(), mat_name, slot, path.c_str(),
-                  stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
+                  L.label.c_str(), mat_name, slot, path.c_str(), why);
         L.s->stats.textures_failed++;
         return slot_index;
     }
-    size_t nbytes = (size_t)w * (size_t)h * 4u;
-    uint8_t *rgba = (uint8_t *)malloc(nbytes);
-    if (!rgba) {
-        stbi_image_free(pixels);
-        throw std::bad_alloc();
-    }
-    memcpy(rgba, pixels, nbytes);
-    stbi_image_free(pixels);
     dirt_texture *t = &L.s->textures[L.s->num_textures];
     t->width = w;
     t->height = h;
