@@ -31,7 +31,10 @@ done
 # One X server for the whole test (xdotool talks to it too).
 for n in $(seq 90 140); do
   [ -e /tmp/.X11-unix/X$n ] || [ -e /tmp/.X$n-lock ] && continue
-  Xvfb :$n -screen 0 1600x1200x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
+  # -noreset: the server would otherwise reset whenever its last client
+  # leaves (every dirt-view run here ends so), and a run that connects
+  # during that reset finds no display (seen once in a CI dry run).
+  Xvfb :$n -screen 0 1600x1200x24 -nolisten tcp -noreset >"$tmp/xvfb.log" 2>&1 &
   xvfb_pid=$!
   export DISPLAY=:$n
   for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
