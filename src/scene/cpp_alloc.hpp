@@ -1,7 +1,7 @@
 /* Allocation helpers of the scene layer's C++ loaders (gltf.cpp, obj.cpp):
  * C heap arrays (freed by the C side with free()) that throw
- * std::bad_alloc on failure, for the loaders' one catch; and their one
- * image decoder. */
+ * std::bad_alloc on failure, for the loaders' one catch; their load
+ * budget; and their one image decoder. */
 #ifndef DIRT_SCENE_CPP_ALLOC_HPP
 #define DIRT_SCENE_CPP_ALLOC_HPP
 
@@ -12,6 +12,9 @@
 #include <vector>
 
 #include <stb_image.h>
+
+#include "dirt/log.h"
+#include "scene/scene_internal.h"
 
 namespace dirt_scene_cpp {
 
@@ -34,6 +37,29 @@ template <typename T> T *alloc_zeroed(size_t n)
         throw std::bad_alloc();
     return p;
 }
+
+/* The expanded-size budget of one load (dirt_load_opts.max_bytes): every
+ * array a loader makes from the file is charged before it is allocated.
+ * Each loader keeps one per thread (thread_local), set by its entry
+ * points. */
+struct load_budget {
+    size_t left;
+
+    /* Charges `count` x `each` bytes (overflow-safe); false (logged,
+     * TOO_LARGE) when they do not fit. */
+    bool charge(size_t count, size_t each, const char *what)
+    {
+        if (each != 0 && count > left / each) {
+            SCENE_FAIL(TOO_LARGE,
+                       "%s: %zu elements of %zu bytes exceed what is left of the load budget "
+                       "(%zu bytes; dirt_load_opts.max_bytes)",
+                       what, count, each, left);
+            return false;
+        }
+        left -= count * each;
+        return true;
+    }
+};
 
 /* The image file in bytes[0, size) (size <= INT32_MAX) decoded by
  * stb_image to 8-bit RGBA, rows top to bottom, in a malloc'd buffer (the C

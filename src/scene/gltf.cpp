@@ -126,25 +126,14 @@ struct Loader {
     uint32_t default_material = 0;
 };
 
-/* The expanded-size budget of the load in progress on this thread
- * (dirt_load_opts.max_bytes): every array the loader makes from an accessor
- * is charged before it is allocated. Thread-local because the accessor
- * readers see only the model; set by the entry points below. */
-thread_local size_t budget_left = 0;
+/* The budget of the load in progress on this thread (load_budget):
+ * thread-local because the accessor readers see only the model; set by the
+ * entry points below. */
+thread_local dirt_scene_cpp::load_budget budget = {0};
 
-/* Charges `bytes` (`count` x `each`, overflow-safe) to the budget; false
- * (logged, TOO_LARGE) when they do not fit. */
 bool charge(size_t count, size_t each, const char *what)
 {
-    if (each != 0 && count > budget_left / each) {
-        SCENE_FAIL(TOO_LARGE,
-                   "%s: %zu elements of %zu bytes exceed what is left of the load budget "
-                   "(%zu bytes; dirt_load_opts.max_bytes)",
-                   what, count, each, budget_left);
-        return false;
-    }
-    budget_left -= count * each;
-    return true;
+    return budget.charge(count, each, what);
 }
 
 /* Deepest nesting of JSON objects and arrays in `n` bytes, counting brackets
@@ -1801,7 +1790,7 @@ extern "C" const char *const *dirt_scene_gltf_extensions(void)
 
 extern "C" dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *opts)
 {
-    budget_left = opts->max_bytes;
+    budget.left = opts->max_bytes;
     try {
         return load(path, opts);
     } catch (const std::bad_alloc &) {
@@ -1817,7 +1806,7 @@ extern "C" dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *o
 extern "C" dirt_scene *scene_load_gltf_memory(const void *data, size_t size, const char *label,
                                               const dirt_load_opts *opts)
 {
-    budget_left = opts->max_bytes;
+    budget.left = opts->max_bytes;
     try {
         return load_memory(data, size, label, opts);
     } catch (const std::bad_alloc &) {

@@ -30,21 +30,13 @@
 
 namespace {
 
-/* The expanded-size budget of the load in progress on this thread
- * (dirt_load_opts.max_bytes), as in the glTF loader. */
-thread_local size_t budget_left = 0;
+/* The budget of the load in progress on this thread (load_budget), as in
+ * the glTF loader. */
+thread_local dirt_scene_cpp::load_budget budget = {0};
 
 bool charge(size_t count, size_t each, const char *what)
 {
-    if (each != 0 && count > budget_left / each) {
-        SCENE_FAIL(TOO_LARGE,
-                   "%s: %zu elements of %zu bytes exceed what is left of the load budget "
-                   "(%zu bytes; dirt_load_opts.max_bytes)",
-                   what, count, each, budget_left);
-        return false;
-    }
-    budget_left -= count * each;
-    return true;
+    return budget.charge(count, each, what);
 }
 
 using dirt_scene_cpp::alloc_zeroed;
@@ -982,7 +974,7 @@ dirt_scene *load_memory(const void *obj, size_t obj_size, const void *mtl, size_
  * failure. */
 template <typename F> dirt_scene *guarded(const char *label, const dirt_load_opts *opts, F f)
 {
-    budget_left = opts->max_bytes;
+    budget.left = opts->max_bytes;
     try {
         return f();
     } catch (const std::bad_alloc &) {
