@@ -79,6 +79,13 @@ bool g_cut = false;
 // The ray's alpha key (dirt_alpha_ray_key_g; set when u_alpha != 0).
 uint g_alpha_key = 0u;
 
+// The last primitives the ray can never hit (intersect: ISECT_NEVER). A
+// primitive is listed in every tile and bucket its clipped footprint
+// overlaps, so a march meets the same candidate in cell after cell, in every
+// view; one of these is not tested again. Only permanent misses are kept:
+// a candidate rejected by tmax or by the tile test may be hit later.
+uvec4 g_never = uvec4(DIRT_NO_HIT);
+
 // Whether the ray sees primitive p at barycentrics (u, w) (alpha test).
 bool alpha_accept(uint p, float u, float w)
 {
@@ -122,9 +129,16 @@ ray_setup setup_ray(vec3 org, vec3 dir)
     return r;
 }
 
-// True for a hit with t in (tmin, tmax); u, v weight vertices 1 and 2.
-bool intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
-               out float t, out float u, out float v)
+// Results of intersect(): no hit for any tmax (the ray misses the triangle
+// or meets it at or before tmin), no hit before tmax (it may still be hit
+// with a larger tmax), a hit.
+#define ISECT_NEVER 0
+#define ISECT_BEYOND 1
+#define ISECT_HIT 2
+
+// ISECT_HIT for a hit with t in (tmin, tmax); u, v weight vertices 1 and 2.
+int intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
+              out float t, out float u, out float v)
 {
     vec3 A = p0 - r.org, B = p1 - r.org, C = p2 - r.org;
     float Ax = A[r.kx] - r.shear.x * A[r.kz], Ay = A[r.ky] - r.shear.y * A[r.kz];
@@ -143,19 +157,21 @@ bool intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
     u = 0.0;
     v = 0.0;
     if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0))
-        return false;
+        return ISECT_NEVER;
     float det = U + V + W;
     if (det == 0.0)
-        return false;
+        return ISECT_NEVER;
     float Az = r.shear.z * A[r.kz], Bz = r.shear.z * B[r.kz], Cz = r.shear.z * C[r.kz];
     float T = U * Az + V * Bz + W * Cz;
     float inv = 1.0 / det;
     t = T * inv;
-    if (!(t > tmin && t < tmax))
-        return false;
+    if (!(t > tmin))
+        return ISECT_NEVER;
+    if (!(t < tmax))
+        return ISECT_BEYOND;
     u = V * inv;
     v = W * inv;
-    return true;
+    return ISECT_HIT;
 }
 
 // ---- view helpers ----
@@ -262,8 +278,16 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             // order comes from the build's atomics and varies between runs.
             float tmax = best.prim != DIRT_NO_HIT && p < best.prim
                              ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
-            if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
-                           vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w))
+            if (any(equal(g_never, uvec4(p))))
+                continue;
+            int hit = intersect(rs, vertices[3u * p].position.xyz,
+                                vertices[3u * p + 1u].position.xyz,
+                                vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w);
+            if (hit == ISECT_NEVER) {
+                g_never = uvec4(p, g_never.xyz);
+                continue;
+            }
+            if (hit != ISECT_HIT)
                 continue;
             vec4 c = co + t * cd;
             vec2 ndc = c.xy / c.w;
@@ -433,14 +457,58 @@ void main()
         enter[j] = t0;
         leave[j] = t1;
     }
+    // [c0, c1]: a stretch of the ray that a view already searched in full
+    // (the union of the searched views' segments, while it is one
+    // interval). Every hit in a view's frustum is found by that view's march,
+    // so a later view marches only the parts of its segment outside it: in
+    // cube+camera mode a ray that starts in the camera view and hits there
+    // marches no face at all. The pieces keep their boundary parameters (a
+    // march tests whole cells, so a hit at a boundary is found on both sides).
+    float c0 = 1.0, c1 = 0.0; // none yet (c0 > c1)
     bool aborted = false;
     int visited = 0;
     for (int j = 0; j < m; j++) {
         visited++;
-        if (enter[j] >= best.t)
+        float e = enter[j], l = leave[j];
+        if (e >= best.t)
             continue;
-        if (!trace_view(rs, org, dir, order[j], tmin, enter[j], min(leave[j], best.t), best))
+        // At most two pieces: before and after the covered stretch.
+        float pa[2], pb[2];
+        int np = 0;
+        if (c0 > c1 || l < c0 || e > c1) {
+            pa[0] = e;
+            pb[0] = l;
+            np = 1;
+        } else {
+            if (e < c0) {
+                pa[np] = e;
+                pb[np] = c0;
+                np++;
+            }
+            if (l > c1) {
+                pa[np] = max(e, c1);
+                pb[np] = l;
+                np++;
+            }
+        }
+        bool ok = true;
+        for (int q = 0; q < np; q++) {
+            if (pa[q] >= best.t)
+                continue;
+            if (!trace_view(rs, org, dir, order[j], tmin, pa[q], min(pb[q], best.t), best))
+                ok = false;
+            if (u_any_hit != 0 && best.prim != DIRT_NO_HIT)
+                break;
+        }
+        if (!ok) {
             aborted = true;
+        } else if (c0 > c1) {
+            c0 = e;
+            c1 = l;
+        } else if (!(l < c0 || e > c1)) {
+            c0 = min(c0, e);
+            c1 = max(c1, l);
+        }
         if (u_any_hit != 0 && best.prim != DIRT_NO_HIT) {
             visited = m;
             break;
