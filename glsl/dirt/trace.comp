@@ -4,7 +4,8 @@
 //
 // Per view (camera view first when present, then the others by the ray
 // parameter at which the ray enters them), the ray is clipped to the view
-// frustum and marched cell by cell on the Hi-Z pyramid: a cell whose depth
+// frustum (less the stretch earlier views searched in full) and marched
+// cell by cell on the Hi-Z pyramid: a cell whose depth
 // bounds the ray's depth span misses is skipped (and the march climbs a
 // level), otherwise the march descends; at level 0 (a tile) the buckets the
 // ray's depth span overlaps are walked in the ray's depth direction with
