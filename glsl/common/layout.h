@@ -146,14 +146,18 @@ struct dirt_gpu_hit {
 /* Bindings: DIRT_BIND_PRIM_MATERIAL, DIRT_BIND_GPOINTS (shared range),
  * DIRT_BIND_HIT_HEADS, DIRT_BIND_FETCH_PARAMS (trace range). */
 
-/* A shading point G_k of a pixel (64 bytes). The ring holds three per pixel:
- * slot (k mod 3) of pixel p is entry 3 p + (k mod 3). prim = DIRT_NO_HIT
- * marks a miss (the ray left the scene). */
+/* A shading point G_k of a pixel (32 bytes, the DIRT paper's shading node
+ * size). The ring holds three per pixel: slot (k mod 3) of pixel p is entry
+ * 3 p + (k mod 3). prim = DIRT_NO_HIT marks a miss (the ray left the scene).
+ * What a record does not hold, Shade derives exactly as Fetch would have:
+ * the arriving direction from the ray it traced (normalize(dir)), the
+ * geometric normal from the primitive's vertices (winding order,
+ * normalised cross product), the texture uv from the hit record's
+ * barycentrics (vertices 1 and 2), which the tracer's fetch leaves as those
+ * of this point (pt_common.glsl, make_vertex). */
 struct dirt_gpu_gpoint {
     DIRT_V4 pos_prim;     /* xyz position, w primitive id (uint bits) */
     DIRT_V4 n_mat;        /* xyz unit shading normal, w material (uint bits) */
-    DIRT_V4 ng_u;         /* xyz unit geometric normal (winding order), w texture u */
-    DIRT_V4 wo_v;         /* xyz unit direction back along the arriving ray, w texture v */
 };
 
 /* Parameters of a Fetch (32 bytes). */

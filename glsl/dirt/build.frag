@@ -32,9 +32,6 @@ layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
 layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
     uint prim_material[];
 };
-layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
-    dirt_gpu_ray rays[];
-};
 layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
     dirt_gpu_hit hits[];
 };

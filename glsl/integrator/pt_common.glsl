@@ -4,6 +4,8 @@
 // paths for a given (seed, pixel, sample). Needs common/layout.h and
 // integrator/model.glsl (with DIRT_MODEL_BUFFERS).
 
+#include "common/geometry.glsl"
+
 layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
     dirt_gpu_vertex vertices[];
 };
@@ -107,15 +109,18 @@ vec3 from_local(vec3 w, vec3 t, vec3 b, vec3 n)
 }
 
 // Builds the vertex from a fetched shading point; `dir` is the unit
-// direction of the arriving ray, `bary` the barycentrics of vertices 1 and
-// 2 of the hit (its dirt_gpu_hit's bary_t.xy), which interpolate the
-// tangents of a normal-mapped material.
+// direction of the arriving ray (normalize of the traced ray's), `bary` the
+// barycentrics of vertices 1 and 2 of the hit (its dirt_gpu_hit's
+// bary_t.xy, those of the shading point), which interpolate the texture uv
+// and the tangents of a normal-mapped material. The geometric normal comes
+// from the primitive's vertices (dirt_gpu_gpoint: what a record holds).
 pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir, vec2 bary)
 {
     pt_vertex v;
     v.prim = floatBitsToUint(g.pos_prim.w);
     v.p = g.pos_prim.xyz;
-    vec3 ng = g.ng_u.xyz;
+    vec3 ng = dirt_geometric_normal(tri_vertex(v.prim, 0u), tri_vertex(v.prim, 1u),
+                                    tri_vertex(v.prim, 2u));
     v.front = dot(ng, dir) < 0.0;
     if (!v.front)
         ng = -ng;
@@ -123,7 +128,7 @@ pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir, vec2 bary)
     vec3 ns = ng;
     vec3 n = g.n_mat.xyz;
     uint mat = floatBitsToUint(g.n_mat.w);
-    vec2 uv = vec2(g.ng_u.w, g.wo_v.w);
+    vec2 uv = tri_uv(v.prim, bary.x, bary.y);
     vec3 n_ts;
     uint t0 = 3u * v.prim;
     if (t0 + 2u < uint(dirt_model_tangents.length()) && dirt_material_normal_ts_g(mat, uv, n_ts)) {

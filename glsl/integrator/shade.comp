@@ -20,7 +20,8 @@ layout(std430, binding = DIRT_BIND_GPOINTS) readonly buffer GPoints {
 layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
     dirt_gpu_hit hits[];
 };
-layout(std430, binding = DIRT_BIND_RAYS) writeonly buffer Rays {
+// The rays of event k (read: the arriving direction), then those of k + 1.
+layout(std430, binding = DIRT_BIND_RAYS) buffer Rays {
     dirt_gpu_ray rays[];
 };
 layout(std430, binding = DIRT_BIND_SHADOW_RAYS) writeonly buffer ShadowRays {
@@ -162,6 +163,7 @@ void main()
         return;
     dirt_gpu_path s = paths[p];
     uint flags = path_flags(s);
+    vec3 dir = normalize(rays[p].dir_tmax.xyz);
     // Inactive rays by default: tmax < tmin finds nothing.
     rays[p].dir_tmax = vec4(0.0, 0.0, 1.0, -1.0);
     shadow_rays[p].dir_tmax = vec4(0.0, 0.0, 1.0, -1.0);
@@ -171,7 +173,6 @@ void main()
         return;
     }
     dirt_gpu_gpoint g = gpoints[3u * p + u_slot];
-    vec3 dir = -g.wo_v.xyz;
     vec3 beta = s.beta_pdf.xyz;
     if (floatBitsToUint(g.pos_prim.w) == DIRT_NO_HIT) {
 #ifdef DIRT_AO

@@ -2,16 +2,16 @@
 // The path tracer's MMRT "fetch": no Fetch in the MMRT sense -- the hit's
 // data node is the shading point. Converts hit r (dirt_mmrt trace record:
 // ids.x primitive, ids.y view, ids.z owner pixel, ids.w data node, bary_t.z
-// t) into G_k of its owner in ring slot u_slot: shading normal, material and
-// uv from the data node (the fragment's, at its pixel centre), geometric
-// normal of the primitive (winding order) from the vertex buffer, wo = -ray
-// direction. Position: where the ray meets the plane of the hit primitive,
-// when it meets it inside the pixel of the hit fragment in the hit view (the
-// ray crosses the surface there); else (a ray passing within the thickness
-// of the surface without crossing it in that pixel) the MMRT hit point, ray
-// origin + t direction. The hit's t becomes the distance used (Shade's MIS
-// weight of an emitter hit reads it). Not the MMRT point alone: it lies at
-// the fragment's depth, and where a surface is seen at a grazing angle its
+// t) into G_k of its owner in ring slot u_slot: shading normal and material
+// from the data node (the fragment's, at its pixel centre). Position: where
+// the ray meets the plane of the hit primitive, when it meets it inside the
+// pixel of the hit fragment in the hit view (the ray crosses the surface
+// there); else (a ray passing within the thickness of the surface without
+// crossing it in that pixel) the MMRT hit point, ray origin + t direction.
+// The hit's t becomes the distance used (Shade's MIS weight of an emitter
+// hit reads it), and its barycentrics those of the shading point (projected
+// on the primitive's plane), from which Shade interpolates the texture uv
+// and the tangents. Not the MMRT point alone: it lies at the fragment's depth, and where a surface is seen at a grazing angle its
 // depth changes across the pixel by far more than the thickness, so the
 // point is off the surface by up to half of that change along the ray (in
 // the Cornell box seen from above the ceiling, up to 5 units, through the
@@ -21,6 +21,7 @@
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
+#include "common/geometry.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -75,6 +76,19 @@ float plane_t_in_pixel(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c, uint vi, uint gpi
     return inside ? t : -1.0;
 }
 
+// Barycentrics (of vertices 1 and 2) of the projection of point q on the
+// plane of triangle (a, b, c); (0, 0) for a degenerate triangle.
+vec2 plane_barycentrics(vec3 q, vec3 a, vec3 b, vec3 c)
+{
+    vec3 e1 = b - a, e2 = c - a, e = q - a;
+    float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+    float d1 = dot(e, e1), d2 = dot(e, e2);
+    float den = d11 * d22 - d12 * d12;
+    if (!(den > 0.0))
+        return vec2(0.0);
+    return vec2(d22 * d1 - d12 * d2, d11 * d2 - d12 * d1) / den;
+}
+
 void main()
 {
     uint r = gl_GlobalInvocationID.x;
@@ -83,35 +97,26 @@ void main()
     dirt_gpu_hit h = hits[r];
     uint slot = 3u * h.ids.z + u_slot;
     dirt_gpu_ray ray = rays[r];
-    vec3 dir = normalize(ray.dir_tmax.xyz);
     dirt_gpu_gpoint g;
     uint p = h.ids.x;
     if (p == DIRT_NO_HIT) {
         g.pos_prim = vec4(0.0, 0.0, 0.0, uintBitsToFloat(DIRT_NO_HIT));
         g.n_mat = vec4(0.0);
-        g.ng_u = vec4(0.0);
-        g.wo_v = vec4(-dir, 0.0);
         gpoints[slot] = g;
         return;
     }
     dirt_mmrt_gpu_data d = data[h.ids.w];
     vec3 a = vertices[3u * p].position.xyz, b = vertices[3u * p + 1u].position.xyz,
          c = vertices[3u * p + 2u].position.xyz;
-    vec3 ng = cross(b - a, c - a);
-    float lg = length(ng);
-    ng = lg > 0.0 ? ng / lg : vec3(0.0, 0.0, 1.0);
     vec3 ns = mmrt_unpack_normal(d.ids.z);
     if (any(isnan(ns)))
-        ns = ng;
+        ns = dirt_geometric_normal(a, b, c);
     float t = plane_t_in_pixel(ray.origin_tmin.xyz, ray.dir_tmax.xyz, a, b, c, h.ids.y, d.ids.w);
     if (t < 0.0)
         t = h.bary_t.z;
-    else
-        hits[r].bary_t.z = t;
     vec3 pos = ray.origin_tmin.xyz + t * ray.dir_tmax.xyz;
+    hits[r].bary_t = vec4(plane_barycentrics(pos, a, b, c), t, h.bary_t.w);
     g.pos_prim = vec4(pos, uintBitsToFloat(p));
     g.n_mat = vec4(ns, uintBitsToFloat(d.ids.y));
-    g.ng_u = vec4(ng, d.attr.z);
-    g.wo_v = vec4(-dir, d.attr.w);
     gpoints[slot] = g;
 }

@@ -41,7 +41,7 @@ void main()
     r_view.level_base[3] = ivec4(11, 12, 13, 14);
     r_view.forward_far.w = 0.25;
     r_hit.bary_t.z = 0.5;
-    r_gpoint.wo_v.x = -1.5;
+    r_gpoint.n_mat.y = -1.5;
     r_path.first_normal.y = 2.0;
     r_accum.normal.z = 3.0;
     r_model_camera.lens.w = 2.5;

@@ -539,7 +539,7 @@ static size_t chunk_bytes_per_pixel(void)
 }
 
 /* Bytes of the integrator's buffers: the chunk's, then the whole image's
- * sums (448 B per pixel while the image is one chunk). */
+ * sums (352 B per pixel while the image is one chunk). */
 static uint64_t integrator_bytes(const dirt_pt *pt)
 {
     return (uint64_t)pt->chunk * chunk_bytes_per_pixel() +

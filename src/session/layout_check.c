@@ -76,11 +76,9 @@ RECORD(dirt_gpu_hit, 2);
 AT(dirt_gpu_hit, ids, 0);
 AT(dirt_gpu_hit, bary_t, 1);
 
-RECORD(dirt_gpu_gpoint, 4);
+RECORD(dirt_gpu_gpoint, 2);
 AT(dirt_gpu_gpoint, pos_prim, 0);
 AT(dirt_gpu_gpoint, n_mat, 1);
-AT(dirt_gpu_gpoint, ng_u, 2);
-AT(dirt_gpu_gpoint, wo_v, 3);
 
 RECORD(dirt_gpu_fetch_params, 2);
 AT(dirt_gpu_fetch_params, config, 0);

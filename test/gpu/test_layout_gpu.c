@@ -71,7 +71,6 @@ static const member members[] = {
     M(r_ray, dirt_gpu_ray, origin_tmin), M(r_ray, dirt_gpu_ray, dir_tmax),
     M(r_hit, dirt_gpu_hit, ids), M(r_hit, dirt_gpu_hit, bary_t),
     M(r_gpoint, dirt_gpu_gpoint, pos_prim), M(r_gpoint, dirt_gpu_gpoint, n_mat),
-    M(r_gpoint, dirt_gpu_gpoint, ng_u), M(r_gpoint, dirt_gpu_gpoint, wo_v),
     M(r_fetch_params, dirt_gpu_fetch_params, config),
     M(r_fetch_params, dirt_gpu_fetch_params, reserved),
     M(r_path, dirt_gpu_path, beta_pdf), M(r_path, dirt_gpu_path, radiance),
@@ -155,7 +154,7 @@ static void test_record_layout(dirt_gpu *gpu)
         CHECK(out.r_view.level_base[3].x == 11 && out.r_view.level_base[3].w == 14);
         CHECK(out.r_view.forward_far.w == 0.25f);
         CHECK(out.r_hit.bary_t.z == 0.5f);
-        CHECK(out.r_gpoint.wo_v.x == -1.5f);
+        CHECK(out.r_gpoint.n_mat.y == -1.5f);
         CHECK(out.r_path.first_normal.y == 2.0f);
         CHECK(out.r_accum.normal.z == 3.0f);
         CHECK(out.r_model_camera.lens.w == 2.5f);

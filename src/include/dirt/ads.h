@@ -170,10 +170,6 @@ typedef struct dirt_gpoint {
     uint32_t prim;
     float normal[3];      /* unit shading normal */
     uint32_t material;
-    float ng[3];          /* unit geometric normal (winding order) */
-    float u;
-    float wo[3];          /* unit direction back along the arriving ray */
-    float v;
 } dirt_gpoint;
 
 /* ---- The structure as the integrator's tracer (dirt/tracer.h) ---- */
