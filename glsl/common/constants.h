@@ -57,6 +57,11 @@
 #define DIRT_MMRT_ID_NODE_BYTES 12     /* = 4 * DIRT_MMRT_ID_UINTS (the MMRT paper's size) */
 #define DIRT_MMRT_DATA_NODE_BYTES 32   /* dirt_mmrt_gpu_data */
 
+/* Path events of one sample the GPU path tracer can run: K = 64
+ * scattering events (dirt_pt_opts.bounces) and the emission-only event
+ * after them. */
+#define DIRT_PT_MAX_EVENTS 65
+
 /* ---- Storage-buffer binding points ----
  *
  * Each subsystem owns the range [DIRT_BIND_<S>_FIRST, DIRT_BIND_<S>_LAST];
@@ -75,70 +80,73 @@
 #define DIRT_BIND_HITS 4             /* dirt_gpu_hit[rays] (closest hit per ray) */
 #define DIRT_BIND_PRIM_MATERIAL 5    /* uint[primitives]: material of each primitive */
 #define DIRT_BIND_GPOINTS 6          /* dirt_gpu_gpoint[3 * pixels]: the shading ring */
-#define DIRT_BIND_SHARED_LAST 6
+#define DIRT_BIND_RAY_BATCH 7        /* dirt_gpu_ray_batch, uint owner[rays]: a batch the GPU sized */
+#define DIRT_BIND_SHARED_LAST 7
 
 /* DIRT acceleration structure (src/dirt/build.c, glsl/dirt/build.*). */
-#define DIRT_BIND_ADS_FIRST 7
-#define DIRT_BIND_PARAMS 7           /* dirt_gpu_ads_params */
-#define DIRT_BIND_HEADS 8            /* uint[buckets * tiles]: first node or DIRT_LIST_END */
-#define DIRT_BIND_NODES 9            /* uvec2[capacity]: (primitive id, next node) */
-#define DIRT_BIND_COUNTERS 10        /* dirt_gpu_ads_counters */
-#define DIRT_BIND_CANDIDATES 11      /* uvec4[candidate capacity]: the build's (primitive, tile) pairs */
-#define DIRT_BIND_ADS_LAST 11
+#define DIRT_BIND_ADS_FIRST 8
+#define DIRT_BIND_PARAMS 8           /* dirt_gpu_ads_params */
+#define DIRT_BIND_HEADS 9            /* uint[buckets * tiles]: first node or DIRT_LIST_END */
+#define DIRT_BIND_NODES 10            /* uvec2[capacity]: (primitive id, next node) */
+#define DIRT_BIND_COUNTERS 11        /* dirt_gpu_ads_counters */
+#define DIRT_BIND_CANDIDATES 12      /* uvec4[candidate capacity]: the build's (primitive, tile) pairs */
+#define DIRT_BIND_ADS_LAST 12
 
 /* DIRT trace and fetch (src/dirt/trace.c, glsl/dirt/trace.comp, fetch*). */
-#define DIRT_BIND_TRACE_FIRST 12
-#define DIRT_BIND_HIT_HEADS 12       /* uint[tiles]: first hit record of each ADS tile */
-#define DIRT_BIND_FETCH_PARAMS 13    /* dirt_gpu_fetch_params */
-#define DIRT_BIND_TRACE_LAST 13
+#define DIRT_BIND_TRACE_FIRST 13
+#define DIRT_BIND_HIT_HEADS 13       /* uint[tiles]: first hit record of each ADS tile */
+#define DIRT_BIND_FETCH_PARAMS 14    /* dirt_gpu_fetch_params */
+#define DIRT_BIND_TRACE_LAST 14
 
 /* GPU path tracer (src/integrator/gpu_pt.c, glsl/integrator/). */
-#define DIRT_BIND_INTEGRATOR_FIRST 14
-#define DIRT_BIND_PATHS 14           /* dirt_gpu_path[pixels] */
-#define DIRT_BIND_ACCUM 15           /* dirt_gpu_accum[pixels] */
-#define DIRT_BIND_SHADOW_RAYS 16     /* dirt_gpu_ray[pixels]: next-event shadow rays */
-#define DIRT_BIND_INTEGRATOR_LAST 16
+#define DIRT_BIND_INTEGRATOR_FIRST 15
+#define DIRT_BIND_PATHS 15           /* dirt_gpu_path[pixels] */
+#define DIRT_BIND_ACCUM 16           /* dirt_gpu_accum[pixels] */
+#define DIRT_BIND_SHADOW_RAYS 17     /* dirt_gpu_ray[pixels]: next-event shadow rays */
+#define DIRT_BIND_NEXT_BATCH 18      /* the ray batch compaction fills (layout of DIRT_BIND_RAY_BATCH) */
+#define DIRT_BIND_PT_EVENTS 19       /* uint[DIRT_PT_MAX_EVENTS]: paths that reached each event */
+#define DIRT_BIND_INTEGRATOR_LAST 19
 
 /* MMRT A-buffer (src/mmrt/, glsl/mmrt/); its per-primitive materials are
  * DIRT_BIND_PRIM_MATERIAL. */
-#define DIRT_BIND_MMRT_FIRST 17
-#define DIRT_BIND_MMRT_PARAMS 17     /* dirt_mmrt_gpu_params */
-#define DIRT_BIND_MMRT_HEADS 18      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
-#define DIRT_BIND_MMRT_TAILS 19      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
-#define DIRT_BIND_MMRT_IDS 20        /* uint[DIRT_MMRT_ID_UINTS * capacity]: id nodes */
-#define DIRT_BIND_MMRT_DATA 21       /* dirt_mmrt_gpu_data[capacity] */
-#define DIRT_BIND_MMRT_COUNTERS 22   /* dirt_mmrt_gpu_counters */
-#define DIRT_BIND_MMRT_LAST 22
+#define DIRT_BIND_MMRT_FIRST 20
+#define DIRT_BIND_MMRT_PARAMS 20     /* dirt_mmrt_gpu_params */
+#define DIRT_BIND_MMRT_HEADS 21      /* uint[B * pixels], bucket-major: nearest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_TAILS 22      /* uint[B * pixels], bucket-major: farthest node or DIRT_LIST_END */
+#define DIRT_BIND_MMRT_IDS 23        /* uint[DIRT_MMRT_ID_UINTS * capacity]: id nodes */
+#define DIRT_BIND_MMRT_DATA 24       /* dirt_mmrt_gpu_data[capacity] */
+#define DIRT_BIND_MMRT_COUNTERS 25   /* dirt_mmrt_gpu_counters */
+#define DIRT_BIND_MMRT_LAST 25
 
 /* The path tracer's MMRT technique (src/mmrt/pt_mmrt.c, glsl/mmrt/pt_rays.comp). */
-#define DIRT_BIND_MMRT_PT_FIRST 23
-#define DIRT_BIND_MMRT_PT_COUNTS 23   /* dirt_mmrt_pt_counts */
-#define DIRT_BIND_MMRT_PT_LAST 23
+#define DIRT_BIND_MMRT_PT_FIRST 26
+#define DIRT_BIND_MMRT_PT_COUNTS 26   /* dirt_mmrt_pt_counts */
+#define DIRT_BIND_MMRT_PT_LAST 26
 
 /* Tables of the light-transport model (src/integrator/gpu_tables.c,
  * glsl/integrator/model.glsl with DIRT_MODEL_BUFFERS). */
-#define DIRT_BIND_MODEL_FIRST 24
-#define DIRT_BIND_MODEL_MATERIALS 24   /* dirt_gpu_model_material[materials] */
-#define DIRT_BIND_MODEL_AREA_CDF 25    /* dirt_gpu_model_lights header, float cdf[count] */
-#define DIRT_BIND_MODEL_AREA_PRIMS 26  /* uint prim[count] (at least one entry) */
-#define DIRT_BIND_MODEL_PUNCTUAL 27    /* dirt_gpu_model_light[punctual] (at least one) */
-#define DIRT_BIND_MODEL_CAMERA 28      /* one dirt_gpu_model_camera */
-#define DIRT_BIND_MODEL_TEXELS 29      /* dirt_gpu_model_texels header, texture records, RGBA8 texels */
-#define DIRT_BIND_MODEL_ENV 30         /* the environment light: header, cdfs, texels */
-#define DIRT_BIND_MODEL_TANGENTS 31    /* per-vertex tangents (normal maps) */
-#define DIRT_BIND_MODEL_LAST 31
+#define DIRT_BIND_MODEL_FIRST 27
+#define DIRT_BIND_MODEL_MATERIALS 27   /* dirt_gpu_model_material[materials] */
+#define DIRT_BIND_MODEL_AREA_CDF 28    /* dirt_gpu_model_lights header, float cdf[count] */
+#define DIRT_BIND_MODEL_AREA_PRIMS 29  /* uint prim[count] (at least one entry) */
+#define DIRT_BIND_MODEL_PUNCTUAL 30    /* dirt_gpu_model_light[punctual] (at least one) */
+#define DIRT_BIND_MODEL_CAMERA 31      /* one dirt_gpu_model_camera */
+#define DIRT_BIND_MODEL_TEXELS 32      /* dirt_gpu_model_texels header, texture records, RGBA8 texels */
+#define DIRT_BIND_MODEL_ENV 33         /* the environment light: header, cdfs, texels */
+#define DIRT_BIND_MODEL_TANGENTS 34    /* per-vertex tangents (normal maps) */
+#define DIRT_BIND_MODEL_LAST 34
 
 /* Raster preview (src/raster/preview.c, glsl/raster/). */
-#define DIRT_BIND_PREVIEW_FIRST 32
-#define DIRT_BIND_PREVIEW_MATERIALS 32 /* dirt_gpu_material[materials] */
-#define DIRT_BIND_PREVIEW_LIGHTS 33    /* dirt_gpu_light[lights] */
-#define DIRT_BIND_PREVIEW_LAST 33
+#define DIRT_BIND_PREVIEW_FIRST 35
+#define DIRT_BIND_PREVIEW_MATERIALS 35 /* dirt_gpu_material[materials] */
+#define DIRT_BIND_PREVIEW_LIGHTS 36    /* dirt_gpu_light[lights] */
+#define DIRT_BIND_PREVIEW_LAST 36
 
 /* Test shaders (glsl/test/, glsl/graph_test/, integrator/test_model.comp). */
-#define DIRT_BIND_TEST_FIRST 34
-#define DIRT_BIND_TEST_IN 34           /* a test's input buffer */
-#define DIRT_BIND_TEST_OUT 35          /* a test's output buffer */
-#define DIRT_BIND_TEST_LAST 35
+#define DIRT_BIND_TEST_FIRST 37
+#define DIRT_BIND_TEST_IN 37           /* a test's input buffer */
+#define DIRT_BIND_TEST_OUT 38          /* a test's output buffer */
+#define DIRT_BIND_TEST_LAST 38
 
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
@@ -168,7 +176,8 @@
     !DIRT_BIND_IN(DIRT_BIND_RAYS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_HITS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_PRIM_MATERIAL, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
-    !DIRT_BIND_IN(DIRT_BIND_GPOINTS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST)
+    !DIRT_BIND_IN(DIRT_BIND_GPOINTS, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_RAY_BATCH, DIRT_BIND_SHARED_FIRST, DIRT_BIND_SHARED_LAST)
 #error "common/constants.h: a shared binding lies outside DIRT_BIND_SHARED_*"
 #endif
 #if !DIRT_BIND_IN(DIRT_BIND_PARAMS, DIRT_BIND_ADS_FIRST, DIRT_BIND_ADS_LAST) || \
@@ -183,6 +192,8 @@
 #error "common/constants.h: a trace/fetch binding lies outside DIRT_BIND_TRACE_*"
 #endif
 #if !DIRT_BIND_IN(DIRT_BIND_PATHS, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_NEXT_BATCH, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST) || \
+    !DIRT_BIND_IN(DIRT_BIND_PT_EVENTS, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_ACCUM, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_SHADOW_RAYS, DIRT_BIND_INTEGRATOR_FIRST, DIRT_BIND_INTEGRATOR_LAST)
 #error "common/constants.h: an integrator binding lies outside DIRT_BIND_INTEGRATOR_*"
@@ -254,6 +265,9 @@
 #define DIRT_LOC_PT_SURFACE_OFFSET 11 /* float: the tracer's surface_offset (dirt/tracer.h) */
 /* glsl/integrator/resolve.comp */
 #define DIRT_LOC_RESOLVE_PIXELS 0    /* uint: pixels of this chunk */
+/* glsl/integrator/compact.comp, batch.comp */
+#define DIRT_LOC_COMPACT_PIXELS 0    /* uint: pixels of this chunk (a batch's capacity) */
+#define DIRT_LOC_COMPACT_EVENT 1     /* uint k: the path event whose survivors are gathered */
 /* glsl/integrator/accumulate.comp */
 #define DIRT_LOC_ACCUM_PIXELS 0      /* uint: pixels of this chunk */
 /* glsl/integrator/display.comp */
@@ -293,6 +307,9 @@
 #define DIRT_LOC_ALPHA_ENABLED 16      /* int: 1 tests alpha-tested materials' hits */
 #define DIRT_LOC_ALPHA_KEY 17          /* uvec4: seed, sample, bounce, dim of the rays' keys */
 #define DIRT_LOC_ALPHA_FIRST_PIXEL 18  /* uint: pixel of the batch's ray 0 */
+/* The tracers' passes over a ray batch (DIRT trace, compute Fetch and its
+ * miss pass; MMRT trace, pt_rays, to_gpoint): glsl/common/ray_batch.glsl. */
+#define DIRT_LOC_RAY_BATCH 19          /* int: 1 = count and owners from DIRT_BIND_RAY_BATCH */
 
 #define DIRT_LOC_MMRT_PT_RAYS_COUNT 0    /* uint: rays */
 /* glsl/mmrt/to_gpoint.comp */

@@ -141,6 +141,17 @@ struct dirt_gpu_hit {
     DIRT_V4 bary_t;       /* x, y barycentrics of vertices 1 and 2, z t, w unused */
 };
 
+/* A batch of rays whose size the GPU decided (the path tracer's live paths
+ * after compaction): the header (16 bytes) of the DIRT_BIND_RAY_BATCH
+ * buffer, followed by uint owner[capacity], the owner of ray i (the pixel
+ * of the chunk whose path it continues). A pass over the batch dispatches
+ * indirectly from `dispatch` (glDispatchComputeIndirect reads x, y, z) and
+ * bounds-checks against its w. */
+struct dirt_gpu_ray_batch {
+    DIRT_UV4 dispatch;    /* x max(DIRT_GROUPS(count), 1) (a pass may have work
+                             in invocation 0 alone), y 1, z 1, w count */
+};
+
 /* ---- Fetch and the three-point shading buffer ---- */
 
 /* Bindings: DIRT_BIND_PRIM_MATERIAL, DIRT_BIND_GPOINTS (shared range),

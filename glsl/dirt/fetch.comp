@@ -3,6 +3,7 @@
 // primitive's vertices from the vertex buffer and interpolating with the
 // stored barycentrics into G_{k+1} of the owner pixel.
 #include "common/layout.h"
+#include "common/ray_batch.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -27,6 +28,6 @@ layout(std430, binding = DIRT_BIND_FETCH_PARAMS) readonly buffer FetchParams {
 void main()
 {
     uint r = gl_GlobalInvocationID.x;
-    if (r < fetch.config.x)
+    if (r < dirt_batch_count(fetch.config.x))
         dirt_fetch_record(r);
 }

@@ -2,6 +2,7 @@
 // Raster Fetch companion: the raster pass only sees hits; this pass writes
 // the misses (records without a primitive) into G_{k+1}.
 #include "common/layout.h"
+#include "common/ray_batch.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -26,6 +27,6 @@ layout(std430, binding = DIRT_BIND_FETCH_PARAMS) readonly buffer FetchParams {
 void main()
 {
     uint r = gl_GlobalInvocationID.x;
-    if (r < fetch.config.x && hits[r].ids.x == DIRT_NO_HIT)
+    if (r < dirt_batch_count(fetch.config.x) && hits[r].ids.x == DIRT_NO_HIT)
         dirt_fetch_record(r);
 }

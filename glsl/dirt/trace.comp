@@ -22,6 +22,7 @@
 // were not in the list. The variant without it is the opaque scenes' trace,
 // untouched (the unused test in the inner loop cost llvmpipe 3x).
 #include "common/layout.h"
+#include "common/ray_batch.glsl"
 #ifdef DIRT_TRACE_ALPHA
 #include "integrator/alpha.glsl"
 #endif
@@ -412,8 +413,9 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
 void main()
 {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= u_count)
+    if (i >= dirt_batch_count(u_count))
         return;
+    uint owner = dirt_batch_owner(i);
     dirt_gpu_ray ray = rays[i];
     vec3 org = ray.origin_tmin.xyz, dir = ray.dir_tmax.xyz;
     float tmin = ray.origin_tmin.w;
@@ -429,7 +431,7 @@ void main()
     ray_setup rs = setup_ray(org, dir);
 #ifdef DIRT_TRACE_ALPHA
     if (u_alpha != 0)
-        g_alpha_key = dirt_alpha_ray_key_g(i);
+        g_alpha_key = dirt_alpha_ray_key_g(owner);
 #endif
 
     // Views and their entry parameters; camera view (index 0 when present)
@@ -530,7 +532,7 @@ void main()
         next = atomicExchange(hit_heads[uint(v.placement.x + tile.y * v.size.z + tile.x)], i);
     }
     dirt_gpu_hit h;
-    h.ids = uvec4(best.prim, uint(best.view), i, next);
+    h.ids = uvec4(best.prim, uint(best.view), owner, next);
     h.bary_t = vec4(best.u, best.v, best.prim == DIRT_NO_HIT ? -1.0 : best.t, 0.0);
     hits[i] = h;
 }

@@ -1,6 +1,7 @@
 #version 450 core
 // Path tracer, event 0: a camera ray per pixel (jittered in the pixel, thin
-// lens when the camera has an aperture) and a fresh path state.
+// lens when the camera has an aperture), a fresh path state, and the batch
+// of event 1: every pixel, ray p owned by pixel p.
 #include "common/layout.h"
 #define DIRT_MODEL_BUFFERS 1
 #include "common/rng.glsl"
@@ -12,12 +13,18 @@ layout(local_size_x = DIRT_GROUP_SIZE) in;
 layout(std430, binding = DIRT_BIND_RAYS) writeonly buffer Rays {
     dirt_gpu_ray rays[];
 };
+#define DIRT_RAY_BATCH_ALWAYS 1
+#define DIRT_RAY_BATCH_ACCESS // read-write (the functions read it)
+#include "common/ray_batch.glsl"
 
 void main()
 {
     uint p = gl_GlobalInvocationID.x;
+    if (p == 0u)
+        dirt_ray_batch.dispatch = uvec4(max(uint(DIRT_GROUPS(u_pixels)), 1u), 1u, 1u, u_pixels);
     if (p >= u_pixels)
         return;
+    dirt_ray_batch_owner[p] = p;
     uint pixel = u_pixel_offset + p;
     uint x = pixel % uint(u_width), y = pixel / uint(u_width);
     uint key = dirt_rng_key(u_seed, pixel, u_sample, 0u);

@@ -1,7 +1,8 @@
 #version 450 core
 // Path tracer: adds each pending next-event (or AO) contribution whose
 // shadow ray reached its target unblocked (DIRT_BIND_HITS holds the shadow
-// rays' any-hit results).
+// rays' any-hit results; shadow ray i of the event's batch belongs to the
+// path of pixel owner[i]).
 #include "common/layout.h"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
@@ -12,15 +13,20 @@ layout(std430, binding = DIRT_BIND_PATHS) buffer Paths {
 layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
     dirt_gpu_hit hits[];
 };
+#define DIRT_RAY_BATCH_ALWAYS 1
+#include "common/ray_batch.glsl"
 
 layout(location = DIRT_LOC_RESOLVE_PIXELS) uniform uint u_pixels;
 
 void main()
 {
-    uint p = gl_GlobalInvocationID.x;
-    if (p >= u_pixels || paths[p].pending.w == 0.0)
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= dirt_batch_count(u_pixels))
         return;
-    if (hits[p].ids.x == DIRT_NO_HIT)
+    uint p = dirt_batch_owner(i);
+    if (paths[p].pending.w == 0.0)
+        return;
+    if (hits[i].ids.x == DIRT_NO_HIT)
         paths[p].radiance.xyz += paths[p].pending.xyz;
     paths[p].pending = vec4(0.0);
 }

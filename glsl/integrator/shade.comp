@@ -27,6 +27,11 @@ layout(std430, binding = DIRT_BIND_RAYS) buffer Rays {
 layout(std430, binding = DIRT_BIND_SHADOW_RAYS) writeonly buffer ShadowRays {
     dirt_gpu_ray shadow_rays[];
 };
+// The event's batch: ray i continues the path of pixel owner[i] (its hit,
+// its ray of event k + 1 and its shadow ray are entry i, its path state and
+// shading points the pixel's).
+#define DIRT_RAY_BATCH_ALWAYS 1
+#include "common/ray_batch.glsl"
 
 // The shadow ray from a vertex's ray origin `org` (origin, or origin_below
 // for light through the surface) to the light point y, stopping
@@ -158,15 +163,16 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 org_out, out
 
 void main()
 {
-    uint p = gl_GlobalInvocationID.x;
-    if (p >= u_pixels)
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= dirt_batch_count(u_pixels))
         return;
+    uint p = dirt_batch_owner(i);
     dirt_gpu_path s = paths[p];
     uint flags = path_flags(s);
-    vec3 dir = normalize(rays[p].dir_tmax.xyz);
+    vec3 dir = normalize(rays[i].dir_tmax.xyz);
     // Inactive rays by default: tmax < tmin finds nothing.
-    rays[p].dir_tmax = vec4(0.0, 0.0, 1.0, -1.0);
-    shadow_rays[p].dir_tmax = vec4(0.0, 0.0, 1.0, -1.0);
+    rays[i].dir_tmax = vec4(0.0, 0.0, 1.0, -1.0);
+    shadow_rays[i].dir_tmax = vec4(0.0, 0.0, 1.0, -1.0);
     s.pending = vec4(0.0);
     if ((flags & DIRT_PATH_ALIVE) == 0u) {
         paths[p] = s;
@@ -188,7 +194,7 @@ void main()
         paths[p] = s;
         return;
     }
-    pt_vertex v = make_vertex(g, dir, hits[p].bary_t.xy);
+    pt_vertex v = make_vertex(g, dir, hits[i].bary_t.xy);
     if (u_bounce == 1u) {
         s.first_albedo = vec4(v.surf.bsdf.base_color, 0.0);
         s.first_normal = vec4(v.n, 0.0);
@@ -200,8 +206,8 @@ void main()
                                     dirt_rng_next_float(akey, DIRT_RNG_DIM_BSDF_V));
     vec3 awi = dirt_normalize_g(from_local(awl, v.t, v.b, v.n));
     if (dot(awi, v.ng) > 0.0) {
-        shadow_rays[p].origin_tmin = vec4(v.origin, 0.0);
-        shadow_rays[p].dir_tmax = vec4(awi, u_ao_distance);
+        shadow_rays[i].origin_tmin = vec4(v.origin, 0.0);
+        shadow_rays[i].dir_tmax = vec4(awi, u_ao_distance);
         s.pending = vec4(1.0, 1.0, 1.0, 1.0);
     }
     set_flags(s, flags & ~DIRT_PATH_ALIVE);
@@ -210,7 +216,7 @@ void main()
     if (!dirt_is_zero_g(v.le)) {
         float w = 1.0;
         if ((flags & DIRT_PATH_PREV_DELTA) == 0u)
-            w = dirt_mis_power_g(s.beta_pdf.w, light_pdf(v.prim, dir, hits[p].bary_t.z));
+            w = dirt_mis_power_g(s.beta_pdf.w, light_pdf(v.prim, dir, hits[i].bary_t.z));
         s.radiance.xyz += beta * v.le * w;
     }
     if (u_bounce > u_bounces) {
@@ -222,8 +228,8 @@ void main()
     vec3 contrib, lorg, lwi;
     float ltmax;
     if (sample_light(v, key, contrib, lorg, lwi, ltmax)) {
-        shadow_rays[p].origin_tmin = vec4(lorg, 0.0);
-        shadow_rays[p].dir_tmax = vec4(lwi, ltmax);
+        shadow_rays[i].origin_tmin = vec4(lorg, 0.0);
+        shadow_rays[i].dir_tmax = vec4(lwi, ltmax);
         s.pending = vec4(beta * contrib, 1.0);
     }
     vec3 wi_l, weight;
@@ -254,8 +260,8 @@ void main()
         }
     }
     if (alive) {
-        rays[p].origin_tmin = vec4(below ? v.origin_below : v.origin, 0.0);
-        rays[p].dir_tmax = vec4(dirt_normalize_g(wi), DIRT_INFINITY_G);
+        rays[i].origin_tmin = vec4(below ? v.origin_below : v.origin, 0.0);
+        rays[i].dir_tmax = vec4(dirt_normalize_g(wi), DIRT_INFINITY_G);
     } else {
         flags &= ~DIRT_PATH_ALIVE;
     }

@@ -6,6 +6,7 @@
 // offsets their origins by the tracer's surface_offset along the normal.)
 #include "common/layout.h"
 #include "common/mmrt_pt_layout.h"
+#include "common/ray_batch.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -31,7 +32,7 @@ void main()
     barrier();
     if (i == 0u)
         atomicAdd(counts.counts.y, counters.trace.w);
-    if (i < u_count && rays[i].dir_tmax.w >= rays[i].origin_tmin.w)
+    if (i < dirt_batch_count(u_count) && rays[i].dir_tmax.w >= rays[i].origin_tmin.w)
         atomicAdd(s_active, 1u);
     barrier();
     if (gl_LocalInvocationIndex == 0u && s_active > 0u)

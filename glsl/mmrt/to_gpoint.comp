@@ -22,6 +22,7 @@
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
 #include "common/geometry.glsl"
+#include "common/ray_batch.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -92,7 +93,7 @@ vec2 plane_barycentrics(vec3 q, vec3 a, vec3 b, vec3 c)
 void main()
 {
     uint r = gl_GlobalInvocationID.x;
-    if (r >= u_count)
+    if (r >= dirt_batch_count(u_count))
         return;
     dirt_gpu_hit h = hits[r];
     uint slot = 3u * h.ids.z + u_slot;

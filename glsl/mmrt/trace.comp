@@ -33,6 +33,7 @@
 // is up to half a pixel's footprint off: too coarse for masks a few pixels
 // wide seen by secondary rays).
 #include "common/layout.h"
+#include "common/ray_batch.glsl"
 #include "common/mmrt_layout.h"
 #include "mmrt/abuffer.glsl"
 #ifdef DIRT_TRACE_ALPHA
@@ -83,7 +84,8 @@ layout(location = DIRT_LOC_MMRT_TRACE_SAMPLES) uniform int u_samples;    // line
 layout(location = DIRT_LOC_MMRT_TRACE_TOP_LEVEL) uniform int u_top_level;  // Hi-Z: highest level used
 layout(location = DIRT_LOC_MMRT_TRACE_THICKNESS) uniform float u_thickness;
 layout(location = DIRT_LOC_MMRT_TRACE_SEED) uniform uint u_seed;
-// Ray i of this batch is ray u_first_ray + i of its wavefront (jitter key).
+// Ray i of this batch is ray u_first_ray + owner(i) of its wavefront
+// (jitter key; common/ray_batch.glsl).
 layout(location = DIRT_LOC_MMRT_TRACE_FIRST_RAY) uniform uint u_first_ray;
 layout(location = DIRT_LOC_MMRT_TRACE_STATS) uniform int u_stats;      // count pixels / nodes visited
 layout(location = DIRT_LOC_MMRT_TRACE_ALL_VIEWS) uniform int u_all_views;  // every view over the whole segment
@@ -323,8 +325,9 @@ bool march_view(int vi, vec3 org, vec3 dir, float t0, float t1, uint ray, inout 
 void main()
 {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= u_count)
+    if (i >= dirt_batch_count(u_count))
         return;
+    uint owner = dirt_batch_owner(i); // keys the jitter and the alpha test
     dirt_gpu_ray r = rays[i];
     vec3 org = r.origin_tmin.xyz, dir = r.dir_tmax.xyz;
     float tmin = max(r.origin_tmin.w, 0.0);
@@ -333,7 +336,7 @@ void main()
     g_dir = dir;
 #ifdef DIRT_TRACE_ALPHA
     if (u_alpha != 0)
-        g_alpha_key = dirt_alpha_ray_key_g(i);
+        g_alpha_key = dirt_alpha_ray_key_g(owner);
 #endif
     hit_state h;
     h.node = DIRT_LIST_END;
@@ -346,7 +349,7 @@ void main()
         // Every view over the whole segment left, closest hit kept.
         for (int vi = 0; vi < nviews; vi++) {
             float t0 = tmin, t1 = h.t;
-            if (!march_view(vi, org, dir, t0, t1, i, h))
+            if (!march_view(vi, org, dir, t0, t1, owner, h))
                 aborted = true;
         }
     } else {
@@ -379,7 +382,7 @@ void main()
             }
             if (cur >= 0) {
                 float t0 = t, t1 = end;
-                if (!march_view(cur, org, dir, t0, t1, i, h))
+                if (!march_view(cur, org, dir, t0, t1, owner, h))
                     aborted = true;
                 if (h.node != DIRT_LIST_END)
                     break;
@@ -392,10 +395,10 @@ void main()
     dirt_gpu_hit o;
     if (h.node != DIRT_LIST_END) {
         dirt_mmrt_gpu_data d = data[h.node];
-        o.ids = uvec4(d.ids.x, uint(h.view), i, h.node);
+        o.ids = uvec4(d.ids.x, uint(h.view), owner, h.node);
         o.bary_t = vec4(d.attr.xy, h.t, h.z);
     } else {
-        o.ids = uvec4(DIRT_NO_HIT, DIRT_NO_HIT, i, DIRT_LIST_END);
+        o.ids = uvec4(DIRT_NO_HIT, DIRT_NO_HIT, owner, DIRT_LIST_END);
         o.bary_t = vec4(0.0, 0.0, -1.0, 0.0);
     }
     hits[i] = o;

@@ -87,9 +87,10 @@ void ads_bind_geometry(dirt_ads *a);
 /* Fetches the hit records into ring slot `slot` of `gpoints` (owner pixel =
  * record's ids.z). raster: the paper's geometry-pass Fetch over the hit
  * lists of the last linked trace (plus a compute pass for the misses);
- * else the compute Fetch. */
+ * else the compute Fetch. `batch`: the ray batch of that trace (0: count
+ * records). */
 bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t count,
-                  GLuint gpoints, uint32_t slot);
+                  GLuint gpoints, uint32_t slot, GLuint batch);
 
 /* Binds every buffer of the structure at its DIRT_BIND_* point. */
 void ads_bind_all(dirt_ads *a);

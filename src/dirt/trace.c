@@ -56,7 +56,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
      * frame graph the graph times the pass (GL timer queries don't nest). */
     if (stats)
         gl_timer_begin(&a->trace_timer);
-    glDispatchCompute(DIRT_GROUPS(count), 1, 1);
+    gl_dispatch_rays(opts.batch, count, 0);
     if (stats)
         gl_timer_end(&a->trace_timer);
     glUseProgram(0);
@@ -77,7 +77,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
 }
 
 bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t count,
-                  GLuint gpoints, uint32_t slot)
+                  GLuint gpoints, uint32_t slot, GLuint batch)
 {
     struct dirt_gpu_fetch_params fp = {.config = {count, slot, 0, 0}};
     glNamedBufferSubData(a->fetch_params, 0, sizeof(fp), &fp);
@@ -91,7 +91,7 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(raster ? a->prog_fetch_miss : a->prog_fetch);
-    glDispatchCompute(DIRT_GROUPS(count), 1, 1);
+    gl_dispatch_rays(batch, count, 0);
     if (raster) {
         if (a->fetch_fbo_w != a->set.atlas_width || a->fetch_fbo_h != a->set.atlas_height) {
             glNamedFramebufferParameteri(a->fetch_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
@@ -163,7 +163,8 @@ bool dirt_ads_trace_fetch(dirt_ads *a, const dirt_ray *rays, size_t count,
     bool ok = gp && upload_rays(a, rays, count) &&
               ads_trace_gl(a, a->rays, a->hits, (uint32_t)count, NULL,
                            mode == DIRT_FETCH_RASTER, NULL) &&
-              ads_fetch_gl(a, mode == DIRT_FETCH_RASTER, a->rays, a->hits, (uint32_t)count, gp, 1);
+              ads_fetch_gl(a, mode == DIRT_FETCH_RASTER, a->rays, a->hits, (uint32_t)count, gp, 1,
+                           0);
     if (ok) {
         /* Slot 1 of each owner: entries 3 i + 1. */
         dirt_gpoint *all = malloc(count * 3 * sizeof(*all));

@@ -12,6 +12,12 @@ static bool tr_trace(void *self, uint32_t rays, uint32_t hits, uint32_t count, b
     return ads_trace_gl(a, rays, hits, count, &o, link, NULL);
 }
 
+static void tr_set_batch(void *self, uint32_t batch)
+{
+    dirt_ads *a = self;
+    a->tracer_opts.trace.batch = batch;
+}
+
 static void tr_set_alpha(void *self, const dirt_trace_alpha *alpha)
 {
     dirt_ads *a = self;
@@ -28,7 +34,7 @@ static bool tr_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t count, u
 {
     dirt_ads *a = self;
     return ads_fetch_gl(a, a->tracer_opts.fetch == DIRT_FETCH_RASTER, rays, hits, count, gpoints,
-                        slot);
+                        slot, a->tracer_opts.trace.batch);
 }
 
 static void tr_bind_geometry(void *self)
@@ -63,6 +69,7 @@ const dirt_tracer *dirt_ads_tracer(dirt_ads *a, const dirt_ads_tracer_opts *opts
         .reset_counts = tr_reset_counts,
         .read_counts = tr_read_counts,
         .set_alpha = tr_set_alpha,
+        .set_batch = tr_set_batch,
         .views = &a->set,
     };
     return &a->tracer;

@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/constants.h"
+
 static GLenum stage_enum(const char *stage)
 {
     static const struct { const char *name; GLenum e; } map[] = {
@@ -99,6 +101,22 @@ GLuint gl_program_compute(const char *path, const glsl_define *defines, size_t n
 {
     const char *paths[] = {path, NULL};
     return gl_program_create(path, paths, defines, num_defines);
+}
+
+void gl_dispatch_rays(GLuint batch, uint32_t count, uint32_t min_groups)
+{
+    if (batch) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAY_BATCH, batch);
+        glUniform1i(DIRT_LOC_RAY_BATCH, 1);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, batch);
+        glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        return;
+    }
+    glUniform1i(DIRT_LOC_RAY_BATCH, 0);
+    uint32_t groups = DIRT_GROUPS(count);
+    glDispatchCompute(groups > min_groups ? groups : min_groups, 1, 1);
 }
 
 void gl_program_destroy(GLuint *program)

@@ -17,4 +17,12 @@ GLuint gl_program_compute(const char *path, const glsl_define *defines, size_t n
 
 void gl_program_destroy(GLuint *program);
 
+/* Dispatches the current compute program over a ray batch
+ * (glsl/common/ray_batch.glsl): with `batch` (a buffer holding a
+ * dirt_gpu_ray_batch header then the owners), binds it at
+ * DIRT_BIND_RAY_BATCH, sets u_ray_batch and dispatches indirectly from its
+ * header; with 0, clears u_ray_batch and dispatches over `count`
+ * invocations, at least `min_groups` groups. */
+void gl_dispatch_rays(GLuint batch, uint32_t count, uint32_t min_groups);
+
 #endif

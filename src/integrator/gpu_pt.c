@@ -26,6 +26,7 @@ const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
     [DIRT_PT_PASS_SHADOW] = "shadow trace",
     [DIRT_PT_PASS_RESOLVE] = "resolve",
     [DIRT_PT_PASS_ACCUMULATE] = "accumulate",
+    [DIRT_PT_PASS_COMPACT] = "compact",
 };
 
 typedef struct pass_ctx {
@@ -49,8 +50,14 @@ struct dirt_pt {
     dirt_gpu *gpu;
     const dirt_scene *scene;
     GLuint prog_raygen, prog_shade, prog_ao, prog_resolve, prog_accum, prog_display;
-    /* per-pixel buffers of one chunk */
+    GLuint prog_compact, prog_finish;
+    /* per-pixel buffers of one chunk. Event k's rays are ray_buf[(k - 1) & 1]
+     * (shade writes the rays of k + 1 over them), its shadow rays the other
+     * one, which compaction then fills with the live rays of k + 1; its
+     * batch (dirt_gpu_ray_batch + owners) is batch[(k - 1) & 1]. */
     GLuint rays, hits, shadow_rays, shadow_hits, gpoints, paths;
+    GLuint batch[2];
+    GLuint events;     /* uint[DIRT_PT_MAX_EVENTS]: paths per event (compact.comp) */
     /* accumulation: one buffer per chunk (accum[c] = pixels c*chunk ...) */
     GLuint *accum;
     size_t pixels;     /* of the image */
@@ -121,8 +128,11 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
     pt->prog_resolve = gl_program_compute("integrator/resolve.comp", NULL, 0);
     pt->prog_accum = gl_program_compute("integrator/accumulate.comp", NULL, 0);
     pt->prog_display = gl_program_compute("integrator/display.comp", NULL, 0);
+    glsl_define finish = {"DIRT_COMPACT_FINISH", "1"};
+    pt->prog_compact = gl_program_compute("integrator/compact.comp", NULL, 0);
+    pt->prog_finish = gl_program_compute("integrator/compact.comp", &finish, 1);
     if (!pt->prog_raygen || !pt->prog_shade || !pt->prog_ao || !pt->prog_resolve ||
-        !pt->prog_accum || !pt->prog_display) {
+        !pt->prog_accum || !pt->prog_display || !pt->prog_compact || !pt->prog_finish) {
         dirt_pt_destroy(pt);
         return NULL;
     }
@@ -132,7 +142,7 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
 static void release_buffers(dirt_pt *pt)
 {
     GLuint *b[] = {&pt->rays, &pt->hits, &pt->shadow_rays, &pt->shadow_hits,
-                   &pt->gpoints, &pt->paths};
+                   &pt->gpoints, &pt->paths, &pt->batch[0], &pt->batch[1], &pt->events};
     for (size_t i = 0; i < sizeof(b) / sizeof(b[0]); i++)
         gl_buffer_destroy(b[i]);
     for (size_t c = 0; c < pt->num_chunks && pt->accum; c++)
@@ -149,6 +159,12 @@ static void release_buffers(dirt_pt *pt)
     pt->pixels = 0;
     pt->accum_valid = false;
     pt->g_pixels = 0; /* the graph imports these buffers: remake it */
+}
+
+/* Bytes of a ray batch of `n` rays: its header, then the owners. */
+static size_t batch_bytes(size_t n)
+{
+    return sizeof(struct dirt_gpu_ray_batch) + n * sizeof(uint32_t);
 }
 
 /* Pixels of chunk c. */
@@ -197,7 +213,7 @@ void dirt_pt_destroy(dirt_pt *pt)
     if (!pt)
         return;
     GLuint *p[] = {&pt->prog_raygen, &pt->prog_shade, &pt->prog_ao, &pt->prog_resolve,
-                   &pt->prog_accum, &pt->prog_display};
+                   &pt->prog_accum, &pt->prog_display, &pt->prog_compact, &pt->prog_finish};
     for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++)
         gl_program_destroy(p[i]);
     release_buffers(pt);
@@ -238,8 +254,13 @@ static bool ensure_buffers(dirt_pt *pt, size_t pixels)
                                    false, "pt shading ring");
     pt->paths = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_path), NULL, false,
                                  "pt paths");
+    for (int b = 0; b < 2; b++)
+        pt->batch[b] = gl_buffer_create(pt->gpu, batch_bytes(chunk), NULL, false,
+                                        b ? "pt batch B" : "pt batch A");
+    pt->events = gl_buffer_create(pt->gpu, DIRT_PT_MAX_EVENTS * sizeof(uint32_t), NULL, true,
+                                  "pt paths per event");
     bool ok = pt->rays && pt->hits && pt->shadow_rays && pt->shadow_hits && pt->gpoints &&
-              pt->paths;
+              pt->paths && pt->batch[0] && pt->batch[1] && pt->events;
     for (size_t c = 0; ok && c < n; c++) {
         pt->accum[c] = gl_buffer_create(pt->gpu, chunk_pixels(pt, c) * sizeof(struct dirt_gpu_accum),
                                         NULL, true, "pt accumulation");
@@ -334,46 +355,111 @@ static GLuint groups(size_t n)
     return (GLuint)DIRT_GROUPS(n);
 }
 
+/* Event k's rays, shadow rays and batch (see struct dirt_pt). */
+static GLuint event_rays(const dirt_pt *pt, int k)
+{
+    return (k - 1) & 1 ? pt->shadow_rays : pt->rays;
+}
+
+static GLuint event_shadow_rays(const dirt_pt *pt, int k)
+{
+    return (k - 1) & 1 ? pt->rays : pt->shadow_rays;
+}
+
+static GLuint event_batch(const dirt_pt *pt, int k)
+{
+    return pt->batch[(k - 1) & 1];
+}
+
+/* Dispatches the current program over event k's batch (indirect). */
+static void dispatch_batch(const dirt_pt *pt, int k)
+{
+    GLuint b = event_batch(pt, k);
+    bind(DIRT_BIND_RAY_BATCH, b);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, b);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
+/* The tracer's next calls work on event k's batch (0: plain, all pixels). */
+static void set_batch(dirt_pt *pt, int k)
+{
+    if (pt->tech->set_batch)
+        pt->tech->set_batch(pt->tech->self, k > 0 ? event_batch(pt, k) : 0);
+}
+
 static bool exec_pass(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     pass_ctx *c = user;
     dirt_pt *pt = c->pt;
+    bool ok = true;
     switch (c->kind) {
     case DIRT_PT_PASS_RAYGEN:
         set_common(pt, pt->prog_raygen, 0);
         bind(DIRT_BIND_PATHS, pt->paths);
-        bind(DIRT_BIND_RAYS, pt->rays);
+        bind(DIRT_BIND_RAYS, event_rays(pt, 1));
+        bind(DIRT_BIND_RAY_BATCH, event_batch(pt, 1));
         glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     case DIRT_PT_PASS_VISIBILITY:
-        return pt->tech->visibility(pt->tech->self, pt->rays, pt->hits);
+        return pt->tech->visibility(pt->tech->self, event_rays(pt, 1), pt->hits);
     case DIRT_PT_PASS_TRACE:
         set_alpha(pt, (uint32_t)(c->k - 1), DIRT_RNG_DIM_ALPHA_PATH);
-        return pt->tech->trace(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->cur_count, false);
+        set_batch(pt, c->k);
+        ok = pt->tech->trace(pt->tech->self, event_rays(pt, c->k), pt->hits,
+                             (uint32_t)pt->cur_count, false);
+        set_batch(pt, 0);
+        return ok;
     case DIRT_PT_PASS_FETCH:
-        return pt->tech->fetch(pt->tech->self, pt->rays, pt->hits, (uint32_t)pt->cur_count,
-                               pt->gpoints, (uint32_t)(c->k % 3));
+        set_batch(pt, c->k);
+        ok = pt->tech->fetch(pt->tech->self, event_rays(pt, c->k), pt->hits,
+                             (uint32_t)pt->cur_count, pt->gpoints, (uint32_t)(c->k % 3));
+        set_batch(pt, 0);
+        return ok;
     case DIRT_PT_PASS_SHADE:
         set_common(pt, pt->g_mode == DIRT_PT_AO ? pt->prog_ao : pt->prog_shade, c->k);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_GPOINTS, pt->gpoints);
         bind(DIRT_BIND_HITS, pt->hits);
-        bind(DIRT_BIND_RAYS, pt->rays);
-        bind(DIRT_BIND_SHADOW_RAYS, pt->shadow_rays);
-        glDispatchCompute(groups(pt->cur_count), 1, 1);
+        bind(DIRT_BIND_RAYS, event_rays(pt, c->k));
+        bind(DIRT_BIND_SHADOW_RAYS, event_shadow_rays(pt, c->k));
+        dispatch_batch(pt, c->k);
         break;
     case DIRT_PT_PASS_SHADOW:
         set_alpha(pt, (uint32_t)c->k, DIRT_RNG_DIM_ALPHA_SHADOW);
-        return pt->tech->trace(pt->tech->self, pt->shadow_rays, pt->shadow_hits,
-                               (uint32_t)pt->cur_count, true);
+        set_batch(pt, c->k);
+        ok = pt->tech->trace(pt->tech->self, event_shadow_rays(pt, c->k), pt->shadow_hits,
+                             (uint32_t)pt->cur_count, true);
+        set_batch(pt, 0);
+        return ok;
     case DIRT_PT_PASS_RESOLVE:
         glUseProgram(pt->prog_resolve);
         glUniform1ui(DIRT_LOC_RESOLVE_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_HITS, pt->shadow_hits);
-        glDispatchCompute(groups(pt->cur_count), 1, 1);
+        dispatch_batch(pt, c->k);
         break;
+    case DIRT_PT_PASS_COMPACT: {
+        /* The rays of event k + 1 (written over event k's by Shade) whose
+         * paths go on, into the next batch; then its dispatch and count. */
+        GLuint next = event_batch(pt, c->k + 1);
+        static const uint32_t zero[4] = {0, 0, 0, 0};
+        glClearNamedBufferSubData(next, GL_RGBA32UI, 0, sizeof(struct dirt_gpu_ray_batch),
+                                  GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero);
+        glUseProgram(pt->prog_compact);
+        glUniform1ui(DIRT_LOC_COMPACT_PIXELS, (GLuint)pt->cur_count);
+        bind(DIRT_BIND_NEXT_BATCH, next);
+        bind(DIRT_BIND_RAYS, event_rays(pt, c->k));
+        bind(DIRT_BIND_SHADOW_RAYS, event_shadow_rays(pt, c->k));
+        dispatch_batch(pt, c->k);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glUseProgram(pt->prog_finish);
+        glUniform1ui(DIRT_LOC_COMPACT_EVENT, (GLuint)c->k);
+        bind(DIRT_BIND_PT_EVENTS, pt->events);
+        glDispatchCompute(1, 1, 1);
+        break;
+    }
     case DIRT_PT_PASS_ACCUMULATE:
     case DIRT_PT_NUM_PASSES:
         glUseProgram(pt->prog_accum);
@@ -390,8 +476,10 @@ static bool exec_pass(fg_ctx *ctx, void *user)
 static void drain_times(dirt_pt *pt);
 
 /* One graph of a sample's chunk: raygen, then per event k = 1..events trace,
- * fetch, shade, shadow trace, resolve; then accumulate. All buffers are
- * imported (they persist across samples); the structure's buffers are the
+ * fetch, shade, shadow trace, resolve and (but after the last) compact;
+ * then accumulate. Every pass after raygen works on event k's batch (the
+ * live paths; dispatched indirectly from it). All buffers are imported
+ * (they persist across samples); the structure's buffers are the
  * technique's and not declared. The accumulation resource stands for the
  * current chunk's buffer (the pass binds pt->accum[cur_chunk]; GL barriers
  * are not per buffer). */
@@ -407,12 +495,17 @@ static bool make_graph(dirt_pt *pt, int events)
         return false;
     fg_graph *g = pt->graph;
     size_t px = pt->chunk;
-    fg_res rays = fg_import_buffer(g, "rays", pt->rays, px * sizeof(struct dirt_gpu_ray));
+    fg_res ray_buf[2] = {
+        fg_import_buffer(g, "rays A", pt->rays, px * sizeof(struct dirt_gpu_ray)),
+        fg_import_buffer(g, "rays B", pt->shadow_rays, px * sizeof(struct dirt_gpu_ray))};
+    fg_res batch[2] = {fg_import_buffer(g, "batch A", pt->batch[0], batch_bytes(px)),
+                       fg_import_buffer(g, "batch B", pt->batch[1], batch_bytes(px))};
     fg_res hits = fg_import_buffer(g, "hits", pt->hits, px * sizeof(struct dirt_gpu_hit));
-    fg_res srays = fg_import_buffer(g, "shadow rays", pt->shadow_rays, px * sizeof(struct dirt_gpu_ray));
     fg_res shits = fg_import_buffer(g, "shadow hits", pt->shadow_hits, px * sizeof(struct dirt_gpu_hit));
     fg_res gpts = fg_import_buffer(g, "shading ring", pt->gpoints, 3 * px * sizeof(struct dirt_gpu_gpoint));
     fg_res paths = fg_import_buffer(g, "paths", pt->paths, px * sizeof(struct dirt_gpu_path));
+    fg_res evs = fg_import_buffer(g, "paths per event", pt->events,
+                                  DIRT_PT_MAX_EVENTS * sizeof(uint32_t));
     fg_res accum = fg_import_buffer(g, "accumulation", pt->accum[0],
                                     chunk_pixels(pt, 0) * sizeof(struct dirt_gpu_accum));
     pt->num_ctx = 0;
@@ -422,13 +515,16 @@ static bool make_graph(dirt_pt *pt, int events)
     char name[64];
     snprintf(name, sizeof(name), "raygen");
     fg_pass *p = ADD(DIRT_PT_PASS_RAYGEN, 0);
-    fg_write(p, rays, FG_SSBO_WRITE);
+    fg_write(p, ray_buf[0], FG_SSBO_WRITE);
+    fg_write(p, batch[0], FG_SSBO_WRITE);
     fg_write(p, paths, FG_SSBO_WRITE);
     for (int k = 1; k <= events; k++) {
-        if (pt->num_ctx + 6 >= MAX_PASSES) {
+        if (pt->num_ctx + 8 >= MAX_PASSES) {
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
+        fg_res rays = ray_buf[(k - 1) & 1], srays = ray_buf[k & 1];
+        fg_res b = batch[(k - 1) & 1], bnext = batch[k & 1];
         bool vis = k == 1 && pt->g_direct;
         if (vis)
             snprintf(name, sizeof(name), "direct visibility");
@@ -436,31 +532,56 @@ static bool make_graph(dirt_pt *pt, int events)
             snprintf(name, sizeof(name), "trace %d", k);
         p = ADD(vis ? DIRT_PT_PASS_VISIBILITY : DIRT_PT_PASS_TRACE, k);
         fg_read(p, rays, FG_SSBO_READ);
+        if (!vis) {
+            fg_read(p, b, FG_SSBO_READ);
+            fg_read(p, b, FG_INDIRECT);
+        }
         fg_write(p, hits, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "fetch %d", k);
         p = ADD(DIRT_PT_PASS_FETCH, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
-        fg_write(p, hits, FG_SSBO_WRITE); /* MMRT: t of the shading point */
+        fg_read(p, b, FG_SSBO_READ);
+        fg_read(p, b, FG_INDIRECT);
+        fg_write(p, hits, FG_SSBO_WRITE); /* MMRT: t and barycentrics of the shading point */
         fg_use(p, gpts, FG_SSBO_READ, NULL);
         fg_write(p, gpts, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "shade %d", k);
         p = ADD(DIRT_PT_PASS_SHADE, k);
         fg_read(p, gpts, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
+        fg_read(p, b, FG_SSBO_READ);
+        fg_read(p, b, FG_INDIRECT);
         fg_use(p, paths, FG_SSBO_READ, NULL);
         fg_write(p, paths, FG_SSBO_WRITE);
+        fg_use(p, rays, FG_SSBO_READ, NULL);
         fg_write(p, rays, FG_SSBO_WRITE);
         fg_write(p, srays, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "shadow trace %d", k);
         p = ADD(DIRT_PT_PASS_SHADOW, k);
         fg_read(p, srays, FG_SSBO_READ);
+        fg_read(p, b, FG_SSBO_READ);
+        fg_read(p, b, FG_INDIRECT);
         fg_write(p, shits, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "resolve %d", k);
         p = ADD(DIRT_PT_PASS_RESOLVE, k);
         fg_read(p, shits, FG_SSBO_READ);
+        fg_read(p, b, FG_SSBO_READ);
+        fg_read(p, b, FG_INDIRECT);
         fg_use(p, paths, FG_SSBO_READ, NULL);
         fg_write(p, paths, FG_SSBO_WRITE);
+        if (k == events)
+            break;
+        snprintf(name, sizeof(name), "compact %d", k);
+        p = ADD(DIRT_PT_PASS_COMPACT, k);
+        fg_read(p, rays, FG_SSBO_READ);
+        fg_read(p, b, FG_SSBO_READ);
+        fg_read(p, b, FG_INDIRECT);
+        fg_write(p, srays, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
+        fg_use(p, evs, FG_SSBO_READ, NULL);
+        fg_write(p, evs, FG_SSBO_WRITE);
     }
     snprintf(name, sizeof(name), "accumulate");
     p = ADD(DIRT_PT_PASS_ACCUMULATE, 0);
@@ -482,7 +603,8 @@ static void sum_kinds(dirt_pt_stats *st)
     st->fetch_ms = st->pass_ms[DIRT_PT_PASS_FETCH];
     st->visibility_ms = st->pass_ms[DIRT_PT_PASS_VISIBILITY];
     st->shade_ms = st->pass_ms[DIRT_PT_PASS_RAYGEN] + st->pass_ms[DIRT_PT_PASS_SHADE] +
-                   st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
+                   st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_COMPACT] +
+                   st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
 }
 
 /* Adds the last execute's pass times to `st`, keyed by each pass's kind
@@ -535,14 +657,17 @@ void dirt_pt_take_late_times(dirt_pt *pt, bool wait, dirt_pt_stats *late)
 static size_t chunk_bytes_per_pixel(void)
 {
     return 2 * sizeof(struct dirt_gpu_ray) + 2 * sizeof(struct dirt_gpu_hit) +
-           3 * sizeof(struct dirt_gpu_gpoint) + sizeof(struct dirt_gpu_path);
+           3 * sizeof(struct dirt_gpu_gpoint) + sizeof(struct dirt_gpu_path) +
+           2 * sizeof(uint32_t);
 }
 
-/* Bytes of the integrator's buffers: the chunk's, then the whole image's
- * sums (352 B per pixel while the image is one chunk). */
+/* Bytes of the integrator's buffers: the chunk's, the batches' headers and
+ * the paths per event, then the whole image's sums (360 B per pixel while
+ * the image is one chunk, and 292 B). */
 static uint64_t integrator_bytes(const dirt_pt *pt)
 {
     return (uint64_t)pt->chunk * chunk_bytes_per_pixel() +
+           2 * sizeof(struct dirt_gpu_ray_batch) + DIRT_PT_MAX_EVENTS * sizeof(uint32_t) +
            (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum);
 }
 
@@ -557,6 +682,8 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt shadow hits", px * sizeof(struct dirt_gpu_hit), 0},
         {"pt shading ring", 3 * px * sizeof(struct dirt_gpu_gpoint), 0},
         {"pt paths", px * sizeof(struct dirt_gpu_path), 0},
+        {"pt ray batches", 2 * batch_bytes(px), 0},
+        {"pt paths per event", DIRT_PT_MAX_EVENTS * sizeof(uint32_t), 0},
         {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
         {"pt environment", pt->env_bytes, 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
@@ -620,8 +747,8 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     dirt_pt_opts opts = opts_in ? *opts_in : (dirt_pt_opts){0};
     if (!opts.bounces_set && opts.bounces <= 0)
         opts.bounces = 4;
-    if (opts.bounces < 0 || opts.bounces > 64) {
-        DIRT_ERROR("bounces %d: must be in [0, 64]", opts.bounces);
+    if (opts.bounces < 0 || opts.bounces > DIRT_PT_MAX_EVENTS - 1) {
+        DIRT_ERROR("bounces %d: must be in [0, %d]", opts.bounces, DIRT_PT_MAX_EVENTS - 1);
         return false;
     }
     if (count < 0 || (uint64_t)pt->samples + (uint64_t)count > UINT32_MAX / 2) {
@@ -715,6 +842,9 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             tech->restart(tech->self);
     }
     tech->reset_counts(tech->self);
+    static const uint32_t zero = 0;
+    glClearNamedBufferData(pt->events, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    st->events = events;
     /* Asynchronous timers: no pass waits for its time query; late times are
      * drained at the readback (dirt_pt_read). */
     fg_exec_opts eo = {.validate = true, .async_timers = true};
@@ -729,6 +859,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             if (!fg_execute(pt->graph, &eo))
                 goto done;
             add_times(pt, st);
+            st->paths_at_event[1] += pt->cur_count; /* event 1: every pixel */
         }
         pt->samples++;
         if (opts.progress)
@@ -736,6 +867,11 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     }
     if (!tech->read_counts(tech->self, &st->rays, &st->aborted))
         goto done;
+    uint32_t per_event[DIRT_PT_MAX_EVENTS];
+    if (!gl_buffer_read(pt->events, 0, sizeof(per_event), per_event))
+        goto done;
+    for (int k = 2; k <= events && k < DIRT_PT_MAX_EVENTS; k++)
+        st->paths_at_event[k] = per_event[k];
     if (st->aborted)
         DIRT_WARN("%llu rays ran out of march steps", (unsigned long long)st->aborted);
     st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;

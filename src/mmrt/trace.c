@@ -81,7 +81,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
      * frame graph) may have a time query active, and they do not nest. */
     if (stats)
         gl_timer_begin(&m->trace_timer);
-    glDispatchCompute(DIRT_GROUPS(count), 1, 1);
+    gl_dispatch_rays(o.batch, count, 0);
     if (stats)
         gl_timer_end(&m->trace_timer);
     glUseProgram(0);

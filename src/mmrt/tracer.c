@@ -90,7 +90,7 @@ static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t c
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_PT_COUNTS, s->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_COUNTERS, g.counters);
-    glDispatchCompute(DIRT_GROUPS(count) ? DIRT_GROUPS(count) : 1, 1, 1);
+    gl_dispatch_rays(s->opts.batch, count, 1); /* invocation 0 always runs */
     glUseProgram(0);
     gl_group_pop();
     /* Any hit: MMRT's closest hit answers "something in [tmin, tmax]" too. */
@@ -98,6 +98,12 @@ static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t c
     o.seed = s->opts.seed + s->calls++ * 0x9E3779B9u;
     o.first_ray = s->first_ray;
     return dirt_mmrt_trace(s->mmrt, rays, hits, count, &o, NULL);
+}
+
+static void mmrt_tech_set_batch(void *self, uint32_t batch)
+{
+    pt_mmrt *s = self;
+    s->opts.batch = batch;
 }
 
 static void mmrt_tech_set_alpha(void *self, const dirt_trace_alpha *alpha)
@@ -122,8 +128,7 @@ static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t c
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_DATA, g.data);
-    if (count)
-        glDispatchCompute(DIRT_GROUPS(count), 1, 1);
+    gl_dispatch_rays(s->opts.batch, count, 0);
     glUseProgram(0);
     gl_group_pop();
     return true;
@@ -215,6 +220,7 @@ const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts 
         .restart = mmrt_tech_restart,
         .begin_chunk = mmrt_tech_begin_chunk,
         .set_alpha = mmrt_tech_set_alpha,
+        .set_batch = mmrt_tech_set_batch,
         .views = &mmrt->set,
         .bytes_extra = sizeof(struct dirt_mmrt_pt_counts),
         .surface_offset = s->offset,

@@ -44,6 +44,7 @@ typedef struct render_ctx {
     float *rgba, *albedo[3], *normal[3], *depth, *ids;
 
     atomic_uint_fast64_t rays, invalid;
+    atomic_uint_fast64_t events[DIRT_PT_MAX_EVENTS]; /* paths that reached event k */
     pthread_mutex_t progress_lock;
     uint64_t done, total;
     dirt_ref_progress_fn progress;
@@ -340,8 +341,9 @@ typedef struct first_hit {
 } first_hit;
 
 /* One path-traced sample of pixel `pixel` through (org, dir). */
-static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint32_t sample,
-                             dirt_vec3 org, dirt_vec3 dir, first_hit *fh)
+/* One path; events[k] counts it when it reaches event k (its k-th ray). */
+static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint64_t *events, uint32_t pixel,
+                             uint32_t sample, dirt_vec3 org, dirt_vec3 dir, first_hit *fh)
 {
     dirt_vec3 l = v3(0.0f, 0.0f, 0.0f), beta = v3(1.0f, 1.0f, 1.0f);
     float prev_pdf = 0.0f;
@@ -349,6 +351,8 @@ static dirt_vec3 path_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint
     /* The alpha key of the ray leaving the previous vertex (0: the camera). */
     uint32_t akey = dirt_rng_u32(c->seed, pixel, sample, 0u, DIRT_RNG_DIM_ALPHA_PATH);
     for (int k = 1;; k++) {
+        if (k < DIRT_PT_MAX_EVENTS)
+            events[k]++;
         dirt_ref_hit h;
         if (!trace(c, rays, org, dir, INFINITY, akey, &h)) {
             dirt_vec3 le = dirt_env_eval(c->env, dir);
@@ -430,7 +434,7 @@ static float ao_sample(render_ctx *c, uint64_t *rays, uint32_t pixel, uint32_t s
                     dirt_rng_next(key, DIRT_RNG_DIM_ALPHA_SHADOW)) ? 0.0f : 1.0f;
 }
 
-static void render_pixel(render_ctx *c, uint64_t *rays, int x, int y)
+static void render_pixel(render_ctx *c, uint64_t *rays, uint64_t *events, int x, int y)
 {
     uint32_t pixel = (uint32_t)y * (uint32_t)c->width + (uint32_t)x;
     size_t i = (size_t)pixel;
@@ -450,8 +454,9 @@ static void render_pixel(render_ctx *c, uint64_t *rays, int x, int y)
         if (c->mode == DIRT_REF_MODE_AO) {
             float a = ao_sample(c, rays, pixel, sample, org, dir, &fh);
             l = v3(a, a, a);
+            events[1]++;
         } else {
-            l = path_sample(c, rays, pixel, sample, org, dir, &fh);
+            l = path_sample(c, rays, events, pixel, sample, org, dir, &fh);
         }
         if (!v3_is_finite(l)) {
             bad++;
@@ -504,11 +509,15 @@ static void render_tiles(void *ctx, size_t begin, size_t end, int worker)
         int x0 = tx * TILE, y0 = ty * TILE;
         int x1 = x0 + TILE < c->width ? x0 + TILE : c->width;
         int y1 = y0 + TILE < c->height ? y0 + TILE : c->height;
-        uint64_t rays = 0;
+        uint64_t rays = 0, events[DIRT_PT_MAX_EVENTS] = {0};
         for (int y = y0; y < y1; y++)
             for (int x = x0; x < x1; x++)
-                render_pixel(c, &rays, x, y);
+                render_pixel(c, &rays, events, x, y);
         atomic_fetch_add(&c->rays, rays);
+        for (int k = 1; k < DIRT_PT_MAX_EVENTS; k++) {
+            if (events[k])
+                atomic_fetch_add(&c->events[k], events[k]);
+        }
         if (c->progress) {
             pthread_mutex_lock(&c->progress_lock);
             c->done += (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * (uint64_t)c->spp;
@@ -621,6 +630,8 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     c.total = (uint64_t)o.width * (uint64_t)o.height * (uint64_t)o.spp;
     atomic_init(&c.rays, 0);
     atomic_init(&c.invalid, 0);
+    for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+        atomic_init(&c.events[k], 0);
 
     bool alpha = false; /* a triangle has an alpha-tested material */
     for (size_t p = 0; p < frame->num_triangles && !alpha; p++)
@@ -694,6 +705,8 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
         stats->mrays_per_s = stats->seconds > 0.0 ? (double)stats->rays / stats->seconds * 1e-6 : 0.0;
         stats->samples = c.total;
         stats->invalid = invalid;
+        for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+            stats->paths_at_event[k] = atomic_load(&c.events[k]);
         stats->threads = used;
     }
     pthread_mutex_destroy(&c.progress_lock);

@@ -76,6 +76,9 @@ RECORD(dirt_gpu_hit, 2);
 AT(dirt_gpu_hit, ids, 0);
 AT(dirt_gpu_hit, bary_t, 1);
 
+RECORD(dirt_gpu_ray_batch, 1);
+AT(dirt_gpu_ray_batch, dispatch, 0);
+
 RECORD(dirt_gpu_gpoint, 2);
 AT(dirt_gpu_gpoint, pos_prim, 0);
 AT(dirt_gpu_gpoint, n_mat, 1);
@@ -189,6 +192,7 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_HITS, "SHARED"),
     B(DIRT_BIND_PRIM_MATERIAL, "SHARED"),
     B(DIRT_BIND_GPOINTS, "SHARED"),
+    B(DIRT_BIND_RAY_BATCH, "SHARED"),
     B(DIRT_BIND_PARAMS, "ADS"),
     B(DIRT_BIND_HEADS, "ADS"),
     B(DIRT_BIND_NODES, "ADS"),
@@ -199,6 +203,8 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_PATHS, "INTEGRATOR"),
     B(DIRT_BIND_ACCUM, "INTEGRATOR"),
     B(DIRT_BIND_SHADOW_RAYS, "INTEGRATOR"),
+    B(DIRT_BIND_NEXT_BATCH, "INTEGRATOR"),
+    B(DIRT_BIND_PT_EVENTS, "INTEGRATOR"),
     B(DIRT_BIND_MMRT_PARAMS, "MMRT"),
     B(DIRT_BIND_MMRT_HEADS, "MMRT"),
     B(DIRT_BIND_MMRT_TAILS, "MMRT"),
@@ -260,6 +266,7 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_HITS);
         CASE(DIRT_BIND_PRIM_MATERIAL);
         CASE(DIRT_BIND_GPOINTS);
+        CASE(DIRT_BIND_RAY_BATCH);
         CASE(DIRT_BIND_PARAMS);
         CASE(DIRT_BIND_HEADS);
         CASE(DIRT_BIND_NODES);
@@ -270,6 +277,8 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_PATHS);
         CASE(DIRT_BIND_ACCUM);
         CASE(DIRT_BIND_SHADOW_RAYS);
+        CASE(DIRT_BIND_NEXT_BATCH);
+        CASE(DIRT_BIND_PT_EVENTS);
         CASE(DIRT_BIND_MMRT_PARAMS);
         CASE(DIRT_BIND_MMRT_HEADS);
         CASE(DIRT_BIND_MMRT_TAILS);
@@ -320,7 +329,7 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
     case 2:
         switch (loc) {
             L(DIRT_LOC_TRACE_COUNT) L(DIRT_LOC_TRACE_HIZ_TOP) L(DIRT_LOC_TRACE_ANY_HIT)
-            L(DIRT_LOC_TRACE_LINK) return 1;
+            L(DIRT_LOC_TRACE_LINK) L(DIRT_LOC_RAY_BATCH) return 1;
         }
         break;
     case 3:
@@ -328,17 +337,19 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
             L(DIRT_LOC_MMRT_TRACE_COUNT) L(DIRT_LOC_MMRT_TRACE_MARCH) L(DIRT_LOC_MMRT_TRACE_SAMPLES)
             L(DIRT_LOC_MMRT_TRACE_TOP_LEVEL) L(DIRT_LOC_MMRT_TRACE_THICKNESS)
             L(DIRT_LOC_MMRT_TRACE_SEED) L(DIRT_LOC_MMRT_TRACE_STATS)
-            L(DIRT_LOC_MMRT_TRACE_ALL_VIEWS) L(DIRT_LOC_MMRT_TRACE_FIRST_RAY) return 1;
+            L(DIRT_LOC_MMRT_TRACE_ALL_VIEWS) L(DIRT_LOC_MMRT_TRACE_FIRST_RAY)
+            L(DIRT_LOC_RAY_BATCH) return 1;
         }
         break;
     case 4:
         switch (loc) {
-            L(DIRT_LOC_MMRT_PT_RAYS_COUNT) return 1;
+            L(DIRT_LOC_MMRT_PT_RAYS_COUNT) L(DIRT_LOC_RAY_BATCH) return 1;
         }
         break;
     case 5:
         switch (loc) {
-            L(DIRT_LOC_MMRT_TO_GPOINT_COUNT) L(DIRT_LOC_MMRT_TO_GPOINT_SLOT) return 1;
+            L(DIRT_LOC_MMRT_TO_GPOINT_COUNT) L(DIRT_LOC_MMRT_TO_GPOINT_SLOT) L(DIRT_LOC_RAY_BATCH)
+            return 1;
         }
         break;
     case 6:
@@ -371,6 +382,11 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
             L(DIRT_LOC_PRESENT_SPLIT) L(DIRT_LOC_PRESENT_SPLIT_LINE) return 1;
         }
         break;
+    case 11:
+        switch (loc) {
+            L(DIRT_LOC_COMPACT_PIXELS) L(DIRT_LOC_COMPACT_EVENT) return 1;
+        }
+        break;
     }
     return 0;
 }
@@ -399,7 +415,7 @@ static const dirt_layout_uniform u_trace[] = {
     U("u_count", DIRT_LOC_TRACE_COUNT), U("u_hiz_top", DIRT_LOC_TRACE_HIZ_TOP),
     U("u_any_hit", DIRT_LOC_TRACE_ANY_HIT), U("u_link", DIRT_LOC_TRACE_LINK),
     U("u_alpha", DIRT_LOC_ALPHA_ENABLED), U("u_alpha_key", DIRT_LOC_ALPHA_KEY),
-    U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL)};
+    U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL), U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
 static const dirt_layout_uniform u_mip[] = {U("u_level", DIRT_LOC_MIP_LEVEL)};
 static const dirt_layout_uniform u_vis[] = {U("u_view", DIRT_LOC_VISIBILITY_VIEW)};
 static const dirt_layout_uniform u_vis_resolve[] = {U("u_view", DIRT_LOC_VIS_RESOLVE_VIEW)};
@@ -410,11 +426,15 @@ static const dirt_layout_uniform u_mmrt_trace[] = {
     U("u_stats", DIRT_LOC_MMRT_TRACE_STATS),         U("u_all_views", DIRT_LOC_MMRT_TRACE_ALL_VIEWS),
     U("u_first_ray", DIRT_LOC_MMRT_TRACE_FIRST_RAY),
     U("u_alpha", DIRT_LOC_ALPHA_ENABLED), U("u_alpha_key", DIRT_LOC_ALPHA_KEY),
-    U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL)};
+    U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL), U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
 static const dirt_layout_uniform u_pt_rays[] = {
-    U("u_count", DIRT_LOC_MMRT_PT_RAYS_COUNT)};
+    U("u_count", DIRT_LOC_MMRT_PT_RAYS_COUNT), U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
 static const dirt_layout_uniform u_to_gpoint[] = {
-    U("u_count", DIRT_LOC_MMRT_TO_GPOINT_COUNT), U("u_slot", DIRT_LOC_MMRT_TO_GPOINT_SLOT)};
+    U("u_count", DIRT_LOC_MMRT_TO_GPOINT_COUNT), U("u_slot", DIRT_LOC_MMRT_TO_GPOINT_SLOT),
+    U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
+static const dirt_layout_uniform u_fetch[] = {U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
+static const dirt_layout_uniform u_compact[] = {U("u_pixels", DIRT_LOC_COMPACT_PIXELS)};
+static const dirt_layout_uniform u_finish[] = {U("u_event", DIRT_LOC_COMPACT_EVENT)};
 static const dirt_layout_uniform u_preview[] = {
     U("u_view_proj", DIRT_LOC_PREVIEW_VIEW_PROJ), U("u_eye", DIRT_LOC_PREVIEW_EYE),
     U("u_material", DIRT_LOC_PREVIEW_MATERIAL),   U("u_num_lights", DIRT_LOC_PREVIEW_NUM_LIGHTS),
@@ -441,6 +461,11 @@ const dirt_layout_program dirt_layout_programs[] = {
      u_pt, sizeof(u_pt) / sizeof(u_pt[0])},
     P("integrator/resolve.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_resolve),
     P("integrator/accumulate.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_accum),
+    P("integrator/compact.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_compact),
+    {{"integrator/compact.comp", NULL, NULL}, "DIRT_COMPACT_FINISH", DIRT_RANGE_INTEGRATOR,
+     u_finish, sizeof(u_finish) / sizeof(u_finish[0])},
+    P("dirt/fetch.comp", NULL, SH | DIRT_RANGE_TRACE, u_fetch),
+    P("dirt/fetch_miss.comp", NULL, SH | DIRT_RANGE_TRACE, u_fetch),
     P("integrator/test_model.comp", NULL, DIRT_RANGE_TEST | DIRT_RANGE_MODEL, u_test_model),
     P("dirt/trace.comp", NULL, SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE, u_trace),
     /* The traces' alpha-tested builds read the model's materials and texels. */

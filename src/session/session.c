@@ -532,6 +532,17 @@ static void add_pass(dirt_session_stats *st, const char *name, double ms, enum d
         st->passes[st->num_passes++] = (dirt_pass_time){name, ms, clock};
 }
 
+/* Adds a render's paths per event (k = 1 .. events) to the stats. */
+static void add_paths_at_event(dirt_session_stats *st, const uint64_t *paths, int events)
+{
+    if (events > DIRT_PT_MAX_EVENTS - 1)
+        events = DIRT_PT_MAX_EVENTS - 1;
+    if (events > st->events)
+        st->events = events;
+    for (int k = 1; k <= events; k++)
+        st->paths_at_event[k] += paths[k];
+}
+
 static void add_buffer(dirt_session_stats *st, const char *name, uint64_t used,
                        uint64_t allocated)
 {
@@ -726,6 +737,7 @@ static bool add_embree(dirt_session *s, int count, ref_progress *prog, dirt_sess
     st->trace_ms += rs.seconds * 1e3;
     st->rays += rs.rays;
     st->invalid_samples += rs.invalid;
+    add_paths_at_event(st, rs.paths_at_event, ro.mode == DIRT_REF_MODE_AO ? 1 : ro.bounces + 1);
     add_pass(st, "render", rs.seconds * 1e3, DIRT_CLOCK_CPU);
     return true;
 }
@@ -773,6 +785,7 @@ bool dirt_session_add_samples(dirt_session *s, int count,
         st->shade_ms += ps.shade_ms;
         st->rays += ps.rays;
         st->aborted += ps.aborted;
+        add_paths_at_event(st, ps.paths_at_event, ps.events);
         for (int i = 0; i < DIRT_PT_NUM_PASSES; i++) {
             if (i == DIRT_PT_PASS_VISIBILITY && !po.direct_visibility)
                 continue;

@@ -22,6 +22,11 @@ static void add_figures(cJSON *o, const dirt_session_stats *s)
     cJSON_AddNumberToObject(o, "invalid_samples", (double)s->invalid_samples);
     cJSON_AddNumberToObject(o, "bytes_total", (double)s->bytes_total_used);
     cJSON_AddNumberToObject(o, "bytes_allocated", (double)s->bytes_total_allocated);
+    if (s->events > 0) {
+        cJSON *ev = cJSON_AddArrayToObject(o, "paths_per_event");
+        for (int k = 1; ev && k <= s->events; k++)
+            cJSON_AddItemToArray(ev, cJSON_CreateNumber((double)s->paths_at_event[k]));
+    }
 }
 
 /* Technique figures, per-pass times and per-buffer bytes of one record. */
@@ -109,6 +114,7 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     mean.build_ms = mean.trace_ms = mean.fetch_ms = mean.visibility_ms = mean.shade_ms = 0;
     mean.total_ms = 0;
     mean.rays = mean.aborted = mean.invalid_samples = 0;
+    memset(mean.paths_at_event, 0, sizeof(mean.paths_at_event));
     mean.bytes_total_used = mean.bytes_total_allocated = 0;
     for (size_t i = 0; i < count; i++) {
         const dirt_session_stats *f = &frames[i];
@@ -119,6 +125,8 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
         mean.shade_ms += f->shade_ms / (double)count;
         mean.total_ms += f->total_ms / (double)count;
         mean.rays += f->rays;
+        for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+            mean.paths_at_event[k] += f->paths_at_event[k];
         mean.aborted += f->aborted;
         mean.invalid_samples += f->invalid_samples;
         if (f->bytes_total_used > mean.bytes_total_used)
@@ -127,6 +135,8 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
             mean.bytes_total_allocated = f->bytes_total_allocated;
     }
     mean.rays /= count;
+    for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+        mean.paths_at_event[k] /= count;
 
     cJSON *root = cJSON_CreateObject();
     if (!root)

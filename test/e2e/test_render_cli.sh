@@ -146,7 +146,8 @@ grep -q "wrote $out/default.png" "$tmp/stdout" && ok || fail "output path not pr
 
 expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --spp 2 --stats "$out/d.json"
 # The stats: figures that add up (32x24, 2 spp, DIRT's structure + the
-# integrator's 352 bytes per pixel, its environment table, empty here (36
+# integrator's 360 bytes per pixel and 292 bytes (ray batch headers,
+# paths per event), its environment table, empty here (36
 # bytes), and the scene's texel buffer: the default scene has no textures,
 # so its 16-byte header; and its tangent table: no normal maps, one 16-byte
 # record), each pass tagged with its clock.
@@ -154,7 +155,7 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'all(d[k] > 0 for k in ("build_ms", "trace_ms", "fetch_ms", "shade_ms", "mrays_per_s"))' \
   'd["rays"] >= 32 * 24 * 2 and d["aborted_rays"] == 0 and d["spp"] == 2' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
-  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 352 + 36 + 16 + 16' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model tangents"] == [(16, 16)]' \
   '[b["used"] for b in d["buffers"] if b["name"] == "pt environment"] == [36]' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model texels"] == [(16, 16)]' \

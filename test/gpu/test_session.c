@@ -158,12 +158,14 @@ static void check_stats(dirt_gpu *gpu, const dirt_scene *scene)
     }
     CHECK(used == st->bytes_total_used && allocated == st->bytes_total_allocated);
     CHECK(st->has_ads && st->ads.bytes_total_used < st->bytes_total_used);
-    /* 7 integrator buffers: 2 x 32 + 2 x 32 + 3 x 32 + 80 + 48 bytes per
-     * pixel, the environment table (no environment: its header and one
-     * float), the tangent table (no normal maps: one record) and the
-     * scene's textures. */
+    /* The integrator's buffers: 2 x 32 + 2 x 32 + 3 x 32 + 80 + 2 x 4 + 48
+     * bytes per pixel (rays, hits, the shading ring, paths, the two ray
+     * batches' owners, the sums), the batches' two 16-byte headers and the
+     * paths per event (65 x 4 bytes), the environment table (no
+     * environment: its header and one float), the tangent table (no normal
+     * maps: one record) and the scene's textures. */
     CHECK(st->bytes_total_used - st->ads.bytes_total_used - model_texel_bytes(st, scene) ==
-          (uint64_t)W * H * 352 + ENV_NONE_BYTES + TANGENTS_NONE_BYTES);
+          (uint64_t)W * H * 360 + 2 * 16 + 65 * 4 + ENV_NONE_BYTES + TANGENTS_NONE_BYTES);
     int build = 0, pt = 0;
     for (int i = 0; i < st->num_passes; i++) {
         const dirt_pass_time *p = &st->passes[i];
@@ -305,7 +307,7 @@ static void check_auto_camera(dirt_gpu *gpu)
  * (192 after rounding to work groups: 9 chunks of the 48x36 image, the last
  * partial), 1 + 1 + 2 samples give the unchunked 4-sample image bit for bit,
  * the display texture covers the whole image, and the bytes are one chunk's
- * buffers (304 B per pixel) plus the whole image's sums (48 B per pixel)
+ * buffers (312 B per pixel and 292 B) plus the whole image's sums (48 B per pixel)
  * and the scene's textures. */
 static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_opts o,
                          const char *what)
@@ -332,7 +334,7 @@ static void check_chunks(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_op
     const dirt_session_stats *st = s ? dirt_session_get_stats(s) : NULL;
     if (st && st->has_ads)
         CHECK(st->bytes_total_used - st->ads.bytes_total_used - model_texel_bytes(st, scene) ==
-              (uint64_t)192 * 304 + (uint64_t)W * H * 48 + ENV_NONE_BYTES +
+              (uint64_t)192 * 312 + 292 + (uint64_t)W * H * 48 + ENV_NONE_BYTES +
                   TANGENTS_NONE_BYTES);
     fprintf(stderr, "%s: chunks of 192 pixels, 1+1+2 == unchunked 4, display == image\n",
             what);

@@ -142,6 +142,8 @@ typedef struct dirt_trace_opts {
     int hiz_levels;   /* 0 = start at the pyramid's top; n > 0: at level n - 1 */
     bool any_hit;     /* visibility rays: stop at the first hit found */
     dirt_trace_alpha alpha; /* alpha-tested traversal (dirt/ray.h); zero = none */
+    uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
+                         set_batch); 0 = the call's rays 0 .. count - 1 */
 } dirt_trace_opts;
 
 typedef struct dirt_trace_stats {

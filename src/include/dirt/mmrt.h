@@ -173,6 +173,8 @@ typedef struct dirt_mmrt_trace_opts {
     bool count;       /* count pixels tested / nodes visited (atomics) */
     dirt_trace_alpha alpha; /* alpha-tested traversal (dirt/ray.h): the fragments
                            of hits it rejects are passed over; zero = none */
+    uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
+                         set_batch): count is its capacity; 0 = none */
 } dirt_mmrt_trace_opts;
 
 typedef struct dirt_mmrt_trace_stats {

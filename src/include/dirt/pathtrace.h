@@ -21,6 +21,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "common/constants.h"
 #include "dirt/gpu.h"
 #include "dirt/image.h"
 #include "dirt/scene.h"
@@ -68,6 +69,7 @@ enum dirt_pt_pass {
     DIRT_PT_PASS_SHADOW,      /* any-hit shadow traces */
     DIRT_PT_PASS_RESOLVE,
     DIRT_PT_PASS_ACCUMULATE,
+    DIRT_PT_PASS_COMPACT,     /* the live paths of the next event, gathered */
     DIRT_PT_NUM_PASSES
 };
 
@@ -95,14 +97,19 @@ typedef struct dirt_pt_stats {
     double trace_ms;          /* trace + shadow trace */
     double fetch_ms;
     double visibility_ms;     /* direct visibility */
-    double shade_ms;          /* raygen + shade + resolve + accumulate */
+    double shade_ms;          /* raygen + shade + resolve + compact + accumulate */
     double total_ms;          /* wall time of the call */
     uint64_t rays;            /* rays traced (camera, continuation, shadow) */
     uint64_t aborted;         /* rays whose march gave up (see dirt_trace_stats) */
     double mrays_per_s;       /* rays / trace time */
     uint64_t invalid_samples; /* non-finite samples dropped (dirt_pt_render only) */
-    uint64_t bytes_integrator; /* one chunk's rays, hits, shading ring and paths, the
-                                * image's sums, the tracer's own */
+    uint64_t bytes_integrator; /* one chunk's rays, hits, shading ring, paths and
+                                * ray batches, the image's sums, the tracer's own */
+    /* Paths that reached event k (k = 1 .. DIRT_PT_MAX_EVENTS - 1; 0 unused),
+     * summed over the samples: after event 1 (every pixel) only these are
+     * traced, fetched and shaded (compaction, indirect dispatch). */
+    uint64_t paths_at_event[DIRT_PT_MAX_EVENTS];
+    int events;               /* events of a sample (K + 1; AO: 1) */
 } dirt_pt_stats;
 
 /* Compiles the programs. The scene must outlive it; its materials and

@@ -19,6 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "common/constants.h"
 #include "dirt/image.h"
 #include "dirt/scene.h"
 
@@ -175,6 +176,10 @@ typedef struct dirt_ref_stats {
     uint64_t samples;       /* paths traced (pixels x spp) */
     uint64_t invalid;       /* samples dropped because they were not finite */
     int threads;            /* threads used */
+    /* Paths that reached event k (their k-th ray; k = 1 .. DIRT_PT_MAX_EVENTS
+     * - 1, 0 unused): with the same seed, the GPU path tracer's
+     * dirt_pt_stats.paths_at_event. */
+    uint64_t paths_at_event[DIRT_PT_MAX_EVENTS];
 } dirt_ref_stats;
 
 /* Materials and textures a render shades with (a view; nothing is copied). */

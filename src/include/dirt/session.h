@@ -145,6 +145,11 @@ typedef struct dirt_session_stats {
     double total_ms;            /* wall time of the calls, build included */
     uint64_t rays, aborted, invalid_samples;
     double mrays_per_s;
+    /* Paths that reached event k = 1 .. events (the path tracers: dirt,
+     * mmrt, embree; summed over the samples): what the GPU engines trace
+     * after event 1 (compaction). 0 events for the raster preview. */
+    int events;
+    uint64_t paths_at_event[DIRT_PT_MAX_EVENTS];
     int num_passes;
     dirt_pass_time passes[32];  /* build passes, then the path tracer's */
     int num_buffers;

@@ -66,6 +66,15 @@ typedef struct dirt_tracer {
      * and path event). A zeroed `alpha` (or NULL) turns the test off.
      * NULL when the technique cannot test alpha. */
     void (*set_alpha)(void *self, const dirt_trace_alpha *alpha);
+    /* A ray batch the GPU sized (compaction of the integrator's live paths)
+     * for the traces and fetches that follow: `batch` is a buffer holding a
+     * dirt_gpu_ray_batch header, then uint owner[] (glsl/common/layout.h).
+     * Their `count` is then its capacity and the header's count the rays;
+     * ray i's hit has owner owner[i], which also keys the ray's randomised
+     * decisions (alpha, MMRT's jitter) in place of i; passes dispatch
+     * indirectly from the header, so the host never reads the count. 0
+     * returns to plain batches. NULL when the technique has no such mode. */
+    void (*set_batch)(void *self, uint32_t batch);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
     /* World distance by which rays leaving a surface start off it along its
