@@ -31,8 +31,8 @@ typedef struct dirt_tracer {
     const char *name;          /* "dirt", "mmrt" */
     void *self;
     /* Traces `count` dirt_gpu_ray records of `rays` into the dirt_gpu_hit
-     * records of `hits` (hit i's owner = i). any_hit: shadow rays (only
-     * "something in (tmin, tmax)" matters). */
+     * records of `hits` (hit i's owner = i; see set_batch). any_hit: shadow
+     * rays (only "something in (tmin, tmax)" matters). */
     bool (*trace)(void *self, uint32_t rays, uint32_t hits, uint32_t count, bool any_hit);
     /* First hits of the camera view from a visibility buffer (one ray and
      * hit per pixel of the camera view); NULL when the technique has none. */
