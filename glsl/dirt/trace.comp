@@ -2,14 +2,14 @@
 // DIRT Trace (paper section 4.2.1): the closest hit of every ray of a batch,
 // through the per-primitive image-space structure.
 //
-// Per view (camera view first when present, then the others by the ray
-// parameter at which the ray enters them), the ray is clipped to the view
-// frustum (less the stretch earlier views searched in full) and marched
-// cell by cell on the Hi-Z pyramid: a cell whose depth
-// bounds the ray's depth span misses is skipped (and the march climbs a
-// level), otherwise the march descends; at level 0 (a tile) the buckets the
-// ray's depth span overlaps are walked in the ray's depth direction with
-// exact watertight ray-triangle tests. A hit counts only if it lies in the
+// The ray is clipped to every view frustum and cut into pieces in order of
+// t, each in one view (camera view first when present, then the others by
+// the parameter at which the ray enters them); a piece is marched cell by
+// cell on the Hi-Z pyramid: a cell whose depth bounds the ray's depth span
+// misses is skipped (and the march climbs a level), otherwise the march
+// descends; at level 0 (a tile) the buckets the ray's depth span overlaps
+// are walked in the ray's depth direction with exact watertight
+// ray-triangle tests. A hit counts only if it lies in the
 // tile's frustum (planes moved out by DIRT_CLIP_EPS, as in the build) and is
 // the closest so far. Scanning stops after a bucket once the best hit lies
 // within the depth slabs scanned so far (a primitive stored in several
@@ -460,63 +460,42 @@ void main()
         enter[j] = t0;
         leave[j] = t1;
     }
-    // [c0, c1]: a stretch of the ray that a view already searched in full
-    // (the union of the searched views' segments, while it is one
-    // interval). Every hit in a view's frustum is found by that view's march,
-    // so a later view marches only the parts of its segment outside it: in
-    // cube+camera mode a ray that starts in the camera view and hits there
-    // marches no face at all. The pieces keep their boundary parameters (a
-    // march tests whole cells, so a hit at a boundary is found on both sides).
-    float c0 = 1.0, c1 = 0.0; // none yet (c0 > c1)
+    // The ray is marched piece by piece in order of t, each piece in one
+    // view: the first in the order above (camera view, then faces) whose
+    // segment holds its start; a piece ends where that view's segment ends
+    // or an earlier view's begins. Every intersection in a view's frustum is
+    // found by that view's march, so each stretch of the ray needs one view;
+    // and in order of t the march ends at the first piece whose hit no
+    // later piece can beat (the march of a later piece stops at best.t).
+    // A piece keeps its boundary parameters (a march tests whole cells, so
+    // a hit on a boundary is found from either side).
     bool aborted = false;
-    int visited = 0;
-    for (int j = 0; j < m; j++) {
-        visited++;
-        float e = enter[j], l = leave[j];
-        if (e >= best.t)
-            continue;
-        // At most two pieces: before and after the covered stretch.
-        float pa[2], pb[2];
-        int np = 0;
-        if (c0 > c1 || l < c0 || e > c1) {
-            pa[0] = e;
-            pb[0] = l;
-            np = 1;
-        } else {
-            if (e < c0) {
-                pa[np] = e;
-                pb[np] = c0;
-                np++;
-            }
-            if (l > c1) {
-                pa[np] = max(e, c1);
-                pb[np] = l;
-                np++;
-            }
-        }
-        bool ok = true;
-        for (int q = 0; q < np; q++) {
-            if (pa[q] >= best.t)
-                continue;
-            if (!trace_view(rs, org, dir, order[j], tmin, pa[q], min(pb[q], best.t), best))
-                ok = false;
-            if (u_any_hit != 0 && best.prim != DIRT_NO_HIT)
-                break;
-        }
-        if (!ok) {
-            aborted = true;
-        } else if (c0 > c1) {
-            c0 = e;
-            c1 = l;
-        } else if (!(l < c0 || e > c1)) {
-            c0 = min(c0, e);
-            c1 = max(c1, l);
-        }
-        if (u_any_hit != 0 && best.prim != DIRT_NO_HIT) {
-            visited = m;
+    bool done = false;
+    float t = tmin;
+    for (int pieces = 0; pieces <= 2 * DIRT_GPU_MAX_VIEWS + 1; pieces++) {
+        if (t >= best.t || (u_any_hit != 0 && best.prim != DIRT_NO_HIT)) {
+            done = true;
             break;
         }
+        int cur = -1;
+        for (int j = 0; j < m && cur < 0; j++) {
+            if (enter[j] <= t && t < leave[j])
+                cur = j;
+        }
+        float end = cur >= 0 ? leave[cur] : 1e30;
+        for (int j = 0; j < m; j++) {
+            if ((cur < 0 || j < cur) && enter[j] > t)
+                end = min(end, enter[j]);
+        }
+        if (cur >= 0 && !trace_view(rs, org, dir, order[cur], tmin, t, min(end, best.t), best))
+            aborted = true;
+        if (!(end > t) || end >= 1e30) {
+            done = true;
+            break;
+        }
+        t = end;
     }
+    int visited = done ? m : 0;
     if (visited != m || g_cut)
         aborted = true;
     if (aborted)
