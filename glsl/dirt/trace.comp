@@ -81,11 +81,16 @@ bool g_cut = false;
 // The ray's alpha key (dirt_alpha_ray_key_g; set when u_alpha != 0).
 uint g_alpha_key = 0u;
 
-// The last primitives the ray can never hit (intersect: ISECT_NEVER). A
-// primitive is listed in every tile and bucket its clipped footprint
-// overlaps, so a march meets the same candidate in cell after cell, in every
-// view; one of these is not tested again. Only permanent misses are kept:
-// a candidate rejected by tmax or by the tile test may be hit later.
+// The last four primitives the ray's test rejected. A primitive is listed
+// in every tile and bucket its clipped footprint overlaps, so a march meets
+// the same candidate in cell after cell, in every view; one of these is not
+// tested again. A rejection is for good: a miss of the triangle, or a hit at
+// or before tmin, stays one; so does a hit at or beyond tmax, since tmax
+// only shrinks (it is best.t, or the float after best.t for a primitive
+// below best.prim, and a new best either lies before best.t or ties it
+// with a lower primitive; either way no rejected t gets below the new
+// tmax). A candidate whose hit lies outside the tile is not kept: it counts
+// in the tile it lies in.
 uvec4 g_never = uvec4(DIRT_NO_HIT);
 
 // Whether the ray sees primitive p at barycentrics (u, w) (alpha test).
@@ -131,16 +136,9 @@ ray_setup setup_ray(vec3 org, vec3 dir)
     return r;
 }
 
-// Results of intersect(): no hit for any tmax (the ray misses the triangle
-// or meets it at or before tmin), no hit before tmax (it may still be hit
-// with a larger tmax), a hit.
-#define ISECT_NEVER 0
-#define ISECT_BEYOND 1
-#define ISECT_HIT 2
-
-// ISECT_HIT for a hit with t in (tmin, tmax); u, v weight vertices 1 and 2.
-int intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
-              out float t, out float u, out float v)
+// True for a hit with t in (tmin, tmax); u, v weight vertices 1 and 2.
+bool intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
+               out float t, out float u, out float v)
 {
     vec3 A = p0 - r.org, B = p1 - r.org, C = p2 - r.org;
     float Ax = A[r.kx] - r.shear.x * A[r.kz], Ay = A[r.ky] - r.shear.y * A[r.kz];
@@ -159,21 +157,19 @@ int intersect(ray_setup r, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax,
     u = 0.0;
     v = 0.0;
     if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0))
-        return ISECT_NEVER;
+        return false;
     float det = U + V + W;
     if (det == 0.0)
-        return ISECT_NEVER;
+        return false;
     float Az = r.shear.z * A[r.kz], Bz = r.shear.z * B[r.kz], Cz = r.shear.z * C[r.kz];
     float T = U * Az + V * Bz + W * Cz;
     float inv = 1.0 / det;
     t = T * inv;
-    if (!(t > tmin))
-        return ISECT_NEVER;
-    if (!(t < tmax))
-        return ISECT_BEYOND;
+    if (!(t > tmin && t < tmax))
+        return false;
     u = V * inv;
     v = W * inv;
-    return ISECT_HIT;
+    return true;
 }
 
 // ---- view helpers ----
@@ -282,15 +278,11 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
                              ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
             if (any(equal(g_never, uvec4(p))))
                 continue;
-            int hit = intersect(rs, vertices[3u * p].position.xyz,
-                                vertices[3u * p + 1u].position.xyz,
-                                vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w);
-            if (hit == ISECT_NEVER) {
+            if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
+                           vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w)) {
                 g_never = uvec4(p, g_never.xyz);
                 continue;
             }
-            if (hit != ISECT_HIT)
-                continue;
             vec4 c = co + t * cd;
             vec2 ndc = c.xy / c.w;
             if (c.w <= 0.0 || any(lessThan(ndc, rlo)) || any(greaterThan(ndc, rhi)))
