@@ -475,6 +475,13 @@ static bool exec_pass(fg_ctx *ctx, void *user)
 
 static void drain_times(dirt_pt *pt);
 
+/* A pass over ray batch `b`: reads its owners and dispatches from it. */
+static void read_batch(fg_pass *p, fg_res b)
+{
+    fg_read(p, b, FG_SSBO_READ);
+    fg_read(p, b, FG_INDIRECT);
+}
+
 /* One graph of a sample's chunk: raygen, then per event k = 1..events trace,
  * fetch, shade, shadow trace, resolve and (but after the last) compact;
  * then accumulate. Every pass after raygen works on event k's batch (the
@@ -532,17 +539,14 @@ static bool make_graph(dirt_pt *pt, int events)
             snprintf(name, sizeof(name), "trace %d", k);
         p = ADD(vis ? DIRT_PT_PASS_VISIBILITY : DIRT_PT_PASS_TRACE, k);
         fg_read(p, rays, FG_SSBO_READ);
-        if (!vis) {
-            fg_read(p, b, FG_SSBO_READ);
-            fg_read(p, b, FG_INDIRECT);
-        }
+        if (!vis)
+            read_batch(p, b);
         fg_write(p, hits, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "fetch %d", k);
         p = ADD(DIRT_PT_PASS_FETCH, k);
         fg_read(p, rays, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
-        fg_read(p, b, FG_SSBO_READ);
-        fg_read(p, b, FG_INDIRECT);
+        read_batch(p, b);
         fg_write(p, hits, FG_SSBO_WRITE); /* MMRT: t and barycentrics of the shading point */
         fg_use(p, gpts, FG_SSBO_READ, NULL);
         fg_write(p, gpts, FG_SSBO_WRITE);
@@ -550,8 +554,7 @@ static bool make_graph(dirt_pt *pt, int events)
         p = ADD(DIRT_PT_PASS_SHADE, k);
         fg_read(p, gpts, FG_SSBO_READ);
         fg_read(p, hits, FG_SSBO_READ);
-        fg_read(p, b, FG_SSBO_READ);
-        fg_read(p, b, FG_INDIRECT);
+        read_batch(p, b);
         fg_use(p, paths, FG_SSBO_READ, NULL);
         fg_write(p, paths, FG_SSBO_WRITE);
         fg_use(p, rays, FG_SSBO_READ, NULL);
@@ -560,14 +563,12 @@ static bool make_graph(dirt_pt *pt, int events)
         snprintf(name, sizeof(name), "shadow trace %d", k);
         p = ADD(DIRT_PT_PASS_SHADOW, k);
         fg_read(p, srays, FG_SSBO_READ);
-        fg_read(p, b, FG_SSBO_READ);
-        fg_read(p, b, FG_INDIRECT);
+        read_batch(p, b);
         fg_write(p, shits, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "resolve %d", k);
         p = ADD(DIRT_PT_PASS_RESOLVE, k);
         fg_read(p, shits, FG_SSBO_READ);
-        fg_read(p, b, FG_SSBO_READ);
-        fg_read(p, b, FG_INDIRECT);
+        read_batch(p, b);
         fg_use(p, paths, FG_SSBO_READ, NULL);
         fg_write(p, paths, FG_SSBO_WRITE);
         if (k == events)
@@ -575,8 +576,7 @@ static bool make_graph(dirt_pt *pt, int events)
         snprintf(name, sizeof(name), "compact %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         fg_read(p, rays, FG_SSBO_READ);
-        fg_read(p, b, FG_SSBO_READ);
-        fg_read(p, b, FG_INDIRECT);
+        read_batch(p, b);
         fg_write(p, srays, FG_SSBO_WRITE);
         fg_use(p, bnext, FG_SSBO_READ, NULL);
         fg_write(p, bnext, FG_SSBO_WRITE);
