@@ -376,12 +376,14 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
 {
     const cJSON *rows = jget(doc, "configurations"), *r;
     buf b = {0};
-    /* plot.dat: one line per ok row, blocks per scene (two blank lines). */
+    /* plot.dat: one line per ok row, blocks per scene (two blank lines); its
+     * last columns number the rows across the blocks and label them (the
+     * x axis of ratios_per_scene: gnuplot's column 0 restarts per block). */
     bprintf(&b, "# scene pixels triangles mmrt_MB dirt_MB mmrt_build dirt_build mmrt_trace "
                 "dirt_trace ratio_mem ratio_build ratio_trace thickness_rel");
     for (int t = 0; t < DIRT_RAY_TYPES; t++)
         bprintf(&b, " mmrt_%s dirt_%s", dirt_ray_type_names[t], dirt_ray_type_names[t]);
-    bprintf(&b, " mmrt_relmse dirt_relmse\n");
+    bprintf(&b, " mmrt_relmse dirt_relmse ratio_frame row label\n");
     const char *last = NULL;
     int blocks = 0, nok = 0;
     bool agreement = false; /* any agreement figure (none with --no-quality) */
@@ -413,7 +415,9 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
                 bprintf(&b, isnan(v) ? " NaN" : " %.6g", 100 * v);
             }
         }
-        bprintf(&b, " %.6g %.6g\n", jd(r, "mmrt.rel_mse"), jd(r, "dirt.rel_mse"));
+        bprintf(&b, " %.6g %.6g %.6g %d \"%s S%.0f\"\n", jd(r, "mmrt.rel_mse"),
+                jd(r, "dirt.rel_mse"), jd(r, "ratios.frame"), nok - 1, js(r, "scene.name"),
+                jd(r, "settings.dirt_tile_size"));
     }
     if (!write_dat(prog, dir, "plot.dat", &b))
         return false;
@@ -424,22 +428,29 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
         const char *name, *xlabel, *ylabel, *body;
         bool logx;
     } plots[] = {
+        /* A key per scene: below the plot, small, when there are many. */
         {"memory_vs_resolution", "pixels", "structure MB",
+         "if (NB > 4) { set key below horizontal font ',7' }\n"
          "plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', "
-         "for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'", true},
+         "for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'\n"
+         "set key outside right font ''", true},
         {"time_vs_resolution", "pixels", "median ms",
+         "if (NB > 2) { set key below horizontal font ',7' }\n"
          "plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', "
          "for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', "
          "for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', "
-         "for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'", true},
+         "for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'\n"
+         "set key outside right font ''", true},
         {"memory_vs_triangles", "triangles", "structure MB",
          "plot D u 3:4 w p pt 7 t 'MMRT', D u 3:5 w p pt 5 t 'DIRT'", true},
         {"time_vs_triangles", "triangles", "median ms",
          "plot D u 3:6 w p pt 7 t 'MMRT build', D u 3:7 w p pt 5 t 'DIRT build', "
          "D u 3:8 w p pt 6 t 'MMRT trace', D u 3:9 w p pt 4 t 'DIRT trace'", true},
-        {"ratios_per_scene", "configuration (scene blocks)", "DIRT / MMRT",
-         "plot D u 0:10:xtic(1) w lp t 'memory', D u 0:11 w lp t 'build', "
-         "D u 0:12 w lp t 'trace'", false},
+        {"ratios_per_scene", "configuration (scene, DIRT tile size)", "DIRT / MMRT",
+         "set xtics rotate by -45 font ',8'\n"
+         "plot D u 27:10:xtic(28) w lp t 'memory', D u 27:11 w lp t 'build', "
+         "D u 27:12 w lp t 'trace', D u 27:26 w lp t 'frame'\n"
+         "set xtics norotate font ''", false},
         {"agreement_vs_thickness", "MMRT thickness / scene diagonal", "agreement with Embree %",
          "plot for [k=0:4] D u 13:(column(14+2*k)) w lp t word(RT, k+1)", true},
     };

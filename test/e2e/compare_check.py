@@ -130,6 +130,23 @@ for p in PLOTS:
         except ET.ParseError as e:
             err(p + ".svg: " + str(e))
 
+# plot.dat: the per-configuration plot's x is the row number across the
+# scene blocks (gnuplot's column 0 restarts in every block, which stacked
+# every scene's points on the first ones), labelled with its scene and S.
+dat = os.path.join(d, "plot.dat")
+if os.path.isfile(dat):
+    import shlex
+    lines = [shlex.split(l) for l in open(dat) if l.strip() and not l.startswith("#")]
+    if any(len(l) != 28 for l in lines):
+        err("plot.dat: lines of %s columns, want 28" % sorted({len(l) for l in lines}))
+        lines = []
+    rows_x = [int(l[-2]) for l in lines]
+    if rows_x != list(range(len(lines))):
+        err("plot.dat: row numbers %s, want 0..%d" % (rows_x, len(lines) - 1))
+    for l in lines:
+        if not l[-1].startswith(l[0] + " S"):
+            err("plot.dat: label %r of a %r row" % (l[-1], l[0]))
+
 for e in errors:
     print("FAIL:", e, file=sys.stderr)
 sys.exit(1 if errors else 0)

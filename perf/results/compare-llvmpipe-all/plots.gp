@@ -11,7 +11,9 @@ set title 'memory vs resolution'
 set xlabel 'pixels'
 set ylabel 'structure MB'
 set logscale x
+if (NB > 4) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'
+set key outside right font ''
 set output
 set terminal pngcairo noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/memory_vs_resolution.png'
@@ -19,7 +21,9 @@ set title 'memory vs resolution'
 set xlabel 'pixels'
 set ylabel 'structure MB'
 set logscale x
+if (NB > 4) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'
+set key outside right font ''
 set output
 set terminal svg noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/time_vs_resolution.svg'
@@ -27,7 +31,9 @@ set title 'time vs resolution'
 set xlabel 'pixels'
 set ylabel 'median ms'
 set logscale x
+if (NB > 2) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'
+set key outside right font ''
 set output
 set terminal pngcairo noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/time_vs_resolution.png'
@@ -35,7 +41,9 @@ set title 'time vs resolution'
 set xlabel 'pixels'
 set ylabel 'median ms'
 set logscale x
+if (NB > 2) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'
+set key outside right font ''
 set output
 set terminal svg noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/memory_vs_triangles.svg'
@@ -72,18 +80,22 @@ set output
 set terminal svg noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/ratios_per_scene.svg'
 set title 'ratios per scene'
-set xlabel 'configuration (scene blocks)'
+set xlabel 'configuration (scene, DIRT tile size)'
 set ylabel 'DIRT / MMRT'
 unset logscale x
-plot D u 0:10:xtic(1) w lp t 'memory', D u 0:11 w lp t 'build', D u 0:12 w lp t 'trace'
+set xtics rotate by -45 font ',8'
+plot D u 27:10:xtic(28) w lp t 'memory', D u 27:11 w lp t 'build', D u 27:12 w lp t 'trace', D u 27:26 w lp t 'frame'
+set xtics norotate font ''
 set output
 set terminal pngcairo noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/ratios_per_scene.png'
 set title 'ratios per scene'
-set xlabel 'configuration (scene blocks)'
+set xlabel 'configuration (scene, DIRT tile size)'
 set ylabel 'DIRT / MMRT'
 unset logscale x
-plot D u 0:10:xtic(1) w lp t 'memory', D u 0:11 w lp t 'build', D u 0:12 w lp t 'trace'
+set xtics rotate by -45 font ',8'
+plot D u 27:10:xtic(28) w lp t 'memory', D u 27:11 w lp t 'build', D u 27:12 w lp t 'trace', D u 27:26 w lp t 'frame'
+set xtics norotate font ''
 set output
 set terminal svg noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/agreement_vs_thickness.svg'
