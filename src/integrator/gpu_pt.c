@@ -384,8 +384,7 @@ static void dispatch_batch(const dirt_pt *pt, int k)
 /* The tracer's next calls work on event k's batch (0: plain, all pixels). */
 static void set_batch(dirt_pt *pt, int k)
 {
-    if (pt->tech->set_batch)
-        pt->tech->set_batch(pt->tech->self, k > 0 ? event_batch(pt, k) : 0);
+    pt->tech->set_batch(pt->tech->self, k > 0 ? event_batch(pt, k) : 0);
 }
 
 static bool exec_pass(fg_ctx *ctx, void *user)
@@ -742,6 +741,10 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     }
     if (!tech) {
         DIRT_ERROR("no tracer (the technique's build failed?)");
+        return false;
+    }
+    if (!tech->set_batch) {
+        DIRT_ERROR("%s has no set_batch: the path tracer traces ray batches", tech->name);
         return false;
     }
     dirt_pt_opts opts = opts_in ? *opts_in : (dirt_pt_opts){0};

@@ -73,7 +73,8 @@ typedef struct dirt_tracer {
      * ray i's hit has owner owner[i], which also keys the ray's randomised
      * decisions (alpha, MMRT's jitter) in place of i; passes dispatch
      * indirectly from the header, so the host never reads the count. 0
-     * returns to plain batches. NULL when the technique has no such mode. */
+     * returns to plain batches. Required: the path tracer traces its live
+     * paths only after event 1, and refuses a tracer without it. */
     void (*set_batch)(void *self, uint32_t batch);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
