@@ -35,8 +35,9 @@ typedef struct dirt_hit {
  * The tables are the integrator's (dirt_gpu_model_tables, dirt/gpu_tables.h):
  * the trace binds them at DIRT_BIND_MODEL_MATERIALS and _TEXELS and reads
  * the per-primitive materials, UVs and texels. BLEND decisions use the key
- * dirt_rng_u32(seed, first_pixel + i, sample, bounce, dim) for ray i of the
- * batch (doc/rng.md, "Alpha"). */
+ * dirt_rng_u32(seed, first_pixel + owner(i), sample, bounce, dim) for ray i
+ * of the batch, owner(i) = i or its ray batch's owner (dirt/tracer.h,
+ * set_batch; doc/rng.md, "Alpha"). */
 typedef struct dirt_trace_alpha {
     uint32_t materials;   /* GL buffer of dirt_gpu_model_material; 0 = no test */
     uint32_t texels;      /* GL buffer of the texel table */

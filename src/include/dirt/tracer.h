@@ -57,7 +57,7 @@ typedef struct dirt_tracer {
     /* The integrator works through the image in chunks (wavefronts): before
      * the traces of each chunk of one sample it calls begin_chunk with the
      * chunk's first pixel (0 starts a sample); the chunk's ray i is pixel
-     * first + i. A technique whose traces are randomised per call and per
+     * first + i (in a ray batch: first + owner[i], see set_batch). A technique whose traces are randomised per call and per
      * ray keys them by (call of the sample, pixel), so that the chunking
      * changes no result. NULL when there is nothing to key. */
     void (*begin_chunk)(void *self, uint32_t first);
