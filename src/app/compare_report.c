@@ -377,8 +377,9 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
     const cJSON *rows = jget(doc, "configurations"), *r;
     buf b = {0};
     /* plot.dat: one line per ok row, blocks per scene (two blank lines); its
-     * last columns number the rows across the blocks and label them (the
-     * x axis of ratios_per_scene: gnuplot's column 0 restarts per block). */
+     * last columns number the rows across the blocks and label them with the
+     * scene and the settings that vary (the x axis of ratios_per_scene:
+     * gnuplot's column 0 restarts per block). */
     bprintf(&b, "# scene pixels triangles mmrt_MB dirt_MB mmrt_build dirt_build mmrt_trace "
                 "dirt_trace ratio_mem ratio_build ratio_trace thickness_rel");
     for (int t = 0; t < DIRT_RAY_TYPES; t++)
@@ -415,9 +416,12 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
                 bprintf(&b, isnan(v) ? " NaN" : " %.6g", 100 * v);
             }
         }
-        bprintf(&b, " %.6g %.6g %.6g %d \"%s S%.0f\"\n", jd(r, "mmrt.rel_mse"),
-                jd(r, "dirt.rel_mse"), jd(r, "ratios.frame"), nok - 1, js(r, "scene.name"),
-                jd(r, "settings.dirt_tile_size"));
+        bprintf(&b, " %.6g %.6g %.6g %d \"%s %.0fx%.0f S%.0f B%.0f/%.0f th %.2g%%\"\n",
+                jd(r, "mmrt.rel_mse"), jd(r, "dirt.rel_mse"), jd(r, "ratios.frame"), nok - 1,
+                js(r, "scene.name"), jd(r, "settings.width"), jd(r, "settings.height"),
+                jd(r, "settings.dirt_tile_size"), jd(r, "settings.dirt_buckets"),
+                jd(r, "settings.mmrt_buckets"),
+                100 * jd(r, "mmrt.thickness_used") / jd(r, "scene.diagonal"));
     }
     if (!write_dat(prog, dir, "plot.dat", &b))
         return false;
@@ -427,6 +431,7 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
     static const struct {
         const char *name, *xlabel, *ylabel, *body;
         bool logx;
+        int height; /* pixels; 0 = 500 (the rotated labels of a row each want room) */
     } plots[] = {
         /* A key per scene: below the plot, small, when there are many. */
         {"memory_vs_resolution", "pixels", "structure MB",
@@ -446,11 +451,11 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
         {"time_vs_triangles", "triangles", "median ms",
          "plot D u 3:6 w p pt 7 t 'MMRT build', D u 3:7 w p pt 5 t 'DIRT build', "
          "D u 3:8 w p pt 6 t 'MMRT trace', D u 3:9 w p pt 4 t 'DIRT trace'", true},
-        {"ratios_per_scene", "configuration (scene, DIRT tile size)", "DIRT / MMRT",
+        {"ratios_per_scene", "configuration", "DIRT / MMRT",
          "set xtics rotate by -45 font ',8'\n"
          "plot D u 27:10:xtic(28) w lp t 'memory', D u 27:11 w lp t 'build', "
          "D u 27:12 w lp t 'trace', D u 27:26 w lp t 'frame'\n"
-         "set xtics norotate font ''", false},
+         "set xtics norotate font ''", false, 760},
         {"agreement_vs_thickness", "MMRT thickness / scene diagonal", "agreement with Embree %",
          "plot for [k=0:4] D u 13:(column(14+2*k)) w lp t word(RT, k+1)", true},
     };
@@ -476,8 +481,9 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
             continue;
         for (int f = 0; f < 2; f++) {
             /* noenhanced: names with '_' are not subscripts */
-            bprintf(&g, "set terminal %s noenhanced size 900,500\nset output '%s/%s.%s'\n",
-                    f ? "pngcairo" : "svg", dir, plots[p].name, f ? "png" : "svg");
+            bprintf(&g, "set terminal %s noenhanced size 900,%d\nset output '%s/%s.%s'\n",
+                    f ? "pngcairo" : "svg", plots[p].height ? plots[p].height : 500, dir,
+                    plots[p].name, f ? "png" : "svg");
             char title[64];
             snprintf(title, sizeof(title), "%s", plots[p].name);
             for (char *c = title; *c; c++)

@@ -144,7 +144,7 @@ if os.path.isfile(dat):
     if rows_x != list(range(len(lines))):
         err("plot.dat: row numbers %s, want 0..%d" % (rows_x, len(lines) - 1))
     for l in lines:
-        if not l[-1].startswith(l[0] + " S"):
+        if not l[-1].startswith(l[0] + " "):
             err("plot.dat: label %r of a %r row" % (l[-1], l[0]))
 
 for e in errors:

@@ -77,20 +77,20 @@ set ylabel 'median ms'
 set logscale x
 plot D u 3:6 w p pt 7 t 'MMRT build', D u 3:7 w p pt 5 t 'DIRT build', D u 3:8 w p pt 6 t 'MMRT trace', D u 3:9 w p pt 4 t 'DIRT trace'
 set output
-set terminal svg noenhanced size 900,500
+set terminal svg noenhanced size 900,760
 set output 'perf/results/compare-llvmpipe-all/ratios_per_scene.svg'
 set title 'ratios per scene'
-set xlabel 'configuration (scene, DIRT tile size)'
+set xlabel 'configuration'
 set ylabel 'DIRT / MMRT'
 unset logscale x
 set xtics rotate by -45 font ',8'
 plot D u 27:10:xtic(28) w lp t 'memory', D u 27:11 w lp t 'build', D u 27:12 w lp t 'trace', D u 27:26 w lp t 'frame'
 set xtics norotate font ''
 set output
-set terminal pngcairo noenhanced size 900,500
+set terminal pngcairo noenhanced size 900,760
 set output 'perf/results/compare-llvmpipe-all/ratios_per_scene.png'
 set title 'ratios per scene'
-set xlabel 'configuration (scene, DIRT tile size)'
+set xlabel 'configuration'
 set ylabel 'DIRT / MMRT'
 unset logscale x
 set xtics rotate by -45 font ',8'
