@@ -438,14 +438,14 @@ bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
          "if (NB > 4) { set key below horizontal font ',7' }\n"
          "plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', "
          "for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'\n"
-         "set key outside right font ''", true},
+         "set key outside right vertical font ''", true},
         {"time_vs_resolution", "pixels", "median ms",
          "if (NB > 2) { set key below horizontal font ',7' }\n"
          "plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', "
          "for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', "
          "for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', "
          "for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'\n"
-         "set key outside right font ''", true},
+         "set key outside right vertical font ''", true},
         {"memory_vs_triangles", "triangles", "structure MB",
          "plot D u 3:4 w p pt 7 t 'MMRT', D u 3:5 w p pt 5 t 'DIRT'", true},
         {"time_vs_triangles", "triangles", "median ms",

@@ -13,7 +13,7 @@ set ylabel 'structure MB'
 set logscale x
 if (NB > 4) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'
-set key outside right font ''
+set key outside right vertical font ''
 set output
 set terminal pngcairo noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/memory_vs_resolution.png'
@@ -23,7 +23,7 @@ set ylabel 'structure MB'
 set logscale x
 if (NB > 4) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'
-set key outside right font ''
+set key outside right vertical font ''
 set output
 set terminal svg noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/time_vs_resolution.svg'
@@ -33,7 +33,7 @@ set ylabel 'median ms'
 set logscale x
 if (NB > 2) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'
-set key outside right font ''
+set key outside right vertical font ''
 set output
 set terminal pngcairo noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/time_vs_resolution.png'
@@ -43,7 +43,7 @@ set ylabel 'median ms'
 set logscale x
 if (NB > 2) { set key below horizontal font ',7' }
 plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'
-set key outside right font ''
+set key outside right vertical font ''
 set output
 set terminal svg noenhanced size 900,500
 set output 'perf/results/compare-llvmpipe-all/memory_vs_triangles.svg'
