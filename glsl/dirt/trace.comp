@@ -487,8 +487,9 @@ void main()
         }
         t = end;
     }
-    int visited = done ? m : 0;
-    if (visited != m || g_cut)
+    // Not done: the pieces ran out, or llvmpipe cut the loop (g_cut likewise
+    // for the march's loops).
+    if (!done || g_cut)
         aborted = true;
     if (aborted)
         atomicAdd(counters.fill.z, 1u);
