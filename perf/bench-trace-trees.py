@@ -4,7 +4,9 @@ runs BUILD's bench-trace once per glsl tree (DIRT_GLSL_DIR) in turn, ROUNDS
 times, and keeps per scene, ray type and tree the best DIRT Mrays/s (the
 least disturbed run). Prints one markdown table with each tree's figure and
 its ratio to the first tree's. A tree is a directory laid out as glsl/, or
-NAME=GITREV, which extracts that commit's glsl/ into a temporary directory.
+NAME=GITREV, which extracts that commit's glsl/ into a temporary directory;
+either may end in @ARGS, more bench-trace arguments for that tree only
+(comma-separated), e.g. none=glsl@--large,0.
 
     perf/bench-trace-trees.py [--rounds N] BUILD TREE... -- [bench-trace args]
 
@@ -22,17 +24,19 @@ TYPES = ("primary", "visibility", "specular", "glossy", "diffuse")
 
 
 def tree_dir(spec, tmp):
+    spec, _, extra = spec.partition("@")
+    extra = [x for x in extra.split(",") if x]
     name, _, where = spec.partition("=")
     if not where:
         name, where = spec, spec
     if os.path.isdir(where):
-        return name, where
+        return name, where, extra
     out = os.path.join(tmp, name)
     os.makedirs(out)
     archive = subprocess.run(["git", "archive", where, "glsl"], check=True,
                              capture_output=True).stdout
     subprocess.run(["tar", "-x", "-C", out], input=archive, check=True)
-    return name, os.path.join(out, "glsl")
+    return name, os.path.join(out, "glsl"), extra
 
 
 def main():
@@ -52,8 +56,8 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         trees = [tree_dir(s, tmp) for s in specs]
         for _ in range(a.rounds):
-            for name, d in trees:
-                out = subprocess.run([a.build + "/perf/bench-trace"] + args, check=True,
+            for name, d, extra in trees:
+                out = subprocess.run([a.build + "/perf/bench-trace"] + args + extra, check=True,
                                      capture_output=True, text=True,
                                      env=dict(os.environ, DIRT_GLSL_DIR=os.path.abspath(d))).stdout
                 for line in out.splitlines():
@@ -63,7 +67,7 @@ def main():
                     if len(c) == 8 and c[4] in TYPES:
                         k = (c[0], c[4], name)
                         best[k] = max(best[k], float(c[5]))
-    names = [n for n, _ in trees]
+    names = [n for n, _, _ in trees]
     print("GPU: %s\n" % gpu)
     print("best DIRT Mrays/s of %d rounds (bench-trace %s)\n" % (a.rounds, " ".join(args)))
     print("| scene | type | " + " | ".join(names) + " | " +

@@ -1,7 +1,9 @@
 /* bench-trace: Mrays/s per ray type (the DIRT paper's Table 1 layout) for
  * DIRT (GPU) and Embree (CPU) on the same rays, with their hit agreement.
  *   bench-trace [SCENE|default ...] [-W 1024 -H 512] [--views MODE] [-S 2]
- *               [-B 16] [--face N]
+ *               [-B 16] [--face N] [--large N]
+ * (--large: DIRT's large primitives, 0 = none; default 16; the build is
+ * the raster one unless DIRT_BUILD=compute)
  * Rays: camera G-buffer at W x H (Embree primary hits), then one event of
  * each type from those points (dirt/raytypes.h). DIRT times: the GPU's one
  * clock (dirt_gpu_clock): GPU timer queries, or CPU wall time around
@@ -22,7 +24,7 @@
 int main(int argc, char **argv)
 {
     const char *scenes[16];
-    int n = 0, W = 1024, H = 512, S = 2, B = 16, face = 0;
+    int n = 0, W = 1024, H = 512, S = 2, B = 16, face = 0, large = DIRT_ADS_MAX_LARGE;
     enum dirt_view_mode mode = DIRT_VIEWS_CUBE_CAMERA;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
@@ -31,13 +33,14 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "-S")) S = atoi(v), i++;
         else if (!strcmp(a, "-B")) B = atoi(v), i++;
         else if (!strcmp(a, "--face")) face = atoi(v), i++;
+        else if (!strcmp(a, "--large")) large = atoi(v), i++;
         else if (!strcmp(a, "--views")) {
             mode = !strcmp(v, "single") ? DIRT_VIEWS_SINGLE
                  : !strcmp(v, "cube") ? DIRT_VIEWS_CUBE : DIRT_VIEWS_CUBE_CAMERA;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-trace [SCENE|default ...] [-W N -H N] [--views MODE] [-S N] "
-                   "[-B N] [--face N]\n");
+                   "[-B N] [--face N] [--large N]\n");
             return 0;
         } else if (n < 16) scenes[n++] = a;
     }
@@ -65,7 +68,7 @@ int main(int argc, char **argv)
             return 1;
         dirt_ads_opts o = {.views = {.mode = mode, .width = W, .height = H, .face_size = face,
                                      .tile_size = S},
-                           .buckets = B};
+                           .buckets = B, .large = large > 0 ? large : -1};
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         if (!ads || !dirt_ads_build(ads, f, &cam) || !dirt_ads_build(ads, f, &cam))
             return 1;
@@ -111,6 +114,7 @@ int main(int argc, char **argv)
                    ts.aborted ? " (aborted rays!)" : "");
             fflush(stdout);
         }
+        printf("| %s: %d large primitives |\n", name, as->num_large);
         free(rays);
         free(hits);
         free(ref);

@@ -49,7 +49,7 @@ part "device" 30 sh -c "nvidia-smi -L 2>/dev/null || echo 'no nvidia-smi'; \
 
 say ""; say "### GPU tests"; say ""
 say "| test | result | seconds |"; say "|---|---|---|"
-for t in gl_context timing layout_gpu conservative_raster ads_complete ads_edge ads_clip ads_compute dirt_hits \
+for t in gl_context timing layout_gpu conservative_raster ads_complete ads_edge ads_clip ads_compute ads_large dirt_hits \
          dirt_visibility dirt_fetch dirt_pt pt_compact mmrt_hits mmrt_store mmrt_trace mmrt_pt session memory; do
   exe=$build/test/gpu/test_$t
   [ -x "$exe" ] || { say "| $t | missing | |"; continue; }

@@ -86,13 +86,20 @@ struct dirt_gpu_view {
     DIRT_IV4 level_base[4]; /* first pyramid entry of levels 0..15 */
 };
 
-/* Build parameters (48 bytes). */
+/* Large primitives (doc/dirt-trace.md, "Large primitives"): at most this
+ * many primitives are kept out of the tiles' lists and tested by every ray
+ * instead. */
+#define DIRT_GPU_MAX_LARGE 16
+
+/* Build parameters (112 bytes). */
 struct dirt_gpu_ads_params {
     DIRT_IV4 config;     /* views, tile size S, buckets B, tiles */
     DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas width, atlas height */
     DIRT_UV4 cand;       /* x candidate capacity (records), y work-record capacity
                             (compute build: records after the candidates), z
-                            primitives, w 0 */
+                            primitives, w large primitives */
+    DIRT_UV4 large[DIRT_GPU_MAX_LARGE / 4]; /* the large primitives' ids, ascending,
+                            cand.w of them; DIRT_LIST_END in the unused slots */
 };
 
 /* Counters of the build and the trace (48 bytes). */

@@ -10,7 +10,9 @@
 // triangle clipped against the near and far planes (dirt/clip.glsl; with
 // DIRT_CLIP_SH the triangle itself). DIRT_PASS_BOUND emits nothing: it adds
 // the tiles of the quad to counters.build.x, an upper bound of the
-// candidates the depth pass will find (it sizes their buffer).
+// candidates the depth pass will find (it sizes their buffer). The large
+// primitives (dirt/large.glsl) are in no list: the build passes skip them,
+// the Fetch does not.
 #include "common/layout.h"
 #include "dirt/clip.glsl"
 #include "dirt/footprint.glsl"
@@ -31,6 +33,7 @@ layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
 layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
+#include "dirt/large.glsl"
 
 #ifdef DIRT_PASS_BOUND
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
@@ -73,6 +76,10 @@ void main()
     int view = gl_InvocationID;
     dirt_gpu_view v = views[view];
     uint prim = uint(gl_PrimitiveIDIn);
+#ifndef DIRT_PASS_FETCH
+    if (dirt_is_large(prim))
+        return;
+#endif
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     vec4 c[3];
     for (int i = 0; i < 3; i++)

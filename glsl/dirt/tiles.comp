@@ -9,7 +9,8 @@
 // not written (the host grows the buffer and runs the build again). Also
 // adds the tiles to counters.build.x (an upper bound of the candidates: it
 // sizes their buffer) and raises counters.dispatch to the groups of the
-// range pass (dirt/range.comp) that cover every record written.
+// range pass (dirt/range.comp) that cover every record written. The large
+// primitives (dirt/large.glsl) get no records: they are in no list.
 #include "common/layout.h"
 #include "dirt/clip.glsl"
 #include "dirt/footprint.glsl"
@@ -28,6 +29,7 @@ layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
+#include "dirt/large.glsl"
 layout(std430, binding = DIRT_BIND_CANDIDATES) writeonly buffer Candidates {
     uvec4 candidates[];
 };
@@ -41,6 +43,8 @@ void main()
         return;
     int view = int(i / P);
     uint prim = i - uint(view) * P;
+    if (dirt_is_large(prim))
+        return;
     dirt_gpu_view v = views[view];
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     vec4 c[3];

@@ -16,6 +16,10 @@
 // buckets can give a hit beyond the current slab; stopping there could skip
 // a nearer primitive of the next bucket). Cell exits are solved exactly in
 // clip space, where tile boundaries are planes linear in the ray parameter.
+// Large primitives (dirt/large.glsl: in no list) are tested first, with the
+// ray's whole segment; such a hit counts where the ray is inside a view
+// (where a listed primitive's hit would be found), and the march then runs
+// up to it.
 // Alpha (built with DIRT_TRACE_ALPHA, for scenes with MASK or BLEND
 // materials: integrator/alpha.glsl, u_alpha): a candidate of such a material
 // that the alpha test rejects is not a hit, and the walk goes on as if it
@@ -38,6 +42,7 @@ layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
 layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
+#include "dirt/large.glsl"
 layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
     uvec2 depth[];
 };
@@ -451,6 +456,32 @@ void main()
         order[j] = k;
         enter[j] = t0;
         leave[j] = t1;
+    }
+    // The large primitives; a hit's view is the first in the order above
+    // whose segment holds it.
+    uint nl = params.cand.w;
+    for (uint k = 0u; k < nl; k++) {
+        uint p = params.large[k >> 2u][k & 3u];
+        float tmax = best.prim != DIRT_NO_HIT && p < best.prim
+                         ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
+        float th, u, w;
+        if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
+                       vertices[3u * p + 2u].position.xyz, tmin, tmax, th, u, w))
+            continue;
+        int hv = -1;
+        for (int j = 0; j < m && hv < 0; j++) {
+            if (enter[j] <= th && th <= leave[j])
+                hv = order[j];
+        }
+        if (hv < 0 || !alpha_accept(p, u, w))
+            continue;
+        best.t = th;
+        best.u = u;
+        best.v = w;
+        best.prim = p;
+        best.view = hv;
+        if (u_any_hit != 0)
+            break;
     }
     // The ray is marched piece by piece in order of t, each piece in one
     // view: the first in the order above (camera view, then faces) whose

@@ -32,6 +32,7 @@ typedef struct options {
     int_list w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
     dbl_list thickness, time;
     int warmup, repeat, agree_w, agree_h, face;
+    int large;                  /* --dirt-large: 0 none, else up to that many */
     bool quality, images, quiet;
     uint32_t seed;
 } options;
@@ -73,6 +74,9 @@ static void usage(FILE *out)
 "      --warmup N         unmeasured runs before the repeats (default 1)\n"
 "      --repeat N         measured runs; min, median and max per pass (default 3)\n"
 "      --face N           cube face size (default max(W, H) / 2)\n"
+"      --dirt-large N     DIRT's large primitives: at most N (0..16) of the\n"
+"                         largest triangles are tested by every ray instead of\n"
+"                         listed (doc/dirt-trace.md; default 16, 0 = none)\n"
 "      --agree-res WxH    camera G-buffer of the hit-agreement rays (default:\n"
 "                         the image size)\n"
 "      --no-quality       skip hit agreement and relMSE against Embree\n"
@@ -287,6 +291,8 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
             ok = cli_value(PROG, a, v, 'i', &o->repeat, 1, MAX_REPEAT, NULL);
         } else if (!strcmp(a, "--face")) {
             ok = cli_value(PROG, a, v, 'i', &o->face, 1, 8192, NULL);
+        } else if (!strcmp(a, "--dirt-large")) {
+            ok = cli_value(PROG, a, v, 'i', &o->large, 0, DIRT_ADS_MAX_LARGE, NULL);
         } else if (!strcmp(a, "--agree-res")) {
             ok = parse_size(a, v, &o->agree_w, &o->agree_h);
         } else if (!strcmp(a, "--seed")) {
@@ -355,6 +361,7 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
 }
 
 static int g_face; /* --face: one value for the whole sweep */
+static int g_large; /* --dirt-large: one value for the whole sweep */
 
 /* The library's messages, printed as its default sink prints them; the
  * first error since the configuration began is kept for the row's reason. */
@@ -391,6 +398,7 @@ static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
+        .large = g_large ? g_large : -1,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
         .bounces = c->bounces, .seed = seed, .background = {1, 1, 1}};
@@ -507,6 +515,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         cJSON_AddNumberToObject(j, "records", (double)a->nodes);
         cJSON_AddNumberToObject(j, "samples_np", (double)a->samples);
         cJSON_AddNumberToObject(j, "buckets_per_sample", a->buckets_per_sample);
+        cJSON_AddNumberToObject(j, "large_primitives", a->num_large);
         cJSON_AddNumberToObject(mem, "structure_used", (double)a->bytes_total_used);
         cJSON_AddNumberToObject(mem, "structure_allocated", (double)a->bytes_total_allocated);
         cJSON_AddNumberToObject(mem, "tiles", tiles);
@@ -577,9 +586,9 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
     snprintf(march, sizeof(march), "%s", march_names[c->march]);
     if (c->march == DIRT_MMRT_MARCH_LINEAR && c->samples) /* linear alone: 30 samples */
         snprintf(march, sizeof(march), "linear%d", c->samples);
-    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
+    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|L%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
              si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
-             c->dbuckets, c->mbuckets, c->thickness, march, o->warmup,
+             c->dbuckets, o->large, c->mbuckets, c->thickness, march, o->warmup,
              o->repeat, o->quality ? 1 : 0, o->seed);
 }
 
@@ -656,6 +665,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "bounces", c->bounces);
     cJSON_AddNumberToObject(set, "dirt_tile_size", c->tile);
     cJSON_AddNumberToObject(set, "dirt_buckets", c->dbuckets);
+    cJSON_AddNumberToObject(set, "dirt_large", o->large);
     cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
     cJSON_AddBoolToObject(set, "mmrt_thickness_default", th == 0);
@@ -752,10 +762,11 @@ static void set_default(int_list *l, int v)
 
 int main(int argc, char **argv)
 {
-    options o = {.warmup = 1, .repeat = 3, .quality = true, .seed = 7};
+    options o = {.warmup = 1, .repeat = 3, .quality = true, .seed = 7, .large = DIRT_ADS_MAX_LARGE};
     if (!parse_args(argc, argv, &o, 0))
         return DIRT_EXIT_USAGE;
     g_face = o.face;
+    g_large = o.large;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");

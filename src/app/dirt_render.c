@@ -130,6 +130,9 @@ static void usage(FILE *out)
 "                        way; doc/dirt-build.md): raster, compute, or auto\n"
 "                        (default: compute on a software renderer, raster on\n"
 "                        a GPU, as measured)\n"
+"      --large N         at most N (0..16) of the largest triangles are tested by\n"
+"                        every ray instead of listed in tiles (doc/dirt-trace.md;\n"
+"                        default 16, 0 = none)\n"
 "      --hiz-top L       highest Hi-Z level the march starts from; 0 = tiles\n"
 "                        only, no Hi-Z (default: the pyramid's top)\n"
 "      --fetch KIND      compute (default) or raster (the paper's geometry pass)\n"
@@ -258,7 +261,7 @@ static int parse_args(int argc, char **argv, options *o)
 {
     *o = (options){.s = {.width = 640}, .fps = 24, .camera = -1, .spp = 16,
                    .claim_timeout = 600, .look = {.up = {0, 1, 0}}};
-    long hiz_top = -1;
+    long hiz_top = -1, large = -1;
     const char *engines[DIRT_NUM_ENGINES + 1] = {0};
     for (int e = 0; e < DIRT_NUM_ENGINES; e++)
         engines[e] = dirt_engine_names[e];
@@ -295,6 +298,7 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--thickness", NULL, 'f', &o->s.thickness, 1e-12, 1e12, NULL},
         {NULL, "--face-size", NULL, 'i', &o->s.face_size, 1, 16384, NULL},
         {NULL, "--hiz-top", NULL, 'l', &hiz_top, 0, 15, NULL},
+        {NULL, "--large", NULL, 'l', &large, 0, DIRT_ADS_MAX_LARGE, NULL},
         {NULL, "--engine", NULL, 'c', &o->s.engine, 0, 0, engines},
         {NULL, "--mode", NULL, 'c', &o->s.mode, 0, 0, modes},
         {NULL, "--views", NULL, 'c', &o->s.views, 0, 0, views},
@@ -376,6 +380,8 @@ static int parse_args(int argc, char **argv, options *o)
     if (o->quiet)
         dirt_log_set_level(DIRT_LOG_ERROR);
     o->s.hiz_levels = (int)(hiz_top + 1);
+    if (large >= 0)
+        o->s.large = large ? (int)large : -1;
     return check_options(o) ? DIRT_EXIT_OK : DIRT_EXIT_USAGE;
 }
 

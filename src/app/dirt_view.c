@@ -67,6 +67,7 @@ typedef struct vopts {
     float exposure;
     int tonemap;
     long hiz_top;               /* -1 = the pyramid's top */
+    long large;                 /* --large: -1 = the default, 0 = none */
     bool no_ui, cpu_timing, quiet, conservative_off, direct_visibility;
     bool no_preview;            /* path trace while moving too (no raster preview) */
     int scale;                  /* render at the window's size / scale */
@@ -128,6 +129,7 @@ static const vopt_spec specs[] = {
     {"-B", "--buckets", 'i', OFF(s.buckets), 1, 1024, NULL, true},
     {NULL, "--face-size", 'i', OFF(s.face_size), 1, 16384, NULL, true},
     {NULL, "--hiz-top", 'l', OFF(hiz_top), -1, 15, NULL, true},
+    {NULL, "--large", 'l', OFF(large), 0, DIRT_ADS_MAX_LARGE, NULL, true},
     {NULL, "--fetch", 'c', OFF(s.fetch), 0, 0, fetches, true},
     {NULL, "--direct-visibility", 'B', OFF(direct_visibility), 0, 0, NULL, true},
     {NULL, "--no-conservative-raster", 'B', OFF(conservative_off), 0, 0, NULL, true},
@@ -192,7 +194,7 @@ static void usage(FILE *f)
 "  --bounces K, --seed N, --ao-distance D, --background R,G,B, --threads N,\n"
 "  --env FILE.exr|FILE.hdr|sky [--env-intensity X] [--env-rotation DEG],\n"
 "  --views single|cube|cube+camera, -S/--tile S, -B/--buckets B, --face-size N,\n"
-"  --hiz-top L, --fetch compute|raster, --direct-visibility,\n"
+"  --hiz-top L, --large N, --fetch compute|raster, --direct-visibility,\n"
 "  --no-conservative-raster, --march hiz|linear, --samples N, --thickness T,\n"
 "  --cpu-timing\n"
 "\n"
@@ -341,7 +343,7 @@ static int parse_args(int argc, char **argv, vopts *o)
 {
     *o = (vopts){.spp = 1024, .samples_per_frame = 1, .scale = 1, .camera = -1, .speed = 1,
                  .win_w = 1280, .win_h = 720, .split = 0.5f, .diff_range = 0.1f,
-                 .hiz_top = -1, .look = {.up = {0, 1, 0}}};
+                 .hiz_top = -1, .large = -1, .look = {.up = {0, 1, 0}}};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const vopt_spec *sp = a[0] == '-' ? find_spec(a, false) : NULL;
@@ -465,6 +467,8 @@ static dirt_session_opts wanted_opts(const viewer *v, int engine)
     s.width = v->rw;
     s.height = v->rh;
     s.hiz_levels = (int)(v->o.hiz_top + 1);
+    if (v->o.large >= 0)
+        s.large = v->o.large ? (int)v->o.large : -1;
     s.force_emulation = v->o.conservative_off;
     s.direct_visibility = v->o.direct_visibility;
     if (s.engine != DIRT_ENGINE_MMRT) {

@@ -20,7 +20,8 @@ static int cmp_pair(const void *a, const void *b)
     return x->e.prim < y->e.prim ? -1 : x->e.prim > y->e.prim;
 }
 
-bool ads_ref_build(const dirt_view_set *set, const dirt_frame *f, double eps, ads_ref *out)
+bool ads_ref_build(const dirt_view_set *set, const dirt_frame *f, double eps,
+                   const uint32_t *large, int num_large, ads_ref *out)
 {
     memset(out, 0, sizeof(*out));
     size_t cap = 1024, n = 0;
@@ -31,6 +32,11 @@ bool ads_ref_build(const dirt_view_set *set, const dirt_frame *f, double eps, ad
     for (int vi = 0; vi < set->count; vi++) {
         const dirt_view *v = &set->views[vi];
         for (size_t p = 0; p < f->num_triangles; p++) {
+            bool is_large = false;
+            for (int k = 0; k < num_large; k++)
+                is_large = is_large || large[k] == p;
+            if (is_large)
+                continue;
             const float(*tri)[3] = (const float(*)[3])f->position[3 * p];
             int rect[4];
             if (!dirt_triangle_tile_rect(v, set->tile_size, tri, 1.0, rect))
@@ -124,9 +130,9 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
 {
     memset(rep, 0, sizeof(*rep));
     ads_ref req, allow;
-    if (!ads_ref_build(set, f, 0.0, &req))
+    if (!ads_ref_build(set, f, 0.0, d->large, d->num_large, &req))
         return false;
-    if (!ads_ref_build(set, f, 2.0 * DIRT_CLIP_EPS, &allow)) {
+    if (!ads_ref_build(set, f, 2.0 * DIRT_CLIP_EPS, d->large, d->num_large, &allow)) {
         ads_ref_free(&req);
         return false;
     }

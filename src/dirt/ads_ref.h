@@ -15,7 +15,8 @@ typedef struct ads_ref_entry {
 
 /* Per global tile, the primitives whose clipped polygon is non-empty
  * (planes moved out by eps, see dirt_clip_triangle_tile), sorted by id:
- * entries[offsets[t] .. offsets[t+1]). */
+ * entries[offsets[t] .. offsets[t+1]). The large primitives (`large`,
+ * num_large of them: dirt_ads_data.large) are in no tile. */
 typedef struct ads_ref {
     int num_tiles;
     uint32_t *offsets;
@@ -23,7 +24,8 @@ typedef struct ads_ref {
     uint64_t num_entries;
 } ads_ref;
 
-bool ads_ref_build(const dirt_view_set *set, const dirt_frame *frame, double eps, ads_ref *out);
+bool ads_ref_build(const dirt_view_set *set, const dirt_frame *frame, double eps,
+                   const uint32_t *large, int num_large, ads_ref *out);
 void ads_ref_free(ads_ref *ref);
 
 /* Result of comparing a GPU build with the references. */
@@ -37,8 +39,9 @@ typedef struct ads_check_report {
     uint64_t bad_list_links;   /* node index out of range in a list */
 } ads_check_report;
 
-/* Checks `data` (read back from a build over `set`, `frame`, B buckets)
- * against the exact references at eps 0 (must be present) and
+/* Checks `data` (read back from a build over `set`, `frame`, B buckets;
+ * its large primitives left out) against the exact references at eps 0
+ * (must be present) and
  * 2 * DIRT_CLIP_EPS (may be present). Depth bounds and bucket edges are
  * compared with relative tolerance `tol`. */
 bool ads_check(const dirt_view_set *set, const dirt_frame *frame, const dirt_ads_data *data,

@@ -7,6 +7,7 @@
 #include "views/hiz.h"
 #include "dirt/ads.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +27,49 @@ const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
     "candidate tiles",
 };
 
+
+_Static_assert(DIRT_ADS_MAX_LARGE == DIRT_GPU_MAX_LARGE && DIRT_GPU_MAX_LARGE % 4 == 0,
+               "one count of large primitives");
+
+int dirt_ads_select_large(const dirt_frame *f, int max, uint32_t ids[DIRT_ADS_MAX_LARGE])
+{
+    if (max > DIRT_ADS_MAX_LARGE)
+        max = DIRT_ADS_MAX_LARGE;
+    double dx = (double)f->bounds_max[0] - f->bounds_min[0];
+    double dy = (double)f->bounds_max[1] - f->bounds_min[1];
+    double dz = (double)f->bounds_max[2] - f->bounds_min[2];
+    double min_area = DIRT_ADS_LARGE_AREA * (dx * dx + dy * dy + dz * dz);
+    /* The largest so far, by area descending (ties: id ascending). */
+    double area[DIRT_ADS_MAX_LARGE];
+    int n = 0;
+    for (size_t p = 0; max > 0 && p < f->num_triangles; p++) {
+        const float *a = f->position[3 * p], *b = f->position[3 * p + 1], *c = f->position[3 * p + 2];
+        double e1[3] = {(double)b[0] - a[0], (double)b[1] - a[1], (double)b[2] - a[2]};
+        double e2[3] = {(double)c[0] - a[0], (double)c[1] - a[1], (double)c[2] - a[2]};
+        double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2],
+               z = e1[0] * e2[1] - e1[1] * e2[0];
+        double s = 0.5 * sqrt(x * x + y * y + z * z);
+        if (!(s >= min_area && s > 0) || (n == max && s <= area[n - 1]))
+            continue;
+        int k = n < max ? n++ : n - 1;
+        while (k > 0 && area[k - 1] < s) {
+            area[k] = area[k - 1];
+            ids[k] = ids[k - 1];
+            k--;
+        }
+        area[k] = s;
+        ids[k] = (uint32_t)p;
+    }
+    /* ascending ids */
+    for (int i = 1; i < n; i++) {
+        uint32_t v = ids[i];
+        int k = i;
+        for (; k > 0 && ids[k - 1] > v; k--)
+            ids[k] = ids[k - 1];
+        ids[k] = v;
+    }
+    return n;
+}
 
 static int views_in_mode(enum dirt_view_mode m)
 {
@@ -242,8 +286,13 @@ static void upload_params(dirt_ads *a)
         .pool = {(unsigned)a->node_capacity, (unsigned)a->set.pyramid_size,
                  (unsigned)a->set.atlas_width, (unsigned)a->set.atlas_height},
         .cand = {(unsigned)a->cand_capacity, (unsigned)a->rec_capacity,
-                 (unsigned)a->num_primitives, 0},
+                 (unsigned)a->num_primitives, (unsigned)a->stats.num_large},
     };
+    uint32_t large[DIRT_GPU_MAX_LARGE];
+    for (int k = 0; k < DIRT_GPU_MAX_LARGE; k++)
+        large[k] = k < a->stats.num_large ? a->stats.large[k] : DIRT_LIST_END;
+    for (int q = 0; q < DIRT_GPU_MAX_LARGE / 4; q++)
+        p.large[q] = (dirt_u4){large[4 * q], large[4 * q + 1], large[4 * q + 2], large[4 * q + 3]};
     glNamedBufferSubData(a->params, 0, sizeof(p), &p);
 }
 
@@ -648,6 +697,10 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     bool ok = false;
     if (!upload_frame(a, f) || !ensure_targets(a))
         goto done;
+    memset(st->large, 0, sizeof(st->large));
+    st->num_large = a->opts.large < 0 ? 0
+                  : dirt_ads_select_large(f, a->opts.large ? a->opts.large : DIRT_ADS_MAX_LARGE,
+                                          st->large);
     upload_views(a);
     upload_params(a);
     if (!a->graph || a->graph_atlas_w != a->set.atlas_width ||
@@ -780,6 +833,8 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
     out->pyramid_size = a->set.pyramid_size;
     out->num_nodes = (uint32_t)(a->stats.nodes < a->node_capacity ? a->stats.nodes
                                                                    : a->node_capacity);
+    out->num_large = a->stats.num_large;
+    memcpy(out->large, a->stats.large, sizeof(out->large));
     size_t heads = (size_t)out->buckets * (size_t)out->num_tiles;
     out->depth = malloc((size_t)out->pyramid_size * sizeof(*out->depth) + 8);
     out->heads = malloc(heads * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);

@@ -56,10 +56,11 @@ AT(dirt_gpu_view, size, 6);
 AT(dirt_gpu_view, placement, 7);
 AT(dirt_gpu_view, level_base, 8); /* [4] */
 
-RECORD(dirt_gpu_ads_params, 3);
+RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4);
 AT(dirt_gpu_ads_params, config, 0);
 AT(dirt_gpu_ads_params, pool, 1);
 AT(dirt_gpu_ads_params, cand, 2);
+AT(dirt_gpu_ads_params, large, 3);
 
 RECORD(dirt_gpu_ads_counters, 3);
 AT(dirt_gpu_ads_counters, fill, 0);

@@ -86,6 +86,8 @@ bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
              o->hiz_levels < 0 || o->march_samples < 0 || o->thickness < 0 ||
              o->aperture < 0 || o->focus < 0 || o->ao_distance < 0 || o->threads < 0)
         snprintf(why, size, "a negative or out-of-range option");
+    else if (o->large > DIRT_ADS_MAX_LARGE)
+        snprintf(why, size, "large primitives %d: at most %d", o->large, DIRT_ADS_MAX_LARGE);
     else if (o->build != DIRT_SESSION_BUILD_AUTO && o->build != DIRT_SESSION_BUILD_RASTER &&
              o->build != DIRT_SESSION_BUILD_COMPUTE)
         snprintf(why, size, "build mode %d unknown", (int)o->build);
@@ -266,6 +268,7 @@ static bool make_engine(dirt_session *s)
                                              .views = vo,
                                              .buckets = buckets,
                                              .force_emulation = o->force_emulation,
+                                             .large = o->large,
                                              .build = o->build == DIRT_SESSION_BUILD_RASTER
                                                           ? DIRT_BUILD_RASTER
                                                       : o->build == DIRT_SESSION_BUILD_COMPUTE
@@ -380,7 +383,8 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
     bool structure = old.engine != n.engine || old.width != n.width || old.height != n.height ||
                   old.views != n.views || old.face_size != n.face_size ||
                   old.tile_size != n.tile_size || old.buckets != n.buckets ||
-                  old.force_emulation != n.force_emulation || old.build != n.build;
+                  old.force_emulation != n.force_emulation || old.build != n.build ||
+                  old.large != n.large;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||

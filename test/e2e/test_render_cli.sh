@@ -87,6 +87,7 @@ expect_rc 2 "frames reversed" -- -o "$out/a_%d.png" --frames 3:1
 expect_rc 2 "two scenes" -- "$tmp/good.gltf" "$tmp/good.gltf" -o "$out/a.png"
 expect_rc 2 "bad mode" -- -o "$out/a.png" --mode xyz
 expect_rc 2 "zero spp" -- -o "$out/a.png" --spp 0
+expect_rc 2 "more large primitives than kept" -- -o "$out/a.png" --large 17
 expect_rc 2 "stats not json" -- -o "$out/a.png" --stats "$out/s.txt"
 expect_rc 2 "short background" -- -o "$out/a.png" --background 1,2
 expect_rc 2 "bad fetch" -- -o "$out/a.png" --fetch magic

@@ -12,6 +12,8 @@
  *  - on tiles: vertices at tile corners, on tile edges and on the planes
  *              moved out by DIRT_CLIP_EPS, edges along a row of those corners
  *              (three constraints meeting at one point).
+ * No primitive is kept out as large (dirt_ads_opts.large = -1): every
+ * triangle goes through the clip.
  * Every case is checked against the CPU reference (ads_check: no missing
  * pair, nothing beyond the allowed set, exact buckets, bounds in the
  * sandwich, Hi-Z exact) at S = 1, 2, 4 in views single and cube+camera, and
@@ -177,7 +179,7 @@ static diff build_compare(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         ok = ok && ads && dirt_ads_build(ads, f, cam) && dirt_ads_read(ads, &d[i]);
         if (ok && i == 0)
-            ok = ads_ref_build(dirt_ads_views(ads), f, 0.0, &req);
+            ok = ads_ref_build(dirt_ads_views(ads), f, 0.0, d[0].large, d[0].num_large, &req);
         dirt_ads_destroy(ads);
     }
     CHECK(ok);
@@ -212,6 +214,7 @@ static void run_case(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                           .tile_size = sizes[s]},
                 .buckets = 8,
                 .force_emulation = true,
+                .large = -1,
             };
             build_and_check(gpu, label, f, cam, &o);
             build_compare(gpu, label, f, cam, o);
@@ -252,7 +255,7 @@ static void case_inside(dirt_gpu *gpu, const dirt_camera *cam)
      * reference clip's bit for bit. */
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = W, .height = H,
                                  .tile_size = 4},
-                       .buckets = 8, .force_emulation = true};
+                       .buckets = 8, .force_emulation = true, .large = -1};
     build_and_check(gpu, "inside S=4", f, cam, &o);
     diff r = build_compare(gpu, "inside", f, cam, o);
     CHECK(r.tiles > 0 && r.boundary == 0 && r.bounds == 0 && r.lists == 0);
@@ -376,7 +379,8 @@ static void case_on_tiles(dirt_gpu *gpu, const dirt_camera *cam)
         float p[3];
         at_ndc(2.0f, ndc_x(8), ndc_y(12), p);
         dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = W, .height = H,
-                                     .tile_size = 1}, .buckets = 1, .force_emulation = true};
+                                     .tile_size = 1}, .buckets = 1, .force_emulation = true,
+                          .large = -1};
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         if (ads && dirt_ads_build(ads, f, cam)) {
             const dirt_view *v = &dirt_ads_views(ads)->views[0];

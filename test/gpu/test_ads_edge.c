@@ -63,6 +63,7 @@ static void test_slivers(dirt_gpu *gpu)
                           .width = 64, .height = 48, .face_size = 32, .tile_size = sizes[s]},
                 .buckets = 8,
                 .force_emulation = true,
+                .large = -1, /* every triangle in the lists */
             };
             build_and_check(gpu, "slivers", f, &cam, &o);
             /* Every fixed degenerate triangle is in some list. */

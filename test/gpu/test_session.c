@@ -112,6 +112,20 @@ static void check_restarts(dirt_gpu *gpu, const dirt_scene *scene)
     CHECK(dirt_session_add_samples(s, 1, NULL, NULL));
     CHECK(dirt_session_get_stats(s)->ads.bytes_heads ==
           (uint64_t)3 * 4 * ((W + 1) / 2) * ((H + 1) / 2));
+    /* The large primitives (the default scene's walls): up to 16, 2, none. */
+    static const int larges[] = {0, 2, -1};
+    int kept[3];
+    for (int i = 0; i < 3; i++) {
+        o.large = larges[i];
+        CHECK(dirt_session_set_opts(s, &o, &restarted) && restarted == (i > 0));
+        CHECK(dirt_session_add_samples(s, 1, NULL, NULL));
+        kept[i] = dirt_session_get_stats(s)->ads.num_large;
+    }
+    CHECK_MSG(kept[0] > 2 && kept[1] == 2 && kept[2] == 0, "large primitives kept: %d, %d, %d",
+              kept[0], kept[1], kept[2]);
+    o.large = 17;
+    CHECK(!dirt_session_check_opts(&o, NULL, 0));
+    o.large = 0;
     /* Bad options are refused and the old ones kept. */
     dirt_session_opts bad = o;
     bad.tile_size = 3;

@@ -61,7 +61,25 @@ typedef struct dirt_ads_opts {
                                  slow reference of the exact range, for checks and
                                  benchmarks; doc/dirt-build.md) */
     enum dirt_build_mode build; /* default (raster), raster or compute passes */
+    int large;                /* large primitives (doc/dirt-trace.md): at most this many
+                                 of the frame's largest triangles (dirt_ads_select_large)
+                                 are left out of the lists and tested by every ray;
+                                 0 = DIRT_ADS_MAX_LARGE, < 0 = none */
 } dirt_ads_opts;
+
+/* Most large primitives a structure keeps (= DIRT_GPU_MAX_LARGE). */
+#define DIRT_ADS_MAX_LARGE 16
+/* A triangle is large when its area is at least this fraction of the squared
+ * diagonal of the frame's bounds. */
+#define DIRT_ADS_LARGE_AREA 0.05
+
+/* The large primitives of `frame`: of the triangles whose area is at least
+ * DIRT_ADS_LARGE_AREA times the squared diagonal of the frame's bounds (and
+ * not 0), the
+ * `max` largest (ties: the lower id first; max is clamped to [0,
+ * DIRT_ADS_MAX_LARGE]). Writes their ids to ids, ascending, and returns how
+ * many. Deterministic; what dirt_ads_build uses with max = opts.large. */
+int dirt_ads_select_large(const dirt_frame *frame, int max, uint32_t ids[DIRT_ADS_MAX_LARGE]);
 
 /* The build's passes (doc/dirt-build.md): clear; depth bounds (exact range
  * per candidate, stored); mip; fill primitives (from the stored candidates);
@@ -88,6 +106,8 @@ typedef struct dirt_ads_stats {
     enum dirt_build_mode build; /* how it was built (RASTER or COMPUTE) */
     uint64_t work_records;    /* compute build: work records of the candidate tiles
                                  (0 for the raster build) */
+    int num_large;            /* large primitives (not in the lists, not in `samples`) */
+    uint32_t large[DIRT_ADS_MAX_LARGE]; /* their ids, ascending */
     /* Bytes. */
     uint64_t bytes_vertices;  /* vertex buffer */
     uint64_t bytes_depth;     /* depth bounds incl. pyramid: 8 B per entry */
@@ -129,6 +149,8 @@ typedef struct dirt_ads_data {
     uint32_t *heads;          /* buckets * tiles, bucket-major */
     uint32_t (*nodes)[2];     /* (primitive, next) */
     uint32_t num_nodes;
+    int num_large;            /* the large primitives, left out of the lists */
+    uint32_t large[DIRT_ADS_MAX_LARGE];
 } dirt_ads_data;
 
 /* Reads the structure back (blocking). Free with dirt_ads_data_free. */

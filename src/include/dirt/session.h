@@ -86,6 +86,9 @@ typedef struct dirt_session_opts {
     int buckets;                /* 0 = 16 for dirt, 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
     enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
+    int large;                  /* dirt: large primitives tested by every ray instead of
+                                   listed (dirt_ads_opts.large): 0 = up to 16, < 0 = none,
+                                   n = up to n (at most 16) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
     bool direct_visibility;     /* dirt: first hits from a visibility buffer */
