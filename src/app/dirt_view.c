@@ -1306,7 +1306,8 @@ static void panel_settings(viewer *v)
             int ti = o->s.tile_size == 1 ? 0 : o->s.tile_size == 4 ? 2 : o->s.tile_size == 8 ? 3 : 1;
             if (dirt_ui_combo("tile size S", &ti, tiles, 4))
                 o->s.tile_size = 1 << ti;
-            int b = o->s.buckets ? o->s.buckets : (o->s.engine == DIRT_ENGINE_MMRT ? 4 : 16);
+            int b = o->s.buckets ? o->s.buckets
+                    : o->s.engine == DIRT_ENGINE_MMRT ? 4 : dirt_session_auto_buckets(v->gpu);
             if (dirt_ui_slider_int("buckets", &b, 1, 64))
                 o->s.buckets = b;
             int top = (int)o->hiz_top;

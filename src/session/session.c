@@ -254,12 +254,18 @@ enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu)
     return dirt_build_from_env(caps && caps->software ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER);
 }
 
+int dirt_session_auto_buckets(const dirt_gpu *gpu)
+{
+    const dirt_gpu_caps *caps = gpu ? dirt_gpu_get_caps(gpu) : NULL;
+    return caps && caps->software ? 8 : 16;
+}
+
 static bool make_engine(dirt_session *s)
 {
     const dirt_session_opts *o = &s->opts;
     dirt_view_opts vo = {.mode = view_mode(o->views), .width = s->width, .height = s->height,
                          .face_size = o->face_size, .tile_size = o->tile_size ? o->tile_size : 2};
-    int buckets = o->buckets ? o->buckets : 16;
+    int buckets = o->buckets ? o->buckets : dirt_session_auto_buckets(s->gpu);
     switch (o->engine) {
     case DIRT_ENGINE_DIRT:
         if (!o->tile_size)

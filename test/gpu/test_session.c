@@ -99,6 +99,9 @@ static void check_restarts(dirt_gpu *gpu, const dirt_scene *scene)
     dirt_session_opts o = {.width = W, .height = H, .views = DIRT_SESSION_VIEWS_SINGLE};
     dirt_session *s = dirt_session_create(gpu, scene, &o);
     CHECK(s && dirt_session_add_samples(s, 2, NULL, NULL));
+    /* The default bucket count is the device's: 8 on a software renderer. */
+    CHECK(s && dirt_ads_buckets(dirt_session_ads(s)) == dirt_session_auto_buckets(gpu));
+    CHECK(dirt_session_auto_buckets(gpu) == (dirt_gpu_get_caps(gpu)->software ? 8 : 16));
     bool restarted = true;
     o.threads = 3; /* how the work is done, not the image */
     CHECK(dirt_session_set_opts(s, &o, &restarted) && !restarted);
@@ -376,7 +379,8 @@ static void check_pictures(dirt_gpu *gpu, const dirt_scene *scene)
         if (!pic[0] || !pic[1] || !pic[2] || !pic[3])
             continue;
         const dirt_session_stats *st = dirt_session_get_stats(s);
-        int buckets = e == 0 ? 16 : 4; /* the defaults (dirt_session_opts.buckets) */
+        /* the defaults (dirt_session_opts.buckets) */
+        int buckets = e == 0 ? dirt_session_auto_buckets(gpu) : 4;
         uint64_t want = e == 0 ? st->ads.nodes : st->mmrt.fragments;
         double sum = 0;
         int over = 0, order = 0, cells = 0;

@@ -66,6 +66,14 @@ enum dirt_session_build {
  * (dirt_build_from_env). */
 enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu);
 
+/* DIRT's bucket count when dirt_session_opts.buckets is 0, on `gpu` (NULL:
+ * 16): 8 on a software renderer (llvmpipe: the best whole frame at S = 2
+ * in the geometric mean over the shared and default scenes, in three
+ * interleaved runs of perf/bench-defaults.py, perf/results/
+ * defaults-llvmpipe.md), 16 (the authors' demo's) on a hardware GPU until
+ * a measurement there says otherwise. */
+int dirt_session_auto_buckets(const dirt_gpu *gpu);
+
 /* Views of the structure; DEFAULT = camera view and cube faces. */
 enum dirt_session_views {
     DIRT_SESSION_VIEWS_DEFAULT = 0,
@@ -83,7 +91,8 @@ typedef struct dirt_session_opts {
     enum dirt_session_views views;
     int face_size;              /* cube face pixels (0 = max(width, height) / 2) */
     int tile_size;              /* DIRT's S in {1, 2, 4, 8} (0 = 2; MMRT is per pixel) */
-    int buckets;                /* 0 = 16 for dirt, 4 for mmrt (the MMRT paper's) */
+    int buckets;                /* 0 = dirt_session_auto_buckets for dirt (8 on a software
+                                   renderer, 16 on a GPU), 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
     enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
     int large;                  /* dirt: large primitives tested by every ray instead of
