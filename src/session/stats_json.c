@@ -50,6 +50,7 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
         cJSON_AddBoolToObject(o, "bound_pass", a->bound_pass);
         cJSON_AddStringToObject(o, "build", a->build == DIRT_BUILD_COMPUTE ? "compute" : "raster");
         cJSON_AddNumberToObject(o, "work_records", (double)a->work_records);
+        cJSON_AddNumberToObject(o, "large_primitives", a->num_large);
         cJSON_AddNumberToObject(o, "bytes_table3", a->bytes_table3);
     } else if (s->has_mmrt) {
         /* The same keys as DIRT's where they mean the same; "list heads"
