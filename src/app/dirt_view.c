@@ -957,6 +957,8 @@ static void render_args(const viewer *v, char *buf, size_t size)
         ADD(" --buckets %d", o->buckets);
     if (o->face_size)
         ADD(" --face-size %d", o->face_size);
+    if (o->engine == DIRT_ENGINE_DIRT && o->large)
+        ADD(" --large %d", o->large < 0 ? 0 : o->large);
     if (o->hiz_levels)
         ADD(" --hiz-top %d", o->hiz_levels - 1);
     if (o->fetch)
@@ -1310,6 +1312,9 @@ static void panel_settings(viewer *v)
                     : o->s.engine == DIRT_ENGINE_MMRT ? 4 : dirt_session_auto_buckets(v->gpu);
             if (dirt_ui_slider_int("buckets", &b, 1, 64))
                 o->s.buckets = b;
+            int lg = o->large < 0 ? DIRT_ADS_MAX_LARGE : (int)o->large;
+            if (dirt_ui_slider_int("large primitives", &lg, 0, DIRT_ADS_MAX_LARGE))
+                o->large = lg;
             int top = (int)o->hiz_top;
             if (dirt_ui_slider_int("Hi-Z top (-1 = all)", &top, -1, 15))
                 o->hiz_top = top;
