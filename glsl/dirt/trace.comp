@@ -16,10 +16,10 @@
 // buckets can give a hit beyond the current slab; stopping there could skip
 // a nearer primitive of the next bucket). Cell exits are solved exactly in
 // clip space, where tile boundaries are planes linear in the ray parameter.
-// Large primitives (dirt/large.glsl: in no list) are tested first, with the
-// ray's whole segment; such a hit counts where the ray is inside a view
-// (where a listed primitive's hit would be found), and the march then runs
-// up to it.
+// Large primitives (built with DIRT_TRACE_LARGE, when the structure has
+// some; dirt/large.glsl: in no list) are tested first, with the ray's whole
+// segment; such a hit counts where the ray is inside a view (where a listed
+// primitive's hit would be found), and the march then runs up to it.
 // Alpha (built with DIRT_TRACE_ALPHA, for scenes with MASK or BLEND
 // materials: integrator/alpha.glsl, u_alpha): a candidate of such a material
 // that the alpha test rejects is not a hit, and the walk goes on as if it
@@ -42,7 +42,6 @@ layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
 layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
-#include "dirt/large.glsl"
 layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
     uvec2 depth[];
 };
@@ -457,6 +456,7 @@ void main()
         enter[j] = t0;
         leave[j] = t1;
     }
+#ifdef DIRT_TRACE_LARGE
     // The large primitives; a hit's view is the first in the order above
     // whose segment holds it.
     uint nl = params.cand.w;
@@ -483,6 +483,7 @@ void main()
         if (u_any_hit != 0)
             break;
     }
+#endif
     // The ray is marched piece by piece in order of t, each piece in one
     // view: the first in the order above (camera view, then faces) whose
     // segment holds its start; a piece ends where that view's segment ends

@@ -31,14 +31,16 @@ const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
 _Static_assert(DIRT_ADS_MAX_LARGE == DIRT_GPU_MAX_LARGE && DIRT_GPU_MAX_LARGE % 4 == 0,
                "one count of large primitives");
 
-int dirt_ads_select_large(const dirt_frame *f, int max, uint32_t ids[DIRT_ADS_MAX_LARGE])
+int dirt_ads_select_large(const dirt_frame *f, int max, double area_fraction,
+                          uint32_t ids[DIRT_ADS_MAX_LARGE])
 {
     if (max > DIRT_ADS_MAX_LARGE)
         max = DIRT_ADS_MAX_LARGE;
     double dx = (double)f->bounds_max[0] - f->bounds_min[0];
     double dy = (double)f->bounds_max[1] - f->bounds_min[1];
     double dz = (double)f->bounds_max[2] - f->bounds_min[2];
-    double min_area = DIRT_ADS_LARGE_AREA * (dx * dx + dy * dy + dz * dz);
+    double min_area = (area_fraction > 0 ? area_fraction : DIRT_ADS_LARGE_AREA) *
+                      (dx * dx + dy * dy + dz * dz);
     /* The largest so far, by area descending (ties: id ascending). */
     double area[DIRT_ADS_MAX_LARGE];
     int n = 0;
@@ -144,13 +146,13 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
     a->prog_count = gl_program_compute("dirt/count.comp", NULL, 0);
     a->prog_fill = gl_program_compute("dirt/fill.comp", NULL, 0);
     a->prog_mip = views_hiz_program();
-    a->prog_trace = gl_program_compute("dirt/trace.comp", NULL, 0);
+    a->prog_trace[0] = gl_program_compute("dirt/trace.comp", NULL, 0);
     a->prog_fetch = gl_program_compute("dirt/fetch.comp", NULL, 0);
     a->prog_fetch_miss = gl_program_compute("dirt/fetch_miss.comp", NULL, 0);
     defs[1].name = "DIRT_PASS_FETCH";
     a->prog_fetch_raster = gl_program_create("dirt fetch (raster)", paths, defs, ndefs);
     if (!a->prog_count || !a->prog_fill || !a->prog_mip ||
-        !a->prog_trace || !a->prog_fetch || !a->prog_fetch_miss || !a->prog_fetch_raster)
+        !a->prog_trace[0] || !a->prog_fetch || !a->prog_fetch_miss || !a->prog_fetch_raster)
         goto error;
     const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
     a->prog_vis = gl_program_create("dirt direct visibility", vis, NULL, 0);
@@ -197,8 +199,8 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_program_destroy(&a->prog_count);
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
-    gl_program_destroy(&a->prog_trace);
-    gl_program_destroy(&a->prog_trace_alpha);
+    for (int k = 0; k < 4; k++)
+        gl_program_destroy(&a->prog_trace[k]);
     gl_program_destroy(&a->prog_fetch);
     gl_program_destroy(&a->prog_fetch_miss);
     gl_program_destroy(&a->prog_fetch_raster);
@@ -700,7 +702,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     memset(st->large, 0, sizeof(st->large));
     st->num_large = a->opts.large < 0 ? 0
                   : dirt_ads_select_large(f, a->opts.large ? a->opts.large : DIRT_ADS_MAX_LARGE,
-                                          st->large);
+                                          a->opts.large_area, st->large);
     upload_views(a);
     upload_params(a);
     if (!a->graph || a->graph_atlas_w != a->set.atlas_width ||

@@ -25,18 +25,26 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
-    /* Alpha-tested traversal: its own build of the shader (opaque scenes
-     * keep the trace without it). */
+    /* Alpha-tested traversal and the large primitives: each its own build
+     * of the shader (opaque scenes, and structures without large
+     * primitives, keep the trace without). */
     const dirt_trace_alpha *al = &opts.alpha;
-    if (al->materials && !a->prog_trace_alpha) {
-        glsl_define def = {"DIRT_TRACE_ALPHA", "1"};
-        a->prog_trace_alpha = gl_program_compute("dirt/trace.comp", &def, 1);
-        if (!a->prog_trace_alpha) {
+    bool large = a->stats.num_large > 0;
+    GLuint *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0)];
+    if (!*prog) {
+        glsl_define defs[2];
+        int n = 0;
+        if (al->materials)
+            defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
+        if (large)
+            defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
+        *prog = gl_program_compute("dirt/trace.comp", defs, n);
+        if (!*prog) {
             gl_group_pop();
             return false;
         }
     }
-    glUseProgram(al->materials ? a->prog_trace_alpha : a->prog_trace);
+    glUseProgram(*prog);
     glUniform1ui(DIRT_LOC_TRACE_COUNT, count);
     glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);

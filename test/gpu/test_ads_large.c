@@ -79,7 +79,7 @@ static void check_selection(const char *label, const dirt_frame *f, int expect_m
     static const int maxes[] = {16, 5, 1, 0};
     for (int i = 0; i < 4; i++) {
         uint32_t got[DIRT_ADS_MAX_LARGE], want[DIRT_ADS_MAX_LARGE];
-        int ng = dirt_ads_select_large(f, maxes[i], got);
+        int ng = dirt_ads_select_large(f, maxes[i], 0, got);
         int nw = expected_large(f, maxes[i], want);
         CHECK_MSG(ng == nw && !memcmp(got, want, (size_t)nw * sizeof(*got)),
                   "%s max %d: %d selected, %d expected", label, maxes[i], ng, nw);
@@ -103,7 +103,7 @@ static void test_ties(void)
     set_tri(f, 25, (float[3]){-0.0f, 0, 0}, (float[3]){0.1f, 0, 0}, (float[3]){4, 4, 0.05f});
     frame_bounds(f);
     uint32_t ids[DIRT_ADS_MAX_LARGE];
-    int n = dirt_ads_select_large(f, 16, ids);
+    int n = dirt_ads_select_large(f, 16, 0, ids);
     CHECK(n == 16);
     for (int i = 0; i < n; i++)
         CHECK_MSG(ids[i] == (uint32_t)i, "tie %d: id %u", i, ids[i]);

@@ -3,7 +3,8 @@
  * texture; test/common/alpha_scene.h):
  *  - hits: the camera G-buffer's rays of every type (visibility rays as
  *    shadow rays, keyed DIRT_RNG_DIM_ALPHA_SHADOW, the others _PATH), traced
- *    by DIRT (cube+camera, S in {1, 4}, B in {1, 8}) with the alpha tables
+ *    by DIRT (cube+camera, S in {1, 4}, B in {1, 8}, and S = 1, B = 8 with
+ *    every triangle a large primitive, dirt_ads_opts.large_area) with the alpha tables
  *    against Embree with the same keys: the same primitive (or t within
  *    1e-4 on shared edges) for >= 99.9 % of the rays of every type; many of
  *    them (counted) are rays whose opaque hit was a plane the alpha test
@@ -102,16 +103,25 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
     free(plain);
     dirt_hit *out = malloc(cap * sizeof(dirt_hit));
     static const int sizes[] = {1, 4}, buckets[] = {1, 8};
-    for (int s = 0; s < 2; s++) {
+    /* (s = 2: every triangle large, the alpha-tested planes too, so every
+     * hit comes from the large primitives' test) */
+    for (int s = 0; s < 3; s++) {
         for (int b = 0; b < 2; b++) {
+            if (s == 2 && b == 0)
+                continue;
             dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = W, .height = H,
-                                         .face_size = 32, .tile_size = sizes[s]},
-                               .buckets = buckets[b], .force_emulation = true};
+                                         .face_size = 32, .tile_size = sizes[s % 2]},
+                               .buckets = buckets[b], .force_emulation = true,
+                               .large_area = s == 2 ? 1e-9 : 0};
             dirt_ads *ads = dirt_ads_create(gpu, &o);
             CHECK(ads && dirt_ads_build(ads, f, &cam));
             if (!ads)
                 continue;
-            fprintf(stderr, "DIRT S=%d B=%d", sizes[s], buckets[b]);
+            int nl = dirt_ads_get_stats(ads)->num_large;
+            if (s == 2)
+                CHECK_MSG(nl == (int)f->num_triangles, "%d of %zu triangles large", nl,
+                          f->num_triangles);
+            fprintf(stderr, "DIRT S=%d B=%d, %d large", sizes[s % 2], buckets[b], nl);
             for (int t = DIRT_RAY_PRIMARY; t < DIRT_RAY_TYPES; t++) {
                 bool vis = t == DIRT_RAY_VISIBILITY;
                 dirt_trace_opts to = {.any_hit = vis};

@@ -65,6 +65,9 @@ typedef struct dirt_ads_opts {
                                  of the frame's largest triangles (dirt_ads_select_large)
                                  are left out of the lists and tested by every ray;
                                  0 = DIRT_ADS_MAX_LARGE, < 0 = none */
+    double large_area;        /* the smallest large triangle's area, as a fraction of the
+                                 squared diagonal of the frame's bounds (0 =
+                                 DIRT_ADS_LARGE_AREA) */
 } dirt_ads_opts;
 
 /* Most large primitives a structure keeps (= DIRT_GPU_MAX_LARGE). */
@@ -74,12 +77,13 @@ typedef struct dirt_ads_opts {
 #define DIRT_ADS_LARGE_AREA 0.05
 
 /* The large primitives of `frame`: of the triangles whose area is at least
- * DIRT_ADS_LARGE_AREA times the squared diagonal of the frame's bounds (and
- * not 0), the
- * `max` largest (ties: the lower id first; max is clamped to [0,
- * DIRT_ADS_MAX_LARGE]). Writes their ids to ids, ascending, and returns how
- * many. Deterministic; what dirt_ads_build uses with max = opts.large. */
-int dirt_ads_select_large(const dirt_frame *frame, int max, uint32_t ids[DIRT_ADS_MAX_LARGE]);
+ * `area` (0: DIRT_ADS_LARGE_AREA) times the squared diagonal of the frame's
+ * bounds (and not 0), the `max` largest (ties: the lower id first; max is
+ * clamped to [0, DIRT_ADS_MAX_LARGE]). Writes their ids to ids, ascending,
+ * and returns how many. Deterministic; what dirt_ads_build uses with max =
+ * opts.large, area = opts.large_area. */
+int dirt_ads_select_large(const dirt_frame *frame, int max, double area,
+                          uint32_t ids[DIRT_ADS_MAX_LARGE]);
 
 /* The build's passes (doc/dirt-build.md): clear; depth bounds (exact range
  * per candidate, stored); mip; fill primitives (from the stored candidates);
