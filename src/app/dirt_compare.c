@@ -12,10 +12,10 @@
 
 #include "app/cli.h"
 #include "app/compare.h"
-#include "app/compare_version.h"
 #include "dirt/clock.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
+#include "dirt/version.h"
 
 #define PROG "dirt-compare"
 #define MAX_LIST 16
@@ -681,7 +681,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddStringToObject(ej, "machine", ev->machine);
     cJSON_AddStringToObject(ej, "renderer", ev->renderer);
     cJSON_AddStringToObject(ej, "clock", ev->clock);
-    cJSON_AddStringToObject(ej, "commit", DIRT_COMPARE_COMMIT);
+    cJSON_AddStringToObject(ej, "commit", dirt_version_commit());
     /* The reference: Embree with the same seed, camera and settings. */
     const dirt_image *ref = NULL;
     dirt_session *rs = NULL;
