@@ -258,6 +258,22 @@ static void probe_caps(dirt_gpu *gpu)
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &c->max_ssbo_bindings);
 }
 
+/* The GPU current on this thread (gl_current). */
+static _Thread_local dirt_gpu *current_gpu;
+
+dirt_gpu *gl_current(void)
+{
+    return current_gpu;
+}
+
+/* True when environment variable `name` is set to something other than
+ * "" or "0". */
+static bool env_flag(const char *name)
+{
+    const char *v = getenv(name);
+    return v && *v && strcmp(v, "0") != 0;
+}
+
 dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
 {
     dirt_gpu *gpu = calloc(1, sizeof(*gpu));
@@ -277,6 +293,8 @@ dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
     }
     if (!gpu->opts.no_debug)
         gl_debug_install(gpu);
+    gpu->poison = gpu->opts.poison || env_flag("DIRT_POISON");
+    current_gpu = gpu;
     char desc[512];
     dirt_gpu_describe(gpu, desc, sizeof(desc));
     DIRT_DEBUG("%s", desc);
@@ -290,6 +308,8 @@ void dirt_gpu_destroy(dirt_gpu *gpu)
 {
     if (!gpu)
         return;
+    if (current_gpu == gpu)
+        current_gpu = NULL;
     /* GL objects go while the context is current. */
     if (gpu->ui) {
         DIRT_WARN("dirt_gpu_destroy: its dirt_ui is still attached; destroying it first");
@@ -366,6 +386,11 @@ void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height)
     *width = *height = 0;
     if (gpu->window)
         glfwGetFramebufferSize(gpu->window, width, height);
+}
+
+bool dirt_gpu_poisons(const dirt_gpu *gpu)
+{
+    return gpu->poison;
 }
 
 uint64_t dirt_gpu_error_count(const dirt_gpu *gpu)

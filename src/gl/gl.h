@@ -35,7 +35,13 @@ struct dirt_gpu {
     uint64_t error_count;
     bool in_finish_timer;
     dirt_gpu_query_counts queries; /* timer.c: the time queries' counts */
+    bool poison;                   /* poison.c: fill new memory (dirt_gpu_poisons) */
 };
+
+/* The GPU whose context is current on this thread: the one made last by
+ * dirt_gpu_create here (NULL after it was destroyed). The helpers that take
+ * no dirt_gpu (textures, the poisoning) act for it. */
+dirt_gpu *gl_current(void);
 
 /* ---- the window's input (window.c) ---- */
 
@@ -109,6 +115,17 @@ void gl_texture_destroy(GLuint *tex);
 bool gl_texture_upload_rgba32f(GLuint tex, int width, int height, const float *rgba);
 /* Reads level 0 of an RGBA32F 2D texture (blocking; row 0 first). */
 bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba);
+
+/* ---- poisoned memory (poison.c) ---- */
+
+/* When the current GPU poisons (dirt_gpu_opts.poison), fill buffer `buf`
+ * (`size` bytes) with DIRT_GPU_POISON_WORD, or every level of texture `tex`
+ * with the poison of its format (see DIRT_GPU_POISON_WORD). `after_shaders`:
+ * earlier shader writes may still be in flight (a reused frame-graph
+ * allocation): the GL_BUFFER_UPDATE / GL_TEXTURE_UPDATE barrier the clear
+ * needs comes first. Nothing when the GPU does not poison. */
+void gl_poison_buffer(GLuint buf, size_t size, bool after_shaders);
+void gl_poison_texture(GLuint tex, bool after_shaders);
 
 /* ---- timers (timer.c) ---- */
 

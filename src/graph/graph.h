@@ -456,6 +456,13 @@ typedef struct fg_backend_ops {
      * asynchronous end_pass (p->async) reports in *ms the pass's earlier
      * times that have arrived (0 when none, with the clock). */
     void (*drain)(void *self, int index, bool discard, double *ms, enum dirt_clock *clock);
+    /* Optional (NULL: nothing). Called before the barrier of the pass that
+     * makes a transient's first access in an execute, once per transient:
+     * the backend may overwrite the object with garbage (its content is
+     * undefined there: a new allocation, the last execute's, or another
+     * transient's sharing the memory), so that reading what no pass of
+     * this execute wrote shows (the GL backend: dirt_gpu_opts.poison). */
+    void (*poison)(void *self, const fg_binding *b);
 } fg_backend_ops;
 
 typedef struct fg_backend {

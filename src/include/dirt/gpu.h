@@ -58,7 +58,22 @@ typedef struct dirt_gpu_opts {
                                 software renderer (llvmpipe's GL_TIME_ELAPSED works
                                 but does not time rasterization, so its figures are
                                 not the work's); cpu_timing wins (dirt_gpu_clock) */
+    bool poison;             /* test builds: fill every buffer and texture the engine
+                                allocates with DIRT_GPU_POISON_WORD when it is made,
+                                and every frame-graph transient at its first use in
+                                each execute, so a read of memory nobody wrote shows
+                                on any driver. Also on when the environment has
+                                DIRT_POISON=1 (the test suite sets it) */
 } dirt_gpu_opts;
+
+/* What poisoned memory holds (dirt_gpu_opts.poison): every 32-bit word of a
+ * buffer, and every texel channel of a float or integer texture (read as a
+ * float: a quiet NaN; as an index: far past any array). 16-bit float
+ * channels hold a NaN, normalized ones DIRT_GPU_POISON_UNORM (as do the
+ * last bytes of a buffer whose size is no multiple of 4), depth textures
+ * 0 (the near plane: nothing passes a GL_LESS test). */
+#define DIRT_GPU_POISON_WORD 0x7FF7DEADu
+#define DIRT_GPU_POISON_UNORM 0xADu
 
 typedef struct dirt_gpu_caps {
     int gl_major, gl_minor;
@@ -116,6 +131,9 @@ dirt_gpu_query_counts dirt_gpu_queries(const dirt_gpu *gpu);
 /* dirt_gpu_queries(gpu).waits: 0 over a stretch of work means no query
  * result stalled the CPU there. */
 uint64_t dirt_gpu_query_waits(const dirt_gpu *gpu);
+
+/* Whether the GPU poisons new memory (dirt_gpu_opts.poison or DIRT_POISON=1). */
+bool dirt_gpu_poisons(const dirt_gpu *gpu);
 
 /* Waits for all GPU work (glFinish). */
 void dirt_gpu_finish(dirt_gpu *gpu);
