@@ -283,6 +283,14 @@ dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
     }
     if (opts)
         gpu->opts = *opts;
+    /* Mesa's zink (22.3) specializes shaders on the values of uniforms
+     * that steer branches ("inlined uniforms") and, when the program
+     * changes and the new one's values equal the previous program's,
+     * keeps the new one's variant made for its old values: MMRT's trace
+     * read a stale u_ray_batch in chunked renders (test gl_uniforms). Off
+     * before the driver reads it, unless the environment says otherwise;
+     * no other driver reads the variable. */
+    setenv("ZINK_INLINE_UNIFORMS", "0", 0);
     if (!(gpu->opts.window ? glfw_create(gpu) : egl_create(gpu)))
         goto error;
     probe_caps(gpu);
