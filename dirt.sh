@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # DIRT engine: one entry point for newcomers and CI.
 #   ./dirt.sh run    install what is missing, build, render the default scene
-#   ./dirt.sh test   install what is missing, build, run every test
+#   ./dirt.sh test   install what is missing, build, run every test on llvmpipe,
+#                    then the GPU and end-to-end suites on zink over lavapipe
 #   ./dirt.sh build  install what is missing, build into build/
 #   ./dirt.sh asan   the tests again in an AddressSanitizer/UBSan build (build-asan/), leaks on
 #   ./dirt.sh clang  a clang build with -Werror (build-clang/) and its unit tests
 #   ./dirt.sh fuzz [SECONDS]  the scene fuzz target for SECONDS (default 60; build-clang/)
 # With CI=true a skipped test fails the run (except those named in CI_MAY_SKIP).
+# DIRT_TEST_DRIVERS (default "default zink") chooses the drivers of ./dirt.sh test:
+# default = the context the programs pick (llvmpipe on a machine without a GPU).
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -19,6 +22,7 @@ PACKAGES=(
   xvfb xauth xdotool
   slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
+  mesa-vulkan-drivers
 )
 
 # Tests that may skip even in CI, each saying why: the NVIDIA
@@ -56,22 +60,26 @@ build() {
   ninja -C "$dir" >/dev/null || ninja -C "$dir"
 }
 
+# run_tests DIR LOGBASE [meson test arguments]: the tests, one summary line,
+# and with CI=true a failure for every skip not in CI_MAY_SKIP (from
+# DIR/meson-logs/LOGBASE.json).
 run_tests() {
-  local dir=$1; shift
-  local rc=0
-  meson test -C "$dir" --print-errorlogs --num-processes 2 "$@" || rc=$?
+  local dir=$1 logbase=$2; shift 2
+  local rc=0 log="$dir/meson-logs/$logbase.json"
+  rm -f "$log"
+  meson test -C "$dir" --print-errorlogs --num-processes 2 --logbase "$logbase" "$@" || rc=$?
   # One plain summary line from meson's JSON log.
-  if [ -f "$dir/meson-logs/testlog.json" ]; then
+  if [ -f "$log" ]; then
     awk -F'"result": "' 'NF > 1 { split($2, a, "\""); r[a[1]]++ }
       END { printf "%d passed, %d failed, %d skipped\n", r["OK"] + r["EXPECTEDFAIL"],
             r["FAIL"] + r["TIMEOUT"] + r["ERROR"] + r["UNEXPECTEDPASS"], r["SKIP"] }' \
-      "$dir/meson-logs/testlog.json"
+      "$log"
     if [ "${CI:-}" = true ]; then
       local skipped allowed name bad=0
       skipped=$(python3 -c 'import json,sys
 for l in open(sys.argv[1]):
     t = json.loads(l)
-    if t.get("result") == "SKIP": print(t["name"].split(" / ")[-1])' "$dir/meson-logs/testlog.json")
+    if t.get("result") == "SKIP": print(t["name"].split(" / ")[-1])' "$log")
       for name in $skipped; do
         allowed=0
         for a in "${CI_MAY_SKIP[@]}"; do [ "$name" = "$a" ] && allowed=1; done
@@ -101,17 +109,37 @@ case "${1:-}" in
     # Every DIRT test with the raster build here and with the compute build
     # in the sanitizer run (DIRT_BUILD sets what the default and automatic
     # builds stand for; explicit choices stay; doc/dirt-build.md).
-    DIRT_BUILD=${DIRT_BUILD:-raster} run_tests build
+    rc=0
+    for driver in ${DIRT_TEST_DRIVERS:-default zink}; do
+      t0=$SECONDS
+      case $driver in
+        default)
+          # Everything: unit, GPU, end-to-end, headers, fuzz replay.
+          DIRT_BUILD=${DIRT_BUILD:-raster} run_tests build testlog || rc=1 ;;
+        zink)
+          # The suites that draw (GPU and end-to-end) again, on OpenGL over
+          # Vulkan (lavapipe) through Mesa's surfaceless EGL; every context
+          # must say zink (DIRT_EXPECT_RENDERER: a fallback fails).
+          xdg=$(mktemp -d); chmod 700 "$xdg"
+          LIBGL_ALWAYS_SOFTWARE=1 MESA_LOADER_DRIVER_OVERRIDE=zink XDG_RUNTIME_DIR=$xdg \
+            DIRT_GPU=surfaceless DIRT_EXPECT_RENDERER=zink DIRT_BUILD=${DIRT_BUILD:-raster} \
+            run_tests build testlog-zink --suite gpu --suite e2e || rc=1
+          rm -rf "$xdg" ;;
+        *) say "DIRT_TEST_DRIVERS: unknown driver '$driver' (default, zink)"; exit 2 ;;
+      esac
+      say "$driver: $((SECONDS - t0)) s"
+    done
+    exit $rc
     ;;
   asan)
     # Leak detection is on in this build (test/meson.build: test/lsan.supp
     # suppresses only Mesa's and the GL loader's own allocations).
     build build-asan -Db_sanitize=address,undefined -Db_lundef=false
-    DIRT_BUILD=${DIRT_BUILD:-compute} run_tests build-asan
+    DIRT_BUILD=${DIRT_BUILD:-compute} run_tests build-asan testlog
     ;;
   clang)
     CC=clang CXX=clang++ build build-clang -Dwerror=true -Dfuzz=true
-    run_tests build-clang --suite unit
+    run_tests build-clang testlog --suite unit
     ;;
   fuzz)
     secs=${2:-60}

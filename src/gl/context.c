@@ -299,6 +299,12 @@ dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
                    gpu->caps.gl_minor, gpu->caps.renderer);
         goto error;
     }
+    const char *want = getenv("DIRT_EXPECT_RENDERER");
+    if (want && *want && !contains_ci(gpu->caps.renderer, want)) {
+        DIRT_ERROR("DIRT_EXPECT_RENDERER=%s, but the context's renderer is '%s' (did the "
+                   "driver fall back?)", want, gpu->caps.renderer);
+        goto error;
+    }
     if (!gpu->opts.no_debug)
         gl_debug_install(gpu);
     gpu->poison = gpu->opts.poison || env_flag("DIRT_POISON");

@@ -93,7 +93,12 @@ typedef struct dirt_gpu_caps {
 } dirt_gpu_caps;
 
 /* Makes a GL 4.5 core context. Returns NULL after logging why (no EGL display,
- * no GL 4.5, no window system). */
+ * no GL 4.5, no window system, or a renderer string without the text the
+ * environment variable DIRT_EXPECT_RENDERER names, case-insensitively: the
+ * test runs set it so that a driver falling back to another fails). Before
+ * the driver is loaded it sets ZINK_INLINE_UNIFORMS=0 in the environment
+ * unless that is set (Mesa 22.3's zink keeps stale shader variants with
+ * it: src/gl/context.c). */
 dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts);
 void dirt_gpu_destroy(dirt_gpu *gpu);
 
