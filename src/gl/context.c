@@ -309,6 +309,8 @@ dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
         gl_debug_install(gpu);
     gpu->poison = gpu->opts.poison || env_flag("DIRT_POISON");
     current_gpu = gpu;
+    if (!gl_check_init(gpu))
+        goto error;
     char desc[512];
     dirt_gpu_describe(gpu, desc, sizeof(desc));
     DIRT_DEBUG("%s", desc);
@@ -322,14 +324,15 @@ void dirt_gpu_destroy(dirt_gpu *gpu)
 {
     if (!gpu)
         return;
-    if (current_gpu == gpu)
-        current_gpu = NULL;
     /* GL objects go while the context is current. */
     if (gpu->ui) {
         DIRT_WARN("dirt_gpu_destroy: its dirt_ui is still attached; destroying it first");
         gl_ui_release(gpu);
     }
     gl_present_release(gpu);
+    if (current_gpu == gpu)
+        current_gpu = NULL;
+    gl_check_release(gpu);
     if (gpu->egl_display) {
         eglMakeCurrent(gpu->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (gpu->egl_context)

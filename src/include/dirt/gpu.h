@@ -64,6 +64,18 @@ typedef struct dirt_gpu_opts {
                                 each execute, so a read of memory nobody wrote shows
                                 on any driver. Also on when the environment has
                                 DIRT_POISON=1 (the test suite sets it) */
+    bool check_barriers;     /* test builds: the barrier checker (src/gl/check.c) follows
+                                every draw, dispatch and transfer the engine issues and
+                                the buffers and textures each reads and writes, and
+                                reports an access that follows an incoherent shader
+                                write (or a shader write that follows any access) of
+                                the same object with no glMemoryBarrier of the bit
+                                that access needs in between: logged with both
+                                commands, counted (dirt_gpu_barrier_counts) and in
+                                dirt_gpu_error_count. DIRT_CHECK_BARRIERS=1 in the
+                                environment turns it on too and makes the first
+                                hazard abort the process (the test suite sets it);
+                                with this option the process goes on */
 } dirt_gpu_opts;
 
 /* What poisoned memory holds (dirt_gpu_opts.poison): every 32-bit word of a
@@ -136,6 +148,33 @@ dirt_gpu_query_counts dirt_gpu_queries(const dirt_gpu *gpu);
 /* dirt_gpu_queries(gpu).waits: 0 over a stretch of work means no query
  * result stalled the CPU there. */
 uint64_t dirt_gpu_query_waits(const dirt_gpu *gpu);
+
+/* What the barrier checker reports (dirt_gpu_opts.check_barriers), one id
+ * per kind of hazard with its message. */
+#define DIRT_GPU_HAZARDS(X)                                                         \
+    X(READ_AFTER_WRITE, "read after an incoherent shader write without its barrier") \
+    X(WRITE_AFTER_WRITE, "write after an incoherent shader write without its barrier") \
+    X(WRITE_AFTER_READ, "shader write after an access without its barrier")
+
+enum dirt_gpu_hazard {
+#define DIRT_GPU_HAZARD_ENUM_(id, msg) DIRT_GPU_HAZARD_##id,
+    DIRT_GPU_HAZARDS(DIRT_GPU_HAZARD_ENUM_)
+#undef DIRT_GPU_HAZARD_ENUM_
+    DIRT_GPU_HAZARD_COUNT
+};
+
+extern const char *const dirt_gpu_hazard_messages[DIRT_GPU_HAZARD_COUNT];
+
+typedef struct dirt_gpu_barrier_check {
+    bool on;                 /* the checker runs on this GPU */
+    uint64_t commands;       /* draws, dispatches and transfers checked */
+    uint64_t barriers;       /* glMemoryBarrier calls seen */
+    uint64_t hazards[DIRT_GPU_HAZARD_COUNT]; /* found, by kind */
+    uint64_t total;          /* their sum */
+} dirt_gpu_barrier_check;
+
+/* The barrier checker's counts since the GPU was made (all zero when off). */
+dirt_gpu_barrier_check dirt_gpu_barrier_counts(const dirt_gpu *gpu);
 
 /* Whether the GPU poisons new memory (dirt_gpu_opts.poison or DIRT_POISON=1). */
 bool dirt_gpu_poisons(const dirt_gpu *gpu);
