@@ -15,6 +15,9 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                 "dirt hit heads"))
         return false;
     gl_group_push("dirt trace");
+    /* Rays may come from a shader (the integrator's ray generation); the
+     * clears below overwrite what earlier traces wrote with shaders. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     static const uint32_t zero = 0, end = DIRT_LIST_END;
     if (stats) /* per-call abort count; else it accumulates until reset */
         glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
@@ -24,7 +27,9 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     ads_bind_all(a);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
+    /* Only a linking trace touches the hit lists (the barrier checker takes a
+     * bound writable block as written). */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, link ? a->hit_heads : 0);
     /* Alpha-tested traversal and the large primitives: each its own build
      * of the shader (opaque scenes, and structures without large
      * primitives, keep the trace without). */
@@ -58,8 +63,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
     }
-    /* Rays may come from a shader (the integrator's ray generation). */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* Timed here only when called on its own (stats requested); inside a
      * frame graph the graph times the pass (GL timer queries don't nest). */
     if (stats)
@@ -101,6 +104,9 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
     glUseProgram(raster ? a->prog_fetch_miss : a->prog_fetch);
     gl_dispatch_rays(batch, count, 0);
     if (raster) {
+        /* The misses' shading points, then the hits': the barrier checker
+         * tracks whole buffers, and two commands writing one need it. */
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         if (a->fetch_fbo_w != a->set.atlas_width || a->fetch_fbo_h != a->set.atlas_height) {
             glNamedFramebufferParameteri(a->fetch_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
                                          a->set.atlas_width);

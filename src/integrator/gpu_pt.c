@@ -967,13 +967,18 @@ uint32_t dirt_pt_display_texture(dirt_pt *pt)
     if (pt->display_samples == pt->samples)
         return pt->display;
     gl_group_push("dirt path tracer display");
-    /* The accumulation was written by shader stores. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    /* The accumulation was written by shader stores; the texture's readers
+     * (the window's draw of the last frame) finish before the stores. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glUseProgram(pt->prog_display);
     glUniform1i(DIRT_LOC_DISPLAY_WIDTH, pt->width);
     glUniform1f(DIRT_LOC_DISPLAY_INV_SAMPLES, 1.0f / (float)pt->samples);
     glBindImageTexture(DIRT_UNIT_DISPLAY, pt->display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     for (size_t c = 0; c < pt->num_chunks; c++) {
+        /* Each chunk stores its own pixels; the barrier checker tracks the
+         * whole texture, and two commands writing one need it. */
+        if (c > 0)
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)chunk_pixels(pt, c));
         glUniform1ui(DIRT_LOC_DISPLAY_PIXEL_OFFSET, (GLuint)(c * pt->chunk));
         bind(DIRT_BIND_ACCUM, pt->accum[c]);

@@ -569,6 +569,8 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
     if (!fg_execute(m->g_finish, &eo))
         goto done;
     fg_add_pass_times(m->g_finish, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
+    /* The tracer's shaders read the A-buffer and the counters next. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     fill_stats(m, &m->counters_cpu, runs, ms, clock);
     ok = gl_check("mmrt build");
     m->built = ok;
