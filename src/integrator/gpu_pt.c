@@ -32,7 +32,8 @@ const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
 typedef struct pass_ctx {
     struct dirt_pt *pt;
     enum dirt_pt_pass kind;
-    int k; /* path event */
+    int k;       /* path event */
+    bool finish; /* compaction's second pass (the next batch's dispatch) */
 } pass_ctx;
 
 #define MAX_PASSES 512
@@ -440,23 +441,26 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         dispatch_batch(pt, c->k);
         break;
     case DIRT_PT_PASS_COMPACT: {
-        /* The rays of event k + 1 (written over event k's by Shade) whose
-         * paths go on, into the next batch; then its dispatch and count. */
         GLuint next = event_batch(pt, c->k + 1);
+        bind(DIRT_BIND_NEXT_BATCH, next);
+        if (c->finish) {
+            /* The next batch's dispatch from its count; the paths of k + 1. */
+            glUseProgram(pt->prog_finish);
+            glUniform1ui(DIRT_LOC_COMPACT_EVENT, (GLuint)c->k);
+            bind(DIRT_BIND_PT_EVENTS, pt->events);
+            glDispatchCompute(1, 1, 1);
+            break;
+        }
+        /* The rays of event k + 1 (written over event k's by Shade) whose
+         * paths go on, into the next batch. */
         static const uint32_t zero[4] = {0, 0, 0, 0};
         glClearNamedBufferSubData(next, GL_RGBA32UI, 0, sizeof(struct dirt_gpu_ray_batch),
                                   GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero);
         glUseProgram(pt->prog_compact);
         glUniform1ui(DIRT_LOC_COMPACT_PIXELS, (GLuint)pt->cur_count);
-        bind(DIRT_BIND_NEXT_BATCH, next);
         bind(DIRT_BIND_RAYS, event_rays(pt, c->k));
         bind(DIRT_BIND_SHADOW_RAYS, event_shadow_rays(pt, c->k));
         dispatch_batch(pt, c->k);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glUseProgram(pt->prog_finish);
-        glUniform1ui(DIRT_LOC_COMPACT_EVENT, (GLuint)c->k);
-        bind(DIRT_BIND_PT_EVENTS, pt->events);
-        glDispatchCompute(1, 1, 1);
         break;
     }
     case DIRT_PT_PASS_ACCUMULATE:
@@ -516,7 +520,7 @@ static bool make_graph(dirt_pt *pt, int events)
                                     chunk_pixels(pt, 0) * sizeof(struct dirt_gpu_accum));
     pt->num_ctx = 0;
 #define ADD(kind_, k_)                                                                   \
-    (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_)},                                \
+    (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_), false},                         \
      fg_add_pass(g, name, FG_COMPUTE, exec_pass, &pt->ctx[pt->num_ctx++]))
     char name[64];
     snprintf(name, sizeof(name), "raygen");
@@ -525,7 +529,7 @@ static bool make_graph(dirt_pt *pt, int events)
     fg_write(p, batch[0], FG_SSBO_WRITE);
     fg_write(p, paths, FG_SSBO_WRITE);
     for (int k = 1; k <= events; k++) {
-        if (pt->num_ctx + 8 >= MAX_PASSES) {
+        if (pt->num_ctx + 9 >= MAX_PASSES) {
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
@@ -572,11 +576,19 @@ static bool make_graph(dirt_pt *pt, int events)
         fg_write(p, paths, FG_SSBO_WRITE);
         if (k == events)
             break;
+        /* Compaction in two passes (the graph orders the second after the
+         * first's atomics): the live rays into the next batch, then its
+         * dispatch and the paths per event. */
         snprintf(name, sizeof(name), "compact %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         fg_read(p, rays, FG_SSBO_READ);
         read_batch(p, b);
         fg_write(p, srays, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
+        snprintf(name, sizeof(name), "compact finish %d", k);
+        p = ADD(DIRT_PT_PASS_COMPACT, k);
+        pt->ctx[pt->num_ctx - 1].finish = true;
         fg_use(p, bnext, FG_SSBO_READ, NULL);
         fg_write(p, bnext, FG_SSBO_WRITE);
         fg_use(p, evs, FG_SSBO_READ, NULL);
