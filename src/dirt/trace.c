@@ -71,7 +71,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     if (stats)
         gl_timer_end(&a->trace_timer);
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     if (stats) {
         *stats = (dirt_trace_stats){.rays = count, .ms = a->trace_timer.ms,
@@ -128,7 +127,6 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     return gl_check("dirt fetch");
 }
@@ -156,10 +154,10 @@ bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *h
     *stats = (dirt_trace_stats){.ms = -1, .clock = DIRT_CLOCK_NONE};
     if (!count)
         return true;
+    /* With stats (always here) ads_trace_gl fenced its writes for readback. */
     if (!upload_rays(a, rays, count) ||
         !ads_trace_gl(a, a->rays, a->hits, (uint32_t)count, opts, false, stats))
         return false;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return gl_buffer_read(a->hits, 0, count * sizeof(dirt_hit), hits);
 }
 
@@ -202,7 +200,6 @@ void ads_reset_ray_count(dirt_ads *a)
 bool ads_read_counts(dirt_ads *a, uint64_t *rays, uint64_t *aborted)
 {
     struct dirt_gpu_ads_counters c;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!gl_buffer_read(a->counters, 0, sizeof(c), &c))
         return false;
     *rays = c.fill.w;
@@ -251,6 +248,9 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
                 "dirt hit heads"))
         return false;
     gl_group_push("dirt direct visibility");
+    /* The clear and the resolve's writes of the hit lists follow earlier
+     * traces' and Fetches' accesses; the draw reads the structure. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     static const uint32_t end = DIRT_LIST_END, zero4[4] = {0, 0, 0, 0};
     static const float one = 1.0f;
     glClearNamedBufferData(a->hit_heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
@@ -270,7 +270,8 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    /* (The resolve fetches what the draw wrote through the framebuffer:
+     * ordered by GL, no barrier.) */
     glUseProgram(a->prog_vis_resolve);
     glUniform1i(DIRT_LOC_VIS_RESOLVE_VIEW, a->set.camera_view);
     glBindTextureUnit(DIRT_UNIT_VISIBILITY, a->vis_color);
@@ -279,7 +280,6 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     glDispatchCompute((GLuint)DIRT_GROUPS((size_t)v->width * v->height), 1, 1);
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     return gl_check("dirt direct visibility");
 }

@@ -120,7 +120,6 @@ void gl_dispatch_rays(GLuint batch, uint32_t count, uint32_t min_groups)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAY_BATCH, batch);
         glUniform1i(DIRT_LOC_RAY_BATCH, 1);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, batch);
-        glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         return;

@@ -197,6 +197,13 @@ void fg_output(fg_graph *g, fg_res r);
 void fg_set_resolution(fg_graph *g, int width, int height);
 /* Aliasing of transients is on by default. Needs fg_compile. */
 void fg_set_aliasing(fg_graph *g, bool enabled);
+/* Shared imports (default off): the imports are also read and written by
+ * shaders outside this graph between its executes (another graph, a
+ * technique's own passes). The barrier derivation then takes every import
+ * as written and accessed before each execute, so the first access of each
+ * import in the execute gets its barrier bit, instead of a hand-written
+ * glMemoryBarrier before the execute. Needs fg_compile. */
+void fg_set_shared_imports(fg_graph *g, bool shared);
 
 /* ---- passes -------------------------------------------------------------- */
 

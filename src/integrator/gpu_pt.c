@@ -880,6 +880,9 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
         if (opts.progress)
             opts.progress(opts.progress_user, s + 1, count);
     }
+    /* The tracer's counters, the paths per event and (dirt_pt_read) the
+     * accumulation are read back next. */
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!tech->read_counts(tech->self, &st->rays, &st->aborted))
         goto done;
     uint32_t per_event[DIRT_PT_MAX_EVENTS];
@@ -913,7 +916,8 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
         return false;
     }
     size_t pixels = pt->pixels;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* (dirt_pt_add_samples, the accumulation's only writer, ended with the
+     * GL_BUFFER_UPDATE_BARRIER_BIT this readback needs.) */
     struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
     bool got = sums != NULL;
     for (size_t c = 0; got && c < pt->num_chunks; c++)
@@ -997,9 +1001,9 @@ uint32_t dirt_pt_display_texture(dirt_pt *pt)
         glDispatchCompute(groups(chunk_pixels(pt, c)), 1, 1);
     }
     glUseProgram(0);
-    /* Readers sample, fetch or copy it. */
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    /* Readers sample it (the window's draw; a copy, gl_texture_read_rgba32f,
+     * fences itself). */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     gl_group_pop();
     if (!gl_check("dirt_pt_display_texture"))
         return 0;

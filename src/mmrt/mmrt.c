@@ -481,6 +481,11 @@ static bool make_graphs(dirt_mmrt *m)
     p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, m);
     fg_read(p, m->r_counters, FG_TRANSFER_READ);
     fg_keep(p);
+    /* The three graphs share the A-buffer: each one's first access of a
+     * buffer gets the barrier the others' writes need (fg_set_shared_imports). */
+    fg_set_shared_imports(m->g_build, true);
+    fg_set_shared_imports(m->g_restore, true);
+    fg_set_shared_imports(m->g_finish, true);
     if (!fg_compile(m->g_build) || !fg_compile(m->g_restore) || !fg_compile(m->g_finish))
         return false;
     m->graph_atlas_w = m->set.atlas_width;
@@ -558,19 +563,14 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
                   grown * (double)(DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES) / 1e6);
         upload_params(m);
         update_imports(m);
-        /* The other graph's shader writes must be visible to this one. */
-        glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(m->g_restore, &eo))
             goto done;
         fg_add_pass_times(m->g_restore, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
         runs++;
     }
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
     if (!fg_execute(m->g_finish, &eo))
         goto done;
     fg_add_pass_times(m->g_finish, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
-    /* The tracer's shaders read the A-buffer and the counters next. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     fill_stats(m, &m->counters_cpu, runs, ms, clock);
     ok = gl_check("mmrt build");
     m->built = ok;
@@ -618,7 +618,8 @@ bool dirt_mmrt_read(dirt_mmrt *m, dirt_mmrt_data *out)
         dirt_mmrt_data_free(out);
         return false;
     }
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* (The build's last pass, the counter readback, was fenced with
+     * GL_BUFFER_UPDATE_BARRIER_BIT after every shader write of the build.) */
     size_t n = out->num_nodes;
     if (!gl_buffer_read(m->depth, 0, (size_t)out->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, out->depth) ||
         !gl_buffer_read(m->heads, 0, heads * DIRT_HEAD_BYTES, out->heads) ||
