@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # DIRT engine: one entry point for newcomers and CI.
 #   ./dirt.sh run    install what is missing, build, render the default scene
-#   ./dirt.sh test   install what is missing, build, run every test on llvmpipe,
-#                    then the GPU and end-to-end suites on zink over lavapipe
+#   ./dirt.sh test   install what is missing, build, run every test on the default
+#                    driver, then the GPU and end-to-end suites on zink over lavapipe
 #   ./dirt.sh build  install what is missing, build into build/
 #   ./dirt.sh asan   the tests again in an AddressSanitizer/UBSan build (build-asan/), leaks on
 #   ./dirt.sh clang  a clang build with -Werror (build-clang/) and its unit tests
@@ -155,7 +155,7 @@ case "${1:-}" in
     grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-clang/fuzz.log >&2 || true
     ;;
   *)
-    sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
     [ -z "${1:-}" ] || exit 2
     ;;
 esac
