@@ -266,6 +266,13 @@ DIRT_API int dirt_session_samples(const dirt_session *s);
  * before any sample or on a readback failure. */
 DIRT_API const dirt_image *dirt_session_image(dirt_session *s);
 
+/* Writes the accumulated image (dirt_session_image: beauty and AOVs) to
+ * `path` by its extension, .exr or .png (dirt_image_write; `opts` may be
+ * NULL), atomically. False (logged) with no samples (NOT_READY) or when the
+ * file cannot be written (IO). */
+DIRT_API bool dirt_session_write_image(dirt_session *s, const char *path,
+                                       const dirt_image_write_options *opts);
+
 /* The beauty as an RGBA32F GL texture (texel (x, y) = pixel (x, y), row 0 =
  * top) for display: on the GPU engines it never leaves the GPU; embree's
  * image is uploaded. Owned by the session. 0 (logged) before any sample. */
