@@ -8,7 +8,7 @@
 #include "app/cli.h"
 #include "app/compare.h"
 #include "dirt/file.h"
-#include "dirt/raytypes.h"
+#include "dirt/types.h"
 
 static const cJSON *jget(const cJSON *o, const char *path)
 {

@@ -499,7 +499,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
     const char *formula_name, *note;
     if (st.has_ads) {
         const dirt_ads_stats *a = &st.ads;
-        int tiles = dirt_ads_views(dirt_session_ads(s))->num_tiles;
+        double tiles = (double)a->tiles;
         formula_name = "dirt_table3";
         formula = a->bytes_table3;
         /* Table 3 = tiles (8 B x 1.33 + 4 B x B) + 8 B x c n_p: heads and

@@ -11,7 +11,7 @@
 #include "app/sequence.h"
 #include "dirt/clock.h"
 #include "dirt/file.h"
-#include "dirt/integrator.h"
+#include "dirt/env.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 
@@ -416,13 +416,7 @@ static bool outputs_ok(const options *o, long first_frame)
 /* The structure's pictures of the frame just rendered (a DIRT session). */
 static bool write_debug_ads(const options *o, dirt_session *s)
 {
-    dirt_ads *ads = dirt_session_ads(s);
-    if (!ads && !dirt_session_build(s))
-        return false;
-    ads = dirt_session_ads(s);
-    if (!o->quiet)
-        dirt_ads_print_stats(ads, stderr);
-    return dirt_ads_write_debug(ads, o->debug_ads, o->quiet);
+    return dirt_session_write_debug_ads(s, o->debug_ads, o->quiet);
 }
 
 /* A frame's seed with --animated-seed: the seed and the frame number mixed

@@ -20,11 +20,11 @@
 #include "app/view_script.h"
 #include "dirt/clock.h"
 #include "dirt/file.h"
-#include "dirt/integrator.h"
+#include "dirt/env.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
-#include "dirt/ui.h"
-#include "dirt/window.h"
+#include "gl/ui.h"
+#include "gl/window.h"
 
 #define PROG "dirt-view"
 

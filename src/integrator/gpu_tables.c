@@ -1,6 +1,6 @@
 /* DIRT engine: packing and upload of the GPU light-transport model's scene
  * tables (dirt/gpu_tables.h, glsl/common/integrator_layout.h). */
-#include "dirt/gpu_tables.h"
+#include "integrator/gpu_tables.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* DIRT engine: texture lookups and material evaluation of the light-transport
  * model (doc/light-transport.md, "Textures" and "Materials"). */
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -17,7 +17,7 @@
  * they need no barrier. The graph is declared once at create, recompiled when
  * the image size changes, and its imports are repointed (fg_set_import) when
  * the vertex or light buffer grows. */
-#include "dirt/raster.h"
+#include "raster/raster.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -7,10 +7,11 @@
 
 #include "dirt/ads.h"
 #include "dirt/log.h"
-#include "dirt/mmrt.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "mmrt/mmrt.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "dirt/session.h"
+#include "session/session_internal.h"
 
 /* gpu/dirt_hits: relative t tolerance for "the same hit" on a shared edge. */
 #define AGREE_T_TOL 1e-4
@@ -29,6 +30,7 @@ static bool dirt_agree(const dirt_hit *d, const dirt_ref_hit *e, bool visibility
 bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t seed,
                                 dirt_session_agreement *out)
 {
+    session_begin();
     memset(out, 0, sizeof(*out));
     for (int t = 0; t < DIRT_RAY_TYPES; t++) {
         out->fraction[t] = NAN;
@@ -39,13 +41,17 @@ bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t
     const dirt_frame *f = dirt_session_frame(s);
     if ((!ads && !mmrt) || !f || width < 1 || height < 1) {
         DIRT_ERROR("hit agreement needs a built dirt or mmrt session and a size");
-        return false;
+        enum dirt_engine e = dirt_session_get_opts(s)->engine;
+        return session_fail(width < 1 || height < 1 ? DIRT_SESSION_ERR_ARGUMENT
+                            : e == DIRT_ENGINE_DIRT || e == DIRT_ENGINE_MMRT
+                                ? DIRT_SESSION_ERR_NOT_READY
+                                : DIRT_SESSION_ERR_UNSUPPORTED);
     }
     const dirt_session_opts *o = dirt_session_get_opts(s);
     dirt_camera cam = *dirt_session_camera(s);
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     if (!accel)
-        return false;
+        return session_fail(DIRT_SESSION_ERR_RENDER);
     dirt_gbuffer g;
     memset(&g, 0, sizeof(g));
     bool ok = dirt_gbuffer_build(accel, dirt_session_scene(s), f, &cam, width, height, &g);
@@ -115,5 +121,5 @@ bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t
     free(occ);
     dirt_gbuffer_free(&g);
     dirt_ref_accel_destroy(accel);
-    return ok;
+    return ok || session_fail(DIRT_SESSION_ERR_RENDER);
 }

@@ -16,8 +16,8 @@
 #include "common/mmrt_layout.h"
 #include "common/mmrt_pt_layout.h"
 #include "dirt/ads.h"
-#include "dirt/mmrt.h"
-#include "dirt/ref.h"
+#include "mmrt/mmrt.h"
+#include "ref/ref.h"
 
 /* Record `type` has `n` 16-byte vectors. */
 #define RECORD(type, n) _Static_assert(sizeof(struct type) == 16 * (n), #type " size")

@@ -1,15 +1,18 @@
 /* Pictures of the session's structure (dirt_session_picture): the DIRT
  * structure's tiles or the MMRT A-buffer's pixels, every view laid out in
- * one image. Contracts in dirt/session.h. */
+ * one image; the DIRT structure's per-view pictures and figures
+ * (dirt_session_write_debug_ads). Contracts in dirt/session.h. */
 #include <math.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "common/layout.h"
 #include "dirt/ads.h"
 #include "dirt/log.h"
-#include "dirt/mmrt.h"
+#include "mmrt/mmrt.h"
 #include "dirt/session.h"
+#include "session/session_internal.h"
 
 /* Where each view goes: the cube faces unfolded as a cross (+Y above,
  * -X +Z +X -Z across, -Y below, in face-size cells), the camera view to
@@ -103,13 +106,17 @@ static bool from_mmrt(dirt_mmrt *m, cells *c)
 
 dirt_image *dirt_session_picture(dirt_session *s, enum dirt_session_picture what, float *max)
 {
+    session_begin();
     dirt_ads *ads = dirt_session_ads(s);
     dirt_mmrt *mmrt = dirt_session_mmrt(s);
     if (max)
         *max = 0;
     if (!ads && !mmrt) {
+        enum dirt_engine e = dirt_session_get_opts(s)->engine;
         DIRT_ERROR("structure picture: the session has no DIRT structure or MMRT A-buffer "
-                   "(engine %s, or not built)", dirt_engine_names[dirt_session_get_opts(s)->engine]);
+                   "(engine %s, or not built)", dirt_engine_names[e]);
+        session_fail(e == DIRT_ENGINE_DIRT || e == DIRT_ENGINE_MMRT ? DIRT_SESSION_ERR_NOT_READY
+                                                                    : DIRT_SESSION_ERR_UNSUPPORTED);
         return NULL;
     }
     const dirt_view_set *set = ads ? dirt_ads_views(ads) : dirt_mmrt_views(mmrt);
@@ -163,5 +170,27 @@ error:
     free(c.used);
     free(c.depth);
     dirt_image_destroy(img);
+    session_fail(DIRT_SESSION_ERR_RENDER);
     return NULL;
+}
+
+bool dirt_session_write_debug_ads(dirt_session *s, const char *dir, bool quiet)
+{
+    session_begin();
+    if (!dir) {
+        DIRT_ERROR("debug pictures: no directory");
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
+    }
+    if (dirt_session_get_opts(s)->engine != DIRT_ENGINE_DIRT) {
+        DIRT_ERROR("debug pictures of the DIRT structure: the session's engine is %s",
+                   dirt_engine_names[dirt_session_get_opts(s)->engine]);
+        return session_fail(DIRT_SESSION_ERR_UNSUPPORTED);
+    }
+    dirt_ads *ads = dirt_session_ads(s);
+    if (!ads && !dirt_session_build(s))
+        return session_fail(DIRT_SESSION_ERR_RENDER);
+    ads = dirt_session_ads(s);
+    if (!quiet)
+        dirt_ads_print_stats(ads, stderr);
+    return dirt_ads_write_debug(ads, dir, quiet) || session_fail(DIRT_SESSION_ERR_IO);
 }

@@ -6,12 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dirt/ads.h"
 #include "dirt/clock.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
+#include "integrator/pathtrace.h"
 #include "dirt/log.h"
-#include "dirt/raster.h"
-#include "dirt/ref.h"
+#include "mmrt/mmrt.h"
+#include "raster/raster.h"
+#include "ref/ref.h"
 #include "gl/gl.h"
+#include "session/session_internal.h"
 
 const char *const dirt_engine_names[DIRT_NUM_ENGINES] = {"dirt", "mmrt", "embree", "raster"};
 
@@ -70,6 +74,7 @@ static enum dirt_view_mode view_mode(enum dirt_session_views v)
 
 bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
 {
+    session_begin();
     char local[8];
     if (!why) {
         why = local;
@@ -100,7 +105,7 @@ bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
         snprintf(why, size, "direct visibility needs a camera view: single or cube+camera views");
     else
         return true;
-    return false;
+    return session_fail(DIRT_SESSION_ERR_OPTION);
 }
 
 static bool check_opts(const dirt_session_opts *o, bool have_gpu)
@@ -112,7 +117,7 @@ static bool check_opts(const dirt_session_opts *o, bool have_gpu)
     }
     if (gpu_engine(o->engine) && !have_gpu) {
         DIRT_ERROR("engine %s needs a GPU", dirt_engine_names[o->engine]);
-        return false;
+        return session_fail(DIRT_SESSION_ERR_NO_GPU);
     }
     return true;
 }
@@ -163,7 +168,7 @@ static bool resolve_camera(dirt_session *s)
                       scene_cam < f->num_cameras;
     if (s->cam_choice == DIRT_CAMERA_SCENE && !from_scene) {
         DIRT_ERROR("camera %d: the scene has %zu camera(s)", s->cam_index, f->num_cameras);
-        return false;
+        return session_fail(DIRT_SESSION_ERR_CAMERA);
     }
     if (from_scene) {
         cam = f->cameras[scene_cam];
@@ -340,11 +345,18 @@ dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
                                   const dirt_session_opts *opts)
 {
     dirt_session_opts o = opts ? *opts : (dirt_session_opts){0};
-    if (!scene || !check_opts(&o, gpu != NULL))
+    if (!scene) {
+        session_begin();
+        DIRT_ERROR("a session without a scene");
+        session_fail(DIRT_SESSION_ERR_ARGUMENT);
+        return NULL;
+    }
+    if (!check_opts(&o, gpu != NULL))
         return NULL;
     dirt_session *s = calloc(1, sizeof(*s));
     if (!s) {
         DIRT_ERROR("out of memory");
+        session_fail(DIRT_SESSION_ERR_OUT_OF_MEMORY);
         return NULL;
     }
     s->gpu = gpu;
@@ -354,13 +366,16 @@ dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
     s->opts = o;
     warn_unlit(scene, &o);
     s->frame = dirt_scene_evaluate(scene, 0, &s->eval);
-    if (!s->frame)
+    if (!s->frame) {
+        session_fail(DIRT_SESSION_ERR_OUT_OF_MEMORY);
         goto error;
+    }
     resolve_size(s);
     if (!resolve_camera(s) || !make_engine(s))
         goto error;
     return s;
 error:
+    session_fail(DIRT_SESSION_ERR_RENDER);
     dirt_session_destroy(s);
     return NULL;
 }
@@ -381,7 +396,7 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
     dirt_session_opts n = opts ? *opts : (dirt_session_opts){0};
     if (restarted)
         *restarted = false;
-    if (!check_opts(&n, s->gpu != NULL))
+    if (!check_opts(&n, s->gpu != NULL)) /* begins the call's error record */
         return false;
     dirt_session_opts old = s->opts;
     /* What the structure is made of and what only its tracer reads; threads
@@ -414,7 +429,7 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
             restart(s);
             if (restarted)
                 *restarted = true;
-            return false;
+            return session_fail(DIRT_SESSION_ERR_RENDER);
         }
     }
     if (old.aperture != n.aperture || old.focus != n.focus)
@@ -436,21 +451,22 @@ const dirt_session_opts *dirt_session_get_opts(const dirt_session *s)
 
 bool dirt_session_set_time(dirt_session *s, double time, const dirt_eval_opts *eval)
 {
+    session_begin();
     dirt_eval_opts e = eval ? *eval : (dirt_eval_opts){0};
     size_t clips = dirt_scene_num_clips(s->scene);
     if (e.clip >= 0 && clips > 0 && (size_t)e.clip >= clips) {
         DIRT_ERROR("clip %d: the scene has %zu animation clip(s)", e.clip, clips);
-        return false;
+        return session_fail(DIRT_SESSION_ERR_CLIP);
     }
     if (e.clip != s->eval.clip || e.loop != s->eval.loop || e.all_clips != s->eval.all_clips)
         s->have_clip_cam = false;
     if (!dirt_scene_evaluate_into(s->scene, (float)time, &e, s->frame))
-        return false;
+        return session_fail(DIRT_SESSION_ERR_RENDER);
     s->eval = e;
     s->time = time;
     s->built = false;
     restart(s);
-    return resolve_camera(s);
+    return resolve_camera(s) || session_fail(DIRT_SESSION_ERR_RENDER);
 }
 
 const dirt_frame *dirt_session_frame(const dirt_session *s)
@@ -461,15 +477,16 @@ const dirt_frame *dirt_session_frame(const dirt_session *s)
 bool dirt_session_set_camera(dirt_session *s, enum dirt_camera_choice choice, int index,
                              const dirt_camera *cam)
 {
+    session_begin();
     if (choice == DIRT_CAMERA_SCENE &&
         (index < 0 || (size_t)index >= dirt_scene_num_cameras(s->scene))) {
         DIRT_ERROR("camera %d: the scene has %zu camera(s)", index,
                    dirt_scene_num_cameras(s->scene));
-        return false;
+        return session_fail(DIRT_SESSION_ERR_CAMERA);
     }
     if (choice == DIRT_CAMERA_EXPLICIT && !cam) {
         DIRT_ERROR("explicit camera without a camera");
-        return false;
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
     }
     s->cam_choice = choice;
     s->cam_index = index;
@@ -481,11 +498,11 @@ bool dirt_session_set_camera(dirt_session *s, enum dirt_camera_choice choice, in
         /* The views follow the image size. */
         release_engine(s);
         if (!make_engine(s))
-            return false;
+            return session_fail(DIRT_SESSION_ERR_RENDER);
     }
     s->built = false;
     restart(s);
-    return resolve_camera(s);
+    return resolve_camera(s) || session_fail(DIRT_SESSION_ERR_RENDER);
 }
 
 const dirt_camera *dirt_session_camera(const dirt_session *s)
@@ -754,8 +771,9 @@ static bool add_embree(dirt_session *s, int count, ref_progress *prog, dirt_sess
 
 bool dirt_session_build(dirt_session *s)
 {
+    session_begin();
     if (!build(s))
-        return false;
+        return session_fail(DIRT_SESSION_ERR_RENDER);
     build_stats(s, &s->stats);
     fill_common(s, &s->stats);
     return true;
@@ -764,14 +782,15 @@ bool dirt_session_build(dirt_session *s)
 bool dirt_session_add_samples(dirt_session *s, int count,
                               void (*progress)(void *user, int done, int total), void *user)
 {
+    session_begin();
     if (count < 1) {
         DIRT_ERROR("sample count %d", count);
-        return false;
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
     }
     double t0 = dirt_clock_ms();
     bool was_built = s->built;
     if (!build(s))
-        return false;
+        return session_fail(DIRT_SESSION_ERR_RENDER);
     dirt_session_stats *st = &s->stats;
     if (!was_built || st->num_passes == 0)
         build_stats(s, st);
@@ -781,13 +800,13 @@ bool dirt_session_add_samples(dirt_session *s, int count,
     case DIRT_ENGINE_DIRT:
     case DIRT_ENGINE_MMRT: {
         if (s->samples == 0 && !dirt_pt_reset(s->pt, s->width, s->height))
-            return false;
+            return session_fail(DIRT_SESSION_ERR_RENDER);
         dirt_pt_opts po = pt_opts(s);
         po.progress = progress;
         po.progress_user = user;
         dirt_pt_stats ps;
         if (!dirt_pt_add_samples(s->pt, s->tracer, s->frame, &s->cam, &po, count, &ps))
-            return false;
+            return session_fail(DIRT_SESSION_ERR_RENDER);
         s->samples = dirt_pt_samples(s->pt);
         st->trace_ms += ps.trace_ms;
         st->fetch_ms += ps.fetch_ms;
@@ -832,7 +851,7 @@ bool dirt_session_add_samples(dirt_session *s, int count,
                 }
             }
             if (!s->img)
-                return false;
+                return session_fail(DIRT_SESSION_ERR_OUT_OF_MEMORY);
         }
         size_t n = (size_t)s->width * (size_t)s->height;
         float *aov = malloc(4 * n * sizeof(float));
@@ -863,7 +882,7 @@ bool dirt_session_add_samples(dirt_session *s, int count,
         break;
     }
     if (!ok)
-        return false;
+        return session_fail(DIRT_SESSION_ERR_RENDER);
     s->img_current = s->opts.engine == DIRT_ENGINE_EMBREE || s->opts.engine == DIRT_ENGINE_RASTER;
     s->display_current = false;
     st->samples = s->samples;
@@ -897,8 +916,10 @@ static void add_late_times(dirt_session *s, bool wait)
 
 const dirt_image *dirt_session_image(dirt_session *s)
 {
+    session_begin();
     if (!s->samples) {
         DIRT_ERROR("no samples yet");
+        session_fail(DIRT_SESSION_ERR_NOT_READY);
         return NULL;
     }
     if (s->img_current)
@@ -906,11 +927,15 @@ const dirt_image *dirt_session_image(dirt_session *s)
     if (!s->img || s->img->width != s->width || s->img->height != s->height) {
         dirt_image_destroy(s->img);
         s->img = new_image(s, true);
-        if (!s->img)
+        if (!s->img) {
+            session_fail(DIRT_SESSION_ERR_OUT_OF_MEMORY);
             return NULL;
+        }
     }
-    if (!dirt_pt_read(s->pt, s->img, &s->stats.invalid_samples))
+    if (!dirt_pt_read(s->pt, s->img, &s->stats.invalid_samples)) {
+        session_fail(DIRT_SESSION_ERR_RENDER);
         return NULL;
+    }
     add_late_times(s, false); /* the readback drained them */
     s->img_current = true;
     return s->img;
@@ -923,14 +948,21 @@ void dirt_session_drain_times(dirt_session *s)
 
 uint32_t dirt_session_display_texture(dirt_session *s)
 {
+    session_begin();
     if (!s->samples) {
         DIRT_ERROR("no samples to display");
+        session_fail(DIRT_SESSION_ERR_NOT_READY);
         return 0;
     }
-    if (traced(s->opts.engine))
-        return dirt_pt_display_texture(s->pt);
+    if (traced(s->opts.engine)) {
+        uint32_t tex = dirt_pt_display_texture(s->pt);
+        if (!tex)
+            session_fail(DIRT_SESSION_ERR_RENDER);
+        return tex;
+    }
     if (!s->gpu) {
         DIRT_ERROR("no GPU to display on");
+        session_fail(DIRT_SESSION_ERR_NO_GPU);
         return 0;
     }
     if (s->display_current && s->display_w == s->width && s->display_h == s->height)
@@ -938,13 +970,17 @@ uint32_t dirt_session_display_texture(dirt_session *s)
     if (!s->display || s->display_w != s->width || s->display_h != s->height) {
         gl_texture_destroy(&s->display);
         s->display = gl_texture_2d(GL_RGBA32F, s->width, s->height, 1, "session display");
-        if (!s->display)
+        if (!s->display) {
+            session_fail(DIRT_SESSION_ERR_RENDER);
             return 0;
+        }
         s->display_w = s->width;
         s->display_h = s->height;
     }
-    if (!gl_texture_upload_rgba32f(s->display, s->width, s->height, s->img->rgba))
+    if (!gl_texture_upload_rgba32f(s->display, s->width, s->height, s->img->rgba)) {
+        session_fail(DIRT_SESSION_ERR_RENDER);
         return 0;
+    }
     s->display_current = true;
     return s->display;
 }
@@ -956,12 +992,14 @@ const dirt_session_stats *dirt_session_get_stats(const dirt_session *s)
 
 bool dirt_session_write_graph_dot(const dirt_session *s, const char *path)
 {
+    session_begin();
     if (!traced(s->opts.engine)) {
         DIRT_ERROR("the %s engine has no path tracer frame graph",
                    dirt_engine_names[s->opts.engine]);
-        return false;
+        return session_fail(DIRT_SESSION_ERR_UNSUPPORTED);
     }
-    return dirt_pt_write_dot(s->pt, path);
+    return dirt_pt_write_dot(s->pt, path) ||
+           session_fail(s->samples ? DIRT_SESSION_ERR_IO : DIRT_SESSION_ERR_NOT_READY);
 }
 
 const dirt_scene *dirt_session_scene(const dirt_session *s)

@@ -6,6 +6,7 @@
 #include "dirt/file.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
+#include "session/session_internal.h"
 
 /* The figures every frame and the summary share. */
 static void add_figures(cJSON *o, const dirt_session_stats *s)
@@ -104,9 +105,10 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
 
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count)
 {
-    if (!count) {
-        DIRT_ERROR("no frames to write stats of");
-        return false;
+    session_begin();
+    if (!count || !frames || !path) {
+        DIRT_ERROR("no frames to write stats of, or no path");
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
     }
     const dirt_session_stats *last = &frames[count - 1];
     /* Means of the times; rays per frame; aborted rays summed; the largest
@@ -126,7 +128,7 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
         mean.shade_ms += f->shade_ms / (double)count;
         mean.total_ms += f->total_ms / (double)count;
         mean.rays += f->rays;
-        for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+        for (int k = 0; k < DIRT_MAX_EVENTS; k++)
             mean.paths_at_event[k] += f->paths_at_event[k];
         mean.aborted += f->aborted;
         mean.invalid_samples += f->invalid_samples;
@@ -136,7 +138,7 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
             mean.bytes_total_allocated = f->bytes_total_allocated;
     }
     mean.rays /= count;
-    for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+    for (int k = 0; k < DIRT_MAX_EVENTS; k++)
         mean.paths_at_event[k] /= count;
 
     cJSON *root = cJSON_CreateObject();
@@ -174,9 +176,9 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     doc[len + 1] = '\0';
     bool ok = dirt_write_file_atomic(path, doc, len + 1);
     free(doc);
-    return ok;
+    return ok || session_fail(DIRT_SESSION_ERR_IO);
 oom:
     cJSON_Delete(root);
     DIRT_ERROR("out of memory writing '%s'", path);
-    return false;
+    return session_fail(DIRT_SESSION_ERR_OUT_OF_MEMORY);
 }

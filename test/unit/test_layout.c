@@ -7,7 +7,7 @@
 
 #include "check.h"
 #include "common/constants.h"
-#include "dirt/mmrt.h"
+#include "mmrt/mmrt.h"
 #include "session/layout_check.h"
 
 static void test_bindings(void)
