@@ -113,6 +113,8 @@ static const char *const csv_cols[][2] = {
     {"mmrt_thickness_used", "mmrt.thickness_used"}, {"mmrt_march", "settings.mmrt_march"},
     {"mmrt_samples", "settings.mmrt_samples"},
     {"warmup", "settings.warmup"}, {"repeat", "settings.repeat"},
+    {"lighting", "lighting.source"}, {"lighting_environment", "lighting.environment"},
+    {"lighting_summary", "lighting.summary"},
     {"clock", "environment.clock"},
     {"mmrt_fragments", "mmrt.records"}, {"mmrt_used_bytes", "mmrt.memory.structure_used"},
     {"mmrt_allocated_bytes", "mmrt.memory.structure_allocated"},
@@ -230,6 +232,21 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
                 js(first, "environment.machine"), js(first, "environment.renderer"),
                 js(first, "environment.commit"), js(first, "environment.clock"),
                 jd(first, "settings.repeat"), jd(first, "settings.warmup"));
+    /* The lighting, per scene (the same in each of its rows). */
+    bprintf(&b, "Lighting per scene (the same for MMRT, DIRT and the Embree reference; "
+                "doc/compare.md, \"Lighting\"):\n\n");
+    cJSON_ArrayForEach(r, rows)
+    {
+        bool seen = false;
+        for (const cJSON *p = rows->child; p != r && !seen; p = p->next)
+            seen = !strcmp(js(p, "scene.path"), js(r, "scene.path")) &&
+                   !strcmp(js(p, "lighting.summary"), js(r, "lighting.summary"));
+        if (!seen)
+            bprintf(&b, "- %s: %s\n", js(r, "scene.name"),
+                    *js(r, "lighting.summary") ? js(r, "lighting.summary")
+                                               : "not recorded (a row of an older run)");
+    }
+    bprintf(&b, "\n");
     bprintf(&b, "In the layout of the DIRT paper's Table 2 (MMRT / DIRT at equal settings). "
                 "Records: MMRT fragments, DIRT id nodes (c n_p). MB: the structure's used "
                 "bytes. Ratios DIRT / MMRT.\n\n");
