@@ -2,7 +2,9 @@
 # dirt-compare as a user runs it: bad input exits 2 up front with a one-line
 # reason; a sweep on the default scene (2 sizes x 2 MMRT thicknesses) and on
 # the shared Cornell box writes every output (checked by compare_check.py
-# against doc/compare.md's schema, plots read back); a rerun with the same DIR
+# against doc/compare.md's schema and the rows: the memory table without
+# repeats, the figures' data per facet and series with their bars and parity
+# line, the figures read back); a rerun with the same DIR
 # measures nothing and rewrites the same rows; the bytes per buffer of a row
 # equal what dirt-render --stats reports for the same settings (DIRT and
 # MMRT); a configuration that fails mid-sweep (an A-buffer beyond the GPU's
@@ -208,6 +210,10 @@ sys.exit(1 if bad else 0)
 PY
   grep -q "(3 measured, 0 from the earlier run" "$tmp/lit.log" ||
     fail "lighting $what: rows of another lighting were reused"
+  # one size and one thickness: the figures over triangles and the ratios
+  # only (compare_check.py: no agreement figure of a single point)
+  python3 "$check" "$tmp/lit" "$doc" 3 || fail "lighting $what: outputs (compare_check.py)"
+  [ -s "$tmp/lit/ratios_per_scene.png" ] || fail "lighting $what: no ratios figure"
   for i in 0 1 2; do
     python3 "$tmp/render_args.py" "$tmp/lit/results.json" $i embree >"$tmp/render_args"
     mapfile -t rargs <"$tmp/render_args"
@@ -281,9 +287,10 @@ sys.exit(0 if ok else 1)
 PY
 grep -q "configuration 2 failed: mmrt: " "$tmp/fails.log" || fail "no line naming the failed configuration"
 grep -q "1 failed)" "$tmp/fails.log" || fail "the summary does not count the failure"
-# --no-quality: no agreement figures, so no agreement plot; the others are made.
-if "$cmp" default -o "$tmp/nq" --res 32x16 --repeat 1 --warmup 0 --no-quality -q \
-    >"$tmp/nq.log" 2>&1; then
+# --no-quality: no agreement figures, so no agreement plot (two thicknesses
+# notwithstanding); the others are made.
+if "$cmp" default -o "$tmp/nq" --res 32x16,48x24 --thickness-rel 0.002,0.01 --repeat 1 \
+    --warmup 0 --no-quality -q >"$tmp/nq.log" 2>&1; then
   for p in memory_vs_resolution time_vs_resolution ratios_per_scene; do
     [ -s "$tmp/nq/$p.png" ] || fail "--no-quality: no $p.png"
   done
