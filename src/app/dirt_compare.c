@@ -462,13 +462,16 @@ static bool resolve_lighting(scene_info *si, const dirt_frame *f, const options 
     for (size_t t = 0; f && t < f->num_triangles; t++)
         si->emitters += f->material[t] < nm && dirt_material_is_emissive(&m[f->material[t]]);
     si->lights = dirt_scene_num_lights(si->scene);
-    char own[160];
+    /* "its own lights (2 emissive triangles and 1 punctual light)" */
+    char own[160] = "no light of its own", tri[64] = "", pun[64] = "";
+    if (si->emitters)
+        snprintf(tri, sizeof(tri), "%llu emissive triangle%s", (unsigned long long)si->emitters,
+                 si->emitters == 1 ? "" : "s");
+    if (si->lights)
+        snprintf(pun, sizeof(pun), "%zu punctual light%s", si->lights, si->lights == 1 ? "" : "s");
     if (si->emitters || si->lights)
-        snprintf(own, sizeof(own), "%llu emissive triangle%s and %zu punctual light%s",
-                 (unsigned long long)si->emitters, si->emitters == 1 ? "" : "s", si->lights,
-                 si->lights == 1 ? "" : "s");
-    else
-        snprintf(own, sizeof(own), "none");
+        snprintf(own, sizeof(own), "its own lights (%s%s%s)", tri,
+                 si->emitters && si->lights ? " and " : "", pun);
     memset(si->background, 0, sizeof(si->background));
     si->env = NULL;
     if (o->env_path) {
@@ -477,7 +480,7 @@ static bool resolve_lighting(scene_info *si, const dirt_frame *f, const options 
         si->env = env_map;
         float in = o->env.intensity > 0 ? o->env.intensity : 1;
         snprintf(si->summary, sizeof(si->summary),
-                 "--env %s (intensity %g, rotation %g deg); its own lights: %s", o->env_path,
+                 "--env %s (intensity %g, rotation %g deg) and %s", o->env_path,
                  shortest(in), shortest(o->env.rotation), own);
         snprintf(si->key, sizeof(si->key), "env=%s,%g,%g", o->env_path, shortest(in),
                  shortest(o->env.rotation));
@@ -488,14 +491,14 @@ static bool resolve_lighting(scene_info *si, const dirt_frame *f, const options 
         double r = shortest(o->background[0]), g = shortest(o->background[1]),
                b = shortest(o->background[2]);
         snprintf(si->summary, sizeof(si->summary),
-                 "--background %g,%g,%g (a constant environment); its own lights: %s", r, g, b,
+                 "--background %g,%g,%g (a constant environment) and %s", r, g, b,
                  own);
         snprintf(si->key, sizeof(si->key), "bg=%g,%g,%g", r, g, b);
     } else if (si->emitters || si->lights) {
         si->source = "scene";
         si->environment = "none";
         snprintf(si->summary, sizeof(si->summary),
-                 "as authored: its own %s; no environment (black)", own);
+                 "as authored: %s; no environment (black)", own);
         snprintf(si->key, sizeof(si->key), "scene");
     } else {
         if (!*sky && !(*sky = dirt_env_sky(NULL)))
