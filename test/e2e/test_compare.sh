@@ -230,8 +230,17 @@ print(json.load(open(sys.argv[1]))["configurations"][int(sys.argv[2])]["images"]
 }
 lighting_run "as authored" scene,scene,fallback
 cp "$tmp/lit_1.png" "$tmp/authored_1.png"
+cp "$tmp/lit/results.json" "$tmp/authored.json"
 lighting_run "--background" --background,--background,--background --background 0.3,0.2,0.1
 cmp -s "$tmp/lit_1.png" "$tmp/authored_1.png" && fail "--background did not change the image"
+# the agreement rays aim at the scene's own light whatever the environment
+python3 - "$tmp/authored.json" "$tmp/lit/results.json" <<'PY' ||
+import json, sys
+a, b = ([(r["dirt"]["agreement"]["fraction"], r["mmrt"]["agreement"]["fraction"])
+         for r in json.load(open(p))["configurations"]] for p in sys.argv[1:])
+sys.exit(0 if a == b and len(a) == 3 else 1)
+PY
+  fail "the hit agreement changed with --background"
 lighting_run "--env" --env,--env,--env --env sky --env-intensity 0.5 --env-rotation 30
 
 # A configuration that fails mid-sweep. 40 stacked quads filling a camera's
