@@ -311,10 +311,11 @@ static bool write_figure(const char *prog, const char *dir, figure *g, compare_b
                             "set size 1,%.6f\n"
                             "set lmargin 0\nset rmargin 0\nset tmargin 0\nset bmargin 0\nplot ",
                         key_cols, (double)(rows * cell_h) / height, (double)key_h / height);
-        for (int pass = 0, n = 0; pass < 2; pass++) /* the parity line last */
+        /* DIRT's series first, then the others, the parity line last */
+        for (int pass = 0, n = 0; pass < 3; pass++)
             for (int k = 0; k < g->nst; k++) {
                 const fig_style *s = &g->st[k];
-                if (s->parity != (pass == 1))
+                if ((pass == 0) != (s->list == 1) || (pass == 2) != s->parity)
                     continue;
                 compare_bprintf(gp, "%sNaN w %s lc %s%d dt %d", n++ ? ", " : "",
                                 s->parity ? "l" : g->categories ? "p" : "lp",

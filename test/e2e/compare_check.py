@@ -129,6 +129,15 @@ def th_key(r):
         "%.4g" % (s_["mmrt_thickness"] / r["scene"]["diagonal"])
     return "%s %s %s" % (th, s_["mmrt_march"], s_["mmrt_samples"])
 def thicknesses(rs): return sorted({th_key(r) for r in rs})
+def lt(r): # the light transport's settings
+    s_ = r["settings"]
+    return (s_["views"], s_["time"], s_["spp"], s_["bounces"])
+def dirt_key(r, memory=False):
+    s_ = r["settings"]
+    return (s_["dirt_tile_size"], s_["dirt_buckets"]) + (lt(r)[:2] if memory else lt(r))
+def mmrt_key(r, memory=False):
+    s_ = r["settings"]
+    return (s_["mmrt_buckets"],) + (lt(r)[:2] if memory else (th_key(r),) + lt(r))
 def of(scene=None, sz=None):
     return [r for r in ok_rows if scene in (None, r["scene"]["name"]) and sz in (None, size(r))]
 agree_facets = [(sc, sz) for sc in scenes for sz in sizes
@@ -226,9 +235,12 @@ for p in ("memory_vs_resolution", "time_vs_resolution", "memory_vs_triangles",
             if len(series[name]) != len(pk):
                 err("%s: facet %r series %r: %d points, want %d" % (p, facet, name,
                     len(series[name]), len(pk)))
-        want_m = len(thicknesses(rs)) if q else 1 # memory does not depend on it
-        if techs != {"dirt": 1, "mmrt": want_m}:
-            err("%s: facet %r: series %s, want DIRT 1 and MMRT %d" % (p, facet, techs, want_m))
+        # a series per setting; memory depends on neither MMRT's thickness
+        # nor its march, nor spp and bounces
+        want = {"dirt": len({dirt_key(r, not q) for r in rs}),
+                "mmrt": len({mmrt_key(r, not q) for r in rs})}
+        if techs != want:
+            err("%s: facet %r: series %s, want %s" % (p, facet, techs, want))
     if p.startswith("time") and any(r["settings"]["repeat"] > 1 for r in ok_rows) and \
             not any(lo < hi for f in facet_data.values()
                                         for s_ in f.values() for _, _, lo, hi in s_):
@@ -249,9 +261,10 @@ if drawn["ratios_per_scene"] and os.path.isfile(os.path.join(d, "ratios_per_scen
                 len(series[parity[0]]) < 2:
             err("%s: facet %r: no parity line at 1 (%s)" % (p, facet, parity))
         others = [n for n in series if not n.startswith("parity")]
-        if len(others) != len(thicknesses(rs)):
-            err("%s: facet %r: %d series, want one per thickness (%d)" % (p, facet, len(others),
-                len(thicknesses(rs))))
+        pairs = len({(dirt_key(r), mmrt_key(r)) for r in rs})
+        if len(others) != pairs:
+            err("%s: facet %r: %d series, want one per DIRT and MMRT setting (%d)" % (
+                p, facet, len(others), pairs))
         for n in others:
             pts = series[n]
             if [x for x, _, _, _ in pts] != [1, 2, 3, 4, 5]:
@@ -259,7 +272,7 @@ if drawn["ratios_per_scene"] and os.path.isfile(os.path.join(d, "ratios_per_scen
                 continue
             # one row's ratios, bars from its repeats' extremes
             match = [r for r in rs if all(approx(r["ratios"][c], pt[1]) for c, pt in zip(CAT, pts))]
-            if len({th_key(r) for r in match}) != 1:
+            if len({(dirt_key(r), mmrt_key(r)) for r in match}) != 1:
                 err("%s: facet %r series %r: the ratios of no single thickness" % (p, facet, n))
                 continue
             r = match[0]
