@@ -13,6 +13,7 @@
 #include "app/cli.h"
 #include "app/compare.h"
 #include "dirt/clock.h"
+#include "dirt/env.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 #include "dirt/version.h"
@@ -35,6 +36,10 @@ typedef struct options {
     int large;                  /* --dirt-large: 0 none, else up to that many */
     bool quality, images, quiet;
     uint32_t seed;
+    const char *env_path;       /* --env FILE|sky, for every scene */
+    dirt_env_opts env;          /* --env-intensity, --env-rotation */
+    float background[3];        /* --background, for every scene */
+    bool background_set;
 } options;
 
 static const char *const view_names[] = {"default", "single", "cube", "cube+camera", NULL};
@@ -48,8 +53,13 @@ static void usage(FILE *out)
 "Measures DIRT against the MMRT fragment A-buffer on each configuration of a\n"
 "sweep (every combination of the lists below, per SCENE; \"default\" is the\n"
 "embedded scene) and writes DIR/table.md (the DIRT paper's Table 2 layout),\n"
-"DIR/results.csv, DIR/results.json (doc/compare.md) and plots (SVG + PNG,\n"
-"gnuplot). A rerun with the same DIR skips the configurations already done.\n"
+"DIR/results.csv, DIR/results.json (doc/compare.md) and figures through\n"
+"gnuplot (NAME.svg, NAME.png and their data NAME.dat: memory and times vs\n"
+"image size per scene and vs triangles per image size, DIRT / MMRT ratios\n"
+"per scene and size, MMRT's hit agreement vs its thickness; one series per\n"
+"technique and setting, MMRT's per thickness; min-max bars over the\n"
+"repeats; a figure without a series of two points is left out). A rerun\n"
+"with the same DIR skips the configurations already done.\n"
 "\n"
 "Sweeps (comma-separated lists):\n"
 "  --res WxH,...          image sizes (default 256x128)\n"
@@ -82,6 +92,22 @@ static void usage(FILE *out)
 "      --no-quality       skip hit agreement and relMSE against Embree\n"
 "      --images           write each configuration's images into DIR/images\n"
 "      --seed N           (default 7)\n"
+"\n"
+"Lighting (the same for DIRT, MMRT and Embree; stated per scene in table.md\n"
+"and in every row of results.csv/json): each scene is lit as authored, by\n"
+"its emissive triangles and punctual lights, with no environment (black);\n"
+"a scene with neither is lit by the built-in sky instead (as --env sky).\n"
+"These replace that environment for every scene (the scene's own lights\n"
+"stay), as in dirt-render:\n"
+"      --background R,G,B radiance of rays that leave the scene: a constant\n"
+"                         environment light\n"
+"      --env FILE         environment light: an equirectangular map (.exr or\n"
+"                         .hdr, linear radiance; its centre looks along -Z),\n"
+"                         or 'sky' for the built-in sky; importance-sampled\n"
+"      --env-intensity X  scale of the map's radiance (default 1)\n"
+"      --env-rotation DEG turn the map about +Y (default 0)\n"
+"\n"
+"Other:\n"
 "      --preset FILE      read options from FILE (one or more per line, # comments;\n"
 "                         data/compare-table*.txt)\n"
 "  -q, --quiet            no progress\n"
@@ -297,6 +323,14 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
             ok = parse_size(a, v, &o->agree_w, &o->agree_h);
         } else if (!strcmp(a, "--seed")) {
             ok = cli_value(PROG, a, v, 'u', &o->seed, 0, 4294967295.0, NULL);
+        } else if (!strcmp(a, "--background")) {
+            ok = o->background_set = cli_value(PROG, a, v, 'b', o->background, 0, 0, NULL);
+        } else if (!strcmp(a, "--env")) {
+            o->env_path = v;
+        } else if (!strcmp(a, "--env-intensity")) {
+            ok = cli_value(PROG, a, v, 'f', &o->env.intensity, 1e-30, 1e30, NULL);
+        } else if (!strcmp(a, "--env-rotation")) {
+            ok = cli_value(PROG, a, v, 'f', &o->env.rotation, -1e6, 1e6, NULL);
         } else if (!strcmp(a, "--preset")) {
             ok = read_preset(v, o, depth);
         } else if (!strcmp(a, "--no-quality")) {
@@ -331,11 +365,20 @@ typedef struct config {
     double thickness, time; /* thickness < 0: a fraction of the diagonal */
 } config;
 
+/* A scene and the lighting it is measured under (resolve_lighting). */
 typedef struct scene_info {
     const char *path, *name;
     dirt_scene *scene;
     uint64_t triangles;
     double diagonal;
+    uint64_t emitters;          /* emissive triangles (dirt_material_is_emissive), time 0 */
+    size_t lights;              /* punctual lights */
+    const char *source;         /* "scene", "fallback", "--env" or "--background" */
+    const char *environment;    /* "none", "sky", "map" or "background" */
+    const dirt_env *env;        /* the session's env (borrowed; NULL: the background) */
+    float background[3];
+    char summary[1200];         /* one line for the table and the CSV */
+    char key[1100];             /* the lighting's part of a configuration's id */
 } scene_info;
 
 static double median3(double *v, int n, double *mn, double *mx)
@@ -391,8 +434,87 @@ static void set_reason(char *why, size_t n, const char *engine, const char *what
         snprintf(why, n, "%s: %s (see the log)", engine, what);
 }
 
-static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float thickness,
-                                      uint32_t seed)
+/* The shortest decimal that reads back as the float `v` (0.2f: 0.2, not
+ * 0.200000003), for the outputs. */
+static double shortest(float v)
+{
+    char t[32];
+    for (int p = 1; p < 10; p++) {
+        snprintf(t, sizeof(t), "%.*g", p, (double)v);
+        if ((float)strtod(t, NULL) == v)
+            break;
+    }
+    return strtod(t, NULL);
+}
+
+/* Decides the lighting of `si` (its scene loaded, frame `f` at time 0):
+ * --env / --background for every scene (beside the scene's own lights);
+ * else the scene's own emitters and punctual lights with a black
+ * environment; else, for a scene with neither, the built-in sky, `*sky`
+ * (made on first use; the caller destroys it). False (logged) when the sky
+ * cannot be made. */
+static bool resolve_lighting(scene_info *si, const dirt_frame *f, const options *o,
+                             const dirt_env *env_map, dirt_env **sky)
+{
+    const dirt_material *m = dirt_scene_materials(si->scene);
+    size_t nm = dirt_scene_num_materials(si->scene);
+    si->emitters = 0;
+    for (size_t t = 0; f && t < f->num_triangles; t++)
+        si->emitters += f->material[t] < nm && dirt_material_is_emissive(&m[f->material[t]]);
+    si->lights = dirt_scene_num_lights(si->scene);
+    /* "its own lights (2 emissive triangles and 1 punctual light)" */
+    char own[160] = "no light of its own", tri[64] = "", pun[64] = "";
+    if (si->emitters)
+        snprintf(tri, sizeof(tri), "%llu emissive triangle%s", (unsigned long long)si->emitters,
+                 si->emitters == 1 ? "" : "s");
+    if (si->lights)
+        snprintf(pun, sizeof(pun), "%zu punctual light%s", si->lights, si->lights == 1 ? "" : "s");
+    if (si->emitters || si->lights)
+        snprintf(own, sizeof(own), "its own lights (%s%s%s)", tri,
+                 si->emitters && si->lights ? " and " : "", pun);
+    memset(si->background, 0, sizeof(si->background));
+    si->env = NULL;
+    if (o->env_path) {
+        si->source = "--env";
+        si->environment = !strcmp(o->env_path, "sky") ? "sky" : "map";
+        si->env = env_map;
+        float in = o->env.intensity > 0 ? o->env.intensity : 1;
+        snprintf(si->summary, sizeof(si->summary),
+                 "--env %s (intensity %g, rotation %g deg) and %s", o->env_path,
+                 shortest(in), shortest(o->env.rotation), own);
+        snprintf(si->key, sizeof(si->key), "env=%s,%g,%g", o->env_path, shortest(in),
+                 shortest(o->env.rotation));
+    } else if (o->background_set) {
+        si->source = "--background";
+        si->environment = "background";
+        memcpy(si->background, o->background, sizeof(si->background));
+        double r = shortest(o->background[0]), g = shortest(o->background[1]),
+               b = shortest(o->background[2]);
+        snprintf(si->summary, sizeof(si->summary),
+                 "--background %g,%g,%g (a constant environment) and %s", r, g, b,
+                 own);
+        snprintf(si->key, sizeof(si->key), "bg=%g,%g,%g", r, g, b);
+    } else if (si->emitters || si->lights) {
+        si->source = "scene";
+        si->environment = "none";
+        snprintf(si->summary, sizeof(si->summary),
+                 "as authored: %s; no environment (black)", own);
+        snprintf(si->key, sizeof(si->key), "scene");
+    } else {
+        if (!*sky && !(*sky = dirt_env_sky(NULL)))
+            return false;
+        si->source = "fallback";
+        si->environment = "sky";
+        si->env = *sky;
+        snprintf(si->summary, sizeof(si->summary),
+                 "fallback: no light of its own, so the built-in sky (as --env sky)");
+        snprintf(si->key, sizeof(si->key), "sky");
+    }
+    return true;
+}
+
+static dirt_session_opts session_opts(const scene_info *si, const config *c, enum dirt_engine e,
+                                      float thickness, uint32_t seed)
 {
     return (dirt_session_opts){.face_size = g_face,
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
@@ -401,7 +523,8 @@ static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float
         .large = g_large ? g_large : -1,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
-        .bounces = c->bounces, .seed = seed, .background = {1, 1, 1}};
+        .bounces = c->bounces, .seed = seed, .env = si->env,
+        .background = {si->background[0], si->background[1], si->background[2]}};
 }
 
 static const char *ray_key(int t)
@@ -414,7 +537,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
                       float thickness, const options *o, const dirt_image *ref, char *why,
                       size_t whysz, const char *image_path)
 {
-    dirt_session_opts so = session_opts(c, e, thickness, o->seed);
+    dirt_session_opts so = session_opts(si, c, e, thickness, o->seed);
     dirt_session *s = dirt_session_create(gpu, si->scene, &so);
     if (!s) {
         set_reason(why, whysz, dirt_engine_names[e], "the session could not be made");
@@ -586,10 +709,10 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
     snprintf(march, sizeof(march), "%s", march_names[c->march]);
     if (c->march == DIRT_MMRT_MARCH_LINEAR && c->samples) /* linear alone: 30 samples */
         snprintf(march, sizeof(march), "linear%d", c->samples);
-    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|L%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
+    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|L%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u|%s",
              si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
              c->dbuckets, o->large, c->mbuckets, c->thickness, march, o->warmup,
-             o->repeat, o->quality ? 1 : 0, o->seed);
+             o->repeat, o->quality ? 1 : 0, o->seed, si->key);
 }
 
 static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
@@ -677,6 +800,21 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "warmup", o->warmup);
     cJSON_AddNumberToObject(set, "repeat", o->repeat);
     cJSON_AddNumberToObject(set, "seed", o->seed);
+    cJSON *lj = cJSON_AddObjectToObject(row, "lighting");
+    cJSON_AddStringToObject(lj, "source", si->source);
+    cJSON_AddStringToObject(lj, "summary", si->summary);
+    cJSON_AddNumberToObject(lj, "emitter_triangles", (double)si->emitters);
+    cJSON_AddNumberToObject(lj, "punctual_lights", (double)si->lights);
+    cJSON_AddStringToObject(lj, "environment", si->environment);
+    if (o->env_path)
+        cJSON_AddStringToObject(lj, "env", o->env_path);
+    else
+        cJSON_AddNullToObject(lj, "env");
+    cJSON_AddNumberToObject(lj, "env_intensity", o->env.intensity > 0 ? o->env.intensity : 1);
+    cJSON_AddNumberToObject(lj, "env_rotation", o->env.rotation);
+    cJSON *bj = cJSON_AddArrayToObject(lj, "background");
+    for (int k = 0; k < 3; k++)
+        cJSON_AddItemToArray(bj, cJSON_CreateNumber(shortest(si->background[k])));
     cJSON *ej = cJSON_AddObjectToObject(row, "environment");
     cJSON_AddStringToObject(ej, "machine", ev->machine);
     cJSON_AddStringToObject(ej, "renderer", ev->renderer);
@@ -686,7 +824,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     const dirt_image *ref = NULL;
     dirt_session *rs = NULL;
     if (o->quality) {
-        dirt_session_opts ro = session_opts(c, DIRT_ENGINE_EMBREE, 0, o->seed);
+        dirt_session_opts ro = session_opts(si, c, DIRT_ENGINE_EMBREE, 0, o->seed);
         rs = dirt_session_create(gpu, si->scene, &ro);
         ref = rs && dirt_session_set_time(rs, c->time, NULL) &&
                       dirt_session_add_samples(rs, c->spp, NULL, NULL)
@@ -772,6 +910,14 @@ int main(int argc, char **argv)
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
         return DIRT_EXIT_USAGE;
     }
+    if (o.env_path && o.background_set) {
+        cli_error(PROG, "--env and --background both set the environment: give one");
+        return DIRT_EXIT_USAGE;
+    }
+    if (!o.env_path && (o.env.intensity != 0 || o.env.rotation != 0)) {
+        cli_error(PROG, "--env-intensity and --env-rotation need an --env map");
+        return DIRT_EXIT_USAGE;
+    }
     if (!o.w.n) {
         o.w.v[o.w.n++] = 256;
         o.h.v[o.h.n++] = 128;
@@ -792,6 +938,12 @@ int main(int argc, char **argv)
     scene_info si[MAX_SCENES];
     memset(si, 0, sizeof(si));
     int rc = DIRT_EXIT_OK;
+    dirt_env *env_map = NULL, *sky = NULL; /* --env; the fallback */
+    char why_env[256];
+    if (o.env_path && !(env_map = dirt_env_load(o.env_path, &o.env, why_env, sizeof(why_env)))) {
+        cli_error(PROG, "--env: %s", why_env);
+        rc = DIRT_EXIT_USAGE;
+    }
     for (int i = 0; i < o.num_scenes && rc == DIRT_EXIT_OK; i++) {
         si[i].path = o.scenes[i];
         bool def = !strcmp(o.scenes[i], "default");
@@ -816,8 +968,12 @@ int main(int argc, char **argv)
                 d2 += (double)(f->bounds_max[k] - f->bounds_min[k]) *
                       (f->bounds_max[k] - f->bounds_min[k]);
             si[i].diagonal = sqrt(d2);
-            dirt_frame_destroy(f);
         }
+        if (!f || !resolve_lighting(&si[i], f, &o, env_map, &sky)) {
+            cli_error(PROG, "%s: out of memory (see above)", o.scenes[i]);
+            rc = DIRT_EXIT_FAILURE;
+        }
+        dirt_frame_destroy(f);
     }
     if (rc == DIRT_EXIT_OK && !dir_ok(o.dir))
         rc = DIRT_EXIT_USAGE;
@@ -876,8 +1032,9 @@ int main(int argc, char **argv)
         for (size_t i = 0; i < n && rc == DIRT_EXIT_OK; i++) {
             char why[256];
             for (int e = 0; e < 2 && rc == DIRT_EXIT_OK; e++) {
-                dirt_session_opts so = session_opts(&cfg[i], e ? DIRT_ENGINE_MMRT
-                                                               : DIRT_ENGINE_DIRT, 0, o.seed);
+                dirt_session_opts so = session_opts(&si[cfg[i].scene], &cfg[i],
+                                                    e ? DIRT_ENGINE_MMRT : DIRT_ENGINE_DIRT, 0,
+                                                    o.seed);
                 if (!dirt_session_check_opts(&so, why, sizeof(why))) {
                     cli_error(PROG, "impossible configuration %dx%d (%s): %s", cfg[i].w,
                               cfg[i].h, dirt_engine_names[so.engine], why);
@@ -968,5 +1125,7 @@ int main(int argc, char **argv)
     dirt_gpu_destroy(gpu);
     for (int i = 0; i < o.num_scenes; i++)
         dirt_scene_destroy(si[i].scene);
+    dirt_env_destroy(env_map);
+    dirt_env_destroy(sky);
     return rc;
 }

@@ -224,10 +224,6 @@ void dirt_material_surface(const dirt_material *m, float specular,
                            const dirt_texture *textures, size_t num_textures,
                            float u, float v, dirt_surface *out);
 
-/* True when the material can emit (max(emissive) * emissive_strength > 0):
- * its triangles are area lights. */
-bool dirt_material_is_emissive(const dirt_material *m);
-
 /* ---- alpha coverage (src/integrator/texture.c; doc/light-transport.md
  * section 1, "Alpha") ----------------------------------------------------- */
 

@@ -196,12 +196,6 @@ void dirt_material_surface(const dirt_material *m, float specular,
     }
 }
 
-bool dirt_material_is_emissive(const dirt_material *m)
-{
-    float e = fmaxf(m->emissive[0], fmaxf(m->emissive[1], m->emissive[2]));
-    return e > 0.0f && m->emissive_strength > 0.0f && isfinite(e * m->emissive_strength);
-}
-
 bool dirt_material_normal_ts(const dirt_material *m, const dirt_texture *textures,
                              size_t num_textures, float u, float v, dirt_vec3 *n_ts)
 {

@@ -332,8 +332,7 @@ static void warn_unlit(const dirt_scene *scene, const dirt_session_opts *o)
         return;
     const dirt_material *m = dirt_scene_materials(scene);
     for (size_t i = 0; i < dirt_scene_num_materials(scene); i++) {
-        if ((m[i].emissive[0] > 0 || m[i].emissive[1] > 0 || m[i].emissive[2] > 0) &&
-            m[i].emissive_strength > 0)
+        if (dirt_material_is_emissive(&m[i]))
             return;
     }
     DIRT_WARN("the scene has no light, no emissive material and no environment: the image "

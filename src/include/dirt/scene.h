@@ -258,6 +258,9 @@ DIRT_API bool dirt_scene_print_info(const dirt_scene *scene, void *out);
 DIRT_API const char *dirt_scene_name(const dirt_scene *scene);
 DIRT_API size_t dirt_scene_num_materials(const dirt_scene *scene);
 DIRT_API const dirt_material *dirt_scene_materials(const dirt_scene *scene);
+/* True when the material emits (max(emissive) * emissive_strength is
+ * positive and finite): its triangles are area lights in every engine. */
+DIRT_API bool dirt_material_is_emissive(const dirt_material *m);
 DIRT_API size_t dirt_scene_num_textures(const dirt_scene *scene);
 DIRT_API const dirt_texture *dirt_scene_textures(const dirt_scene *scene);
 DIRT_API size_t dirt_scene_num_cameras(const dirt_scene *scene);
