@@ -97,6 +97,7 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
     cJSON_AddNumberToObject(f, "height", st->height);
     cJSON_AddNumberToObject(f, "time", st->time);
     cJSON_AddNumberToObject(f, "samples", st->samples);
+    cJSON_AddNumberToObject(f, "seed", st->seed);
     add_figures(f, st);
     add_details(f, st);
     return f;

@@ -151,6 +151,7 @@ typedef struct dirt_session_stats {
     int samples;                /* accumulated */
     int bounces;
     enum dirt_pt_mode mode;
+    uint32_t seed;              /* dirt_session_opts.seed */
     double time;                /* scene time of the frame */
     double build_ms;            /* the structure's last build (embree: BVH) */
     double trace_ms, fetch_ms, visibility_ms, shade_ms;
@@ -250,8 +251,9 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
 struct cJSON;
 struct cJSON *dirt_session_stats_json(const dirt_session_stats *stats);
 
-/* Frame graph DOT of the path tracer (dirt, mmrt) or of the raster preview.
- * False (logged) before the first samples or for the embree engine. */
+/* Frame graph DOT of the path tracer (dirt, mmrt). False (logged) before
+ * the first samples or for the engines without a path tracer (embree,
+ * raster). */
 bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
 
 /* The DIRT structure or MMRT A-buffer of the last build (NULL for other
