@@ -680,7 +680,6 @@ int main(int argc, char **argv)
             cJSON *rec = dirt_session_stats_json(fs);
             const dirt_camera *cam = dirt_session_camera(session);
             cJSON_AddNumberToObject(rec, "frame", (double)fi);
-            cJSON_AddNumberToObject(rec, "seed", seed);
             cJSON_AddStringToObject(rec, "file", files[0]);
             cJSON *c = cJSON_AddObjectToObject(rec, "camera");
             cJSON_AddItemToObject(c, "eye", cJSON_CreateFloatArray(cam->eye, 3));

@@ -105,6 +105,12 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
 
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count)
 {
+    return dirt_session_write_stats_attrs(path, frames, count, NULL, 0);
+}
+
+bool dirt_session_write_stats_attrs(const char *path, const dirt_session_stats *frames,
+                                    size_t count, const dirt_image_attr *attrs, size_t num_attrs)
+{
     if (!count) {
         DIRT_ERROR("no frames to write stats of");
         return false;
@@ -151,6 +157,11 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     cJSON_AddNumberToObject(root, "bounces", last->bounces);
     cJSON_AddStringToObject(root, "mode", last->mode == DIRT_PT_AO ? "ao" : "pt");
     cJSON_AddNumberToObject(root, "frames_rendered", (double)count);
+    if (num_attrs) {
+        cJSON *prov = cJSON_AddObjectToObject(root, "provenance");
+        for (size_t i = 0; prov && i < num_attrs; i++)
+            cJSON_AddStringToObject(prov, attrs[i].name, attrs[i].value);
+    }
     add_figures(root, &mean);
     add_details(root, last);
     cJSON *list = cJSON_AddArrayToObject(root, "frames");

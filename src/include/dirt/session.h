@@ -244,6 +244,12 @@ void dirt_session_drain_times(dirt_session *s);
  * their means, and every frame's record in "frames". False after logging
  * when the file cannot be written. */
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count);
+/* The same with an object "provenance" of the `num_attrs` text attributes
+ * (what made the frames: the ones the programs write into their EXR
+ * headers, dirt/image.h), each name a key. */
+bool dirt_session_write_stats_attrs(const char *path, const dirt_session_stats *frames,
+                                    size_t count, const dirt_image_attr *attrs,
+                                    size_t num_attrs);
 
 /* One stats record as a cJSON object (the "frames" entries of
  * dirt_session_write_stats), owned by the caller (cJSON_Delete). NULL when
