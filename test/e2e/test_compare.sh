@@ -38,7 +38,11 @@ expect2 "bad list" default -o "$tmp/o1" --res 64x
 expect2 "bad views" default -o "$tmp/o1" --views sideways
 expect2 "no DIR" default
 [ -e "$tmp/o1" ] && [ -n "$(ls -A "$tmp/o1")" ] && fail "files left in o1"
-"$cmp" --help | grep -q -- '--thickness LIST' || fail "--help"
+"$cmp" --help | grep -q -- '--thickness T,\.\.\.' || fail "--help"
+"$cmp" --version >"$tmp/stdout" 2>&1; rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 3 ]; } && grep -Eq '^dirt-compare [0-9]+\.[0-9]+\.[0-9]+ \(commit ' "$tmp/stdout" ||
+  fail "--version: exit $rc"
+expect2 "bad tile size" default -o "$tmp/o1" --tile 1,3
 
 scenes=(default)
 rows=4
