@@ -44,54 +44,6 @@ typedef struct options {
 static const char *const *const view_names = app_views_names;
 static const char *const *const march_names = app_march_names;
 
-static const app_use output_opts[] = {{APP_OPT_OUTPUT_DIR}, {APP_OPT_NONE}};
-static const app_use sweep_opts[] = {
-    {APP_OPT_RES, APP_USE_LIST},
-    {APP_OPT_VIEWS, APP_USE_LIST},
-    {APP_OPT_TILE, APP_USE_LIST, "1", "1: the paper's Table 2 compares at 1x1 tiles"},
-    {APP_OPT_DIRT_BUCKETS, APP_USE_LIST, NULL, "4, MMRT's"},
-    {APP_OPT_MMRT_BUCKETS, APP_USE_LIST},
-    {APP_OPT_THICKNESS, APP_USE_LIST, "0"},
-    {APP_OPT_THICKNESS_REL, APP_USE_LIST},
-    {APP_OPT_MARCH, APP_USE_LIST},
-    {APP_OPT_SAMPLES, APP_USE_LIST, "0", "0; Hi-Z rows take none"},
-    {APP_OPT_SPP, APP_USE_LIST, "1"},
-    {APP_OPT_BOUNCES, APP_USE_LIST},
-    {APP_OPT_TIME, APP_USE_LIST},
-    {APP_OPT_FRAMES, 0, NULL, "--time's list; at most 16 frames"},
-    {APP_OPT_FPS},
-    {APP_OPT_NONE}};
-static const app_use measure_opts[] = {
-    {APP_OPT_WARMUP}, {APP_OPT_REPEAT}, {APP_OPT_FACE_SIZE}, {APP_OPT_LARGE},
-    {APP_OPT_AGREE_RES}, {APP_OPT_NO_QUALITY}, {APP_OPT_IMAGES}, {APP_OPT_SEED, 0, "7"},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_GPU}, {APP_OPT_PRESET}, {APP_OPT_NONE}};
-static const app_use other_opts[] = {
-    {APP_OPT_QUIET}, {APP_OPT_VERBOSE}, {APP_OPT_VERSION}, {APP_OPT_HELP}, {APP_OPT_NONE}};
-static const app_section sections[] = {
-    {"Output:", output_opts},
-    {"Sweeps (comma-separated lists; every combination is a configuration):", sweep_opts},
-    {"Measurement:", measure_opts},
-    {"Other:", other_opts},
-    {NULL, NULL}};
-
-static const app_program program = {
-    .name = PROG,
-    .usage =
-        "Usage: " PROG " SCENE... -o DIR [options]\n"
-        "       " PROG " --version\n"
-        "\n"
-        "Measures DIRT against the MMRT fragment A-buffer on each configuration of a\n"
-        "sweep (every combination of the lists below, per SCENE; \"default\" is the\n"
-        "embedded scene) and writes DIR/table.md (the DIRT paper's Table 2 layout),\n"
-        "DIR/results.csv, DIR/results.json (doc/compare.md) and plots (SVG + PNG,\n"
-        "gnuplot). A rerun with the same DIR skips the configurations already done.\n",
-    .sections = sections,
-    .epilogue =
-        "Exit status: 0 all done, 1 a configuration failed (recorded with its reason)\n"
-        "or an output could not be written, 2 bad option or input, 3 no OpenGL 4.5.\n",
-    .max_scenes = MAX_SCENES,
-};
-
 static void to_ints(const app_list *l, int_list *out)
 {
     out->n = l->n;
@@ -588,18 +540,18 @@ static bool dir_ok(const char *dir)
 int main(int argc, char **argv)
 {
     static app_opts ao; /* its lists are large */
-    app_opts_init(&program, &ao);
-    int prc = app_parse(&program, argc, argv, &ao);
+    app_opts_init(&app_compare_program, &ao);
+    int prc = app_parse(&app_compare_program, argc, argv, &ao);
     if (prc != APP_PARSE_OK || ao.help || ao.version) {
         if (prc == APP_PARSE_OK && ao.help)
-            app_print_help(&program, stdout);
+            app_print_help(&app_compare_program, stdout);
         else if (prc == APP_PARSE_OK)
             prc = app_version(PROG, &ao);
         app_opts_free(&ao);
         return prc;
     }
     options o;
-    bool parsed = app_check(&program, &ao) && from_app(&ao, &o);
+    bool parsed = app_check(&app_compare_program, &ao) && from_app(&ao, &o);
     if (!parsed) {
         app_opts_free(&ao);
         return DIRT_EXIT_USAGE;

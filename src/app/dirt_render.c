@@ -1,7 +1,7 @@
 /* dirt-render: renders one frame or a frame range of a scene headless, on
- * the render session (dirt/session.h). Options come from the shared table
- * (options.h), the frames from render_seq.h, the outputs go through
- * render_out.h. */
+ * the render session (dirt/session.h). Its options are the shared table's
+ * (options.h; what it accepts: programs.c), its frames come from
+ * render_seq.h, its outputs go through render_out.h. */
 #include <stdio.h>
 #include <string.h>
 
@@ -15,62 +15,6 @@
 #include "dirt/session.h"
 
 #define PROG "dirt-render"
-
-static const app_use output_opts[] = {
-    {APP_OPT_OUTPUT}, {APP_OPT_WIDTH}, {APP_OPT_HEIGHT}, {APP_OPT_PNG}, {APP_OPT_EXPOSURE},
-    {APP_OPT_TONEMAP}, {APP_OPT_MSE_REFERENCE}, {APP_OPT_INFO}, {APP_OPT_STATS}, {APP_OPT_NONE}};
-static const app_use scene_opts[] = {
-    {APP_OPT_TIME}, {APP_OPT_FRAMES}, {APP_OPT_FPS}, {APP_OPT_CLIP}, {APP_OPT_LOOP},
-    {APP_OPT_CAMERA}, {APP_OPT_AUTO_CAMERA}, {APP_OPT_EYE}, {APP_OPT_LOOK_AT}, {APP_OPT_UP},
-    {APP_OPT_FOV}, {APP_OPT_ZNEAR}, {APP_OPT_ZFAR}, {APP_OPT_APERTURE}, {APP_OPT_FOCUS},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_NONE}};
-static const app_use technique_opts[] = {
-    {APP_OPT_ENGINE}, {APP_OPT_MODE}, {APP_OPT_SPP}, {APP_OPT_BOUNCES}, {APP_OPT_SEED},
-    {APP_OPT_AO_DISTANCE}, {APP_OPT_BACKGROUND}, {APP_OPT_ENV}, {APP_OPT_ENV_INTENSITY},
-    {APP_OPT_ENV_ROTATION}, {APP_OPT_THREADS}, {APP_OPT_GPU}, {APP_OPT_CPU_TIMING},
-    {APP_OPT_NONE}};
-static const app_use dirt_opts[] = {
-    {APP_OPT_DEBUG_ADS}, {APP_OPT_VIEWS}, {APP_OPT_TILE}, {APP_OPT_BUCKETS}, {APP_OPT_FACE_SIZE},
-    {APP_OPT_NO_CONSERVATIVE}, {APP_OPT_BUILD}, {APP_OPT_LARGE}, {APP_OPT_HIZ_TOP},
-    {APP_OPT_FETCH}, {APP_OPT_DIRECT_VISIBILITY}, {APP_OPT_GRAPH_DOT}, {APP_OPT_NONE}};
-static const app_use mmrt_opts[] = {
-    {APP_OPT_MARCH}, {APP_OPT_SAMPLES}, {APP_OPT_THICKNESS}, {APP_OPT_NONE}};
-static const app_use farm_opts[] = {
-    {APP_OPT_SKIP_EXISTING}, {APP_OPT_PLACEHOLDERS}, {APP_OPT_CLAIM_TIMEOUT}, {APP_OPT_CHUNK},
-    {APP_OPT_ANIMATED_SEED}, {APP_OPT_LOG}, {APP_OPT_NONE}};
-static const app_use other_opts[] = {
-    {APP_OPT_QUIET}, {APP_OPT_VERBOSE}, {APP_OPT_VERSION}, {APP_OPT_HELP}, {APP_OPT_NONE}};
-
-static const app_section sections[] = {
-    {"Output:", output_opts},
-    {"Scene and camera:", scene_opts},
-    {"Technique:", technique_opts},
-    {"DIRT acceleration structure (--engine dirt, --debug-ads; --views, --face-size, -B\n"
-     "and --hiz-top also set MMRT's):", dirt_opts},
-    {"MMRT (--engine mmrt; tile size 1: MMRT is per pixel):", mmrt_opts},
-    {"Sequences and farms:", farm_opts},
-    {"Other:", other_opts},
-    {NULL, NULL}};
-
-static const app_program program = {
-    .name = PROG,
-    .usage =
-        "Usage: " PROG " [SCENE] -o OUTPUT [options]\n"
-        "       " PROG " --info [SCENE]\n"
-        "       " PROG " --version\n"
-        "\n"
-        "Renders a glTF 2.0 (.gltf, .glb) or OBJ + MTL (.obj) scene headless through\n"
-        "OpenGL 4.5 (EGL). Without SCENE (or with SCENE 'default'), renders the embedded\n"
-        "default scene (a Cornell-style room).\n",
-    .sections = sections,
-    .epilogue =
-        "Exit status: 0 success, 1 render failure, 2 bad option or input (unreadable\n"
-        "or malformed scene, unwritable output), 3 no OpenGL 4.5 context.\n"
-        "Images are written atomically: a failed run leaves no partial file. Each EXR's\n"
-        "header records what made it: dirt.scene, dirt.engine, dirt.seed, dirt.samples,\n"
-        "dirt.time, dirt.device, dirt.command_line, dirt.version and dirt.commit.\n",
-    .max_scenes = 1,
-};
 
 /* dirt-render's own checks across options; warns about options that do
  * nothing here. False after printing why. */
@@ -91,7 +35,7 @@ static bool check_options(const app_opts *o)
     } else if (many && fields != 1) {
         cli_error(PROG, "--frames renders several images: the output '%s' needs one frame "
                   "field such as frame_####.exr or frame_%%04d.exr", o->output);
-    } else if (!app_check(&program, o)) {
+    } else if (!app_check(&app_render_program, o)) {
         return false;
     } else if (o->debug_ads && many) {
         cli_error(PROG, "--debug-ads works on a single frame, not with --frames");
@@ -231,10 +175,10 @@ int main(int argc, char **argv)
     setvbuf(stdout, NULL, _IOLBF, 0);
     setvbuf(stderr, NULL, _IOLBF, 0);
     app_opts o;
-    app_opts_init(&program, &o);
-    int rc = app_parse(&program, argc, argv, &o);
+    app_opts_init(&app_render_program, &o);
+    int rc = app_parse(&app_render_program, argc, argv, &o);
     if (rc == APP_PARSE_OK && o.help)
-        app_print_help(&program, stdout);
+        app_print_help(&app_render_program, stdout);
     else if (rc == APP_PARSE_OK && o.version)
         rc = app_version(PROG, &o);
     else if (rc == APP_PARSE_OK)

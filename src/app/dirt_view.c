@@ -17,67 +17,6 @@
 #include "app/view.h"
 #include "dirt/clock.h"
 
-#define RT APP_USE_RUNTIME /* a script may `set` it */
-
-static const app_use window_opts[] = {
-    {APP_OPT_WINDOW},
-    {APP_OPT_WIDTH, RT, "", "follow the window"},
-    {APP_OPT_HEIGHT, RT, NULL, "follow the window, or width / the camera's aspect with --width"},
-    {APP_OPT_SPP, RT, "1024", "1024: stop accumulating there"},
-    {APP_OPT_SAMPLES_PER_FRAME, RT}, {APP_OPT_BUFFER, RT}, {APP_OPT_EXPOSURE, RT},
-    {APP_OPT_TONEMAP, RT}, {APP_OPT_COMPARE, RT}, {APP_OPT_SPLIT, RT}, {APP_OPT_DIFF, RT},
-    {APP_OPT_DIFF_RANGE, RT}, {APP_OPT_SCALE, RT}, {APP_OPT_NO_PREVIEW, RT}, {APP_OPT_NO_UI, RT},
-    {APP_OPT_NONE}};
-static const app_use scene_opts[] = {
-    {APP_OPT_TIME, RT}, {APP_OPT_CLIP, RT}, {APP_OPT_LOOP, RT}, {APP_OPT_PLAY, RT},
-    {APP_OPT_SPEED, RT}, {APP_OPT_CAMERA, RT}, {APP_OPT_AUTO_CAMERA}, {APP_OPT_EYE, RT},
-    {APP_OPT_LOOK_AT, RT}, {APP_OPT_UP, RT}, {APP_OPT_FOV, RT}, {APP_OPT_ZNEAR, RT},
-    {APP_OPT_ZFAR, RT}, {APP_OPT_APERTURE, RT}, {APP_OPT_FOCUS, RT},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_NONE}};
-static const app_use technique_opts[] = {
-    {APP_OPT_ENGINE, RT}, {APP_OPT_MODE, RT}, {APP_OPT_BOUNCES, RT}, {APP_OPT_SEED, RT},
-    {APP_OPT_AO_DISTANCE, RT}, {APP_OPT_BACKGROUND, RT}, {APP_OPT_ENV},
-    {APP_OPT_ENV_INTENSITY, RT}, {APP_OPT_ENV_ROTATION, RT}, {APP_OPT_THREADS, RT},
-    {APP_OPT_CPU_TIMING}, {APP_OPT_VIEWS, RT}, {APP_OPT_TILE, RT}, {APP_OPT_BUCKETS, RT},
-    {APP_OPT_FACE_SIZE, RT}, {APP_OPT_NO_CONSERVATIVE, RT}, {APP_OPT_BUILD, RT},
-    {APP_OPT_LARGE, RT}, {APP_OPT_HIZ_TOP, RT}, {APP_OPT_FETCH, RT},
-    {APP_OPT_DIRECT_VISIBILITY, RT}, {APP_OPT_MARCH, RT}, {APP_OPT_SAMPLES, RT},
-    {APP_OPT_THICKNESS, RT}, {APP_OPT_NONE}};
-static const app_use script_opts[] = {
-    {APP_OPT_SCRIPT}, {APP_OPT_TEST_FRAMES}, {APP_OPT_SCREENSHOT}, {APP_OPT_SAVE_IMAGE},
-    {APP_OPT_REPORT}, {APP_OPT_BINDINGS}, {APP_OPT_NONE}};
-static const app_use other_opts[] = {
-    {APP_OPT_QUIET}, {APP_OPT_VERBOSE}, {APP_OPT_VERSION}, {APP_OPT_HELP}, {APP_OPT_NONE}};
-static const app_section sections[] = {
-    {"Window and render:", window_opts},
-    {"Scene, camera and animation (as dirt-render):", scene_opts},
-    {"Technique (as dirt-render; the DIRT and MMRT options as its sections say):",
-     technique_opts},
-    {"Scripted mode (tests, reproducible demos; a script's `set NAME VALUE` takes the\n"
-     "options above but --window, --auto-camera, --env, --cpu-timing and\n"
-     "--max-scene-memory):", script_opts},
-    {"Other:", other_opts},
-    {NULL, NULL}};
-
-const app_program view_program = {
-    .name = PROG,
-    .usage =
-        "Usage: dirt-view [SCENE] [options]\n"
-        "\n"
-        "Interactive viewer: progressive path tracing of a glTF 2.0 (.gltf, .glb) or\n"
-        "OBJ (.obj) scene (without SCENE, or with 'default', the embedded default scene)\n"
-        "through DIRT, the MMRT A-buffer, Embree or the raster preview, with panels for\n"
-        "every setting, the structure's heat maps, per-pass timings and memory. F1 in\n"
-        "the window lists the key bindings (also doc/viewer.md, --bindings).\n",
-    .sections = sections,
-    .epilogue =
-        "Exit status: 0 done, 1 a write failed, 2 bad option, scene or script,\n"
-        "3 no window or OpenGL 4.5 context. A saved .exr render records what made it\n"
-        "in its header (as dirt-render's do), with dirt.render_args: the dirt-render\n"
-        "options of the image.\n",
-    .max_scenes = 1,
-};
-
 void view_status(viewer *v, const char *fmt, ...)
 {
     va_list ap;
@@ -205,7 +144,7 @@ static bool frame(viewer *v, double dt)
 static int prepare(viewer *v, dirt_scene **scene)
 {
     char why[1024];
-    if (!app_check(&view_program, &v->o))
+    if (!app_check(&app_view_program, &v->o))
         return DIRT_EXIT_USAGE;
     if (v->o.script && !vs_load(v->o.script, &v->script, why, sizeof(why))) {
         cli_error(PROG, "%s", why);
@@ -306,11 +245,11 @@ int main(int argc, char **argv)
     viewer *v = calloc(1, sizeof(*v));
     if (!v)
         return DIRT_EXIT_FAILURE;
-    app_opts_init(&view_program, &v->o);
-    int rc = app_parse(&view_program, argc, argv, &v->o);
+    app_opts_init(&app_view_program, &v->o);
+    int rc = app_parse(&app_view_program, argc, argv, &v->o);
     dirt_scene *scene = NULL;
     if (rc == APP_PARSE_OK && v->o.help) {
-        app_print_help(&view_program, stdout);
+        app_print_help(&app_view_program, stdout);
     } else if (rc == APP_PARSE_OK && v->o.bindings) {
         for (size_t i = 0; i < view_num_bindings; i++)
             printf("%-24s %s\n", view_bindings[i][0], view_bindings[i][1]);

@@ -140,6 +140,9 @@ typedef struct app_program {
     int max_scenes;             /* SCENE arguments accepted */
 } app_program;
 
+/* The programs (programs.c). */
+extern const app_program app_render_program, app_view_program, app_compare_program;
+
 /* The program's defaults in `o` (zeroed first). */
 void app_opts_init(const app_program *p, app_opts *o);
 void app_opts_free(app_opts *o);

@@ -100,9 +100,6 @@ typedef struct viewer {
     int win_w, win_h;
 } viewer;
 
-/* The options dirt-view accepts (dirt_view.c). */
-extern const app_program view_program;
-
 /* The status line of the Settings panel, also printed unless --quiet. */
 void view_status(viewer *v, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -87,8 +87,8 @@ bool view_run_script(viewer *v)
             v->click_y = a->num[1];
             break;
         case VS_SET: {
-            enum app_opt id = app_find(&view_program, a->name, APP_USE_RUNTIME);
-            if (!app_set(&view_program, a->name, a->text, APP_USE_RUNTIME, &v->o))
+            enum app_opt id = app_find(&app_view_program, a->name, APP_USE_RUNTIME);
+            if (!app_set(&app_view_program, a->name, a->text, APP_USE_RUNTIME, &v->o))
                 return false;
             if (id == APP_OPT_CAMERA) {
                 v->cam_mode = CAM_SCENE;
@@ -159,12 +159,12 @@ bool view_check_script(const view_script *sc, const app_opts *o)
         }
         if (a->kind != VS_SET)
             continue;
-        if (app_find(&view_program, a->name, APP_USE_RUNTIME) == APP_OPT_NONE) {
+        if (app_find(&app_view_program, a->name, APP_USE_RUNTIME) == APP_OPT_NONE) {
             cli_error(PROG, "script line %d: '%s' is not an option `set` can change", a->line,
                       a->name);
             return false;
         }
-        if (!app_set(&view_program, a->name, a->text, APP_USE_RUNTIME, &scratch)) {
+        if (!app_set(&app_view_program, a->name, a->text, APP_USE_RUNTIME, &scratch)) {
             cli_error(PROG, "script line %d: bad value", a->line);
             return false;
         }
