@@ -75,9 +75,10 @@ static bool from_app(const app_opts *a, options *o)
     to_ints(&a->lists[APP_OPT_BOUNCES], &o->bounces);
     /* --thickness-rel's fractions follow --thickness's values (negated:
      * resolved per scene). */
+    static const app_list none;
     const app_list *th = &a->lists[APP_OPT_THICKNESS], *rel = &a->lists[APP_OPT_THICKNESS_REL];
     if (!a->given[APP_OPT_THICKNESS] && rel->n)
-        th = &(app_list){0};
+        th = &none;
     if (th->n + rel->n > MAX_LIST) {
         cli_error(PROG, "--thickness and --thickness-rel: at most %d values", MAX_LIST);
         return false;
