@@ -105,7 +105,6 @@ void view_status(viewer *v, const char *fmt, ...) __attribute__((format(printf, 
 
 /* view_sessions.c */
 dirt_session_opts view_wanted_opts(const viewer *v, int engine);
-bool view_make_sessions(viewer *v);
 bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);

@@ -35,7 +35,7 @@ static float scene_diagonal(const dirt_frame *f)
 
 /* Makes the main session for the scene (the comparison and the preview
  * follow at the next sync); false after logging. */
-bool view_make_sessions(viewer *v)
+static bool make_sessions(viewer *v)
 {
     dirt_session_destroy(v->s);
     dirt_session_destroy(v->cmp);
@@ -63,7 +63,7 @@ bool view_load_scene(viewer *v, dirt_scene *sc, const char *path)
     dirt_scene_destroy(v->scene);
     v->scene = sc;
     snprintf(v->scene_name, sizeof(v->scene_name), "%s", path ? path : "default scene");
-    if (!view_make_sessions(v))
+    if (!make_sessions(v))
         return false;
     v->diag = scene_diagonal(dirt_session_frame(v->s));
     view_reset_camera(v);
