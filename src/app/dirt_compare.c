@@ -12,6 +12,9 @@
 
 #include "app/cli.h"
 #include "app/compare.h"
+#include "app/options.h"
+#include "app/provenance.h"
+#include "app/setup.h"
 #include "dirt/clock.h"
 #include "dirt/env.h"
 #include "dirt/log.h"
@@ -26,14 +29,15 @@
 typedef struct int_list { int n; int v[MAX_LIST]; } int_list;
 typedef struct dbl_list { int n; double v[MAX_LIST]; } dbl_list;
 
+/* The sweep and the measurement, from the shared option table. */
 typedef struct options {
     const char *scenes[MAX_SCENES];
     int num_scenes;
     const char *dir;
     int_list w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
-    dbl_list thickness, time;
+    dbl_list thickness, time;   /* thickness < 0: a fraction of the diagonal */
     int warmup, repeat, agree_w, agree_h, face;
-    int large;                  /* --dirt-large: 0 none, else up to that many */
+    int large;                  /* --large: 0 none, else up to that many */
     bool quality, images, quiet;
     uint32_t seed;
     const char *env_path;       /* --env FILE|sky, for every scene */
@@ -42,319 +46,74 @@ typedef struct options {
     bool background_set;
 } options;
 
-static const char *const view_names[] = {"default", "single", "cube", "cube+camera", NULL};
-static const char *const march_names[] = {"hiz", "linear", NULL};
+static const char *const *const view_names = app_views_names;
+static const char *const *const march_names = app_march_names;
 
-static void usage(FILE *out)
+static void to_ints(const app_list *l, int_list *out)
 {
-    fprintf(out,
-"Usage: " PROG " SCENE... -o DIR [options]\n"
-"\n"
-"Measures DIRT against the MMRT fragment A-buffer on each configuration of a\n"
-"sweep (every combination of the lists below, per SCENE; \"default\" is the\n"
-"embedded scene) and writes DIR/table.md (the DIRT paper's Table 2 layout),\n"
-"DIR/results.csv, DIR/results.json (doc/compare.md) and figures through\n"
-"gnuplot (NAME.svg, NAME.png and their data NAME.dat: memory and times vs\n"
-"image size per scene and vs triangles per image size, DIRT / MMRT ratios\n"
-"per scene and size, MMRT's hit agreement vs its thickness; one series per\n"
-"technique and setting, MMRT's per thickness; min-max bars over the\n"
-"repeats; a figure without a series of two points is left out). A rerun\n"
-"with the same DIR skips the configurations already done.\n"
-"\n"
-"Sweeps (comma-separated lists):\n"
-"  --res WxH,...          image sizes (default 256x128)\n"
-"  --views LIST           single, cube, cube+camera (default cube+camera)\n"
-"  --tile LIST            DIRT tile size S in 1,2,4,8 (default 1: the paper's\n"
-"                         Table 2 compares at 1x1 tiles)\n"
-"  --dirt-buckets LIST    DIRT buckets B (default 4, MMRT's)\n"
-"  --mmrt-buckets LIST    MMRT buckets (default 4)\n"
-"  --thickness LIST       MMRT thickness, world units (0 = its default, 0.2%% of\n"
-"                         the scene's diagonal; default 0)\n"
-"  --thickness-rel LIST   MMRT thickness as fractions of the diagonal (added to\n"
-"                         the --thickness list)\n"
-"  --march LIST           MMRT march: hiz, linear (default hiz)\n"
-"  --samples LIST         MMRT linear march: samples per view (0 = its default,\n"
-"                         30; default 0; Hi-Z rows take none)\n"
-"  --spp LIST             samples per pixel of the path-traced image (default 1)\n"
-"  --bounces LIST         path events (default 4)\n"
-"  --time LIST            animation times in seconds (default 0)\n"
-"  --frames A:B[:FPS]     times frame/FPS for frames A..B (default FPS 24)\n"
-"\n"
-"Measurement:\n"
-"      --warmup N         unmeasured runs before the repeats (default 1)\n"
-"      --repeat N         measured runs; min, median and max per pass (default 3)\n"
-"      --face N           cube face size (default max(W, H) / 2)\n"
-"      --dirt-large N     DIRT's large primitives: at most N (0..16) of the\n"
-"                         largest triangles are tested by every ray instead of\n"
-"                         listed (doc/dirt-trace.md; default 16, 0 = none)\n"
-"      --agree-res WxH    camera G-buffer of the hit-agreement rays (default:\n"
-"                         the image size)\n"
-"      --no-quality       skip hit agreement and relMSE against Embree\n"
-"      --images           write each configuration's images into DIR/images\n"
-"      --seed N           (default 7)\n"
-"\n"
-"Lighting (the same for DIRT, MMRT and Embree; stated per scene in table.md\n"
-"and in every row of results.csv/json): each scene is lit as authored, by\n"
-"its emissive triangles and punctual lights, with no environment (black);\n"
-"a scene with neither is lit by the built-in sky instead (as --env sky).\n"
-"These replace that environment for every scene (the scene's own lights\n"
-"stay), as in dirt-render:\n"
-"      --background R,G,B radiance of rays that leave the scene: a constant\n"
-"                         environment light\n"
-"      --env FILE         environment light: an equirectangular map (.exr or\n"
-"                         .hdr, linear radiance; its centre looks along -Z),\n"
-"                         or 'sky' for the built-in sky; importance-sampled\n"
-"      --env-intensity X  scale of the map's radiance (default 1)\n"
-"      --env-rotation DEG turn the map about +Y (default 0)\n"
-"\n"
-"Other:\n"
-"      --preset FILE      read options from FILE (one or more per line, # comments;\n"
-"                         data/compare-table*.txt)\n"
-"  -q, --quiet            no progress\n"
-"  -h, --help\n"
-"\n"
-"Exit status: 0 all done, 1 a configuration failed (recorded with its reason)\n"
-"or an output could not be written, 2 bad option or input, 3 no OpenGL 4.5.\n");
+    out->n = l->n;
+    for (int i = 0; i < l->n; i++)
+        out->v[i] = (int)l->v[i][0];
 }
 
-static bool parse_ints(const char *opt, const char *v, int_list *l, long lo, long hi,
-                       const char *const *names)
+/* The sweep of the parsed options; false after printing why. */
+static bool from_app(const app_opts *a, options *o)
 {
-    l->n = 0;
-    char buf[512];
-    snprintf(buf, sizeof(buf), "%s", v);
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
-         tok = strtok_r(NULL, ",", &save)) {
-        if (l->n == MAX_LIST) {
-            cli_error(PROG, "%s: at most %d values", opt, MAX_LIST);
-            return false;
-        }
-        int x;
-        if (names ? !cli_value(PROG, opt, tok, 'c', &x, 0, 0, names)
-                  : !cli_value(PROG, opt, tok, 'i', &x, lo, hi, NULL))
-            return false;
-        l->v[l->n++] = x;
+    memset(o, 0, sizeof(*o));
+    o->num_scenes = a->num_scenes;
+    for (int i = 0; i < a->num_scenes; i++)
+        o->scenes[i] = a->scenes[i];
+    o->dir = a->output;
+    const app_list *res = &a->lists[APP_OPT_RES];
+    o->w.n = o->h.n = res->n;
+    for (int i = 0; i < res->n; i++) {
+        o->w.v[i] = (int)res->v[i][0];
+        o->h.v[i] = (int)res->v[i][1];
     }
-    if (!l->n)
-        cli_error(PROG, "%s expects a list", opt);
-    return l->n > 0;
-}
-
-/* Appends to `l` (--thickness and --thickness-rel share one list). */
-static bool parse_dbls(const char *opt, const char *v, dbl_list *l, double lo, double hi)
-{
-    char buf[512];
-    snprintf(buf, sizeof(buf), "%s", v);
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
-         tok = strtok_r(NULL, ",", &save)) {
-        if (l->n == MAX_LIST) {
-            cli_error(PROG, "%s: at most %d values", opt, MAX_LIST);
-            return false;
-        }
-        if (!cli_float(PROG, opt, tok, lo, hi, &l->v[l->n]))
-            return false;
-        l->n++;
-    }
-    return true;
-}
-
-static bool parse_size(const char *opt, const char *tok, int *w, int *h)
-{
-    char *x = strchr(tok, 'x');
-    char a[32], b[32];
-    if (!x || x == tok || (size_t)(x - tok) >= sizeof(a) || strlen(x + 1) >= sizeof(b)) {
-        cli_error(PROG, "%s expects WxH, not '%s'", opt, tok);
+    to_ints(&a->lists[APP_OPT_VIEWS], &o->views);
+    to_ints(&a->lists[APP_OPT_TILE], &o->tile);
+    to_ints(&a->lists[APP_OPT_DIRT_BUCKETS], &o->dbuckets);
+    to_ints(&a->lists[APP_OPT_MMRT_BUCKETS], &o->mbuckets);
+    to_ints(&a->lists[APP_OPT_MARCH], &o->march);
+    to_ints(&a->lists[APP_OPT_SAMPLES], &o->samples);
+    to_ints(&a->lists[APP_OPT_SPP], &o->spp);
+    to_ints(&a->lists[APP_OPT_BOUNCES], &o->bounces);
+    /* --thickness-rel's fractions follow --thickness's values (negated:
+     * resolved per scene). */
+    static const app_list none;
+    const app_list *th = &a->lists[APP_OPT_THICKNESS], *rel = &a->lists[APP_OPT_THICKNESS_REL];
+    if (!a->given[APP_OPT_THICKNESS] && rel->n)
+        th = &none;
+    if (th->n + rel->n > MAX_LIST) {
+        cli_error(PROG, "--thickness and --thickness-rel: at most %d values", MAX_LIST);
         return false;
     }
-    memcpy(a, tok, (size_t)(x - tok));
-    a[x - tok] = 0;
-    snprintf(b, sizeof(b), "%s", x + 1);
-    long lw, lh;
-    if (!cli_int(PROG, opt, a, 1, 16384, &lw) || !cli_int(PROG, opt, b, 1, 16384, &lh))
-        return false;
-    *w = (int)lw, *h = (int)lh;
-    return true;
-}
-
-static bool parse_res(const char *opt, const char *v, options *o)
-{
-    o->w.n = o->h.n = 0;
-    char buf[512];
-    snprintf(buf, sizeof(buf), "%s", v);
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
-         tok = strtok_r(NULL, ",", &save)) {
-        if (o->w.n == MAX_LIST) {
-            cli_error(PROG, "%s: at most %d sizes", opt, MAX_LIST);
-            return false;
-        }
-        if (!parse_size(opt, tok, &o->w.v[o->w.n], &o->h.v[o->h.n]))
-            return false;
-        o->w.n++, o->h.n++;
-    }
-    return o->w.n > 0;
-}
-
-static bool parse_frames(const char *v, dbl_list *l)
-{
-    long a, b;
-    double fps = 24;
-    char buf[128];
-    snprintf(buf, sizeof(buf), "%s", v);
-    char *c1 = strchr(buf, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-    if (!c1) {
-        cli_error(PROG, "--frames expects A:B[:FPS]");
+    for (int i = 0; i < th->n; i++)
+        o->thickness.v[o->thickness.n++] = th->v[i][0];
+    for (int i = 0; i < rel->n; i++)
+        o->thickness.v[o->thickness.n++] = -rel->v[i][0];
+    if (a->frames.count > MAX_LIST) {
+        cli_error(PROG, "--frames: at most %d frames", MAX_LIST);
         return false;
     }
-    *c1 = 0;
-    if (c2)
-        *c2 = 0;
-    if (!cli_int(PROG, "--frames", buf, 0, 1000000, &a) ||
-        !cli_int(PROG, "--frames", c1 + 1, a, a + MAX_LIST - 1, &b) ||
-        (c2 && !cli_float(PROG, "--frames", c2 + 1, 1e-3, 1e4, &fps)))
-        return false;
-    l->n = 0;
-    for (long f = a; f <= b; f++)
-        l->v[l->n++] = (double)f / fps;
-    return true;
-}
-
-static bool parse_args(int argc, char **argv, options *o, int depth);
-
-/* --preset FILE: whitespace-separated options, '#' starts a comment. */
-static bool read_preset(const char *path, options *o, int depth)
-{
-    if (depth > 4) {
-        cli_error(PROG, "--preset nested too deeply");
-        return false;
-    }
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error(PROG, "--preset %s: %s", path, strerror(errno));
-        return false;
-    }
-    static char store[8192];
-    static size_t used;
-    char *argv[128];
-    int argc = 1;
-    argv[0] = PROG;
-    char line[1024];
-    while (fgets(line, sizeof(line), f)) {
-        char *hash = strchr(line, '#');
-        if (hash)
-            *hash = 0;
-        for (char *save = NULL, *tok = strtok_r(line, " \t\r\n", &save); tok;
-             tok = strtok_r(NULL, " \t\r\n", &save)) {
-            size_t n = strlen(tok) + 1;
-            if (argc == 128 || used + n > sizeof(store)) {
-                fclose(f);
-                cli_error(PROG, "--preset %s: too long", path);
-                return false;
-            }
-            memcpy(store + used, tok, n);
-            argv[argc++] = store + used;
-            used += n;
-        }
-    }
-    fclose(f);
-    return parse_args(argc, argv, o, depth + 1);
-}
-
-static bool parse_args(int argc, char **argv, options *o, int depth)
-{
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes = a[0] == '-' && strcmp(a, "--no-quality") && strcmp(a, "--images") &&
-                     strcmp(a, "-q") && strcmp(a, "--quiet") && strcmp(a, "-h") &&
-                     strcmp(a, "--help");
-        if (takes && !v) {
-            cli_error(PROG, "%s expects a value", a);
-            return false;
-        }
-        bool ok = true;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            exit(DIRT_EXIT_OK);
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            o->dir = v;
-        } else if (!strcmp(a, "--res")) {
-            ok = parse_res(a, v, o);
-        } else if (!strcmp(a, "--views")) {
-            ok = parse_ints(a, v, &o->views, 0, 0, view_names);
-        } else if (!strcmp(a, "--tile")) {
-            ok = parse_ints(a, v, &o->tile, 1, 8, NULL);
-            for (int k = 0; ok && k < o->tile.n; k++)
-                if (o->tile.v[k] & (o->tile.v[k] - 1)) {
-                    cli_error(PROG, "--tile expects 1, 2, 4 or 8");
-                    ok = false;
-                }
-        } else if (!strcmp(a, "--dirt-buckets")) {
-            ok = parse_ints(a, v, &o->dbuckets, 1, 256, NULL);
-        } else if (!strcmp(a, "--mmrt-buckets")) {
-            ok = parse_ints(a, v, &o->mbuckets, 1, 256, NULL);
-        } else if (!strcmp(a, "--thickness")) {
-            ok = parse_dbls(a, v, &o->thickness, 0, 1e30);
-        } else if (!strcmp(a, "--thickness-rel")) {
-            int first = o->thickness.n;
-            ok = parse_dbls(a, v, &o->thickness, 1e-9, 1);
-            for (int k = first; ok && k < o->thickness.n; k++)
-                o->thickness.v[k] = -o->thickness.v[k]; /* resolved per scene */
-        } else if (!strcmp(a, "--march")) {
-            ok = parse_ints(a, v, &o->march, 0, 0, march_names);
-        } else if (!strcmp(a, "--samples")) {
-            ok = parse_ints(a, v, &o->samples, 0, 65536, NULL);
-        } else if (!strcmp(a, "--spp")) {
-            ok = parse_ints(a, v, &o->spp, 1, 1 << 16, NULL);
-        } else if (!strcmp(a, "--bounces")) {
-            ok = parse_ints(a, v, &o->bounces, 1, 64, NULL);
-        } else if (!strcmp(a, "--time")) {
-            o->time.n = 0;
-            ok = parse_dbls(a, v, &o->time, -1e9, 1e9);
-        } else if (!strcmp(a, "--frames")) {
-            ok = parse_frames(v, &o->time);
-        } else if (!strcmp(a, "--warmup")) {
-            ok = cli_value(PROG, a, v, 'i', &o->warmup, 0, 100, NULL);
-        } else if (!strcmp(a, "--repeat")) {
-            ok = cli_value(PROG, a, v, 'i', &o->repeat, 1, MAX_REPEAT, NULL);
-        } else if (!strcmp(a, "--face")) {
-            ok = cli_value(PROG, a, v, 'i', &o->face, 1, 8192, NULL);
-        } else if (!strcmp(a, "--dirt-large")) {
-            ok = cli_value(PROG, a, v, 'i', &o->large, 0, DIRT_ADS_MAX_LARGE, NULL);
-        } else if (!strcmp(a, "--agree-res")) {
-            ok = parse_size(a, v, &o->agree_w, &o->agree_h);
-        } else if (!strcmp(a, "--seed")) {
-            ok = cli_value(PROG, a, v, 'u', &o->seed, 0, 4294967295.0, NULL);
-        } else if (!strcmp(a, "--background")) {
-            ok = o->background_set = cli_value(PROG, a, v, 'b', o->background, 0, 0, NULL);
-        } else if (!strcmp(a, "--env")) {
-            o->env_path = v;
-        } else if (!strcmp(a, "--env-intensity")) {
-            ok = cli_value(PROG, a, v, 'f', &o->env.intensity, 1e-30, 1e30, NULL);
-        } else if (!strcmp(a, "--env-rotation")) {
-            ok = cli_value(PROG, a, v, 'f', &o->env.rotation, -1e6, 1e6, NULL);
-        } else if (!strcmp(a, "--preset")) {
-            ok = read_preset(v, o, depth);
-        } else if (!strcmp(a, "--no-quality")) {
-            o->quality = false;
-        } else if (!strcmp(a, "--images")) {
-            o->images = true;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            o->quiet = true;
-        } else if (a[0] == '-') {
-            cli_error(PROG, "unknown option %s (see --help)", a);
-            return false;
-        } else {
-            if (o->num_scenes == MAX_SCENES) {
-                cli_error(PROG, "at most %d scenes", MAX_SCENES);
-                return false;
-            }
-            o->scenes[o->num_scenes++] = a;
-            continue;
-        }
-        if (!ok)
-            return false;
-        if (takes)
-            i++;
-    }
+    for (size_t i = 0; i < a->frames.count; i++)
+        o->time.v[o->time.n++] = (double)a->frames.frames[i] / a->fps;
+    for (int i = 0; !a->frames.count && i < a->lists[APP_OPT_TIME].n; i++)
+        o->time.v[o->time.n++] = a->lists[APP_OPT_TIME].v[i][0];
+    o->warmup = a->warmup;
+    o->repeat = a->repeat;
+    o->agree_w = a->agree_res[0];
+    o->agree_h = a->agree_res[1];
+    o->face = a->s.face_size;
+    o->large = (int)a->large;
+    o->quality = !a->no_quality;
+    o->images = a->images;
+    o->quiet = a->quiet;
+    o->seed = a->s.seed;
+    o->env_path = a->env_path;
+    o->env = (dirt_env_opts){.intensity = a->env_intensity, .rotation = a->env_rotation};
+    memcpy(o->background, a->s.background, sizeof(o->background));
+    o->background_set = a->given[APP_OPT_BACKGROUND];
     return true;
 }
 
@@ -892,58 +651,40 @@ static bool dir_ok(const char *dir)
     return true;
 }
 
-static void set_default(int_list *l, int v)
-{
-    if (!l->n)
-        l->v[l->n++] = v;
-}
-
 int main(int argc, char **argv)
 {
-    options o = {.warmup = 1, .repeat = 3, .quality = true, .seed = 7, .large = DIRT_ADS_MAX_LARGE};
-    if (!parse_args(argc, argv, &o, 0))
+    static app_opts ao; /* its lists are large */
+    app_opts_init(&app_compare_program, &ao);
+    int prc = app_parse(&app_compare_program, argc, argv, &ao);
+    if (prc != APP_PARSE_OK || ao.help || ao.version) {
+        if (prc == APP_PARSE_OK && ao.help)
+            app_print_help(&app_compare_program, stdout);
+        else if (prc == APP_PARSE_OK)
+            prc = app_version(PROG, &ao);
+        app_opts_free(&ao);
+        return prc;
+    }
+    options o;
+    bool parsed = app_check(&app_compare_program, &ao) && from_app(&ao, &o);
+    if (!parsed) {
+        app_opts_free(&ao);
         return DIRT_EXIT_USAGE;
+    }
     g_face = o.face;
     g_large = o.large;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
+        app_opts_free(&ao);
         return DIRT_EXIT_USAGE;
     }
-    if (o.env_path && o.background_set) {
-        cli_error(PROG, "--env and --background both set the environment: give one");
-        return DIRT_EXIT_USAGE;
-    }
-    if (!o.env_path && (o.env.intensity != 0 || o.env.rotation != 0)) {
-        cli_error(PROG, "--env-intensity and --env-rotation need an --env map");
-        return DIRT_EXIT_USAGE;
-    }
-    if (!o.w.n) {
-        o.w.v[o.w.n++] = 256;
-        o.h.v[o.h.n++] = 128;
-    }
-    set_default(&o.views, DIRT_SESSION_VIEWS_CUBE_CAMERA);
-    set_default(&o.tile, 1);
-    set_default(&o.dbuckets, 4);
-    set_default(&o.mbuckets, 4);
-    set_default(&o.march, 0);
-    set_default(&o.samples, 0);
-    set_default(&o.spp, 1);
-    set_default(&o.bounces, 4);
-    if (!o.thickness.n)
-        o.thickness.v[o.thickness.n++] = 0;
-    if (!o.time.n)
-        o.time.v[o.time.n++] = 0;
     /* Bad input up front: scenes, DIR, configurations. */
     scene_info si[MAX_SCENES];
     memset(si, 0, sizeof(si));
     int rc = DIRT_EXIT_OK;
     dirt_env *env_map = NULL, *sky = NULL; /* --env; the fallback */
-    char why_env[256];
-    if (o.env_path && !(env_map = dirt_env_load(o.env_path, &o.env, why_env, sizeof(why_env)))) {
-        cli_error(PROG, "--env: %s", why_env);
+    if (!app_load_env(PROG, &ao, &env_map))
         rc = DIRT_EXIT_USAGE;
-    }
     for (int i = 0; i < o.num_scenes && rc == DIRT_EXIT_OK; i++) {
         si[i].path = o.scenes[i];
         bool def = !strcmp(o.scenes[i], "default");
@@ -954,9 +695,7 @@ int main(int argc, char **argv)
             rc = DIRT_EXIT_USAGE;
             break;
         }
-        si[i].scene = def ? dirt_scene_create_default() : dirt_scene_load(o.scenes[i], NULL);
-        if (!si[i].scene) {
-            cli_error(PROG, "%s is not a loadable glTF scene (see above)", o.scenes[i]);
+        if (!(si[i].scene = app_load_scene(PROG, o.scenes[i], &ao))) {
             rc = DIRT_EXIT_USAGE;
             break;
         }
@@ -1017,11 +756,8 @@ int main(int argc, char **argv)
                                                 }
     dirt_gpu *gpu = NULL;
     if (rc == DIRT_EXIT_OK) {
-        gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
-        if (!gpu) {
-            cli_error(PROG, "no OpenGL 4.5 context");
+        if (!(gpu = app_gpu(PROG, &ao)))
             rc = DIRT_EXIT_NO_GPU;
-        }
     }
     env ev;
     if (gpu) {
@@ -1058,6 +794,14 @@ int main(int argc, char **argv)
         old = compare_read_results(o.dir);
         doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "tool", PROG);
+        /* What made the results: the command line, version and commit. */
+        app_provenance prov;
+        app_provenance_init(&prov, argc, argv, NULL);
+        cJSON *pj = cJSON_AddObjectToObject(doc, "provenance");
+        cJSON_AddStringToObject(pj, "command_line", prov.command_line);
+        cJSON_AddStringToObject(pj, "version", dirt_version());
+        cJSON_AddStringToObject(pj, "commit", dirt_version_commit());
+        cJSON_AddStringToObject(pj, "device", ev.renderer);
         cJSON_AddNumberToObject(doc, "schema_version", 1);
         rows = cJSON_AddArrayToObject(doc, "configurations");
     }
@@ -1127,5 +871,6 @@ int main(int argc, char **argv)
         dirt_scene_destroy(si[i].scene);
     dirt_env_destroy(env_map);
     dirt_env_destroy(sky);
+    app_opts_free(&ao);
     return rc;
 }

@@ -20,7 +20,7 @@
 #include "gl/graph_gl.h"
 #include "views/views_gpu.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
     "clear", "depth bounds", "mip", "fill primitives", "count nodes", "candidate bound",

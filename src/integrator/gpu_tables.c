@@ -9,7 +9,7 @@
 #include "dirt/log.h"
 #include "gl/gl.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 _Static_assert(DIRT_MODEL_LIGHT_DIRECTIONAL == DIRT_LIGHT_DIRECTIONAL &&
                DIRT_MODEL_LIGHT_POINT == DIRT_LIGHT_POINT &&
                DIRT_MODEL_LIGHT_SPOT == DIRT_LIGHT_SPOT, "light kinds");

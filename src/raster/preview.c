@@ -30,7 +30,7 @@
 #include "gl/graph_gl.h"
 #include "core/vec3.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 #define PASS_DRAW "preview draw"
 #define PASS_READBACK "preview readback"

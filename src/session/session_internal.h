@@ -1,6 +1,7 @@
-/* The session's internals shared by its files (session.c, pictures.c,
- * agreement.c, stats_json.c, errors.c) and the tests: the technique
- * objects of the last build, and the error ids of dirt_session_last_error. */
+/* The session's internals shared by its files (session.c, the engines'
+ * engine*.c, pictures.c, agreement.c, stats_json.c, output.c, errors.c) and
+ * the tests: the technique objects of the last build, and the error ids of
+ * dirt_session_last_error. */
 #ifndef DIRT_SESSION_INTERNAL_H
 #define DIRT_SESSION_INTERNAL_H
 

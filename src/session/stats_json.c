@@ -98,6 +98,7 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
     cJSON_AddNumberToObject(f, "height", st->height);
     cJSON_AddNumberToObject(f, "time", st->time);
     cJSON_AddNumberToObject(f, "samples", st->samples);
+    cJSON_AddNumberToObject(f, "seed", st->seed);
     add_figures(f, st);
     add_details(f, st);
     return f;
@@ -105,9 +106,15 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
 
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count)
 {
+    return dirt_session_write_stats_attrs(path, frames, count, NULL, 0);
+}
+
+bool dirt_session_write_stats_attrs(const char *path, const dirt_session_stats *frames,
+                                    size_t count, const dirt_image_attr *attrs, size_t num_attrs)
+{
     session_begin();
-    if (!count || !frames || !path) {
-        DIRT_ERROR("no frames to write stats of, or no path");
+    if (!count || !frames || !path || (num_attrs && !attrs)) {
+        DIRT_ERROR("no frames to write stats of, no path, or no attributes");
         return session_fail(DIRT_SESSION_ERR_ARGUMENT);
     }
     const dirt_session_stats *last = &frames[count - 1];
@@ -152,6 +159,11 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     cJSON_AddNumberToObject(root, "bounces", last->bounces);
     cJSON_AddStringToObject(root, "mode", last->mode == DIRT_PT_AO ? "ao" : "pt");
     cJSON_AddNumberToObject(root, "frames_rendered", (double)count);
+    if (num_attrs) {
+        cJSON *prov = cJSON_AddObjectToObject(root, "provenance");
+        for (size_t i = 0; prov && i < num_attrs; i++)
+            cJSON_AddStringToObject(prov, attrs[i].name, attrs[i].value);
+    }
     add_figures(root, &mean);
     add_details(root, last);
     cJSON *list = cJSON_AddArrayToObject(root, "frames");

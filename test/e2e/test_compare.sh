@@ -47,7 +47,11 @@ expect2 "--env-intensity without --env" default -o "$tmp/o1" --env-intensity 2
 expect2 "missing --env map" default -o "$tmp/o1" --env "$tmp/none.exr"
 expect2 "bad --background" default -o "$tmp/o1" --background 1,1
 [ -e "$tmp/o1" ] && [ -n "$(ls -A "$tmp/o1")" ] && fail "files left in o1"
-"$cmp" --help | grep -q -- '--thickness LIST' || fail "--help"
+"$cmp" --help | grep -q -- '--thickness T,\.\.\.' || fail "--help"
+"$cmp" --version >"$tmp/stdout" 2>&1; rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 3 ]; } && grep -Eq '^dirt-compare [0-9]+\.[0-9]+\.[0-9]+ \(commit ' "$tmp/stdout" ||
+  fail "--version: exit $rc"
+expect2 "bad tile size" default -o "$tmp/o1" --tile 1,3
 "$cmp" --help | grep -q -- '--env FILE' || fail "--help: no --env"
 
 # dirt-render's arguments for row I of a results.json and ENGINE: the same

@@ -60,16 +60,28 @@ DIRT_API float *dirt_image_find_channel(const dirt_image *img, const char *name)
 
 /* ---- EXR ---------------------------------------------------------------- */
 
-/* Zero-initialised = defaults: everything stored as 32-bit FLOAT. */
+/* A text attribute of a file: its name and value (NUL-terminated,
+ * borrowed). */
+typedef struct dirt_image_attr {
+    const char *name;
+    const char *value;
+} dirt_image_attr;
+
+/* Zero-initialised = defaults: everything stored as 32-bit FLOAT, no
+ * attributes beyond the required ones. */
 typedef struct dirt_exr_options {
     bool half_rgba;  /* store R,G,B,A as 16-bit HALF (round to nearest even) */
     bool half_extra; /* store the extra channels as HALF */
+    const dirt_image_attr *attrs; /* `num_attrs` string attributes for the header */
+    size_t num_attrs;
 } dirt_exr_options;
 
 /* Writes a single-part scanline OpenEXR file, ZIP compression, channels
  * R,G,B,A plus every extra channel (sorted by name in the file as EXR
- * requires). Data window = display window = (0,0)-(w-1,h-1). `opts` may be
- * NULL for defaults. Atomic; false after logging on failure. */
+ * requires). Data window = display window = (0,0)-(w-1,h-1). Every
+ * attribute of opts->attrs is a string attribute of the header (a name
+ * the header already holds, such as "channels", is an error). `opts` may
+ * be NULL for defaults. Atomic; false after logging on failure. */
 DIRT_API bool dirt_image_write_exr(const dirt_image *img, const char *path,
                                    const dirt_exr_options *opts);
 

@@ -190,6 +190,7 @@ typedef struct dirt_session_stats {
     int samples;                /* accumulated */
     int bounces;
     enum dirt_pt_mode mode;
+    uint32_t seed;              /* dirt_session_opts.seed */
     double time;                /* scene time of the frame */
     double build_ms;            /* the structure's last build (embree: BVH) */
     double trace_ms, fetch_ms, visibility_ms, shade_ms;
@@ -289,6 +290,12 @@ DIRT_API void dirt_session_drain_times(dirt_session *s);
  * their means, and every frame's record in "frames". False after logging
  * when the file cannot be written. */
 DIRT_API bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count);
+/* The same with an object "provenance" of the `num_attrs` text attributes
+ * (what made the frames: the ones the programs write into their EXR
+ * headers, dirt/image.h), each name a key. */
+DIRT_API bool dirt_session_write_stats_attrs(const char *path, const dirt_session_stats *frames,
+                                             size_t count, const dirt_image_attr *attrs,
+                                             size_t num_attrs);
 
 /* One stats record as a cJSON object (the "frames" entries of
  * dirt_session_write_stats), owned by the caller (cJSON_Delete). NULL when
@@ -296,8 +303,9 @@ DIRT_API bool dirt_session_write_stats(const char *path, const dirt_session_stat
 struct cJSON;
 DIRT_API struct cJSON *dirt_session_stats_json(const dirt_session_stats *stats);
 
-/* Frame graph DOT of the path tracer (dirt, mmrt) or of the raster preview.
- * False (logged) before the first samples or for the embree engine. */
+/* Frame graph DOT of the path tracer (dirt, mmrt). False (logged) before
+ * the first samples or for the engines without a path tracer (embree,
+ * raster). */
 DIRT_API bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
 
 /* Writes the DIRT structure of the current frame (built first when

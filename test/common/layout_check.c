@@ -7,7 +7,7 @@
  * under std430 member i starts at byte 16 * i and the record's size is 16
  * times its vector count; the C compiler must give the same numbers, which
  * the asserts below pin down member by member. */
-#include "session/layout_check.h"
+#include "layout_check.h"
 
 #include <stdint.h>
 
