@@ -2,7 +2,8 @@
 # DIRT engine: one entry point for newcomers and CI.
 #   ./dirt.sh run    install what is missing, build, render the default scene
 #   ./dirt.sh test   install what is missing, build, run every test on the default
-#                    driver, then the GPU and end-to-end suites on zink over lavapipe
+#                    driver, then the GPU, end-to-end and Python suites on zink over
+#                    lavapipe
 #   ./dirt.sh build  install what is missing, build into build/
 #   ./dirt.sh asan   the tests again in an AddressSanitizer/UBSan build (build-asan/), leaks on
 #   ./dirt.sh clang  a clang build with -Werror (build-clang/) and its unit tests
@@ -22,6 +23,7 @@ PACKAGES=(
   xvfb xauth xdotool
   slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
+  python3-cffi python3-numpy python3-pytest python3-matplotlib binutils
   mesa-vulkan-drivers
 )
 
@@ -117,13 +119,16 @@ case "${1:-}" in
           # Everything: unit, GPU, end-to-end, headers, fuzz replay.
           DIRT_BUILD=${DIRT_BUILD:-raster} run_tests build testlog || rc=1 ;;
         zink)
-          # The suites that draw (GPU and end-to-end) again, on OpenGL over
-          # Vulkan (lavapipe) through Mesa's surfaceless EGL; every context
-          # must say zink (DIRT_EXPECT_RENDERER: a fallback fails).
+          # The suites that draw (GPU, end-to-end, Python) again, on OpenGL
+          # over Vulkan (lavapipe) through Mesa's surfaceless EGL; every
+          # context must say zink (DIRT_EXPECT_RENDERER: a fallback fails).
+          # Not the install test: a whole second build, and what it draws
+          # (the default scene through libdirt.so, from C and Python) the
+          # e2e and Python suites draw here too.
           xdg=$(mktemp -d); chmod 700 "$xdg"
           LIBGL_ALWAYS_SOFTWARE=1 MESA_LOADER_DRIVER_OVERRIDE=zink XDG_RUNTIME_DIR=$xdg \
             DIRT_GPU=surfaceless DIRT_EXPECT_RENDERER=zink DIRT_BUILD=${DIRT_BUILD:-raster} \
-            run_tests build testlog-zink --suite gpu --suite e2e || rc=1
+            run_tests build testlog-zink --suite gpu --suite e2e --suite python || rc=1
           rm -rf "$xdg" ;;
         *) say "DIRT_TEST_DRIVERS: unknown driver '$driver' (default, zink)"; exit 2 ;;
       esac
@@ -155,7 +160,7 @@ case "${1:-}" in
     grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-clang/fuzz.log >&2 || true
     ;;
   *)
-    sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
     [ -z "${1:-}" ] || exit 2
     ;;
 esac

@@ -16,10 +16,10 @@
 #include "check.h"
 #include "common/constants.h"
 #include "dirt/ads.h"
-#include "dirt/mmrt.h"
 #include "dirt/session.h"
 #include "gl/gl.h"
 #include "gl/program.h"
+#include "mmrt/mmrt.h"
 #include "gpu.h"
 
 #define W 24
