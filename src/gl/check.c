@@ -194,15 +194,15 @@ static void forget(gl_checker *c, bool texture, GLsizei n, const GLuint *names)
     }
 }
 
-/* File name from src/ or test/ on. */
+/* File name from the last folder src/ or test/ on (neither has a folder of
+ * that name inside, and the source tree itself may sit in one: the install
+ * test builds a copy at .../src/). */
 static const char *short_file(const char *file)
 {
     const char *best = NULL;
     for (const char *p = file; *p; p++) {
-        if ((!strncmp(p, "src/", 4) || !strncmp(p, "test/", 5)) && (p == file || p[-1] == '/')) {
+        if ((!strncmp(p, "src/", 4) || !strncmp(p, "test/", 5)) && (p == file || p[-1] == '/'))
             best = p;
-            break;
-        }
     }
     return best ? best : file;
 }
