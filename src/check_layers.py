@@ -34,7 +34,7 @@ LAYERS = {
 # Public header -> the layer that implements it.
 PUBLIC = {
     "clock.h": "core", "log.h": "core", "stats.h": "core", "ray.h": "core", "vec.h": "core",
-    "version.h": "core",
+    "version.h": "core", "input.h": "core",
     "file.h": "io", "image.h": "io",
     "scene.h": "scene",
     "gpu.h": "gl", "window.h": "gl", "ui.h": "gl",
