@@ -428,21 +428,6 @@ void default_material(dirt_material *d, const char *name)
     d->metallic = 0.0f;
 }
 
-/* Whether `k` looks like a statement keyword (a letter or '_', then up to
- * 23 letters, digits or '_'): only such a word of an unknown statement is
- * quoted in messages, never the rest of a line (a file that is not an MTL
- * library, such as /etc/passwd, has no such words to echo). */
-bool keyword(const std::string &k)
-{
-    if (k.empty() || k.size() > 24 || !(isalpha((unsigned char)k[0]) || k[0] == '_'))
-        return false;
-    for (char c : k) {
-        if (!(isalnum((unsigned char)c) || c == '_'))
-            return false;
-    }
-    return true;
-}
-
 /* MTL -> metallic-roughness (doc/scenes.md, "MTL materials"). */
 bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_material *d)
 {
@@ -577,10 +562,10 @@ bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_
         L.notes.add("map_Pr / map_Pm / map_Ps ignored (their factors are used)", name);
     if (src.sheen != 0 || src.clearcoat_thickness != 0 || src.anisotropy != 0)
         L.notes.add("sheen / clearcoat / anisotropy ignored", name);
-    for (const auto &kv : src.unknown_parameter)
-        L.notes.add(keyword(kv.first) ? "unknown MTL statement '" + kv.first + "' ignored"
-                                      : std::string("unknown MTL statements ignored"),
-                    name);
+    /* Not quoted: an unknown statement may be any line of any file (an
+     * mtllib that names /etc/passwd, allowed outside the folder). */
+    if (!src.unknown_parameter.empty())
+        L.notes.add("unknown MTL statements ignored", name);
     return true;
 }
 
