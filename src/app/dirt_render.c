@@ -1,10 +1,13 @@
 /* dirt-render: renders one frame or a frame range of a glTF scene headless,
  * on the render session (dirt/session.h). */
 #include <cjson/cJSON.h>
+#include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/cli.h"
@@ -35,6 +38,7 @@ typedef struct options {
     bool cpu_timing;          /* dirt_gpu_opts.cpu_timing */
     seq_frames frames;        /* empty: one frame at --time */
     int spp;
+    dirt_load_opts load;      /* --max-scene-memory, --strict, --allow-outside-paths */
 } options;
 
 static void usage(FILE *out)
@@ -62,6 +66,15 @@ static void usage(FILE *out)
 "                        MSE against this image (it may hold a frame field)\n"
 "      --info            print the scene's cameras, clips, lights, emitters and\n"
 "                        counts, and exit\n"
+"\n"
+"Inputs (doc/scenes.md):\n"
+"      --max-scene-memory SIZE  memory budget of the scene's load, and of the\n"
+"                        --env map's (default 512M; K, M, G suffixes): a\n"
+"                        scene that needs more exits 2 (TOO_LARGE)\n"
+"      --strict          every warning about the scene (a missing texture, an\n"
+"                        ignored extension, ...) exits 2 (STRICT)\n"
+"      --allow-outside-paths  let the scene read files outside its folder (by\n"
+"                        default a reference that leads out exits 2, OUTSIDE)\n"
 "\n"
 "Scene and camera:\n"
 "  -t, --time T          animation time in seconds (default 0)\n"
@@ -170,8 +183,10 @@ static void usage(FILE *out)
 "  -h, --help            show this help and exit\n"
 "\n"
 "Exit status: 0 success, 1 render failure, 2 bad option or input (unreadable\n"
-"or malformed scene, unwritable output), 3 no OpenGL 4.5 context.\n"
-"Images are written atomically: a failed run leaves no partial file.\n");
+"or malformed scene, unwritable output, an output that is an input), 3 no\n"
+"OpenGL 4.5 context; the message of an exit 2 names its reason's id.\n"
+"Images are written atomically: a failed run leaves no partial file, no\n"
+"directory it made, no empty log.\n");
 }
 
 static const char *const modes[] = {"pt", "ao", NULL};
@@ -319,6 +334,7 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--claim-timeout", NULL, 'd', &o->claim_timeout, 1, 1e7, NULL},
         {NULL, "--tonemap", NULL, 'c', &o->tonemap, 0, 0, tonemaps},
         {NULL, "--gpu", NULL, 'c', &o->gpu_platform, 0, 0, dirt_gpu_platform_names},
+        {NULL, "--max-scene-memory", NULL, 'z', &o->load.max_bytes, 1 << 20, 1e13, NULL},
     };
     const struct { const char *s, *l; bool *dst; } flags[] = {
         {NULL, "--loop", &o->loop}, {NULL, "--png", &o->png_preview},
@@ -326,7 +342,8 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--no-conservative-raster", &o->s.force_emulation},
         {NULL, "--cpu-timing", &o->cpu_timing}, {"-q", "--quiet", &o->quiet},
         {NULL, "--skip-existing", &o->skip_existing}, {NULL, "--placeholders", &o->placeholders},
-        {NULL, "--animated-seed", &o->animated_seed},
+        {NULL, "--animated-seed", &o->animated_seed}, {NULL, "--strict", &o->load.strict},
+        {NULL, "--allow-outside-paths", &o->load.allow_outside},
     };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -383,6 +400,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->s.hiz_levels = (int)(hiz_top + 1);
     if (large >= 0)
         o->s.large = large ? (int)large : -1;
+    o->env.max_bytes = o->load.max_bytes; /* one budget for what the run loads */
     return check_options(o) ? DIRT_EXIT_OK : DIRT_EXIT_USAGE;
 }
 
@@ -449,13 +467,19 @@ static void on_sample(void *user, int done, int total)
     seq_claim_touch(p->claim);
 }
 
-/* Appends one line to the JSON Lines log (one write(2): lines of workers
- * sharing a log do not interleave). */
-static bool log_line(FILE *log, cJSON *rec)
+/* Appends one line to the JSON Lines log, whole or not at all
+ * (cli_log_append). */
+static bool log_line(int log, cJSON *rec)
 {
     char *text = rec ? cJSON_PrintUnformatted(rec) : NULL;
-    bool ok = text && fprintf(log, "%s\n", text) > 0 && fflush(log) == 0;
-    free(text);
+    size_t n = text ? strlen(text) : 0;
+    char *line = text ? realloc(text, n + 2) : NULL;
+    if (line) {
+        line[n] = '\n';
+        line[n + 1] = 0;
+    }
+    bool ok = line && cli_log_append(log, line, n + 1);
+    free(line ? line : text);
     return ok;
 }
 
@@ -465,10 +489,12 @@ static bool compare_reference(const options *o, long frame, const dirt_image *im
 {
     char path[4200];
     seq_frame_path(o->mse_ref, frame, path, sizeof(path));
-    dirt_image *ref = dirt_image_read_exr(path);
+    enum dirt_input_error err = DIRT_INPUT_ERR_OK;
+    dirt_image *ref = dirt_image_read(path, NULL, &err);
     bool ok = ref && dirt_image_compare(img, ref, e);
     if (!ok)
-        cli_error(PROG, "cannot compare with the reference '%s' (see above)", path);
+        cli_error(PROG, "%s: cannot compare with the reference '%s' (see above)",
+                  dirt_input_error_name(ref ? DIRT_INPUT_ERR_INVALID : err), path);
     dirt_image_destroy(ref);
     return ok;
 }
@@ -492,7 +518,8 @@ int main(int argc, char **argv)
     dirt_gpu *gpu = NULL;
     dirt_session *session = NULL, *debug = NULL;
     dirt_session_stats *fstats = NULL;
-    FILE *log = NULL;
+    int log = -1;
+    bool log_made = false;    /* this run made the log file */
     seq_claim claim = {0};
     char why[512];
     char written[2][4200]; /* a single frame's files, removed if the run fails later */
@@ -519,14 +546,9 @@ int main(int argc, char **argv)
         goto done;
     if (!o.info && !outputs_ok(&o, o.frames.count ? o.frames.frames[0] : 0))
         goto done;
-    if (o.log_path && !(log = fopen(o.log_path, "a"))) {
-        cli_error(PROG, "cannot append to '%s'", o.log_path);
-        goto done;
-    }
-    scene = o.scene_path ? dirt_scene_load(o.scene_path, NULL) : dirt_scene_create_default();
+    scene = o.scene_path ? dirt_scene_load(o.scene_path, &o.load) : dirt_scene_create_default();
     if (!scene) {
-        cli_error(PROG, "cannot load scene '%s' (see the error above)",
-                  o.scene_path ? o.scene_path : "default");
+        cli_scene_error(PROG, o.scene_path);
         goto done;
     }
     if (o.info) {
@@ -539,6 +561,28 @@ int main(int argc, char **argv)
             goto done;
         }
         o.s.env = env;
+    }
+    /* Every input and output, before anything is written. */
+    if (cli_check_io(PROG, &(cli_io){
+            .scene_path = o.scene_path, .scene = scene,
+            .in = {{strcmp(o.env_path ? o.env_path : "sky", "sky") ? o.env_path : NULL, "--env"}},
+            .in_frames = {o.mse_ref, "--mse-reference"}, .out_frames = o.output,
+            .out_png = o.png_preview, .frames = o.frames.frames, .num_frames = o.frames.count,
+            .out = {{o.stats_path, "--stats"}, {o.graph_dot, "--graph-dot"}, {o.log_path, "--log"}},
+            .out_dirs = {{o.debug_ads, "ads_", "--debug-ads"}}}) != DIRT_EXIT_OK ||
+        cli_check_camera(PROG, scene, o.camera, o.look_set, &o.look, o.s.width, o.s.height,
+                         o.s.engine == DIRT_ENGINE_RASTER || o.s.engine == DIRT_ENGINE_EMBREE,
+                         o.s.views != DIRT_SESSION_VIEWS_CUBE))
+        goto done;
+    if (o.log_path) {
+        log = open(o.log_path, O_WRONLY | O_APPEND | O_CLOEXEC);
+        if (log < 0 && errno == ENOENT)
+            log_made = (log = open(o.log_path, O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC,
+                                   0644)) >= 0;
+        if (log < 0) {
+            cli_error(PROG, "cannot append to '%s': %s", o.log_path, strerror(errno));
+            goto done;
+        }
     }
     size_t cameras = dirt_scene_num_cameras(scene), clips = dirt_scene_num_clips(scene);
     if (o.camera >= 0 && (size_t)o.camera >= cameras) {
@@ -655,8 +699,12 @@ int main(int argc, char **argv)
         }
         const dirt_image *img = dirt_session_image(session);
         dirt_image_error err = {0};
-        if (!img || (o.mse_ref && !compare_reference(&o, fi, img, &err)))
+        if (!img)
             goto done;
+        if (o.mse_ref && !compare_reference(&o, fi, img, &err)) {
+            rc = DIRT_EXIT_USAGE; /* a reference that is not one: bad input */
+            goto done;
+        }
         dirt_session_stats *fs = &fstats[rendered++];
         *fs = *dirt_session_get_stats(session);
         dirt_image_write_options wo = {.png = {.exposure = (float)o.exposure,
@@ -676,7 +724,7 @@ int main(int argc, char **argv)
         if (o.mse_ref && !o.quiet)
             fprintf(stderr, "%s: frame %ld: MSE %.6g, relative MSE %.6g against the reference\n",
                     PROG, fi, err.mse, err.rel_mse);
-        if (log) {
+        if (log >= 0) {
             cJSON *rec = dirt_session_stats_json(fs);
             const dirt_camera *cam = dirt_session_camera(session);
             cJSON_AddNumberToObject(rec, "frame", (double)fi);
@@ -707,7 +755,7 @@ int main(int argc, char **argv)
         }
     }
     rc = DIRT_EXIT_USAGE; /* from here on, only writes can fail */
-    if (log) {
+    if (log >= 0) {
         cJSON *sum = cJSON_CreateObject();
         cJSON *in = cJSON_AddObjectToObject(sum, "summary");
         cJSON_AddNumberToObject(in, "frames", (double)total);
@@ -748,8 +796,16 @@ done:
         unlink(written[k]);
     if (claim.held)
         seq_claim_release(&claim, "", false);
-    if (log)
-        fclose(log);
+    /* A failed run leaves no empty log and no directory it made. */
+    struct stat log_st;
+    if (log >= 0 && rc != DIRT_EXIT_OK && log_made && fstat(log, &log_st) == 0 &&
+        log_st.st_size == 0)
+        unlink(o.log_path);
+    if (log >= 0)
+        close(log);
+    if (rc != DIRT_EXIT_OK)
+        seq_remove_made_dirs();
+    seq_forget_made_dirs();
     free(fstats);
     seq_frames_free(&o.frames);
     dirt_session_destroy(debug);

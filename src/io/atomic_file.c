@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,8 +53,32 @@ void dirt_cleanup_remove(int slot)
         cleanup_used[slot] = 0;
 }
 
+/* Set while a file is made and listed (dirt_cleanup_hold): a handler
+ * running on another thread waits for it, so the new file is listed when
+ * it cleans up. */
+static volatile sig_atomic_t cleanup_holding;
+static sigset_t cleanup_saved_mask;
+
+void dirt_cleanup_hold(void)
+{
+    sigset_t all;
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &cleanup_saved_mask);
+    cleanup_holding = 1;
+}
+
+void dirt_cleanup_release(void)
+{
+    cleanup_holding = 0;
+    pthread_sigmask(SIG_SETMASK, &cleanup_saved_mask, NULL);
+}
+
 static void on_signal(int sig)
 {
+    /* Never on the holding thread (its signals are blocked): wait for it to
+     * list the file it is making. */
+    while (cleanup_holding)
+        ;
     /* unlink, signal and raise are async-signal-safe. */
     for (int i = 0; i < CLEANUP_SLOTS; i++) {
         if (cleanup_used[i])
@@ -79,8 +104,14 @@ bool dirt_cleanup_on_signals(void)
     return true;
 }
 
+/* The longest file name (NAME_MAX of Linux file systems). */
+#define NAME_LIMIT 255
+
 /* "<path>.tmp.<host>.<pid>.XXXXXX": the writer's host and process, so a
- * later run can tell a dead writer's leftovers from a live one's. */
+ * later run can tell a dead writer's leftovers from a live one's. When the
+ * name would pass NAME_LIMIT bytes, the target's name is cut (its start
+ * kept) so that it fits: a legal 255-byte output name still gets its
+ * temporary file. */
 static char *temp_name(const char *path)
 {
     char host[65] = "host";
@@ -91,10 +122,17 @@ static char *temp_name(const char *path)
         if (*c == '/' || *c == '.')
             *c = '-';
     }
-    size_t size = strlen(path) + strlen(host) + 40;
+    char suffix[128];
+    snprintf(suffix, sizeof(suffix), ".tmp.%s.%ld.XXXXXX", host, (long)getpid());
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
+    size_t base = strlen(path) - dir;
+    if (base + strlen(suffix) > NAME_LIMIT)
+        base = NAME_LIMIT - strlen(suffix);
+    size_t size = dir + base + strlen(suffix) + 1;
     char *t = malloc(size);
     if (t)
-        snprintf(t, size, "%s.tmp.%s.%ld.XXXXXX", path, host, (long)getpid());
+        snprintf(t, size, "%.*s%s", (int)(dir + base), path, suffix);
     return t;
 }
 
@@ -116,15 +154,17 @@ static char *dir_of(const char *path)
     return dir;
 }
 
-/* Frees `f` after closing and removing the temp file if still present. */
+/* Frees `f` after closing and removing the temp file if still present
+ * (removed before it leaves the signal cleanup list: a signal in between
+ * finds it listed). */
 static void discard(dirt_atomic_file *f, bool remove_temp)
 {
     if (f->fp)
         fclose(f->fp);
-    dirt_cleanup_remove(f->cleanup);
     if (remove_temp && unlink(f->temp) != 0 && errno != ENOENT)
         DIRT_WARN("cannot remove temporary file '%s': %s", f->temp,
                   strerror(errno));
+    dirt_cleanup_remove(f->cleanup);
     free(f->temp);
     free(f->path);
     free(f);
@@ -165,7 +205,13 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
     if (!f->path || !f->temp)
         goto oom;
 
+    /* No signal between making the file and listing it for removal
+     * (SIGTERM there used to leave an empty temporary file). */
+    dirt_cleanup_hold();
     fd = mkstemp(f->temp);
+    if (fd >= 0)
+        f->cleanup = dirt_cleanup_add(f->temp);
+    dirt_cleanup_release();
     if (fd < 0) {
         int err = errno;
         dir = dir_of(path);
@@ -182,9 +228,9 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
                    strerror(errno));
         close(fd);
         unlink(f->temp);
+        dirt_cleanup_remove(f->cleanup);
         goto error;
     }
-    f->cleanup = dirt_cleanup_add(f->temp);
     return f;
 
 oom:
