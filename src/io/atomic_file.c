@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,10 +54,14 @@ void dirt_cleanup_remove(int slot)
         cleanup_used[slot] = 0;
 }
 
-/* Set while a file is made and listed (dirt_cleanup_hold): a handler
- * running on another thread waits for it, so the new file is listed when
- * it cleans up. */
-static volatile sig_atomic_t cleanup_holding;
+/* The handshake between the thread making a file (dirt_cleanup_hold ...
+ * release) and a handler running on another thread (the main thread's
+ * signals are blocked meanwhile): the handler says it is ending the
+ * process (`dying`), then waits while a file is being made (`holding`);
+ * a thread that would make a file after that waits for the end instead.
+ * Both flags are lock-free atomics (sequentially consistent: each side
+ * writes its flag before it reads the other's), safe in a handler. */
+static atomic_int cleanup_holding, cleanup_dying;
 static sigset_t cleanup_saved_mask;
 
 void dirt_cleanup_hold(void)
@@ -64,20 +69,27 @@ void dirt_cleanup_hold(void)
     sigset_t all;
     sigfillset(&all);
     pthread_sigmask(SIG_BLOCK, &all, &cleanup_saved_mask);
-    cleanup_holding = 1;
+    atomic_store(&cleanup_holding, 1);
+    if (atomic_load(&cleanup_dying)) {
+        /* A handler is removing the listed files: make nothing more. */
+        atomic_store(&cleanup_holding, 0);
+        for (;;)
+            pause();
+    }
 }
 
 void dirt_cleanup_release(void)
 {
-    cleanup_holding = 0;
+    atomic_store(&cleanup_holding, 0);
     pthread_sigmask(SIG_SETMASK, &cleanup_saved_mask, NULL);
 }
 
 static void on_signal(int sig)
 {
-    /* Never on the holding thread (its signals are blocked): wait for it to
+    /* Never on a holding thread (its signals are blocked): wait for it to
      * list the file it is making. */
-    while (cleanup_holding)
+    atomic_store(&cleanup_dying, 1);
+    while (atomic_load(&cleanup_holding))
         ;
     /* unlink, signal and raise are async-signal-safe. */
     for (int i = 0; i < CLEANUP_SLOTS; i++) {
