@@ -13,6 +13,7 @@
 #include "app/cli.h"
 #include "app/compare.h"
 #include "dirt/clock.h"
+#include "dirt/input.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 #include "dirt/version.h"
@@ -35,6 +36,9 @@ typedef struct options {
     int large;                  /* --dirt-large: 0 none, else up to that many */
     bool quality, images, quiet;
     uint32_t seed;
+    dirt_load_opts load;        /* --max-scene-memory, --strict, --allow-outside-paths */
+    const char *presets[8];     /* --preset files read (inputs) */
+    int num_presets;
 } options;
 
 static const char *const view_names[] = {"default", "single", "cube", "cube+camera", NULL};
@@ -84,11 +88,14 @@ static void usage(FILE *out)
 "      --seed N           (default 7)\n"
 "      --preset FILE      read options from FILE (one or more per line, # comments;\n"
 "                         data/compare-table*.txt)\n"
+"      --max-scene-memory SIZE, --strict, --allow-outside-paths  loading the\n"
+"                         scenes, as dirt-render (doc/scenes.md)\n"
 "  -q, --quiet            no progress\n"
 "  -h, --help\n"
 "\n"
 "Exit status: 0 all done, 1 a configuration failed (recorded with its reason)\n"
-"or an output could not be written, 2 bad option or input, 3 no OpenGL 4.5.\n");
+"or an output could not be written, 2 bad option or input (a scene or preset\n"
+"inside DIR, which the outputs own, included), 3 no OpenGL 4.5.\n");
 }
 
 static bool parse_ints(const char *opt, const char *v, int_list *l, long lo, long hi,
@@ -201,18 +208,25 @@ static bool read_preset(const char *path, options *o, int depth)
         cli_error(PROG, "--preset nested too deeply");
         return false;
     }
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error(PROG, "--preset %s: %s", path, strerror(errno));
+    enum dirt_input_error e;
+    size_t size = 0;
+    char *text = dirt_input_read(path, 1 << 20, &size, &e);
+    if (!text) {
+        cli_error(PROG, "%s: --preset %s: %s", dirt_input_error_name(e), path,
+                  e == DIRT_INPUT_ERR_IO ? strerror(errno) : dirt_input_error_str(e));
         return false;
     }
+    if (o->num_presets < 8)
+        o->presets[o->num_presets++] = path;
     static char store[8192];
     static size_t used;
     char *argv[128];
     int argc = 1;
     argv[0] = PROG;
     char line[1024];
-    while (fgets(line, sizeof(line), f)) {
+    for (char *next = text, *nl; *next; next = nl ? nl + 1 : next + strlen(next)) {
+        nl = strchr(next, '\n');
+        snprintf(line, sizeof(line), "%.*s", nl ? (int)(nl - next) : (int)strlen(next), next);
         char *hash = strchr(line, '#');
         if (hash)
             *hash = 0;
@@ -220,7 +234,7 @@ static bool read_preset(const char *path, options *o, int depth)
              tok = strtok_r(NULL, " \t\r\n", &save)) {
             size_t n = strlen(tok) + 1;
             if (argc == 128 || used + n > sizeof(store)) {
-                fclose(f);
+                free(text);
                 cli_error(PROG, "--preset %s: too long", path);
                 return false;
             }
@@ -229,7 +243,7 @@ static bool read_preset(const char *path, options *o, int depth)
             used += n;
         }
     }
-    fclose(f);
+    free(text);
     return parse_args(argc, argv, o, depth + 1);
 }
 
@@ -239,7 +253,8 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes = a[0] == '-' && strcmp(a, "--no-quality") && strcmp(a, "--images") &&
                      strcmp(a, "-q") && strcmp(a, "--quiet") && strcmp(a, "-h") &&
-                     strcmp(a, "--help");
+                     strcmp(a, "--help") && strcmp(a, "--strict") &&
+                     strcmp(a, "--allow-outside-paths");
         if (takes && !v) {
             cli_error(PROG, "%s expects a value", a);
             return false;
@@ -299,6 +314,12 @@ static bool parse_args(int argc, char **argv, options *o, int depth)
             ok = cli_value(PROG, a, v, 'u', &o->seed, 0, 4294967295.0, NULL);
         } else if (!strcmp(a, "--preset")) {
             ok = read_preset(v, o, depth);
+        } else if (!strcmp(a, "--max-scene-memory")) {
+            ok = cli_value(PROG, a, v, 'z', &o->load.max_bytes, 1 << 20, 1e13, NULL);
+        } else if (!strcmp(a, "--strict")) {
+            o->load.strict = true;
+        } else if (!strcmp(a, "--allow-outside-paths")) {
+            o->load.allow_outside = true;
         } else if (!strcmp(a, "--no-quality")) {
             o->quality = false;
         } else if (!strcmp(a, "--images")) {
@@ -789,6 +810,8 @@ int main(int argc, char **argv)
     if (!o.time.n)
         o.time.v[o.time.n++] = 0;
     /* Bad input up front: scenes, DIR, configurations. */
+    char images_dir[4200];
+    snprintf(images_dir, sizeof(images_dir), "%s/images", o.dir);
     scene_info si[MAX_SCENES];
     memset(si, 0, sizeof(si));
     int rc = DIRT_EXIT_OK;
@@ -797,14 +820,18 @@ int main(int argc, char **argv)
         bool def = !strcmp(o.scenes[i], "default");
         si[i].name = def ? "default" : strrchr(o.scenes[i], '/') ? strrchr(o.scenes[i], '/') + 1
                                                                : o.scenes[i];
-        if (!def && access(o.scenes[i], R_OK) != 0) {
-            cli_error(PROG, "cannot read scene %s: %s", o.scenes[i], strerror(errno));
+        si[i].scene = def ? dirt_scene_create_default() : dirt_scene_load(o.scenes[i], &o.load);
+        if (!si[i].scene) {
+            cli_scene_error(PROG, o.scenes[i]);
             rc = DIRT_EXIT_USAGE;
             break;
         }
-        si[i].scene = def ? dirt_scene_create_default() : dirt_scene_load(o.scenes[i], NULL);
-        if (!si[i].scene) {
-            cli_error(PROG, "%s is not a loadable glTF scene (see above)", o.scenes[i]);
+        /* DIR is the outputs': no scene file (nor file of a scene) in it. */
+        cli_io io = {.scene_path = def ? NULL : o.scenes[i], .scene = si[i].scene,
+                     .out_dirs = {{o.dir, "", "-o DIR"}, {images_dir, "", "-o DIR"}}};
+        for (int k = 0; k < o.num_presets; k++)
+            io.in[k][0] = o.presets[k], io.in[k][1] = "--preset";
+        if (cli_check_io(PROG, &io) != DIRT_EXIT_OK) {
             rc = DIRT_EXIT_USAGE;
             break;
         }

@@ -16,6 +16,7 @@
 #include <cjson/cJSON.h>
 
 #include "app/cli.h"
+#include "app/sequence.h"
 #include "app/view_camera.h"
 #include "app/view_script.h"
 #include "dirt/clock.h"
@@ -75,6 +76,7 @@ typedef struct vopts {
     long test_frames;
     const char *env_path;       /* --env: a map file or "sky" */
     float env_intensity, env_rotation;
+    dirt_load_opts load;        /* --max-scene-memory, --strict, --allow-outside-paths */
 } vopts;
 
 /* Options with a value, by name (the command line's long names; the
@@ -149,6 +151,9 @@ static const vopt_spec specs[] = {
     {NULL, "--screenshot", 's', OFF(screenshot), 0, 0, NULL, false},
     {NULL, "--save-image", 's', OFF(save_image), 0, 0, NULL, false},
     {NULL, "--report", 'j', OFF(report), 0, 0, NULL, false},
+    {NULL, "--max-scene-memory", 'z', OFF(load.max_bytes), 1 << 20, 1e13, NULL, false},
+    {NULL, "--strict", 'B', OFF(load.strict), 0, 0, NULL, false},
+    {NULL, "--allow-outside-paths", 'B', OFF(load.allow_outside), 0, 0, NULL, false},
 };
 #undef OFF
 #define NUM_SPECS (sizeof(specs) / sizeof(specs[0]))
@@ -198,6 +203,10 @@ static void usage(FILE *f)
 "  --no-conservative-raster, --march hiz|linear, --samples N, --thickness T,\n"
 "  --cpu-timing\n"
 "\n"
+"Inputs (as dirt-render; doc/scenes.md): --max-scene-memory SIZE (the scene's\n"
+"  and the --env map's load budget, default 512M), --strict (a warning about the\n"
+"  scene exits 2), --allow-outside-paths (references may leave its folder)\n"
+"\n"
 "Scripted mode (tests, reproducible demos):\n"
 "      --script FILE     timed actions (doc/viewer.md: wait-frames, wait-samples,\n"
 "                        wait-file, orbit, pan, dolly, fly, camera, key, click, set, resize,\n"
@@ -211,8 +220,8 @@ static void usage(FILE *f)
 "      --bindings        print the key and mouse bindings and exit\n"
 "  -q, --quiet, -v, --verbose, -h, --help\n"
 "\n"
-"Exit status: 0 done, 1 a write failed, 2 bad option, scene or script,\n"
-"3 no window or OpenGL 4.5 context.\n", f);
+"Exit status: 0 done, 1 a write failed, 2 bad option, scene or script (or an\n"
+"output that is an input), 3 no window or OpenGL 4.5 context.\n", f);
 }
 
 /* ---- bindings (F1, --bindings, doc/viewer.md) ---- */
@@ -549,7 +558,7 @@ static bool make_sessions(viewer *v)
 
 static bool load_scene(viewer *v, const char *path)
 {
-    dirt_scene *sc = path ? dirt_scene_load(path, NULL) : dirt_scene_create_default();
+    dirt_scene *sc = path ? dirt_scene_load(path, &v->o.load) : dirt_scene_create_default();
     if (!sc)
         return false;
     dirt_session_destroy(v->s);
@@ -593,7 +602,8 @@ static bool sync_env(viewer *v)
         (v->o.env_intensity == v->env_intensity && v->o.env_rotation == v->env_rotation))
         return true;
     char why[512];
-    dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation};
+    dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation,
+                        .max_bytes = v->o.load.max_bytes};
     dirt_env *e = dirt_env_load(v->o.env_path, &eo, why, sizeof(why));
     if (!e) {
         set_status(v, "environment: %s", why);
@@ -1683,7 +1693,7 @@ static bool frame(viewer *v, double dt)
         const char *path = in.drops[in.num_drops - 1];
         char keep[4096];
         snprintf(keep, sizeof(keep), "%s", path);
-        dirt_scene *probe = dirt_scene_load(keep, NULL);
+        dirt_scene *probe = dirt_scene_load(keep, &v->o.load);
         if (!probe) {
             set_status(v, "could not open '%s' (see the log); kept the scene", keep);
         } else {
@@ -1807,14 +1817,15 @@ int main(int argc, char **argv)
     for (int i = 0; i < 3; i++)
         if (outs[i] && !cli_creatable(PROG, outs[i]))
             goto done;
-    v->scene = v->o.scene_path ? dirt_scene_load(v->o.scene_path, NULL) : dirt_scene_create_default();
+    v->scene = v->o.scene_path ? dirt_scene_load(v->o.scene_path, &v->o.load)
+                               : dirt_scene_create_default();
     if (!v->scene) {
-        cli_error(PROG, "cannot load scene '%s' (see the error above)",
-                  v->o.scene_path ? v->o.scene_path : "default");
+        cli_scene_error(PROG, v->o.scene_path);
         goto done;
     }
     if (v->o.env_path) {
-        dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation};
+        dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation,
+                            .max_bytes = v->o.load.max_bytes};
         if (!(v->env = dirt_env_load(v->o.env_path, &eo, why, sizeof(why)))) {
             cli_error(PROG, "--env: %s", why);
             goto done;
@@ -1823,6 +1834,24 @@ int main(int argc, char **argv)
         v->env_intensity = v->o.env_intensity;
         v->env_rotation = v->o.env_rotation;
     }
+    /* No output (at exit or from the script) may be an input. */
+    const char *souts[CLI_IO_MAX - 4] = {0};
+    char spng[CLI_IO_MAX - 4][4200];
+    vs_outputs(&v->script, souts, spng, CLI_IO_MAX - 4);
+    char save_png[4200] = "";
+    if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
+        cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
+    cli_io io = {.scene_path = v->o.scene_path, .scene = v->scene,
+                 .in = {{strcmp(v->o.env_path ? v->o.env_path : "sky", "sky") ? v->o.env_path
+                                                                             : NULL, "--env"},
+                        {v->o.script, "--script"}},
+                 .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
+                         {save_png[0] ? save_png : NULL, "--save-image"},
+                         {v->o.report, "--report"}}};
+    for (size_t i = 0; i < CLI_IO_MAX - 4; i++)
+        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
+    if (cli_check_io(PROG, &io) != DIRT_EXIT_OK)
+        goto done;
     if (v->o.camera >= 0 && (size_t)v->o.camera >= dirt_scene_num_cameras(v->scene)) {
         cli_error(PROG, "--camera %d: the scene has %zu camera(s)", v->o.camera,
                   dirt_scene_num_cameras(v->scene));
@@ -1914,5 +1943,8 @@ done:
     dirt_scene_destroy(v->scene);
     vs_free(&v->script);
     free(v);
+    if (rc == DIRT_EXIT_USAGE)
+        seq_remove_made_dirs(); /* a refused run leaves no directory it made */
+    seq_forget_made_dirs();
     return rc;
 }
