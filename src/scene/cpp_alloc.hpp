@@ -45,7 +45,7 @@ template <typename T> T *alloc_zeroed(size_t n)
 const size_t texture_decode_factor = 3;
 
 /* Whether the image file in bytes[0, size) (size <= INT32_MAX) may be
- * decoded, from the size its header declares (stbi_info_from_memory,
+ * decoded: a PNG, JPEG, BMP or TGA, from the size its header declares (stbi_info_from_memory,
  * before any pixel is decoded): 1 when the decode fits the load's budget
  * (texture_decode_factor times its pixels, 4 bytes each, are charged: call
  * texture_decoded after the decode to give back what the decoder freed);
@@ -55,6 +55,35 @@ const size_t texture_decode_factor = 3;
 inline int texture_fits(const unsigned char *bytes, size_t size, const char *label,
                         const char **why)
 {
+    /* A texture is PNG or JPEG (glTF), BMP or TGA (OBJ's usual maps):
+     * stb_image's other formats are not read (its Radiance decoder loops
+     * forever on a truncated run-length scanline: a fuzz finding). */
+    static const struct { const char *magic; size_t n; } refused[] = {
+        {"#?RADIANCE", 10}, {"#?RGBE", 6}, {"8BPS", 4}, {"GIF8", 4},
+        {"\x53\x80\xf6\x34", 4}, {"P5", 2}, {"P6", 2}};
+    for (const auto &r : refused) {
+        if (size >= r.n && memcmp(bytes, r.magic, r.n) == 0) {
+            *why = "not a PNG, JPEG, BMP or TGA image";
+            return 0;
+        }
+    }
+    /* A PNG's chunks must lie in the file: stb_image allocates what a
+     * chunk's length field says before it reads it (a fuzz finding: 1.8 GB
+     * for a 200-byte file). */
+    if (size >= 8 && memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0) {
+        size_t p = 8;
+        while (p + 12 <= size) {
+            size_t len = (size_t)bytes[p] << 24 | (size_t)bytes[p + 1] << 16 |
+                         (size_t)bytes[p + 2] << 8 | bytes[p + 3];
+            if (len > size - p - 12) {
+                *why = "a PNG chunk runs past the end of the file";
+                return 0;
+            }
+            if (memcmp(bytes + p + 4, "IEND", 4) == 0)
+                break;
+            p += 12 + len;
+        }
+    }
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes, (int)size, &w, &h, &comp) || w <= 0 || h <= 0) {
         *why = stbi_failure_reason() ? stbi_failure_reason() : "unknown format";

@@ -452,6 +452,10 @@ int dirt_fuzz_write_image_corpus(const char *dir)
             count += put_seed(dir, name, tag, b, n);
             snprintf(name, sizeof(name), "cut_%s", names[w]);
             count += put_seed(dir, name, tag, b, n * 2 / 3);
+            /* As a texture, cut: stb_image's Radiance decoder looped
+             * forever on it (the first finding, doc/fuzzing.md). */
+            snprintf(name, sizeof(name), "tex_cut_%s", names[w]);
+            count += put_seed(dir, name, 0, b, n * 2 / 3);
         } else {
             snprintf(name, sizeof(name), "tex_cut_%s", names[w]);
             count += put_seed(dir, name, 0, b, n / 2);
@@ -467,6 +471,14 @@ int dirt_fuzz_write_image_corpus(const char *dir)
     b[16] = 0, b[17] = 0, b[18] = 0x40, b[19] = 0;
     b[20] = 0, b[21] = 0, b[22] = 0x40, b[23] = 0;
     count += put_seed(dir, "tex_huge_png", 0, b, n);
+    free(b);
+    /* A PNG whose IDAT chunk says 1.8 GB: stb_image allocated that much
+     * before reading it (the second finding). */
+    b = seed_image(0, &n);
+    if (!b || n < 41 || memcmp(b + 37, "IDAT", 4) != 0)
+        return -1;
+    b[33] = 0x6f, b[34] = 0x64, b[35] = 0x65, b[36] = 0x73;
+    count += put_seed(dir, "tex_long_chunk_png", 0, b, n);
     free(b);
     static const char lie[] = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n";
     count += put_seed(dir, "file_lie_hdr", 2, lie, sizeof(lie) - 1);
