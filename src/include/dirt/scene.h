@@ -168,8 +168,8 @@ const char *dirt_scene_error_name(enum dirt_scene_error e);
 enum dirt_scene_error dirt_scene_last_error(void);
 
 /* Default of dirt_load_opts.max_bytes: 512 MiB for everything a load
- * holds (about 3 million triangles with their vertex arrays; an accessor of
- * 2^27 floats with no bufferView is already past it). */
+ * holds (about 2.4 million glTF triangles with their vertex arrays; an
+ * accessor of 2^27 floats with no bufferView is already past it). */
 #define DIRT_LOAD_DEFAULT_MAX_BYTES ((size_t)512 << 20)
 /* Default of dirt_load_opts.max_depth: JSON nesting of objects and arrays. */
 #define DIRT_LOAD_DEFAULT_MAX_DEPTH 128
