@@ -30,6 +30,20 @@
  * streams). */
 #define SLACK_MB 6.0
 
+/* Under AddressSanitizer (dirt.sh asan) its redzones and quarantine of
+ * freed memory change every peak: the figures are printed and the loads
+ * checked, the peaks not. */
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+#ifndef UNDER_ASAN
+#define UNDER_ASAN 0
+#endif
+
 static double maxrss_mb(void)
 {
     struct rusage ru;
@@ -105,7 +119,7 @@ static void measure(const char *name, const char *beside)
             r.charged_mb / in_mb);
     CHECK_MSG(r.error == DIRT_SCENE_ERR_OK, "%s: load failed (%s)", name,
               r.error < 0 ? "child died" : dirt_scene_error_name((enum dirt_scene_error)r.error));
-    CHECK_MSG(r.peak_mb <= r.charged_mb + SLACK_MB,
+    CHECK_MSG(UNDER_ASAN || r.peak_mb <= r.charged_mb + SLACK_MB,
               "%s: peak %.1f MB beyond the %.1f MB charged to the budget", name, r.peak_mb,
               r.charged_mb);
 }
@@ -120,7 +134,8 @@ static void attack(const char *name, double limit_mb)
             r.peak_mb);
     CHECK_MSG(r.error == DIRT_SCENE_ERR_TOO_LARGE, "%s: %s, not TOO_LARGE", name,
               r.error < 0 ? "child died" : dirt_scene_error_name((enum dirt_scene_error)r.error));
-    CHECK_MSG(r.peak_mb < limit_mb, "%s: peak %.1f MB (limit %.1f)", name, r.peak_mb, limit_mb);
+    CHECK_MSG(r.peak_mb < (UNDER_ASAN ? 4 * limit_mb : limit_mb), "%s: peak %.1f MB (limit %.1f)",
+              name, r.peak_mb, limit_mb);
 }
 
 /* A file of `head`, `count` times `item` (separated by `sep`), `tail`. */
