@@ -141,28 +141,6 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
             cli_error(prog, "%s expects X,Y,Z (finite numbers), got '%s'", option, val);
         return ok;
     }
-    case 'z': {
-        char *end = NULL;
-        errno = 0;
-        double v = val ? strtod(val, &end) : 0;
-        double unit = 1;
-        if (end && *end) {
-            const char *u = "KMGT";
-            const char *at = strchr(u, end[0] >= 'a' && end[0] <= 'z' ? end[0] - 32 : end[0]);
-            if (at && end[1] == 0)
-                unit = pow(1024.0, (double)(at - u + 1));
-            else
-                end = NULL;
-        }
-        v *= unit;
-        if (!val || !*val || !end || errno || !isfinite(v) || v < lo || v > hi) {
-            cli_error(prog, "%s expects a size in bytes (K, M, G or T: KiB ... TiB) in [%g, "
-                      "%g], got '%s'", option, lo, hi, val ? val : "");
-            return false;
-        }
-        *(size_t *)dst = (size_t)v;
-        return true;
-    }
     default:
         return true; /* the caller parses the rest */
     }

@@ -17,7 +17,7 @@
  * they need no barrier. The graph is declared once at create, recompiled when
  * the image size changes, and its imports are repointed (fg_set_import) when
  * the vertex or light buffer grows. */
-#include "dirt/raster.h"
+#include "raster/raster.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -30,7 +30,7 @@
 #include "gl/graph_gl.h"
 #include "core/vec3.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 #define PASS_DRAW "preview draw"
 #define PASS_READBACK "preview readback"

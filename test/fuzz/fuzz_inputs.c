@@ -6,7 +6,7 @@
 #include "../unit/test_scene_util.h"
 #include "dirt/image.h"
 #include "dirt/input.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/scene.h"
 
 #include <dirent.h>

@@ -10,7 +10,7 @@
 #include "check.h"
 
 #include "dirt/image.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/log.h"
 
 #include <signal.h>

@@ -16,6 +16,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "dirt/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -40,9 +42,9 @@ enum dirt_input_error {
 };
 
 /* "NOT_REGULAR", ...: the id's name; "?" out of range. */
-const char *dirt_input_error_name(enum dirt_input_error e);
+DIRT_API const char *dirt_input_error_name(enum dirt_input_error e);
 /* "not a regular file (...)", ...; "?" out of range. */
-const char *dirt_input_error_str(enum dirt_input_error e);
+DIRT_API const char *dirt_input_error_str(enum dirt_input_error e);
 
 /* ---- bounded reading ------------------------------------------------------ */
 
@@ -55,15 +57,16 @@ const char *dirt_input_error_str(enum dirt_input_error e);
  * again, close-on-exec; the caller closes it) and the file's size in *size;
  * -1 on failure with the id in *err (MISSING, IO, NOT_REGULAR, TOO_LARGE)
  * and errno kept. Nothing is logged: the caller names the file's role. */
-int dirt_input_open(const char *path, size_t max_bytes, size_t *size, enum dirt_input_error *err);
+DIRT_API int dirt_input_open(const char *path, size_t max_bytes, size_t *size,
+                             enum dirt_input_error *err);
 
 /* Reads a whole file opened as dirt_input_open does: the size fstat gave,
  * into malloc'd memory followed by one NUL byte (for text parsers; not
  * counted in *size). A file that shrinks while it is read fails (TRUNCATED);
  * bytes appended meanwhile are not read. NULL on failure with *err set,
  * nothing logged. */
-void *dirt_input_read(const char *path, size_t max_bytes, size_t *size,
-                      enum dirt_input_error *err);
+DIRT_API void *dirt_input_read(const char *path, size_t max_bytes, size_t *size,
+                               enum dirt_input_error *err);
 
 /* ---- confinement ---------------------------------------------------------- */
 
@@ -74,43 +77,45 @@ void *dirt_input_read(const char *path, size_t max_bytes, size_t *size,
  * of it that exists, still lies under the folder's real path. A path that
  * does not exist can be inside (a missing file is the reader's to report).
  * False when it leads outside, or when `dir` cannot be resolved. */
-bool dirt_input_inside(const char *dir, const char *path);
+DIRT_API bool dirt_input_inside(const char *dir, const char *path);
 
 /* ---- a run's inputs and outputs ------------------------------------------- */
 
 /* The files one run reads and writes, to keep them apart. */
 typedef struct dirt_run_files dirt_run_files;
 
-dirt_run_files *dirt_run_files_create(void);
+DIRT_API dirt_run_files *dirt_run_files_create(void);
 /* Accepts NULL. */
-void dirt_run_files_destroy(dirt_run_files *f);
+DIRT_API void dirt_run_files_destroy(dirt_run_files *f);
 
 /* Records an input: the file `path` (its device and inode, and its real
  * path). `what` names its role in messages ("the scene", "--env"); both
  * strings are copied. A path that does not exist is not recorded (true):
  * reading it fails on its own. False only when out of memory (logged). */
-bool dirt_run_files_input(dirt_run_files *f, const char *path, const char *what);
+DIRT_API bool dirt_run_files_input(dirt_run_files *f, const char *path, const char *what);
 
 /* Records an output and checks it against the inputs recorded so far: when
  * it is one of them (the same device and inode: the file itself, a hard
  * link, a symbolic link to it) returns COLLISION with the reason in `why`.
  * Outputs are compared with each other by dirt_run_files_check. OK, or
  * COLLISION; IO when out of memory. Nothing is logged. */
-enum dirt_input_error dirt_run_files_output(dirt_run_files *f, const char *path, const char *what,
-                                            char *why, size_t size);
+DIRT_API enum dirt_input_error dirt_run_files_output(dirt_run_files *f, const char *path,
+                                                     const char *what, char *why,
+                                                     size_t size);
 
 /* Records a folder the run writes files named `prefix`* into: an input in
  * it whose name starts with `prefix` collides (COLLISION, reason in
  * `why`). */
-enum dirt_input_error dirt_run_files_output_dir(dirt_run_files *f, const char *dir,
-                                                const char *prefix, const char *what, char *why,
-                                                size_t size);
+DIRT_API enum dirt_input_error dirt_run_files_output_dir(dirt_run_files *f, const char *dir,
+                                                         const char *prefix, const char *what,
+                                                         char *why, size_t size);
 
 /* Checks everything recorded: every output against every input (again:
  * inputs recorded after an output count too) and the outputs against each
  * other (two that name the same file: the same real folder and name).
  * OK, or COLLISION with the first reason in `why`. */
-enum dirt_input_error dirt_run_files_check(dirt_run_files *f, char *why, size_t size);
+DIRT_API enum dirt_input_error dirt_run_files_check(dirt_run_files *f, char *why,
+                                                    size_t size);
 
 #ifdef __cplusplus
 }

@@ -16,8 +16,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "dirt/ray.h"
-#include "dirt/views.h"
+#include "core/ray.h"
+#include "views/views.h"
 
 #ifdef __cplusplus
 extern "C" {
