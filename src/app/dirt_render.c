@@ -32,7 +32,8 @@ static bool check_options(const app_opts *o)
     } else if (!cli_has_ext(o->output, ".exr") && !cli_has_ext(o->output, ".png")) {
         cli_error(PROG, "output '%s' must end in .exr or .png", o->output);
     } else if (fields < 0) {
-        cli_error(PROG, "output '%s' has more than one frame field or a stray '%%'", o->output);
+        cli_error(PROG, "output '%s' has more than one frame field, a stray '%%' or a field "
+                  "wider than %d", o->output, SEQ_MAX_FIELD_WIDTH);
     } else if (many && fields != 1) {
         cli_error(PROG, "--frames renders several images: the output '%s' needs one frame "
                   "field such as frame_####.exr or frame_%%04d.exr", o->output);

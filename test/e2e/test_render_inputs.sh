@@ -249,13 +249,21 @@ expect 2 MISSING "a missing --mse-reference, up front" -- scene.gltf -o miss.exr
 # would say "cannot compare")
 grep -q "of frame 0" "$tmp/stderr" && ! grep -q "cannot compare" "$tmp/stderr" && [ ! -e miss.exr ] \
   && ok || fail "the missing reference was not seen before rendering"
+# says MESSAGE: the last line of the run's stderr holds MESSAGE (these
+# usage errors have no id: the message names the option at fault).
+says() { tail -n 1 "$tmp/stderr" | grep -qF -- "$1" && ok || { fail "the message lacks '$1':"; tail -n 1 "$tmp/stderr" >&2; }; }
 expect 2 - "a frame field too wide" -- scene.gltf -o 'f_%99999999999d.png' --frames 1:2 "${cpu[@]}"
+says "wider than 32"
 expect 2 - "a frame field of 40 #" -- scene.gltf -o "f_$(printf '#%.0s' $(seq 1 40)).png" --frames 1:2 "${cpu[@]}"
+says "wider than 32"
 expect 2 - "--up parallel to the view" -- scene.gltf -o out.png --eye 0,0,5 --look-at 0,0,0 --up 0,0,1 "${cpu[@]}"
+says "--up 0,0,1 is parallel to the view direction"
 expect 2 - "--eye at --look-at" -- scene.gltf -o out.png --eye 1,1,1 --look-at 1,1,1 "${cpu[@]}"
+says "--eye and --look-at are the same point"
 mkgltf thin.gltf tri.bin '' '"cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1,"aspectRatio":0.0001}}],'
 sed -i 's/"nodes":\[{"mesh":0}\]/"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,3]}]/; s/"scenes":\[{"nodes":\[0\]}\]/"scenes":[{"nodes":[0,1]}]/' thin.gltf
 expect 2 - "a camera of aspect 1e-4 without -H" -- thin.gltf -o out.png --engine embree -W 640 --spp 1 -q
+says "give -H"
 expect 0 - "the same camera with -H" -- thin.gltf -o out.png "${cpu[@]}"
 mkgltf ortho.gltf tri.bin '' '"cameras":[{"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}}],'
 sed -i 's/"nodes":\[{"mesh":0}\]/"nodes":[{"mesh":0},{"camera":0,"translation":[0.3,0.3,3]}]/; s/"scenes":\[{"nodes":\[0\]}\]/"scenes":[{"nodes":[0,1]}]/' ortho.gltf
