@@ -7,7 +7,7 @@
 #   ./dirt.sh build  install what is missing, build into build/
 #   ./dirt.sh asan   the tests again in an AddressSanitizer/UBSan build (build-asan/), leaks on
 #   ./dirt.sh clang  a clang build with -Werror (build-clang/) and its unit tests
-#   ./dirt.sh fuzz [SECONDS]  the scene fuzz target for SECONDS (default 60; build-clang/)
+#   ./dirt.sh fuzz [SECONDS]  every fuzz target, SECONDS shared out (default 60; build-clang/)
 # With CI=true a skipped test fails the run (except those named in CI_MAY_SKIP).
 # DIRT_TEST_DRIVERS (default "default zink") chooses the drivers of ./dirt.sh test:
 # default = the context the programs pick (llvmpipe on a machine without a GPU).
@@ -147,17 +147,26 @@ case "${1:-}" in
     run_tests build-clang testlog --suite unit
     ;;
   fuzz)
+    # The fuzz targets (doc/fuzzing.md) share SECONDS: scene, image, env and
+    # files get a quarter each. `./dirt.sh fuzz 1800` is the 30-minute run.
     secs=${2:-60}
     CC=clang CXX=clang++ build build-clang -Dwerror=true -Dfuzz=true
     corpus=build-clang/fuzz-corpus
     mkdir -p "$corpus" build-clang/fuzz-findings
     ./build-clang/test/fuzz/fuzz_replay --write "$corpus"
-    # -rss_limit_mb bounds every input (the loader's budget is 64 MiB there);
-    # findings (crash-*, leak-*, oom-*) land in build-clang/fuzz-findings/.
-    ./build-clang/test/fuzz/fuzz_scene "$corpus" -max_total_time="$secs" -rss_limit_mb=1024 \
-      -timeout=10 -print_final_stats=1 -artifact_prefix=build-clang/fuzz-findings/ \
-      2>build-clang/fuzz.log || { tail -40 build-clang/fuzz.log >&2; say "fuzzing found a failure"; exit 1; }
-    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-clang/fuzz.log >&2 || true
+    targets=(scene image env files)
+    each=$(( secs / ${#targets[@]} )); [ "$each" -ge 1 ] || each=1
+    for t in "${targets[@]}"; do
+      # -rss_limit_mb bounds every input (the loaders' budgets are 64 MiB
+      # there); findings (crash-*, leak-*, oom-*, timeout-*) land in
+      # build-clang/fuzz-findings/.
+      ./build-clang/test/fuzz/fuzz_$t "$corpus/$t" -max_total_time="$each" -rss_limit_mb=1024 \
+        -timeout=10 -print_final_stats=1 -artifact_prefix=build-clang/fuzz-findings/$t- \
+        2>build-clang/fuzz-$t.log || { tail -40 build-clang/fuzz-$t.log >&2; say "fuzzing $t found a failure"; exit 1; }
+      printf '%s: ' "$t" >&2
+      grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-clang/fuzz-$t.log | tr '\n' ' ' >&2
+      echo >&2
+    done
     ;;
   *)
     sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'

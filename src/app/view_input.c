@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "app/view.h"
+#include "app/setup.h"
 #include "app/view_camera.h"
 
 static bool key_held(const viewer *v, const dirt_window_input *in, enum dirt_key k)
@@ -125,7 +126,8 @@ void view_focus_at(viewer *v)
     view_status(v, "focus %.4g (aperture %.4g)", d, v->o.s.aperture);
 }
 
-/* Opens the scene last dropped on the window (within --max-scene-memory);
+/* Opens the scene last dropped on the window (with --max-scene-memory,
+ * --strict and --allow-outside-paths);
  * a scene that does not load leaves the shown one. False when the sessions
  * for the new one cannot be made. */
 bool view_open_drops(viewer *v, const dirt_window_input *in)
@@ -134,7 +136,7 @@ bool view_open_drops(viewer *v, const dirt_window_input *in)
         return true;
     char keep[4096];
     snprintf(keep, sizeof(keep), "%s", in->drops[in->num_drops - 1]);
-    dirt_load_opts lo = {.max_bytes = v->o.max_scene_bytes};
+    dirt_load_opts lo = app_load_opts(&v->o);
     dirt_scene *sc = dirt_scene_load(keep, &lo);
     if (!sc) {
         view_status(v, "could not open '%s' (see the log); kept the scene", keep);
