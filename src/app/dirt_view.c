@@ -65,10 +65,11 @@ static bool sample(viewer *v, bool *preview)
         v->o.no_preview = true;
         *preview = false;
     }
-    if (!*preview && !v->hold && (v->o.spp == 0 || have < v->o.spp)) {
+    int target = view_target(v, v->s);
+    if (!*preview && !v->hold && (target == 0 || have < target)) {
         int n = v->o.samples_per_frame;
-        if (v->o.spp && have + n > v->o.spp)
-            n = v->o.spp - have;
+        if (target && have + n > target)
+            n = target - have;
         dirt_session_stats before = *dirt_session_get_stats(v->s);
         if (!dirt_session_add_samples(v->s, n, NULL, NULL)) {
             cli_error(PROG, "rendering failed (see the log)");

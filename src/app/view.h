@@ -104,6 +104,9 @@ typedef struct viewer {
 void view_status(viewer *v, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* view_sessions.c */
+/* The samples session `s` accumulates to: --spp (0: no limit), 1 for the
+ * raster preview (its one image is the whole result). */
+int view_target(const viewer *v, const dirt_session *s);
 dirt_session_opts view_wanted_opts(const viewer *v, int engine);
 bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);

@@ -174,6 +174,8 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddItemToObject(r, "window", cJSON_CreateIntArray(win, 2));
     cJSON_AddItemToObject(r, "render", cJSON_CreateIntArray(ren, 2));
     cJSON_AddNumberToObject(r, "samples", dirt_session_samples(v->s));
+    cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
+    cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
     cJSON_AddNumberToObject(r, "frames", (double)v->frame);
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);

@@ -23,10 +23,15 @@ bool view_run_script(viewer *v)
         v->wait_file[0] = '\0';
     }
     if (v->wait_samples > 0) {
-        int target = v->wait_samples;
-        if (dirt_session_samples(v->s) < target &&
-            (v->o.spp == 0 || dirt_session_samples(v->s) < v->o.spp))
-            return true;
+        /* The image shown: the main session's, and the comparison's too. */
+        dirt_session *both[2] = {v->s, v->cmp};
+        for (int i = 0; i < 2; i++) {
+            if (!both[i])
+                continue;
+            int have = dirt_session_samples(both[i]), target = view_target(v, both[i]);
+            if (have < v->wait_samples && (target == 0 || have < target))
+                return true;
+        }
         v->wait_samples = 0;
     }
     while (v->next_action < v->script.count) {
