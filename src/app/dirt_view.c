@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "app/cli.h"
 #include "app/setup.h"
@@ -106,9 +107,11 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     }
     view_handle_input(v, &in, dt, ui_mouse, ui_keys);
-    for (int k = 0; k < DIRT_NUM_KEYS; k++)
+    for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         if (v->held[k] > 0)
             v->held[k]--;
+        v->pressed[k] = false;
+    }
     if (v->o.play)
         play(v, dt);
     view_render_size(v, in.width, in.height);
@@ -129,6 +132,10 @@ static bool frame(viewer *v, double dt)
         v->exit_code = DIRT_EXIT_FAILURE;
     }
     dirt_gpu_window_swap(v->gpu);
+    if (v->slow_frame_ms > 0)
+        nanosleep(&(struct timespec){.tv_sec = v->slow_frame_ms / 1000,
+                                     .tv_nsec = (v->slow_frame_ms % 1000) * 1000000L},
+                  NULL);
     v->frame_ms[v->ring_pos] = (float)(dirt_clock_ms() - t0);
     v->sample_ms[v->ring_pos] = (float)(s1 - s0);
     v->ring_pos = (v->ring_pos + 1) % RING;
@@ -226,6 +233,10 @@ static int run(viewer *v, dirt_scene *scene)
         fprintf(stderr, "%s: %s, %zu triangles; %s; F1 lists the key bindings\n", PROG,
                 v->scene_name, dirt_scene_num_triangles(v->scene), desc);
     }
+    /* Test hook: every frame takes this much longer (a deliberately slow
+     * frame, for the input that arrives during one). */
+    const char *slow = getenv("DIRT_VIEW_SLOW_FRAME_MS");
+    v->slow_frame_ms = slow ? atoi(slow) : 0;
     double last = dirt_clock_ms();
     while (!v->quit) {
         double now = dirt_clock_ms();

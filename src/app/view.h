@@ -81,6 +81,7 @@ typedef struct viewer {
     int num_frame_passes;
     /* input and script */
     int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
+    bool pressed[DIRT_NUM_KEYS]; /* a script key went down in this frame */
     view_script script;
     size_t next_action;
     long wait_frames;
@@ -98,6 +99,7 @@ typedef struct viewer {
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
+    int slow_frame_ms;          /* test hook DIRT_VIEW_SLOW_FRAME_MS: added to every frame */
 } viewer;
 
 /* The status line of the Settings panel, also printed unless --quiet. */

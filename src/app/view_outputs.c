@@ -176,6 +176,12 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "samples", dirt_session_samples(v->s));
     cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
     cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
+    cJSON_AddBoolToObject(r, "diff", v->o.diff);
+    cJSON_AddStringToObject(r, "buffer", app_buffer_names[v->o.buffer]);
+    cJSON_AddBoolToObject(r, "panels_shown", !v->o.no_ui);
+    cJSON_AddBoolToObject(r, "help_shown", v->show_help);
+    cJSON_AddNumberToObject(r, "exposure", v->o.exposure);
+    cJSON_AddBoolToObject(r, "play", v->o.play);
     cJSON_AddNumberToObject(r, "frames", (double)v->frame);
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
