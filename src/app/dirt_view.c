@@ -96,6 +96,8 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     v->win_w = in.width;
     v->win_h = in.height;
+    v->cursor_x = in.mouse_x;
+    v->cursor_y = in.mouse_y;
     if (!view_open_drops(v, &in))
         return false;
     dirt_ui_begin_frame(v->ui);

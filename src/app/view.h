@@ -40,6 +40,7 @@ enum buffer {
 enum cam_mode { CAM_DEFAULT, CAM_AUTO, CAM_SCENE, CAM_LOOK };
 
 #define RING 240
+#define INSPECT_CHANNELS 20
 
 typedef struct viewer {
     app_opts o;                 /* the command line, then the panels and the script */
@@ -100,6 +101,15 @@ typedef struct viewer {
     int num_panels;
     int win_w, win_h;
     int slow_frame_ms;          /* test hook DIRT_VIEW_SLOW_FRAME_MS: added to every frame */
+    /* the inspector: every channel of both images under the cursor */
+    double cursor_x, cursor_y;  /* window pixels */
+    struct view_probe {
+        bool valid;             /* the cursor is over the image, which has samples */
+        int x, y;               /* render pixel */
+        int count;
+        char names[INSPECT_CHANNELS][32];
+        float values[INSPECT_CHANNELS];
+    } probe[2];                 /* the main session, the comparison */
 } viewer;
 
 /* The status line of the Settings panel, also printed unless --quiet. */
@@ -135,6 +145,10 @@ void view_focus_at(viewer *v);
 /* view_display.c */
 void view_fit(const viewer *v, int w, int h, int r[4]);
 void view_draw(viewer *v, bool preview);
+
+/* The values of every channel (R, G, B, A, then the AOVs) of both images
+ * at the render pixel under the cursor (reads the images back). */
+void view_inspect(viewer *v);
 
 /* view_panels.c */
 void view_panels(viewer *v);

@@ -232,6 +232,20 @@ bool view_write_report(viewer *v, const char *path)
     cJSON *pj = cJSON_AddObjectToObject(r, "provenance");
     for (size_t i = 0; i < na; i++)
         cJSON_AddStringToObject(pj, attrs[i].name, attrs[i].value);
+    view_inspect(v);
+    cJSON *insp = cJSON_AddObjectToObject(r, "inspect");
+    for (int k = 0; k < 2; k++) {
+        const struct view_probe *pr = &v->probe[k];
+        if (!pr->valid)
+            continue;
+        if (k == 0) {
+            int px[2] = {pr->x, pr->y};
+            cJSON_AddItemToObject(insp, "pixel", cJSON_CreateIntArray(px, 2));
+        }
+        cJSON *side = cJSON_AddObjectToObject(insp, k ? "b" : "a");
+        for (int ch = 0; ch < pr->count; ch++)
+            cJSON_AddNumberToObject(side, pr->names[ch], pr->values[ch]);
+    }
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)
         cJSON_AddItemToArray(panels, cJSON_CreateFloatArray(v->panels[i], 4));

@@ -50,5 +50,46 @@ for pair in mmrt:embree embree:dirt dirt:raster raster:mmrt; do
     fail "$a | $b: the difference view is not |$a - $b| through the ramp"; fi
 done
 
+# The inspector: the cursor (real X input) over pixel (30, 40) of the
+# mmrt | embree split; the report's values of every channel there, of both
+# engines, are those of dirt-render's images of each, bit for bit.
+printf 'wait-samples %d\nwait-file %s\nwait-frames 1\nreport %s\nquit\n' $SPP "$tmp/go" \
+  "$tmp/insp.json" >"$tmp/s.txt"
+"$view" --window ${W}x$H --no-ui --engine mmrt --compare embree --seed 5 --bounces 2 --spp $SPP \
+  --script "$tmp/s.txt" -q >"$tmp/insp.out" 2>&1 &
+vpid=$! wid=
+for _ in $(seq 100); do
+  wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
+  [ -n "$wid" ] && break; sleep 0.1
+done
+[ -n "$wid" ] && xdotool mousemove --window "$wid" 30 40 && sleep 0.5
+touch "$tmp/go"
+wait "$vpid" || { fail "inspector run: exit $?"; cat "$tmp/insp.out" >&2; }
+python3 - "$tmp/insp.json" "$check" "$tmp/r-mmrt.exr" "$tmp/r-embree.exr" <<'PY' && ok ||
+import json, struct, subprocess, sys
+rep = json.load(open(sys.argv[1]))["inspect"]
+f32 = lambda x: struct.unpack("f", struct.pack("f", float(x)))[0]
+bad = 0
+if rep.get("pixel") != [30, 40]:
+    print("inspected pixel", rep.get("pixel")); sys.exit(1)
+for side, exr in (("a", sys.argv[3]), ("b", sys.argv[4])):
+    vals = rep[side]
+    for name, got in vals.items():
+        want = subprocess.run([sys.argv[2], "pixel", exr, name, "30", "40"], capture_output=True,
+                              text=True).stdout.strip()
+        w = float(want) if want else float("nan")
+        if got is None:  # JSON null: not finite
+            ok_ = w != w or abs(w) == float("inf")
+        else:
+            ok_ = f32(got) == f32(w)
+        if not ok_:
+            print(side, name, got, "want", want); bad += 1
+    if len(vals) < 8:
+        print(side, "has only", sorted(vals)); bad += 1
+print("inspector: %d channels of a, %d of b; %d differ" % (len(rep["a"]), len(rep["b"]), bad))
+sys.exit(1 if bad else 0)
+PY
+  fail "the inspector's values are not dirt-render's at the pixel under the cursor"
+
 echo "test_view_compare: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -20,7 +20,8 @@
  *       SHOT is the heat ramp of |luminance(A) - luminance(B)| over
  *       0..RANGE, sRGB-encoded, within one 8-bit step (exactly at 99%)
  *   view_check pixel IMAGE.exr CHANNEL X Y
- *       prints the value of CHANNEL at pixel (X, Y) (row 0 = top), %.9g
+ *       prints the value of CHANNEL (R, G, B, A: the beauty's) at pixel (X, Y)
+ *       (row 0 = top), %.9g
  * Prints what it found; exit 0 when the condition holds, 1 when it does
  * not, 2 on unreadable input. */
 #include <math.h>
@@ -327,10 +328,17 @@ static int pixel(const char *path, const char *channel, int x, int y)
 {
     dirt_image *img = dirt_image_read_exr(path);
     const float *c = img ? dirt_image_find_channel(img, channel) : NULL;
+    const char *rgba = strchr("RGBA", channel[0]);
     int rc = 2;
-    if (c && x >= 0 && y >= 0 && x < img->width && y < img->height) {
-        printf("%.9g\n", c[(size_t)y * img->width + x]);
-        rc = 0;
+    if (img && x >= 0 && y >= 0 && x < img->width && y < img->height) {
+        size_t i = (size_t)y * img->width + x;
+        if (c) {
+            printf("%.9g\n", c[i]);
+            rc = 0;
+        } else if (rgba && channel[0] && !channel[1]) { /* the beauty's R, G, B, A */
+            printf("%.9g\n", img->rgba[4 * i + (rgba - "RGBA")]);
+            rc = 0;
+        }
     }
     dirt_image_destroy(img);
     return rc;
