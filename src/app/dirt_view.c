@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "app/cli.h"
 #include "app/setup.h"
@@ -65,10 +66,11 @@ static bool sample(viewer *v, bool *preview)
         v->o.no_preview = true;
         *preview = false;
     }
-    if (!*preview && !v->hold && (v->o.spp == 0 || have < v->o.spp)) {
+    int target = view_target(v, v->s);
+    if (!*preview && !v->hold && (target == 0 || have < target)) {
         int n = v->o.samples_per_frame;
-        if (v->o.spp && have + n > v->o.spp)
-            n = v->o.spp - have;
+        if (target && have + n > target)
+            n = target - have;
         dirt_session_stats before = *dirt_session_get_stats(v->s);
         if (!dirt_session_add_samples(v->s, n, NULL, NULL)) {
             cli_error(PROG, "rendering failed (see the log)");
@@ -94,6 +96,8 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     v->win_w = in.width;
     v->win_h = in.height;
+    v->cursor_x = in.mouse_x;
+    v->cursor_y = in.mouse_y;
     if (!view_open_drops(v, &in))
         return false;
     dirt_ui_begin_frame(v->ui);
@@ -105,9 +109,11 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     }
     view_handle_input(v, &in, dt, ui_mouse, ui_keys);
-    for (int k = 0; k < DIRT_NUM_KEYS; k++)
+    for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         if (v->held[k] > 0)
             v->held[k]--;
+        v->pressed[k] = false;
+    }
     if (v->o.play)
         play(v, dt);
     view_render_size(v, in.width, in.height);
@@ -128,6 +134,10 @@ static bool frame(viewer *v, double dt)
         v->exit_code = DIRT_EXIT_FAILURE;
     }
     dirt_gpu_window_swap(v->gpu);
+    if (v->slow_frame_ms > 0)
+        nanosleep(&(struct timespec){.tv_sec = v->slow_frame_ms / 1000,
+                                     .tv_nsec = (v->slow_frame_ms % 1000) * 1000000L},
+                  NULL);
     v->frame_ms[v->ring_pos] = (float)(dirt_clock_ms() - t0);
     v->sample_ms[v->ring_pos] = (float)(s1 - s0);
     v->ring_pos = (v->ring_pos + 1) % RING;
@@ -245,6 +255,10 @@ static int run(viewer *v, dirt_scene *scene)
         fprintf(stderr, "%s: %s, %zu triangles; %s; F1 lists the key bindings\n", PROG,
                 v->scene_name, dirt_scene_num_triangles(v->scene), desc);
     }
+    /* Test hook: every frame takes this much longer (a deliberately slow
+     * frame, for the input that arrives during one). */
+    const char *slow = getenv("DIRT_VIEW_SLOW_FRAME_MS");
+    v->slow_frame_ms = slow ? atoi(slow) : 0;
     double last = dirt_clock_ms();
     while (!v->quit) {
         double now = dirt_clock_ms();

@@ -25,6 +25,11 @@ dirt_session_opts view_wanted_opts(const viewer *v, int engine)
     return s;
 }
 
+int view_target(const viewer *v, const dirt_session *s)
+{
+    return dirt_session_get_opts(s)->engine == DIRT_ENGINE_RASTER ? 1 : v->o.spp;
+}
+
 static float scene_diagonal(const dirt_frame *f)
 {
     float d2 = 0;
