@@ -92,7 +92,7 @@ elif [ "${CI:-}" = true ]; then
 else
   echo "shared scenes absent: default scene only"
 fi
-out=$tmp/out
+out=$tmp/new/parents/out # folders made as with mkdir -p
 args=(--res 32x24,48x32 --thickness-rel 0.002,0.01 --warmup 0 --repeat 2 --agree-res 24x16)
 "$cmp" "${scenes[@]}" -o "$out" "${args[@]}" 2>"$tmp/run.log"
 rc=$?
@@ -310,6 +310,17 @@ if "$cmp" default -o "$tmp/nq" --res 32x16,48x24 --thickness-rel 0.002,0.01 --re
     [ -s "$tmp/nq/$p.png" ] || fail "--no-quality: no $p.png"
   done
   [ -e "$tmp/nq/agreement_vs_thickness.png" ] && fail "--no-quality drew an empty agreement plot"
+  # what was not measured is an empty CSV cell (null in the JSON), never nan
+  python3 - "$tmp/nq/results.csv" <<'PY' || fail "--no-quality: results.csv has nan/inf cells"
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1], newline="")))
+bad = [(i, rows[0][j]) for i, r in enumerate(rows[1:], 1) for j, c in enumerate(r)
+       if c.strip().lower().lstrip("+-") in ("nan", "inf", "infinity")]
+empty = sum(1 for r in rows[1:] for c in r if c == "")
+if bad or not empty:
+    print("cells %s; %d empty" % (bad[:5], empty), file=sys.stderr)
+sys.exit(1 if bad or not empty else 0)
+PY
 else
   fail "--no-quality run: exit $?"; cat "$tmp/nq.log" >&2
 fi
