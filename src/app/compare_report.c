@@ -133,7 +133,8 @@ static const char *const csv_cols[][2] = {
 static void csv_field(compare_buf *b, const cJSON *x)
 {
     if (cJSON_IsNumber(x)) {
-        compare_bprintf(b, "%.10g", x->valuedouble);
+        if (isfinite(x->valuedouble)) /* not measured: an empty cell, as in the JSON's null */
+            compare_bprintf(b, "%.10g", x->valuedouble);
     } else if (cJSON_IsString(x)) {
         compare_bprintf(b, "\"");
         for (const char *c = x->valuestring; *c; c++)

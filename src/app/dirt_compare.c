@@ -14,6 +14,7 @@
 #include "app/compare.h"
 #include "app/options.h"
 #include "app/provenance.h"
+#include "app/sequence.h"
 #include "app/setup.h"
 #include "dirt/clock.h"
 #include "dirt/env.h"
@@ -639,9 +640,12 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
 
 static bool dir_ok(const char *dir)
 {
+    /* DIR and its missing parents, as dirt-render makes its outputs' folders */
     struct stat sb;
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        cli_error(PROG, "cannot create %s: %s", dir, strerror(errno));
+    char inside[4200], why[4400];
+    snprintf(inside, sizeof(inside), "%s/.", dir);
+    if (!seq_make_parent_dirs(inside, why, sizeof(why))) {
+        cli_error(PROG, "%s", why);
         return false;
     }
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
