@@ -148,9 +148,15 @@
 #define DIRT_BIND_TEST_OUT 38          /* a test's output buffer */
 #define DIRT_BIND_TEST_LAST 38
 
+/* Work counters (the counting builds of the traces, DIRT_TRACE_COUNT). */
+#define DIRT_BIND_WORK_FIRST 39
+#define DIRT_BIND_WORK 39              /* uvec4[rays]: one ray's work (dirt/trace.comp: tiles,
+                                          Hi-Z steps, list nodes, triangle tests) */
+#define DIRT_BIND_WORK_LAST 39
+
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
-#define DIRT_BIND_LAST DIRT_BIND_TEST_LAST
+#define DIRT_BIND_LAST DIRT_BIND_WORK_LAST
 
 /* The ranges are non-empty, ascending and disjoint. */
 #if DIRT_BIND_SHARED_FIRST != 0 || DIRT_BIND_SHARED_LAST < DIRT_BIND_SHARED_FIRST || \
@@ -164,7 +170,8 @@
     DIRT_BIND_MODEL_FIRST <= DIRT_BIND_MMRT_PT_LAST || DIRT_BIND_MODEL_LAST < DIRT_BIND_MODEL_FIRST || \
     DIRT_BIND_PREVIEW_FIRST <= DIRT_BIND_MODEL_LAST || \
     DIRT_BIND_PREVIEW_LAST < DIRT_BIND_PREVIEW_FIRST || \
-    DIRT_BIND_TEST_FIRST <= DIRT_BIND_PREVIEW_LAST || DIRT_BIND_TEST_LAST < DIRT_BIND_TEST_FIRST
+    DIRT_BIND_TEST_FIRST <= DIRT_BIND_PREVIEW_LAST || DIRT_BIND_TEST_LAST < DIRT_BIND_TEST_FIRST || \
+    DIRT_BIND_WORK_FIRST <= DIRT_BIND_TEST_LAST || DIRT_BIND_WORK_LAST < DIRT_BIND_WORK_FIRST
 #error "common/constants.h: storage-buffer binding ranges overlap or are out of order"
 #endif
 
@@ -226,6 +233,9 @@
 #if !DIRT_BIND_IN(DIRT_BIND_TEST_IN, DIRT_BIND_TEST_FIRST, DIRT_BIND_TEST_LAST) || \
     !DIRT_BIND_IN(DIRT_BIND_TEST_OUT, DIRT_BIND_TEST_FIRST, DIRT_BIND_TEST_LAST)
 #error "common/constants.h: a test binding lies outside DIRT_BIND_TEST_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_WORK, DIRT_BIND_WORK_FIRST, DIRT_BIND_WORK_LAST)
+#error "common/constants.h: the work binding lies outside DIRT_BIND_WORK_*"
 #endif
 
 /* ---- Texture and image units ---- */

@@ -25,6 +25,9 @@
 // that the alpha test rejects is not a hit, and the walk goes on as if it
 // were not in the list. The variant without it is the opaque scenes' trace,
 // untouched (the unused test in the inner loop cost llvmpipe 3x).
+// Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
+// work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
+// tests, large primitives' included) of ray i.
 #include "common/layout.h"
 #include "common/ray_batch.glsl"
 #ifdef DIRT_TRACE_ALPHA
@@ -63,6 +66,15 @@ layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
 layout(std430, binding = DIRT_BIND_HIT_HEADS) buffer HitHeads {
     uint hit_heads[];
 };
+#ifdef DIRT_TRACE_COUNT
+layout(std430, binding = DIRT_BIND_WORK) writeonly buffer Work {
+    uvec4 work[];
+};
+uvec4 g_work = uvec4(0u);
+#define COUNT_WORK(c) g_work.c++
+#else
+#define COUNT_WORK(c)
+#endif
 #ifdef DIRT_TRACE_ALPHA
 layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
     uint prim_material[]; // read only with u_alpha
@@ -273,6 +285,7 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
         uint node = heads[uint(b) * T + gt];
         while (node != DIRT_LIST_END) {
             uvec2 n = nodes[node];
+            COUNT_WORK(z);
             node = n.y;
             uint p = n.x;
             float t, u, w;
@@ -282,6 +295,7 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
                              ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
             if (any(equal(g_never, uvec4(p))))
                 continue;
+            COUNT_WORK(w);
             if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
                            vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w)) {
                 g_never = uvec4(p, g_never.xyz);
@@ -360,6 +374,7 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
     for (int steps = 0; steps < MAX_STEPS; steps++) {
         if (t >= best.t)
             return true;
+        COUNT_WORK(y);
         vec4 c = co + t * cd;
         vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
         ivec2 size = level_size(v, d);
@@ -389,6 +404,7 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
             continue;
         }
         if (!skip) {
+            COUNT_WORK(x);
             uint gt = uint(v.placement.x + cell.y * v.size.z + cell.x);
             if (walk_tile(rs, co, cd, v, view, cell, gt, wa, wb, tmin, best))
                 return true;
@@ -465,6 +481,7 @@ void main()
         float tmax = best.prim != DIRT_NO_HIT && p < best.prim
                          ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
         float th, u, w;
+        COUNT_WORK(w);
         if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
                        vertices[3u * p + 2u].position.xyz, tmin, tmax, th, u, w))
             continue;
@@ -539,4 +556,7 @@ void main()
     h.ids = uvec4(best.prim, uint(best.view), owner, next);
     h.bary_t = vec4(best.u, best.v, best.prim == DIRT_NO_HIT ? -1.0 : best.t, 0.0);
     hits[i] = h;
+#ifdef DIRT_TRACE_COUNT
+    work[i] = g_work;
+#endif
 }

@@ -384,6 +384,51 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
             print_once(&b, &listed, &line);
         }
     }
+    /* Work per ray (--count-work): counted, not timed. */
+    bool any_work = false;
+    cJSON_ArrayForEach(r, rows) any_work = any_work || (compare_row_ok(r) &&
+                                                        compare_jget(r, "dirt.work"));
+    if (any_work) {
+        compare_bprintf(&b, "\n## Work per ray (--count-work)\n\nMeans over the hit-agreement "
+                            "rays of each type (the camera G-buffer at the image size): DIRT's "
+                            "exact triangle tests, tiles walked, Hi-Z steps and list nodes read; "
+                            "MMRT's fragments visited (one depth test each); Embree's triangle "
+                            "tests and BVH nodes over DIRT's rays (doc/dirt-trace.md, \"Work "
+                            "counters\").\n\n| scene | resolution | DIRT setting | ray type | "
+                            "DIRT tri tests | tiles | Hi-Z steps | list nodes | MMRT fragments | "
+                            "Embree tri tests | Embree BVH nodes | DIRT / Embree tri tests |\n"
+                            "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    }
+    cJSON_ArrayForEach(r, rows)
+    {
+        if (!any_work || !compare_row_ok(r) || !compare_jget(r, "dirt.work"))
+            continue;
+        for (int t = 0; t < DIRT_RAY_TYPES; t++) {
+            char p[128];
+            double v[8];
+            static const char *const keys[8] = {
+                "dirt.work.%s.rays", "dirt.work.%s.triangle_tests", "dirt.work.%s.tiles",
+                "dirt.work.%s.hiz_steps", "dirt.work.%s.list_nodes", "mmrt.work.%s.fragments",
+                "dirt.work.%s.embree.triangle_tests", "dirt.work.%s.embree.bvh_nodes"};
+            for (int k = 0; k < 8; k++) {
+                snprintf(p, sizeof(p), keys[k], dirt_ray_type_names[t]);
+                v[k] = compare_jget(r, p) ? compare_jd(r, p) : NAN;
+            }
+            snprintf(p, sizeof(p), "mmrt.work.%s.rays", dirt_ray_type_names[t]);
+            double mrays = compare_jget(r, p) ? compare_jd(r, p) : NAN;
+            double n = v[0] > 0 ? v[0] : NAN;
+            compare_buf line = {0};
+            compare_bprintf(&line, "| %s | %.0fx%.0f | S%g B%g | %s | %.2f | %.2f | %.2f | %.2f "
+                            "| %.2f | %.2f | %.2f | %.2f |\n",
+                            compare_js(r, "scene.name"), compare_jd(r, "settings.width"),
+                            compare_jd(r, "settings.height"),
+                            compare_jd(r, "settings.dirt_tile_size"),
+                            compare_jd(r, "settings.dirt_buckets"), dirt_ray_type_names[t],
+                            v[1] / n, v[2] / n, v[3] / n, v[4] / n,
+                            mrays > 0 ? v[5] / mrays : NAN, v[6] / n, v[7] / n, v[1] / v[6]);
+            print_once(&b, &listed, &line);
+        }
+    }
     free(listed.p);
     /* MMRT's best setting per scene (thickness, march, samples) beside its
      * default (default thickness, Hi-Z), with their images. */

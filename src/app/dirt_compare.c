@@ -40,6 +40,7 @@ typedef struct options {
     int warmup, repeat, agree_w, agree_h, face;
     int large;                  /* --large: 0 none, else up to that many */
     bool quality, images, quiet;
+    bool count_work;            /* --count-work: each row's work per ray type */
     uint32_t seed;
     const char *env_path;       /* --env FILE|sky, for every scene */
     dirt_env_opts env;          /* --env-intensity, --env-rotation */
@@ -108,6 +109,7 @@ static bool from_app(const app_opts *a, options *o)
     o->face = a->s.face_size;
     o->large = (int)a->large;
     o->quality = !a->no_quality;
+    o->count_work = a->s.count_work;
     o->images = a->images;
     o->quiet = a->quiet;
     o->seed = a->s.seed;
@@ -457,6 +459,24 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         cJSON_AddNumberToObject(aj, "gbuffer_height", ah);
         if (e == DIRT_ENGINE_MMRT)
             cJSON_AddNumberToObject(j, "thickness_used", ag.thickness);
+    }
+    if (o->count_work) {
+        /* Counted once, on the last repeat's structure (the session counts
+         * at the build it is asked for; no restart, the image is kept). */
+        dirt_session_opts wo = *dirt_session_get_opts(s);
+        wo.count_work = true;
+        cJSON *sj = NULL;
+        if (dirt_session_set_opts(s, &wo, NULL) && dirt_session_build(s))
+            sj = dirt_session_stats_json(dirt_session_get_stats(s));
+        cJSON *wj = sj ? cJSON_DetachItemFromObject(sj, "work") : NULL;
+        cJSON_Delete(sj);
+        if (!wj) {
+            set_reason(why, whysz, dirt_engine_names[e], "work counting failed");
+            cJSON_Delete(j);
+            dirt_session_destroy(s);
+            return NULL;
+        }
+        cJSON_AddItemToObject(j, "work", wj);
     }
     dirt_session_destroy(s);
     return j;

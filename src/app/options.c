@@ -165,6 +165,11 @@ static const app_opt_def table[APP_NUM_OPTS] = {
     [APP_OPT_CPU_TIMING] = {APP_OPT_CPU_TIMING, NULL, "--cpu-timing", NULL, NULL, 'F',
         OFF(cpu_timing), 0, 0, NULL, "time passes with glFinish and the CPU clock (always on "
         "with a software renderer such as llvmpipe)", NULL, NULL},
+    [APP_OPT_COUNT_WORK] = {APP_OPT_COUNT_WORK, NULL, "--count-work", NULL, NULL, 'F',
+        OFF(s.count_work), 0, 0, NULL, "count the work per ray of every ray type (the hit-"
+        "agreement rays of the image: DIRT's tiles, Hi-Z steps, list nodes and triangle tests, "
+        "MMRT's fragments, Embree's BVH nodes and triangle tests over the same rays) into the "
+        "stats; the image does not change", NULL, NULL},
     /* ---- the structure ---- */
     [APP_OPT_VIEWS] = {APP_OPT_VIEWS, NULL, "--views", NULL, "MODE", 'c', OFF(s.views), 0, 0,
         app_views_names, "the structure's views: single, cube or cube+camera", "cube+camera",

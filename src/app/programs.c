@@ -17,7 +17,7 @@ static const app_use render_technique_opts[] = {
     {APP_OPT_ENGINE}, {APP_OPT_MODE}, {APP_OPT_SPP}, {APP_OPT_BOUNCES}, {APP_OPT_SEED},
     {APP_OPT_AO_DISTANCE}, {APP_OPT_BACKGROUND}, {APP_OPT_ENV}, {APP_OPT_ENV_INTENSITY},
     {APP_OPT_ENV_ROTATION}, {APP_OPT_THREADS}, {APP_OPT_GPU}, {APP_OPT_CPU_TIMING},
-    {APP_OPT_NONE}};
+    {APP_OPT_COUNT_WORK}, {APP_OPT_NONE}};
 static const app_use render_dirt_opts[] = {
     {APP_OPT_DEBUG_ADS}, {APP_OPT_VIEWS}, {APP_OPT_TILE}, {APP_OPT_BUCKETS}, {APP_OPT_FACE_SIZE},
     {APP_OPT_NO_CONSERVATIVE}, {APP_OPT_BUILD}, {APP_OPT_LARGE}, {APP_OPT_HIZ_TOP},
@@ -84,9 +84,9 @@ static const app_use compare_sweep_opts[] = {
     {APP_OPT_NONE}};
 static const app_use compare_measure_opts[] = {
     {APP_OPT_WARMUP}, {APP_OPT_REPEAT}, {APP_OPT_FACE_SIZE}, {APP_OPT_LARGE},
-    {APP_OPT_AGREE_RES}, {APP_OPT_NO_QUALITY}, {APP_OPT_IMAGES}, {APP_OPT_SEED, 0, "7"},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT}, {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_GPU},
-    {APP_OPT_PRESET}, {APP_OPT_NONE}};
+    {APP_OPT_AGREE_RES}, {APP_OPT_NO_QUALITY}, {APP_OPT_COUNT_WORK}, {APP_OPT_IMAGES},
+    {APP_OPT_SEED, 0, "7"}, {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT},
+    {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_GPU}, {APP_OPT_PRESET}, {APP_OPT_NONE}};
 static const app_use compare_lighting_opts[] = {
     {APP_OPT_BACKGROUND, 0, NULL, "none: the lighting above"}, {APP_OPT_ENV},
     {APP_OPT_ENV_INTENSITY}, {APP_OPT_ENV_ROTATION}, {APP_OPT_NONE}};

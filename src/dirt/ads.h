@@ -104,7 +104,18 @@ typedef struct dirt_trace_opts {
     dirt_trace_alpha alpha; /* alpha-tested traversal (dirt/ray.h); zero = none */
     uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
                          set_batch); 0 = the call's rays 0 .. count - 1 */
+    uint32_t work;    /* GL buffer of one dirt_trace_work per ray: the counting
+                         build of the trace fills it; 0 = the plain build */
 } dirt_trace_opts;
+
+/* The work of one ray (the trace's counting build; doc/dirt-trace.md,
+ * "Work counters"): what it costs on any GPU, not a time. */
+typedef struct dirt_trace_work {
+    uint32_t tiles;          /* level-0 tiles whose buckets were walked */
+    uint32_t hiz_steps;      /* march steps: cells of any level looked at */
+    uint32_t list_nodes;     /* list nodes read */
+    uint32_t triangle_tests; /* exact ray-triangle tests (large primitives' too) */
+} dirt_trace_work;
 
 typedef struct dirt_trace_stats {
     uint64_t rays;
@@ -117,6 +128,11 @@ typedef struct dirt_trace_stats {
  * (blocking: uploads, dispatches, reads back). `opts`/`stats` may be NULL. */
 bool dirt_ads_trace(dirt_ads *ads, const dirt_ray *rays, size_t count, dirt_hit *hits,
                     const dirt_trace_opts *opts, dirt_trace_stats *stats);
+/* The same through the counting build, with each ray's work in work[i]
+ * (opts->work is ignored). */
+bool dirt_ads_trace_work(dirt_ads *ads, const dirt_ray *rays, size_t count, dirt_hit *hits,
+                         const dirt_trace_opts *opts, dirt_trace_stats *stats,
+                         dirt_trace_work *work);
 
 /* ---- Fetch ---- */
 

@@ -39,14 +39,14 @@ struct dirt_ads {
     size_t staging_cap;
     dirt_ads_stats stats;
     /* trace */
-    /* The trace's builds, [alpha | large << 1]: DIRT_TRACE_ALPHA (alpha
-     * tests), DIRT_TRACE_LARGE (large primitives; llvmpipe runs a loop's
-     * body once even when no invocation enters it, so the build without
-     * them is kept for structures that have none). [0] made at creation,
-     * the others on first use. */
-    GLuint prog_trace[4];
-    GLuint rays, hits;
-    size_t rays_size, hits_size;
+    /* The trace's builds, [alpha | large << 1 | count << 2]: DIRT_TRACE_ALPHA
+     * (alpha tests), DIRT_TRACE_LARGE (large primitives; llvmpipe runs a
+     * loop's body once even when no invocation enters it, so the build
+     * without them is kept for structures that have none), DIRT_TRACE_COUNT
+     * (work counters). [0] made at creation, the others on first use. */
+    GLuint prog_trace[8];
+    GLuint rays, hits, work;
+    size_t rays_size, hits_size, work_size;
     gl_timer trace_timer;
     /* fetch */
     GLuint prim_material;     /* uint per primitive */

@@ -199,7 +199,7 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_program_destroy(&a->prog_count);
     gl_program_destroy(&a->prog_fill);
     gl_program_destroy(&a->prog_mip);
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 8; k++)
         gl_program_destroy(&a->prog_trace[k]);
     gl_program_destroy(&a->prog_fetch);
     gl_program_destroy(&a->prog_fetch_miss);
@@ -222,6 +222,7 @@ void dirt_ads_destroy(dirt_ads *a)
     free(a->material_staging);
     gl_buffer_destroy(&a->rays);
     gl_buffer_destroy(&a->hits);
+    gl_buffer_destroy(&a->work);
     gl_timer_release(&a->trace_timer);
     fg_destroy(a->graph);
     fg_destroy(a->fill);

@@ -30,19 +30,23 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     /* Only a linking trace touches the hit lists (the barrier checker takes a
      * bound writable block as written). */
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, link ? a->hit_heads : 0);
+    if (opts.work)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_WORK, opts.work);
     /* Alpha-tested traversal and the large primitives: each its own build
      * of the shader (opaque scenes, and structures without large
      * primitives, keep the trace without). */
     const dirt_trace_alpha *al = &opts.alpha;
     bool large = a->stats.num_large > 0;
-    GLuint *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0)];
+    GLuint *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) | (opts.work ? 4 : 0)];
     if (!*prog) {
-        glsl_define defs[2];
+        glsl_define defs[3];
         int n = 0;
         if (al->materials)
             defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
         if (large)
             defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
+        if (opts.work)
+            defs[n++] = (glsl_define){"DIRT_TRACE_COUNT", "1"};
         *prog = gl_program_compute("dirt/trace.comp", defs, n);
         if (!*prog) {
             gl_group_pop();
@@ -159,6 +163,23 @@ bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *h
         !ads_trace_gl(a, a->rays, a->hits, (uint32_t)count, opts, false, stats))
         return false;
     return gl_buffer_read(a->hits, 0, count * sizeof(dirt_hit), hits);
+}
+
+bool dirt_ads_trace_work(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *hits,
+                         const dirt_trace_opts *opts_in, dirt_trace_stats *stats,
+                         dirt_trace_work *work)
+{
+    _Static_assert(sizeof(dirt_trace_work) == 16, "one uvec4 per ray (DIRT_BIND_WORK)");
+    dirt_trace_opts opts = opts_in ? *opts_in : (dirt_trace_opts){0};
+    if (!count)
+        return dirt_ads_trace(a, rays, count, hits, &opts, stats);
+    if (!gl_buffer_ensure(a->gpu, &a->work, &a->work_size, count * sizeof(*work), true,
+                          "dirt trace work"))
+        return false;
+    opts.work = a->work;
+    if (!dirt_ads_trace(a, rays, count, hits, &opts, stats))
+        return false;
+    return gl_buffer_read(a->work, 0, count * sizeof(*work), work);
 }
 
 bool dirt_ads_trace_fetch(dirt_ads *a, const dirt_ray *rays, size_t count,

@@ -130,6 +130,30 @@ void dirt_ref_occluded_keys(const dirt_ref_accel *accel, const dirt_ref_ray *ray
                             const uint32_t *keys, uint8_t *occluded, size_t count,
                             int threads);
 
+/* ---- work of a BVH traversal (ref/bvh_work.c) ---------------------------- */
+
+/* Embree's BVH (rtcBuildBVH: SAH, medium quality, 4 children, up to 4
+ * triangles per leaf) over a frame's triangles, walked by a counting
+ * traversal: what a ray costs a BVH, counted, not timed. */
+typedef struct dirt_ref_bvh dirt_ref_bvh;
+
+typedef struct dirt_ref_work {
+    uint32_t bvh_nodes;      /* nodes taken from the traversal stack (inner and leaves) */
+    uint32_t triangle_tests; /* triangles of the leaves reached */
+} dirt_ref_work;
+
+/* NULL after logging. The frame is copied. */
+dirt_ref_bvh *dirt_ref_bvh_create(const dirt_frame *frame);
+/* Accepts NULL. */
+void dirt_ref_bvh_destroy(dirt_ref_bvh *bvh);
+/* The closest hit (any_hit: the first found) of one ray, t in [tmin, tmax],
+ * ties to the lower primitive id, and its work. `hit` may be NULL. */
+void dirt_ref_bvh_trace1(const dirt_ref_bvh *bvh, const dirt_ref_ray *ray, bool any_hit,
+                         dirt_ref_hit *hit, dirt_ref_work *work);
+/* A batch on `threads` threads (0 = every CPU); `hits` may be NULL. */
+void dirt_ref_bvh_trace(const dirt_ref_bvh *bvh, const dirt_ref_ray *rays, size_t count,
+                        bool any_hit, dirt_ref_hit *hits, dirt_ref_work *work, int threads);
+
 /* ---- rendering ---------------------------------------------------------- */
 
 enum dirt_ref_mode {

@@ -71,3 +71,65 @@ bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t
     dirt_ref_accel_destroy(accel);
     return ok || session_fail(DIRT_SESSION_ERR_RENDER);
 }
+
+/* The work counters of dirt_session_opts.count_work: the hit-agreement
+ * batches at the image size and the session's seed, traced by the
+ * engine's counting build (engine_ops.agree with count_work; the embree
+ * engine has none) and, over the same rays (as the engine left them:
+ * MMRT moves their ends), by the counting walk of Embree's BVH. */
+bool session_count_work(dirt_session *s, dirt_session_stats *st)
+{
+    const engine_ops *ops = NULL;
+    engine_env env;
+    engine *e = session_built_engine(s, &ops, &env);
+    if (!e) {
+        DIRT_ERROR("work counters need a built session");
+        return false;
+    }
+    dirt_camera cam = *env.cam;
+    dirt_ref_accel *accel = dirt_ref_accel_create(env.frame, NULL);
+    dirt_ref_bvh *bvh = accel ? dirt_ref_bvh_create(env.frame) : NULL;
+    dirt_gbuffer g;
+    memset(&g, 0, sizeof(g));
+    bool ok = bvh && dirt_gbuffer_build(accel, env.scene, env.frame, &cam, env.width, env.height, &g);
+    size_t cap = (size_t)env.width * env.height;
+    engine_agree b = {.accel = accel, .count_work = true};
+    dirt_ref_work *rw = ok ? malloc(cap * sizeof(*rw)) : NULL;
+    b.rays = ok ? malloc(cap * sizeof(*b.rays)) : NULL;
+    b.hits = ok ? malloc(cap * sizeof(*b.hits)) : NULL;
+    b.ref = ok ? malloc(cap * sizeof(*b.ref)) : NULL;
+    b.occluded = ok ? malloc(cap) : NULL;
+    if (ok && !(rw && b.rays && b.hits && b.ref && b.occluded)) {
+        DIRT_ERROR("out of memory");
+        ok = false;
+    }
+    /* Primary rays first: MMRT's trace of them gives the thickness. */
+    for (int t = DIRT_RAY_PRIMARY; ok && t < DIRT_RAY_TYPES; t++) {
+        b.type = (enum dirt_ray_type)t;
+        b.count = dirt_rays_generate(&g, &cam, b.type, env.opts->seed, b.rays);
+        b.work = (dirt_session_work){.rays = b.count};
+        if (ops->agree)
+            ok = ops->agree(e, &env, &b);
+        if (!ok)
+            break;
+        dirt_ref_bvh_trace(bvh, (const dirt_ref_ray *)b.rays, b.count, t == DIRT_RAY_VISIBILITY,
+                           NULL, rw, env.opts->threads);
+        dirt_session_work *ew = &st->embree_work[t];
+        *ew = (dirt_session_work){.rays = b.count};
+        for (size_t i = 0; i < b.count; i++) {
+            ew->bvh_nodes += rw[i].bvh_nodes;
+            ew->triangle_tests += rw[i].triangle_tests;
+        }
+        st->work[t] = ops->agree ? b.work : *ew;
+    }
+    st->has_work = ok;
+    free(rw);
+    free(b.rays);
+    free(b.hits);
+    free(b.ref);
+    free(b.occluded);
+    dirt_gbuffer_free(&g);
+    dirt_ref_bvh_destroy(bvh);
+    dirt_ref_accel_destroy(accel);
+    return ok;
+}

@@ -65,7 +65,9 @@ typedef struct engine_agree {
     dirt_ref_hit *ref;
     unsigned char *occluded;
     float thickness;               /* in: the primary batch's (MMRT), out: this batch's */
+    bool count_work;               /* in: trace with the counting build, into `work` */
     /* out */
+    dirt_session_work work;        /* rays and the engine's counts (count_work) */
     size_t same;                   /* rays whose hits agree */
     double ms;                     /* the trace of the batch */
     enum dirt_clock clock;

@@ -199,7 +199,23 @@ static bool agree(engine *e, const engine_env *env, engine_agree *b)
     dirt_trace_stats ts;
     dirt_trace_opts to = {.hiz_levels = env->opts->hiz_levels, .any_hit = vis};
     dirt_ref_intersect(b->accel, (const dirt_ref_ray *)b->rays, b->ref, b->count, 0);
-    if (!dirt_ads_trace(((dirt_state *)e)->ads, b->rays, b->count, b->hits, &to, &ts))
+    dirt_ads *ads = ((dirt_state *)e)->ads;
+    dirt_trace_work *w = b->count_work ? malloc((b->count + 1) * sizeof(*w)) : NULL;
+    if (b->count_work && !w) {
+        DIRT_ERROR("out of memory");
+        return false;
+    }
+    bool ok = w ? dirt_ads_trace_work(ads, b->rays, b->count, b->hits, &to, &ts, w)
+                : dirt_ads_trace(ads, b->rays, b->count, b->hits, &to, &ts);
+    b->work = (dirt_session_work){.rays = b->count};
+    for (size_t i = 0; ok && w && i < b->count; i++) {
+        b->work.tiles += w[i].tiles;
+        b->work.hiz_steps += w[i].hiz_steps;
+        b->work.list_nodes += w[i].list_nodes;
+        b->work.triangle_tests += w[i].triangle_tests;
+    }
+    free(w);
+    if (!ok)
         return false;
     b->same = 0;
     for (size_t i = 0; i < b->count; i++)

@@ -150,6 +150,7 @@ static bool agree(engine *e, const engine_env *env, engine_agree *b)
             r->tmax = 1 - MMRT_OFFSET_THICKNESSES * b->thickness / len;
     }
     dirt_mmrt_trace_opts mo = trace_opts(env->opts);
+    mo.count = mo.count || b->count_work;
     dirt_mmrt_trace_stats ts;
     if (!dirt_mmrt_trace_cpu(((mmrt_engine *)e)->mmrt, b->rays, b->count, b->hits, &mo, &ts))
         return false;
@@ -172,6 +173,12 @@ static bool agree(engine *e, const engine_env *env, engine_agree *b)
     b->ms = ts.ms;
     b->clock = ts.clock;
     b->aborted = ts.aborted;
+    b->work = (dirt_session_work){.rays = b->count};
+    if (b->count_work) {
+        b->work.fragments = ts.nodes_visited;
+        b->work.pixels = ts.pixels_tested;
+        b->work.hiz_steps = ts.steps;
+    }
     return true;
 }
 

@@ -1,5 +1,6 @@
 /* The raster engine: the rasterized preview with direct lighting, one
  * render per accumulation (engine.h). */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "dirt/log.h"
@@ -117,8 +118,19 @@ static uint32_t display_texture(engine *e, const engine_env *env)
     return engine_display_upload(&r->display, env->gpu, r->img);
 }
 
+/* The preview traces no rays: it has no work to count. */
+static bool check_opts(const dirt_session_opts *o, char *why, size_t size)
+{
+    if (o->count_work) {
+        snprintf(why, size, "work counters need an engine that traces rays (dirt, mmrt, embree)");
+        return false;
+    }
+    return true;
+}
+
 const engine_ops engine_raster_ops = {
     .needs_gpu = true,
+    .check_opts = check_opts,
     .create = create,
     .destroy = destroy,
     .reshape = reshape,

@@ -464,6 +464,9 @@ bool dirt_session_build(dirt_session *s)
         return session_fail(DIRT_SESSION_ERR_RENDER);
     build_stats(s, &s->stats);
     fill_common(s, &s->stats);
+    s->stats.has_work = false;
+    if (s->opts.count_work && !session_count_work(s, &s->stats))
+        return session_fail(DIRT_SESSION_ERR_RENDER);
     return true;
 }
 
@@ -483,6 +486,15 @@ bool dirt_session_add_samples(dirt_session *s, int count,
     if (!was_built || st->num_passes == 0)
         build_stats(s, st);
     fill_common(s, st);
+    if (!was_built || !s->opts.count_work)
+        st->has_work = false;
+    if (s->opts.count_work && !st->has_work) {
+        /* Counting is not rendering: its time stays out of total_ms. */
+        double c0 = dirt_clock_ms();
+        if (!session_count_work(s, st))
+            return session_fail(DIRT_SESSION_ERR_RENDER);
+        t0 += dirt_clock_ms() - c0;
+    }
     engine_env env = env_of(s);
     if (!s->ops->add_samples(s->engine, &env, count, progress, user, st, &s->samples))
         return session_fail(DIRT_SESSION_ERR_RENDER);

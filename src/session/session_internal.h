@@ -24,4 +24,8 @@ dirt_mmrt *dirt_session_mmrt(dirt_session *s);
 void session_begin(void);
 bool session_fail(enum dirt_session_error e);
 
+/* Fills st->work and st->embree_work (dirt_session_opts.count_work) from
+ * the built engine (agreement.c). False after logging. */
+bool session_count_work(dirt_session *s, dirt_session_stats *st);
+
 #endif

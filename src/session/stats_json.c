@@ -88,6 +88,44 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
     }
 }
 
+/* One ray type's work: rays, triangle tests and the engine's own counts. */
+static void add_work_counts(cJSON *o, enum dirt_engine e, const dirt_session_work *w)
+{
+    cJSON_AddNumberToObject(o, "rays", (double)w->rays);
+    cJSON_AddNumberToObject(o, "triangle_tests", (double)w->triangle_tests);
+    if (e == DIRT_ENGINE_DIRT) {
+        cJSON_AddNumberToObject(o, "tiles", (double)w->tiles);
+        cJSON_AddNumberToObject(o, "hiz_steps", (double)w->hiz_steps);
+        cJSON_AddNumberToObject(o, "list_nodes", (double)w->list_nodes);
+    } else if (e == DIRT_ENGINE_MMRT) {
+        cJSON_AddNumberToObject(o, "fragments", (double)w->fragments);
+        cJSON_AddNumberToObject(o, "pixels", (double)w->pixels);
+        cJSON_AddNumberToObject(o, "hiz_steps", (double)w->hiz_steps);
+    } else {
+        cJSON_AddNumberToObject(o, "bvh_nodes", (double)w->bvh_nodes);
+    }
+}
+
+/* "work": per ray type, the engine's counts and (dirt, mmrt) Embree's over
+ * the same rays under "embree". */
+static void add_work(cJSON *f, const dirt_session_stats *st)
+{
+    if (!st->has_work)
+        return;
+    cJSON *w = cJSON_AddObjectToObject(f, "work");
+    for (int t = 0; w && t < DIRT_RAY_TYPES; t++) {
+        cJSON *o = cJSON_AddObjectToObject(w, dirt_ray_type_names[t]);
+        if (!o)
+            break;
+        add_work_counts(o, st->engine, &st->work[t]);
+        if (st->engine != DIRT_ENGINE_EMBREE) {
+            cJSON *e = cJSON_AddObjectToObject(o, "embree");
+            if (e)
+                add_work_counts(e, DIRT_ENGINE_EMBREE, &st->embree_work[t]);
+        }
+    }
+}
+
 struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
 {
     cJSON *f = cJSON_CreateObject();
@@ -101,6 +139,7 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
     cJSON_AddNumberToObject(f, "seed", st->seed);
     add_figures(f, st);
     add_details(f, st);
+    add_work(f, st);
     return f;
 }
 

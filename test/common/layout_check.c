@@ -225,6 +225,7 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_PREVIEW_LIGHTS, "PREVIEW"),
     B(DIRT_BIND_TEST_IN, "TEST"),
     B(DIRT_BIND_TEST_OUT, "TEST"),
+    B(DIRT_BIND_WORK, "WORK"),
 };
 #undef B
 const size_t dirt_layout_num_bindings =
@@ -232,7 +233,7 @@ const size_t dirt_layout_num_bindings =
 
 #define R(name) {#name, DIRT_BIND_##name##_FIRST, DIRT_BIND_##name##_LAST}
 const dirt_layout_range dirt_layout_ranges[] = {
-    R(SHARED), R(ADS), R(TRACE), R(INTEGRATOR), R(MMRT), R(MMRT_PT), R(MODEL), R(PREVIEW), R(TEST),
+    R(SHARED), R(ADS), R(TRACE), R(INTEGRATOR), R(MMRT), R(MMRT_PT), R(MODEL), R(PREVIEW), R(TEST), R(WORK),
 };
 #undef R
 const size_t dirt_layout_num_ranges = sizeof(dirt_layout_ranges) / sizeof(dirt_layout_ranges[0]);
@@ -247,7 +248,8 @@ _Static_assert(DIRT_BIND_SHARED_FIRST == 0 && DIRT_BIND_ADS_FIRST == DIRT_BIND_S
                    DIRT_BIND_MODEL_FIRST == DIRT_BIND_MMRT_PT_LAST + 1 &&
                    DIRT_BIND_PREVIEW_FIRST == DIRT_BIND_MODEL_LAST + 1 &&
                    DIRT_BIND_TEST_FIRST == DIRT_BIND_PREVIEW_LAST + 1 &&
-                   DIRT_BIND_LAST == DIRT_BIND_TEST_LAST,
+                   DIRT_BIND_WORK_FIRST == DIRT_BIND_TEST_LAST + 1 &&
+                   DIRT_BIND_LAST == DIRT_BIND_WORK_LAST,
                "binding ranges tile [0, DIRT_BIND_LAST]");
 /* As many names as binding points: with the distinct values checked by
  * dirt_layout_binding_name, every point of every range is named once. */
@@ -299,6 +301,7 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_PREVIEW_LIGHTS);
         CASE(DIRT_BIND_TEST_IN);
         CASE(DIRT_BIND_TEST_OUT);
+        CASE(DIRT_BIND_WORK);
     default:
         return NULL;
     }

@@ -324,5 +324,28 @@ PY
 else
   fail "--no-quality run: exit $?"; cat "$tmp/nq.log" >&2
 fi
+# --count-work: each row's work per ray type for DIRT and MMRT, with
+# Embree's over DIRT's rays, and its table in table.md.
+if "$cmp" default -o "$tmp/cw" --res 32x24 --repeat 1 --warmup 0 --no-quality --count-work -q \
+    >"$tmp/cw.log" 2>&1; then
+  python3 - "$tmp/cw" <<'PY' || fail "--count-work: rows or table"
+import json, sys
+d = sys.argv[1]
+rows = json.load(open(d + "/results.json"))["configurations"]
+types = {"primary", "visibility", "specular", "glossy", "diffuse"}
+ok = len(rows) == 1 and all(
+    set(r["dirt"]["work"]) == types and set(r["mmrt"]["work"]) == types and
+    all(w["rays"] == 32 * 24 * (t == "primary") or t != "primary"
+        for t, w in r["dirt"]["work"].items()) and
+    all(w["tiles"] > 0 and w["list_nodes"] > 0 and w["embree"]["bvh_nodes"] > 0
+        for w in r["dirt"]["work"].values()) and
+    all(w["fragments"] > 0 for w in r["mmrt"]["work"].values()) for r in rows)
+table = open(d + "/table.md").read()
+ok = ok and "## Work per ray (--count-work)" in table and "| diffuse |" in table
+sys.exit(0 if ok else 1)
+PY
+else
+  fail "--count-work run: exit $?"; cat "$tmp/cw.log" >&2
+fi
 [ "$fails" -eq 0 ] && echo "test_compare: all checks passed"
 [ "$fails" -eq 0 ]

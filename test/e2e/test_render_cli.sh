@@ -193,6 +193,27 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'all(p["clock"] in ("gpu", "cpu") and p["ms"] >= 0 for p in d["passes"])' \
   'set(p["name"] for p in d["passes"]) >= {"depth bounds", "fill primitives", "trace", "fetch", "shade"}' \
   && ok || fail "d.json figures"
+# Work counters (--count-work): per ray type in each frame's stats, the
+# image unchanged bit for bit; none without the option; the raster preview
+# traces no rays (exit 2).
+expect_rc 0 "count work" -- -o "$out/w.exr" -W 32 -H 24 --spp 2 --count-work --stats "$out/w.json"
+"$exr" --exact "$out/w.exr" "$out/d.exr" && ok || fail "--count-work changed the image"
+"$json" "$out/w.json" \
+  'set(d["frames"][0]["work"]) == {"primary", "visibility", "specular", "glossy", "diffuse"}' \
+  'd["frames"][0]["work"]["primary"]["rays"] == 32 * 24' \
+  'all(w["triangle_tests"] > 0 and w["tiles"] > 0 and w["hiz_steps"] >= w["tiles"] and w["list_nodes"] > 0 for w in d["frames"][0]["work"].values())' \
+  'all(w["embree"]["rays"] == w["rays"] and w["embree"]["bvh_nodes"] > 0 and w["embree"]["triangle_tests"] > 0 for w in d["frames"][0]["work"].values())' \
+  && ok || fail "w.json work counts"
+"$json" "$out/d.json" '"work" not in d["frames"][0]' && ok || fail "work counted without --count-work"
+expect_rc 0 "count work, mmrt" -- --engine mmrt -o "$out/wm.png" -W 32 -H 24 --spp 1 --count-work --stats "$out/wm.json"
+"$json" "$out/wm.json" \
+  'all(w["fragments"] > 0 and w["pixels"] > 0 and w["hiz_steps"] > 0 and w["triangle_tests"] == 0 for w in d["frames"][0]["work"].values())' \
+  && ok || fail "wm.json work counts"
+expect_rc 0 "count work, embree" -- --engine embree -o "$out/we.png" -W 32 -H 24 --spp 1 --count-work --stats "$out/we.json"
+"$json" "$out/we.json" \
+  'all(w["bvh_nodes"] > 0 and w["triangle_tests"] > 0 and "embree" not in w for w in d["frames"][0]["work"].values())' \
+  && ok || fail "we.json work counts"
+expect_rc 2 "count work with the raster engine" -- --engine raster --count-work -o "$out/r3.png"
 # A DIRT EXR's provenance, and a scene within an explicit budget (the load
 # also counts the file it reads and the parsed JSON: this 585-byte glTF needs
 # between 32 and 36 KB).

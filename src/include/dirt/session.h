@@ -155,6 +155,13 @@ typedef struct dirt_session_opts {
     float aperture;             /* thin-lens radius (0 = pinhole) */
     float focus;                /* focus distance (0 = distance to the scene centre) */
     int threads;                /* embree: CPU threads (0 = all) */
+    /* Work counters (doc/dirt-trace.md, "Work counters"): after each build,
+     * the hit-agreement rays of every ray type (the camera G-buffer at the
+     * image size, this seed) are traced by the counting build of the
+     * engine's trace and by a counting walk of Embree's BVH, into
+     * dirt_session_stats.work. The image does not change. dirt, mmrt and
+     * embree (its BVH's counts only). */
+    bool count_work;
     /* Times: the GPU engines' come with the GPU's one clock (dirt_gpu_clock;
      * the CPU clock on a GPU needs dirt_gpu_opts.cpu_timing); Embree's are
      * CPU times. */
@@ -172,6 +179,20 @@ enum dirt_camera_choice {
     DIRT_CAMERA_AUTO,           /* frames the whole animation clip, the same at every time */
     DIRT_CAMERA_EXPLICIT,       /* a camera given by the application */
 };
+
+/* The work of one ray type's rays, summed over the rays (counted, not
+ * timed: what carries over to any GPU). Each engine fills its own. */
+typedef struct dirt_session_work {
+    uint64_t rays;
+    uint64_t triangle_tests;  /* exact ray-triangle tests (dirt, embree; 0 for mmrt,
+                                 which tests fragments' depths instead) */
+    uint64_t tiles;           /* dirt: tiles whose bucket lists were walked */
+    uint64_t hiz_steps;       /* dirt, mmrt: march steps (cells of any level looked at) */
+    uint64_t list_nodes;      /* dirt: list nodes read */
+    uint64_t fragments;       /* mmrt: fragments visited (each one depth test) */
+    uint64_t pixels;          /* mmrt: pixel lists tested */
+    uint64_t bvh_nodes;       /* embree: BVH nodes visited */
+} dirt_session_work;
 
 /* Figures of the accumulation since the last restart (times and rays add
  * up over dirt_session_add_samples calls; the build's are the last build's).
@@ -212,6 +233,12 @@ typedef struct dirt_session_stats {
     dirt_ads_stats ads;
     bool has_mmrt;
     dirt_mmrt_stats mmrt;
+    /* With dirt_session_opts.count_work: the work of the last build's
+     * structure per ray type (enum dirt_ray_type), and Embree's BVH over
+     * the same rays (for the embree engine the two are the same). */
+    bool has_work;
+    dirt_session_work work[DIRT_RAY_TYPES];
+    dirt_session_work embree_work[DIRT_RAY_TYPES];
 } dirt_session_stats;
 
 /* A session on `scene` (and `gpu`, which may be NULL for the embree engine

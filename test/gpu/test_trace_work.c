@@ -1,0 +1,454 @@
+/* Work counters (doc/dirt-trace.md, "Work counters"):
+ *  - the counting build of DIRT's trace finds the same hits as the plain
+ *    build, bit for bit (primitive, view, t, u, v), for every ray type on
+ *    the default scene (views single and cube+camera, large primitives on
+ *    and off);
+ *  - its counts equal a CPU count made another way: for rays that hit
+ *    nothing (tmax half-way to Embree's hit, or leaving the scene), on a
+ *    level-0 march of one view, the CPU cuts the ray at every tile line it
+ *    crosses (double precision), so the Hi-Z steps are the pieces, the
+ *    tiles walked are the pieces whose depth span meets the tile's bounds,
+ *    the list nodes are the lengths of the lists of the buckets the span
+ *    overlaps (read back from the structure) and the triangle tests the
+ *    distinct primitives among them (exact while at most four distinct ones
+ *    are met, the trace's rejection cache; else between that and the
+ *    nodes). Rays within rounding of a tile line, a depth bound or a bucket
+ *    edge are left out (counted, at most 15 %);
+ *  - the full pyramid walks the same tiles, nodes and triangle tests as
+ *    the level-0 march (rays within rounding left out as above);
+ *  - Embree's BVH walk (ref/bvh_work.c) finds Embree's closest hits and
+ *    occlusion, and its counts are bounded: an any-hit walk never does more
+ *    than the closest-hit walk, no walk tests more triangles than there
+ *    are, and a ray that hits tested at least one. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ads_common.h"
+#include "check.h"
+#include "common/layout.h"
+#include "dirt/ads.h"
+#include "dirt/scene.h"
+#include "gpu.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
+
+static uint32_t g_rng = 12345u;
+static float frand(void)
+{
+    g_rng = g_rng * 1664525u + 1013904223u;
+    return (float)(g_rng >> 8) / 16777216.0f;
+}
+
+/* A soup of small random triangles in a unit box (long lists, thin
+ * geometry at every angle). */
+static dirt_frame *soup(size_t n)
+{
+    dirt_frame *f = frame_new(n);
+    for (size_t t = 0; t < n; t++) {
+        float c[3] = {frand(), frand(), frand()}, p[3][3];
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                p[v][k] = c[k] + 0.12f * (frand() - 0.5f);
+        set_tri(f, t, p[0], p[1], p[2]);
+    }
+    frame_bounds(f);
+    return f;
+}
+
+static bool g_verbose; /* print the CPU count's pieces (DIRT_TEST_VERBOSE, rays that differ) */
+
+typedef struct cpu_count {
+    bool ambiguous;
+    uint32_t steps, tiles, nodes, distinct;
+} cpu_count;
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The CPU count of one ray over view 0 (the only view) of `set`, level 0. */
+static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, const dirt_ray *r)
+{
+    cpu_count c = {0};
+    const dirt_view *v = &set->views[0];
+    int S = set->tile_size, B = d->buckets;
+    double co[4] = {0}, cd[4] = {0};
+    for (int i = 0; i < 4; i++) {
+        for (int k = 0; k < 3; k++) {
+            co[i] += (double)v->view_proj[4 * k + i] * r->org[k];
+            cd[i] += (double)v->view_proj[4 * k + i] * r->dir[k];
+        }
+        co[i] += v->view_proj[12 + i];
+    }
+    /* The segment in the frustum: -w <= x, y, z <= w. */
+    double t0 = r->tmin, t1 = r->tmax;
+    for (int p = 0; p < 6; p++) {
+        double s = p & 1 ? -1 : 1;
+        double a = co[3] + s * co[p >> 1], b = cd[3] + s * cd[p >> 1];
+        if (b == 0) {
+            if (a < 0)
+                return c;
+        } else if (b > 0) {
+            t0 = fmax(t0, -a / b);
+        } else {
+            t1 = fmin(t1, -a / b);
+        }
+    }
+    if (!(t0 < t1))
+        return c;
+    double len = t1 - t0, eps = 1e-5 * len;
+    /* Every crossing of a tile line inside the segment. */
+    int nx = v->tiles_x + 1, ny = v->tiles_y + 1;
+    double *cuts = malloc((size_t)(nx + ny + 2) * sizeof(double));
+    int n = 0;
+    cuts[n++] = t0;
+    for (int axis = 0; axis < 2; axis++) {
+        int lines = axis ? ny : nx, size = axis ? v->height : v->width;
+        for (int k = 0; k < lines; k++) {
+            double X = -1.0 + 2.0 * fmin((double)k * S, size) / size;
+            double den = cd[axis] - X * cd[3];
+            if (den == 0)
+                continue;
+            double t = -(co[axis] - X * co[3]) / den;
+            if (g_verbose && t > t0 - len && t < t1 + len)
+                fprintf(stderr, "    axis %d line %d at t %.9g (segment [%.9g, %.9g])\n", axis, k,
+                        t, t0, t1);
+            if (t > t0 - eps && t < t1 + eps)
+                cuts[n++] = t;
+        }
+    }
+    cuts[n++] = t1;
+    qsort(cuts, (size_t)n, sizeof(double), cmp_d);
+    uint32_t seen[4096];
+    for (int i = 0; i + 1 < n; i++) {
+        double ta = cuts[i], tb = cuts[i + 1];
+        if (tb - ta < eps) {
+            /* a corner, or a line through an end: rounding decides */
+            if (!(i == 0 && ta == t0 && tb == t0) && !(i + 2 == n && tb == t1 && ta == t1))
+                c.ambiguous = true;
+            continue;
+        }
+        double tm = 0.5 * (ta + tb), w = co[3] + tm * cd[3];
+        double ndc[2] = {(co[0] + tm * cd[0]) / w, (co[1] + tm * cd[1]) / w};
+        double fx = (ndc[0] * 0.5 + 0.5) * v->width / S, fy = (ndc[1] * 0.5 + 0.5) * v->height / S;
+        int tx = (int)floor(fx), ty = (int)floor(fy);
+        /* A ray running along a tile line (a mirror ray in the plane of a
+         * row through the eye): which side is rounding's. */
+        if (fabs(fx - round(fx)) < 1e-4 || fabs(fy - round(fy)) < 1e-4)
+            c.ambiguous = true;
+        if (tx < 0 || ty < 0 || tx >= v->tiles_x || ty >= v->tiles_y) {
+            c.ambiguous = true;
+            continue;
+        }
+        c.steps++;
+        int gt = set->level_base[0][0] + ty * v->tiles_x + tx;
+        double zlo = d->depth[gt][0], zhi = d->depth[gt][1];
+        double wa = co[3] + ta * cd[3], wb = co[3] + tb * cd[3];
+        double lo = fmin(wa, wb), hi = fmax(wa, wb);
+        if (g_verbose)
+            fprintf(stderr, "    piece [%.9g, %.9g] tile (%d, %d) span [%.9g, %.9g] bounds "
+                    "[%.9g, %.9g]\n", ta, tb, tx, ty, lo, hi, zlo, zhi);
+        if (!(zlo <= zhi) || hi < zlo || lo > zhi) {
+            if (zlo <= zhi && (fabs(hi - zlo) < 1e-5 * fabs(zlo) + 1e-7 ||
+                               fabs(lo - zhi) < 1e-5 * fabs(zhi) + 1e-7))
+                c.ambiguous = true;
+            continue;
+        }
+        if (fabs(hi - zlo) < 1e-5 * fabs(zlo) + 1e-7 || fabs(lo - zhi) < 1e-5 * fabs(zhi) + 1e-7)
+            c.ambiguous = true;
+        c.tiles++;
+        double range = zhi - zlo;
+        int ba = 0, bb = 0;
+        if (range > 0) {
+            double fa = B * (wa - zlo) / range, fb = B * (wb - zlo) / range;
+            if ((fabs(fa - round(fa)) < 1e-3 && fa > 0.5 && fa < B - 0.5) ||
+                (fabs(fb - round(fb)) < 1e-3 && fb > 0.5 && fb < B - 0.5))
+                c.ambiguous = true;
+            ba = (int)fmin(fmax(floor(fa), 0), B - 1);
+            bb = (int)fmin(fmax(floor(fb), 0), B - 1);
+        }
+        for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++) {
+            for (uint32_t node = d->heads[(size_t)b * d->num_tiles + gt]; node != DIRT_LIST_END;
+                 node = d->nodes[node][1]) {
+                uint32_t p = d->nodes[node][0];
+                c.nodes++;
+                bool known = false;
+                for (uint32_t k = 0; k < c.distinct && !known; k++)
+                    known = seen[k] == p;
+                if (!known && c.distinct < 4096)
+                    seen[c.distinct++] = p;
+            }
+        }
+    }
+    free(cuts);
+    return c;
+}
+
+/* The CPU count against the counting trace on missing rays, and the full
+ * pyramid against the level-0 march on `rays`. */
+static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
+                         const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets)
+{
+    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+    dirt_ref_hit *ref = malloc(n * sizeof(*ref));
+    dirt_hit *hits = malloc(n * sizeof(*hits));
+    dirt_trace_work *w0 = malloc(n * sizeof(*w0)), *wf = malloc(n * sizeof(*wf));
+    dirt_ray *miss = malloc(n * sizeof(*miss));
+    dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = 64, .height = 48,
+                                 .tile_size = 2},
+                       .buckets = buckets, .force_emulation = true, .large = -1};
+    dirt_ads *ads = dirt_ads_create(gpu, &o);
+    CHECK(accel && ads && dirt_ads_build(ads, f, cam));
+    dirt_ads_data d;
+    bool have = ads && dirt_ads_read(ads, &d);
+    CHECK(have);
+    if (!have || !accel)
+        goto done;
+    /* Missing rays: tmax half-way to Embree's hit. */
+    dirt_ref_intersect(accel, (const dirt_ref_ray *)rays, ref, n, 0);
+    for (size_t i = 0; i < n; i++) {
+        miss[i] = rays[i];
+        if (ref[i].prim != DIRT_REF_MISS)
+            miss[i].tmax = rays[i].tmin + 0.5f * (ref[i].t - rays[i].tmin);
+    }
+    dirt_trace_opts level0 = {.hiz_levels = 1};
+    dirt_trace_stats ts;
+    CHECK(dirt_ads_trace_work(ads, miss, n, hits, &level0, &ts, w0));
+    CHECK(ts.aborted == 0);
+    size_t checked = 0, ambiguous = 0, hit = 0, exact_tests = 0, walked = 0;
+    size_t bad[4] = {0};
+    for (size_t i = 0; i < n; i++) {
+        if (hits[i].prim != DIRT_HIT_NONE) {
+            hit++;
+            continue;
+        }
+        cpu_count c = count_ray(dirt_ads_views(ads), &d, &miss[i]);
+        if (c.ambiguous) {
+            ambiguous++;
+            continue;
+        }
+        checked++;
+        walked += c.tiles;
+        bool b[4] = {w0[i].hiz_steps != c.steps, w0[i].tiles != c.tiles,
+                     w0[i].list_nodes != c.nodes,
+                     c.distinct <= 4 ? w0[i].triangle_tests != c.distinct
+                                     : w0[i].triangle_tests < c.distinct ||
+                                           w0[i].triangle_tests > c.nodes};
+        exact_tests += c.distinct <= 4;
+        for (int k = 0; k < 4; k++) {
+            bad[k] += b[k];
+            if (b[k] && bad[k] <= 1 && getenv("DIRT_TEST_VERBOSE")) {
+                fprintf(stderr, "  ray %zu org %.9g %.9g %.9g dir %.9g %.9g %.9g t [%.9g, %.9g]\n",
+                        i, miss[i].org[0], miss[i].org[1], miss[i].org[2], miss[i].dir[0],
+                        miss[i].dir[1], miss[i].dir[2], miss[i].tmin, miss[i].tmax);
+                g_verbose = true;
+                count_ray(dirt_ads_views(ads), &d, &miss[i]);
+                g_verbose = false;
+            }
+            if (b[k] && bad[k] <= 3)
+                fprintf(stderr, "  %s ray %zu: GPU (%u steps, %u tiles, %u nodes, %u tests), CPU "
+                        "(%u steps, %u tiles, %u nodes, %u distinct)\n", label, i,
+                        w0[i].hiz_steps, w0[i].tiles, w0[i].list_nodes, w0[i].triangle_tests,
+                        c.steps, c.tiles, c.nodes, c.distinct);
+        }
+    }
+    fprintf(stderr, "%s B=%d: %zu missing rays checked (%zu tiles walked, %zu with exact "
+            "triangle tests), %zu within rounding left out, %zu found a hit; differ: steps %zu, "
+            "tiles %zu, nodes %zu, tests %zu\n", label, buckets, checked, walked, exact_tests,
+            ambiguous, hit, bad[0], bad[1], bad[2], bad[3]);
+    CHECK_MSG(hit <= n / 100, "%s: %zu of %zu shortened rays found a hit", label, hit, n);
+    CHECK_MSG(ambiguous <= n * 15 / 100, "%s: %zu of %zu rays left out", label, ambiguous, n);
+    CHECK(walked > checked && exact_tests > checked / 5);
+    for (int k = 0; k < 4; k++)
+        CHECK_MSG(bad[k] == 0, "%s: count %d differs on %zu rays", label, k, bad[k]);
+    /* The full pyramid walks the same tiles and lists in fewer steps. */
+    for (int m = 0; m < 2; m++) {
+        dirt_ray *rs = m ? rays : miss;
+        CHECK(dirt_ads_trace_work(ads, rs, n, hits, &level0, NULL, w0));
+        CHECK(dirt_ads_trace_work(ads, rs, n, hits, NULL, NULL, wf));
+        size_t differ = 0, left_out = 0;
+        uint64_t s0 = 0, sf = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (count_ray(dirt_ads_views(ads), &d, &rs[i]).ambiguous) {
+                left_out++;
+                continue;
+            }
+            differ += w0[i].tiles != wf[i].tiles || w0[i].list_nodes != wf[i].list_nodes ||
+                      w0[i].triangle_tests != wf[i].triangle_tests;
+            s0 += w0[i].hiz_steps;
+            sf += wf[i].hiz_steps;
+        }
+        fprintf(stderr, "%s %s rays: full pyramid %.2f steps per ray, level 0 %.2f; %zu rays "
+                "walk other tiles or lists (%zu within rounding left out)\n", label,
+                m ? "whole" : "missing", (double)sf / n, (double)s0 / n, differ, left_out);
+        CHECK_MSG(differ == 0, "%s: %zu rays differ between the pyramid and level 0", label,
+                  differ);
+    }
+    dirt_ads_data_free(&d);
+done:
+    dirt_ads_destroy(ads);
+    dirt_ref_accel_destroy(accel);
+    free(ref);
+    free(hits);
+    free(w0);
+    free(wf);
+    free(miss);
+}
+
+/* The counting build against the plain one: the same hits, bit for bit. */
+static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *f,
+                            const dirt_camera *cam)
+{
+    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+    dirt_gbuffer g;
+    CHECK(accel && dirt_gbuffer_build(accel, scene, f, cam, 48, 36, &g));
+    size_t n = 48 * 36;
+    dirt_ray *rays = malloc(n * sizeof(*rays));
+    dirt_hit *a = malloc(n * sizeof(*a)), *b = malloc(n * sizeof(*b));
+    dirt_trace_work *w = malloc(n * sizeof(*w));
+    for (int k = 0; k < 4; k++) {
+        dirt_ads_opts o = {.views = {.mode = k & 1 ? DIRT_VIEWS_SINGLE : DIRT_VIEWS_CUBE_CAMERA,
+                                     .width = 64, .height = 48, .face_size = 32, .tile_size = 2},
+                           .buckets = 8, .force_emulation = true, .large = k & 2 ? -1 : 0};
+        dirt_ads *ads = dirt_ads_create(gpu, &o);
+        CHECK(ads && dirt_ads_build(ads, f, cam));
+        for (int t = 0; ads && t < DIRT_RAY_TYPES; t++) {
+            size_t cnt = dirt_rays_generate(&g, cam, (enum dirt_ray_type)t, 3, rays);
+            dirt_trace_opts to = {.any_hit = t == DIRT_RAY_VISIBILITY};
+            CHECK(dirt_ads_trace(ads, rays, cnt, a, &to, NULL));
+            CHECK(dirt_ads_trace_work(ads, rays, cnt, b, &to, NULL, w));
+            size_t differ = 0;
+            uint64_t tests = 0;
+            for (size_t i = 0; i < cnt; i++) {
+                differ += memcmp(&a[i], &b[i], sizeof(a[i])) != 0;
+                tests += w[i].triangle_tests;
+            }
+            CHECK_MSG(differ == 0, "%s large %s %s: %zu of %zu hits differ with counting",
+                      k & 1 ? "single" : "cube+camera", k & 2 ? "off" : "on",
+                      dirt_ray_type_names[t], differ, cnt);
+            CHECK(tests > 0);
+        }
+        dirt_ads_destroy(ads);
+    }
+    free(rays);
+    free(a);
+    free(b);
+    free(w);
+    dirt_gbuffer_free(&g);
+    dirt_ref_accel_destroy(accel);
+}
+
+/* Embree's BVH walk: Embree's answers, bounded counts. */
+static void check_bvh(const char *label, const dirt_frame *f, const dirt_ray *rays, size_t n)
+{
+    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+    dirt_ref_bvh *bvh = dirt_ref_bvh_create(f);
+    CHECK(accel && bvh);
+    if (!accel || !bvh)
+        goto done;
+    const dirt_ref_ray *rr = (const dirt_ref_ray *)rays;
+    dirt_ref_hit *ref = malloc(n * sizeof(*ref)), *got = malloc(n * sizeof(*got));
+    dirt_ref_work *wc = malloc(n * sizeof(*wc)), *wa = malloc(n * sizeof(*wa));
+    uint8_t *occ = malloc(n);
+    dirt_ref_intersect(accel, rr, ref, n, 0);
+    dirt_ref_occluded(accel, rr, occ, n, 0);
+    dirt_ref_bvh_trace(bvh, rr, n, false, got, wc, 0);
+    size_t wrong = 0, bad = 0, hits = 0;
+    uint64_t nodes = 0, tests = 0;
+    for (size_t i = 0; i < n; i++) {
+        bool eh = ref[i].prim != DIRT_REF_MISS, gh = got[i].prim != DIRT_REF_MISS;
+        hits += eh;
+        wrong += eh != gh || (eh && got[i].prim != ref[i].prim &&
+                              fabsf(got[i].t - ref[i].t) > 1e-5f * fmaxf(ref[i].t, 1e-3f));
+        bad += wc[i].triangle_tests > f->num_triangles || (gh && wc[i].triangle_tests == 0) ||
+               (wc[i].triangle_tests && !wc[i].bvh_nodes);
+        nodes += wc[i].bvh_nodes;
+        tests += wc[i].triangle_tests;
+    }
+    dirt_ref_bvh_trace(bvh, rr, n, true, got, wa, 0);
+    size_t wrong_any = 0, more = 0;
+    for (size_t i = 0; i < n; i++) {
+        wrong_any += (got[i].prim != DIRT_REF_MISS) != (occ[i] != 0);
+        more += wa[i].triangle_tests > wc[i].triangle_tests || wa[i].bvh_nodes > wc[i].bvh_nodes;
+    }
+    fprintf(stderr, "%s BVH walk: %zu rays, %zu hit; %.2f nodes, %.2f triangle tests per ray; "
+            "%zu closest and %zu any hits differ from Embree's\n", label, n, hits,
+            (double)nodes / n, (double)tests / n, wrong, wrong_any);
+    CHECK_MSG(wrong == 0, "%s: %zu closest hits differ", label, wrong);
+    CHECK_MSG(wrong_any == 0, "%s: %zu occlusions differ", label, wrong_any);
+    CHECK(bad == 0 && more == 0);
+    CHECK(hits > n / 4);
+    free(ref);
+    free(got);
+    free(wc);
+    free(wa);
+    free(occ);
+done:
+    dirt_ref_bvh_destroy(bvh);
+    dirt_ref_accel_destroy(accel);
+}
+
+/* Random rays from inside the bounds (some leave the scene). */
+static dirt_ray *random_rays(const dirt_frame *f, size_t n)
+{
+    dirt_ray *r = malloc(n * sizeof(*r));
+    for (size_t i = 0; i < n; i++) {
+        float d[3], l = 0;
+        for (int k = 0; k < 3; k++) {
+            r[i].org[k] = f->bounds_min[k] + frand() * (f->bounds_max[k] - f->bounds_min[k]);
+            d[k] = frand() - 0.5f;
+            l += d[k] * d[k];
+        }
+        for (int k = 0; k < 3; k++)
+            r[i].dir[k] = d[k] / sqrtf(l);
+        r[i].tmin = 1e-4f;
+        r[i].tmax = INFINITY;
+    }
+    return r;
+}
+
+int main(void)
+{
+    dirt_gpu *gpu = test_gpu();
+    if (!gpu)
+        return TEST_SKIP;
+    dirt_scene *scene = dirt_scene_create_default();
+    dirt_frame *f = scene ? dirt_scene_evaluate(scene, 0, NULL) : NULL;
+    CHECK(f != NULL);
+    if (f) {
+        dirt_camera cam;
+        dirt_camera_default(f, &cam);
+        check_same_hits(gpu, scene, f, &cam);
+        /* the G-buffer's secondary rays and random rays */
+        dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+        dirt_gbuffer g;
+        CHECK(accel && dirt_gbuffer_build(accel, scene, f, &cam, 40, 30, &g));
+        size_t n = 40 * 30;
+        dirt_ray *rays = malloc(n * sizeof(*rays));
+        size_t cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_DIFFUSE, 9, rays);
+        check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8);
+        check_bvh("default diffuse", f, rays, cnt);
+        cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_SPECULAR, 9, rays);
+        check_counts(gpu, "default specular", f, &cam, rays, cnt, 4);
+        free(rays);
+        dirt_gbuffer_free(&g);
+        dirt_ref_accel_destroy(accel);
+        dirt_frame_destroy(f);
+    }
+    dirt_scene_destroy(scene);
+    /* A soup of 2,000 small triangles: long lists. */
+    dirt_frame *s = soup(2000);
+    dirt_camera cam;
+    dirt_camera_default(s, &cam);
+    dirt_ray *rays = random_rays(s, 3000);
+    check_counts(gpu, "soup", s, &cam, rays, 3000, 8);
+    check_bvh("soup", s, rays, 3000);
+    free(rays);
+    frame_free(s);
+    CHECK(dirt_gpu_error_count(gpu) == 0);
+    dirt_gpu_destroy(gpu);
+    return check_finish();
+}
