@@ -18,9 +18,21 @@ static void note_panel(viewer *v)
         dirt_ui_panel_rect(v->panels[v->num_panels++]);
 }
 
+/* Below this window size the panels start collapsed to their title bars,
+ * so the image stays visible (they open with a click). */
+#define SMALL_W 800
+#define SMALL_H 600
+
+static void collapse_if_small(const viewer *v)
+{
+    if (v->win_w < SMALL_W || v->win_h < SMALL_H)
+        dirt_ui_next_collapsed();
+}
+
 static void panel_settings(viewer *v)
 {
     app_opts *o = &v->o;
+    collapse_if_small(v);
     if (dirt_ui_begin("Settings", NULL, 8, 8, 330, (float)(v->win_h - 16 > 200 ? v->win_h - 16 : 200))) {
         int samples = dirt_session_samples(v->s);
         dirt_ui_text("%s", v->scene_name);
@@ -194,6 +206,7 @@ static void panel_numbers(viewer *v)
     float w = 360, x = (float)v->win_w - w - 8;
     if (x < 346)
         x = 346;
+    collapse_if_small(v);
     if (dirt_ui_begin("Numbers", NULL, x, 8, w, 420)) {
         const dirt_session_stats *st = &v->last;
         if (dirt_ui_header("Inspector (under the cursor)", true)) {

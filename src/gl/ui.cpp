@@ -265,6 +265,12 @@ bool dirt_ui_begin(const char *title, bool *open, float x, float y, float w, flo
     return visible;
 }
 
+void dirt_ui_next_collapsed(void)
+{
+    if (in_frame("dirt_ui_next_collapsed"))
+        ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);
+}
+
 void dirt_ui_end(void)
 {
     if (!in_frame("dirt_ui_end"))
