@@ -52,6 +52,15 @@ void dirt_ui_panel_rect(float rect[4]);
 /* Whether any panel is shown at window pixel (x, y) in the last frame. */
 bool dirt_ui_covers(const dirt_ui *ui, float x, float y);
 
+/* ---- over the image (outside any panel; drawn over the panels) ---- */
+
+/* `text` in white on a dark box whose top left is window pixel (x, y);
+ * its size goes to size[2] (may be NULL). */
+void dirt_ui_overlay_text(float x, float y, const char *text, float size[2]);
+/* The heat ramp of the present shader (glsl/common/display.h), low at the
+ * left, in the rectangle x, y, w, h. */
+void dirt_ui_overlay_ramp(float x, float y, float w, float h);
+
 /* ---- widgets ---- */
 
 #if defined(__GNUC__)
