@@ -100,6 +100,13 @@ typedef struct viewer {
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
+    /* drawn over the image with the panels: the split's labels, the colour
+     * bar of a heat map or difference (for the report) */
+    char label[4][64];
+    float label_rect[4][4];
+    int num_labels;
+    bool bar;
+    float bar_lo, bar_hi, bar_rect[4];
     int slow_frame_ms;          /* test hook DIRT_VIEW_SLOW_FRAME_MS: added to every frame */
     /* the inspector: every channel of both images under the cursor */
     double cursor_x, cursor_y;  /* window pixels */

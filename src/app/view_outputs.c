@@ -246,6 +246,19 @@ bool view_write_report(viewer *v, const char *path)
         for (int ch = 0; ch < pr->count; ch++)
             cJSON_AddNumberToObject(side, pr->names[ch], pr->values[ch]);
     }
+    cJSON *labels = cJSON_AddArrayToObject(r, "labels");
+    for (int i = 0; i < v->num_labels; i++) {
+        cJSON *l = cJSON_CreateObject();
+        cJSON_AddStringToObject(l, "text", v->label[i]);
+        cJSON_AddItemToObject(l, "rect", cJSON_CreateFloatArray(v->label_rect[i], 4));
+        cJSON_AddItemToArray(labels, l);
+    }
+    if (v->bar) {
+        cJSON *b = cJSON_AddObjectToObject(r, "colour_bar");
+        cJSON_AddNumberToObject(b, "lo", v->bar_lo);
+        cJSON_AddNumberToObject(b, "hi", v->bar_hi);
+        cJSON_AddItemToObject(b, "rect", cJSON_CreateFloatArray(v->bar_rect, 4));
+    }
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)
         cJSON_AddItemToArray(panels, cJSON_CreateFloatArray(v->panels[i], 4));

@@ -2,6 +2,7 @@
  * the camera, the display, the animation, files), Numbers (frame times,
  * passes, buffers) and the key bindings. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -18,9 +19,21 @@ static void note_panel(viewer *v)
         dirt_ui_panel_rect(v->panels[v->num_panels++]);
 }
 
+/* Below this window size the panels start collapsed to their title bars,
+ * so the image stays visible (they open with a click). */
+#define SMALL_W 800
+#define SMALL_H 600
+
+static void collapse_if_small(const viewer *v)
+{
+    if (v->win_w < SMALL_W || v->win_h < SMALL_H)
+        dirt_ui_next_collapsed();
+}
+
 static void panel_settings(viewer *v)
 {
     app_opts *o = &v->o;
+    collapse_if_small(v);
     if (dirt_ui_begin("Settings", NULL, 8, 8, 330, (float)(v->win_h - 16 > 200 ? v->win_h - 16 : 200))) {
         int samples = dirt_session_samples(v->s);
         dirt_ui_text("%s", v->scene_name);
@@ -194,6 +207,7 @@ static void panel_numbers(viewer *v)
     float w = 360, x = (float)v->win_w - w - 8;
     if (x < 346)
         x = 346;
+    collapse_if_small(v);
     if (dirt_ui_begin("Numbers", NULL, x, 8, w, 420)) {
         const dirt_session_stats *st = &v->last;
         if (dirt_ui_header("Inspector (under the cursor)", true)) {
@@ -290,13 +304,77 @@ static void panel_help(viewer *v)
         v->show_help = false;
 }
 
+static void label(viewer *v, float x, float y, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void label(viewer *v, float x, float y, const char *fmt, ...)
+{
+    if (v->num_labels >= 4)
+        return;
+    int i = v->num_labels++;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(v->label[i], sizeof(v->label[i]), fmt, ap);
+    va_end(ap);
+    float size[2] = {0, 0};
+    dirt_ui_overlay_text(x, y, v->label[i], size);
+    float r[4] = {x, y, size[0], size[1]};
+    memcpy(v->label_rect[i], r, sizeof(r));
+}
+
+/* Over the image: each half of the split labelled with its engine; under
+ * a heat map or the difference, a colour bar with its range. */
+static void overlay(viewer *v)
+{
+    v->num_labels = 0;
+    v->bar = false;
+    int r[4];
+    bool cmp = v->cmp && dirt_session_samples(v->cmp) > 0 && dirt_session_samples(v->s) > 0;
+    if (v->o.buffer == BUF_BEAUTY && cmp && !v->o.diff) {
+        view_fit(v, v->rw, v->rh, r);
+        float split = v->o.split > 0 && v->o.split < 1 ? v->o.split : 0.5f;
+        float sx = (float)r[0] + split * (float)r[2], y = (float)(r[1] + r[3]) - 24;
+        label(v, (float)r[0] + 4, y, "%s", dirt_engine_names[v->applied.engine]);
+        label(v, sx + 4, y, "%s", dirt_engine_names[v->cmp_engine]);
+        return;
+    }
+    float lo, hi;
+    char what[64];
+    if (v->o.buffer == BUF_BEAUTY && cmp && v->o.diff) {
+        view_fit(v, v->rw, v->rh, r);
+        lo = 0, hi = v->o.diff_range;
+        snprintf(what, sizeof(what), "|lum(%s) - lum(%s)|", dirt_engine_names[v->applied.engine],
+                 dirt_engine_names[v->cmp_engine]);
+    } else if ((v->o.buffer == BUF_DEPTH || v->o.buffer >= BUF_LISTS) && v->aux_tex) {
+        view_fit(v, v->aux_w, v->aux_h, r);
+        lo = v->aux_lo, hi = v->aux_hi > v->aux_lo ? v->aux_hi : v->aux_lo + 1;
+        snprintf(what, sizeof(what), "%s", buffer_labels[v->o.buffer]);
+    } else {
+        return;
+    }
+    float w = fminf(256.0f, (float)r[2] - 16), x = (float)r[0] + ((float)r[2] - w) / 2;
+    float y = (float)(r[1] + r[3]) - 40;
+    if (w < 32)
+        return;
+    dirt_ui_overlay_ramp(x, y, w, 12);
+    v->bar = true;
+    v->bar_lo = lo, v->bar_hi = hi;
+    v->bar_rect[0] = x, v->bar_rect[1] = y, v->bar_rect[2] = w, v->bar_rect[3] = 12;
+    label(v, x, y + 13, "%.4g", lo);
+    label(v, x + w - 48, y + 13, "%.4g", hi);
+    label(v, x, y - 19, "%s", what);
+}
+
 /* The panels of this frame: Settings, Numbers and, with F1, the key
- * bindings; their rectangles go to the report. */
+ * bindings; their rectangles go to the report. Over the image: the split's
+ * labels and the colour bar. */
 void view_panels(viewer *v)
 {
     v->num_panels = 0;
+    v->num_labels = 0;
+    v->bar = false;
     if (v->o.no_ui)
         return;
+    overlay(v);
     panel_settings(v);
     panel_numbers(v);
     if (v->show_help)

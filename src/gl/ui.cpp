@@ -12,12 +12,14 @@ extern "C" {
 #include "gl/gl.h"
 }
 #include "gl/ui.h"
+#include "common/display.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <cmath>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdlib>
@@ -263,6 +265,52 @@ bool dirt_ui_begin(const char *title, bool *open, float x, float y, float w, flo
     if (ui->num_frame < kMaxRects)
         ui->frame[ui->num_frame++] = Rect{p.x, p.y, s.x, s.y};
     return visible;
+}
+
+void dirt_ui_next_collapsed(void)
+{
+    if (in_frame("dirt_ui_next_collapsed"))
+        ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);
+}
+
+void dirt_ui_overlay_text(float x, float y, const char *text, float size[2])
+{
+    if (!in_frame("dirt_ui_overlay_text") || !text)
+        return;
+    ImVec2 t = ImGui::CalcTextSize(text);
+    ImDrawList *dl = ImGui::GetForegroundDrawList();
+    dl->AddRectFilled(ImVec2(x, y), ImVec2(x + t.x + 6, y + t.y + 4), IM_COL32(0, 0, 0, 200));
+    dl->AddText(ImVec2(x + 3, y + 2), IM_COL32(255, 255, 255, 255), text);
+    if (size)
+        size[0] = t.x + 6, size[1] = t.y + 4;
+}
+
+/* A linear heat-ramp key as an 8-bit sRGB colour. */
+static ImU32 heat_colour(int k)
+{
+    static const float keys[DIRT_HEAT_KEYS][3] = {{DIRT_HEAT_KEY_0}, {DIRT_HEAT_KEY_1},
+                                                  {DIRT_HEAT_KEY_2}, {DIRT_HEAT_KEY_3},
+                                                  {DIRT_HEAT_KEY_4}};
+    int c[3];
+    for (int j = 0; j < 3; j++) {
+        float l = keys[k][j];
+        float e = l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+        c[j] = (int)std::lround(255.0f * (e < 0 ? 0 : e > 1 ? 1 : e));
+    }
+    return IM_COL32(c[0], c[1], c[2], 255);
+}
+
+void dirt_ui_overlay_ramp(float x, float y, float w, float h)
+{
+    if (!in_frame("dirt_ui_overlay_ramp"))
+        return;
+    ImDrawList *dl = ImGui::GetForegroundDrawList();
+    float seg = w / (DIRT_HEAT_KEYS - 1);
+    for (int k = 0; k + 1 < DIRT_HEAT_KEYS; k++) {
+        ImU32 a = heat_colour(k), b = heat_colour(k + 1);
+        dl->AddRectFilledMultiColor(ImVec2(x + k * seg, y), ImVec2(x + (k + 1) * seg, y + h), a, b,
+                                    b, a);
+    }
 }
 
 void dirt_ui_end(void)

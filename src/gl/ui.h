@@ -44,10 +44,22 @@ bool dirt_ui_wants_keyboard(const dirt_ui *ui);
  * whether its content is visible; call dirt_ui_end either way. */
 bool dirt_ui_begin(const char *title, bool *open, float x, float y, float w, float h);
 void dirt_ui_end(void);
+/* The next dirt_ui_begin's panel starts collapsed to its title bar (the
+ * first time it appears; the user may open it). */
+void dirt_ui_next_collapsed(void);
 /* The current panel's rectangle in window pixels (x, y, w, h). */
 void dirt_ui_panel_rect(float rect[4]);
 /* Whether any panel is shown at window pixel (x, y) in the last frame. */
 bool dirt_ui_covers(const dirt_ui *ui, float x, float y);
+
+/* ---- over the image (outside any panel; drawn over the panels) ---- */
+
+/* `text` in white on a dark box whose top left is window pixel (x, y);
+ * its size goes to size[2] (may be NULL). */
+void dirt_ui_overlay_text(float x, float y, const char *text, float size[2]);
+/* The heat ramp of the present shader (glsl/common/display.h), low at the
+ * left, in the rectangle x, y, w, h. */
+void dirt_ui_overlay_ramp(float x, float y, float w, float h);
 
 /* ---- widgets ---- */
 

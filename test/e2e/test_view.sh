@@ -66,6 +66,23 @@ if run_view shot --window 900x600 --script "$tmp/s.txt" -q; then ok; else
 if "$check" window "$tmp/shot.png" "$tmp/alone.png" "$tmp/rep.json"; then ok; else
   fail "the screenshot is not the render plus the panels"; fi
 
+# 2a. At a small window (480x360) the panels start collapsed to their title
+# bars: the image is the render wherever they used to cover it (all of it),
+# and the panels take less than a tenth of the window.
+printf 'wait-samples 1\nscreenshot %s\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/small.png" "$tmp/small-alone.png" "$tmp/small.json" >"$tmp/s.txt"
+if run_view small --window 480x360 --bounces 1 --script "$tmp/s.txt" -q; then ok; else
+  fail "small-window run: exit $?"; cat "$tmp/small.err" >&2; fi
+if "$check" window "$tmp/small.png" "$tmp/small-alone.png" "$tmp/small.json" collapsed; then ok; else
+  fail "at 480x360 the screenshot is not the render plus the panels"; fi
+python3 - "$tmp/small.json" <<'PY' && ok || fail "at 480x360 the panels cover the image"
+import json, sys
+r = json.load(open(sys.argv[1]))
+area = sum(p[2] * p[3] for p in r["panels"])
+print("panels", r["panels"], "cover %.1f%% of 480x360" % (100 * area / (480 * 360)))
+sys.exit(0 if r["panels"] and area < 0.1 * 480 * 360 else 1)
+PY
+
 # 2b. The depth buffer shown as a heat map is the image's Z through the ramp.
 printf 'wait-samples 1\nset buffer depth\nwait-frames 1\nscreenshot %s\nsave-image %s\nquit\n' \
   "$tmp/depth-shot.png" "$tmp/depth.exr" >"$tmp/s.txt"

@@ -91,5 +91,29 @@ sys.exit(1 if bad else 0)
 PY
   fail "the inspector's values are not dirt-render's at the pixel under the cursor"
 
+# Labels and colour bar (drawn with the panels, which start collapsed at
+# 320x240): each half of the split names its engine, inside that half; the
+# difference view has a colour bar over 0..--diff-range, captioned.
+printf 'wait-samples 1\nwait-frames 1\nreport %s\nset diff on\nwait-frames 1\nreport %s\nquit\n' \
+  "$tmp/lab-split.json" "$tmp/lab-diff.json" >"$tmp/s.txt"
+"$view" --window 320x240 --engine mmrt --compare embree --seed 5 --bounces 1 --spp 1 \
+  --diff-range $RANGE --script "$tmp/s.txt" -q >"$tmp/lab.out" 2>&1 || { fail "labels run: exit $?"; cat "$tmp/lab.out" >&2; }
+python3 - "$tmp/lab-split.json" "$tmp/lab-diff.json" $RANGE <<'PY' && ok || fail "the split's labels or the difference's colour bar"
+import json, sys
+s, d, rng = json.load(open(sys.argv[1])), json.load(open(sys.argv[2])), float(sys.argv[3])
+lab = [(l["text"], l["rect"]) for l in s.get("labels", [])]
+print("split labels", lab)
+bad = len(lab) != 2 or lab[0][0] != "mmrt" or lab[1][0] != "embree"
+bad = bad or not (0 <= lab[0][1][0] and lab[0][1][0] + lab[0][1][2] <= 160)
+bad = bad or not (160 <= lab[1][1][0] and lab[1][1][0] + lab[1][1][2] <= 320)
+bad = bad or "colour_bar" in s
+bar = d.get("colour_bar")
+print("diff bar", bar, [l["text"] for l in d.get("labels", [])])
+bad = bad or not bar or bar["lo"] != 0 or abs(bar["hi"] - rng) > 1e-6
+texts = [l["text"] for l in d.get("labels", [])]
+bad = bad or "|lum(mmrt) - lum(embree)|" not in texts or "0" not in texts or "%.4g" % rng not in texts
+sys.exit(1 if bad else 0)
+PY
+
 echo "test_view_compare: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]
