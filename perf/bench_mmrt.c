@@ -9,7 +9,7 @@
  * llvmpipe). Each configuration is built once to warm
  * up (pools grow), then N times; the mean of those N is reported.
  * --trace adds a second table: the ray types of the DIRT paper's Table 1
- * (dirt/raytypes.h: primary, visibility, specular, glossy, diffuse, from an
+ * (ref/raytypes.h: primary, visibility, specular, glossy, diffuse, from an
  * Embree G-buffer of the camera image) traced with the Hi-Z walk and the
  * linear march (30 samples per view), thickness F x the scene diagonal
  * (--thickness, default 0.002 = the library's default): ms (without

@@ -5,7 +5,7 @@
  * (--large: DIRT's large primitives, 0 = none; default 16; the build is
  * the raster one unless DIRT_BUILD=compute)
  * Rays: camera G-buffer at W x H (Embree primary hits), then one event of
- * each type from those points (dirt/raytypes.h). DIRT times: the GPU's one
+ * each type from those points (ref/raytypes.h). DIRT times: the GPU's one
  * clock (dirt_gpu_clock): GPU timer queries, or CPU wall time around
  * glFinish on a software renderer. Embree:
  * wall time of a multithreaded batch. */

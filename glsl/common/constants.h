@@ -272,7 +272,7 @@
 /* location 8: free (was the background radiance; now the environment table) */
 #define DIRT_LOC_PT_AO_DISTANCE 9    /* float */
 #define DIRT_LOC_PT_PIXEL_OFFSET 10  /* uint: image pixel of the chunk's record 0 */
-#define DIRT_LOC_PT_SURFACE_OFFSET 11 /* float: the tracer's surface_offset (dirt/tracer.h) */
+#define DIRT_LOC_PT_SURFACE_OFFSET 11 /* float: the tracer's surface_offset (views/tracer.h) */
 /* glsl/integrator/resolve.comp */
 #define DIRT_LOC_RESOLVE_PIXELS 0    /* uint: pixels of this chunk */
 /* glsl/integrator/compact.comp, batch.comp */
@@ -313,7 +313,7 @@
 #define DIRT_LOC_MMRT_TRACE_FIRST_RAY 8  /* uint: wavefront index of the batch's ray 0 */
 /* glsl/mmrt/pt_rays.comp */
 /* Both trace passes (glsl/dirt/trace.comp, glsl/mmrt/trace.comp) with the
- * alpha test of glsl/integrator/alpha.glsl (dirt_trace_alpha, dirt/ray.h). */
+ * alpha test of glsl/integrator/alpha.glsl (dirt_trace_alpha, core/ray.h). */
 #define DIRT_LOC_ALPHA_ENABLED 16      /* int: 1 tests alpha-tested materials' hits */
 #define DIRT_LOC_ALPHA_KEY 17          /* uvec4: seed, sample, bounce, dim of the rays' keys */
 #define DIRT_LOC_ALPHA_FIRST_PIXEL 18  /* uint: pixel of the batch's ray 0 */

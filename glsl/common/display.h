@@ -59,7 +59,7 @@
 #define DIRT_LUMA_B 0.0722f
 
 /* ---- Presentation modes of glsl/present/present.frag (src/gl/present.c
- * maps enum dirt_present_mode of dirt/window.h onto them) ---- */
+ * maps enum dirt_present_mode of gl/window.h onto them) ---- */
 #define DIRT_PRESENT_ID_COLOR 0
 #define DIRT_PRESENT_ID_HEAT 1
 #define DIRT_PRESENT_ID_SIGNED 2

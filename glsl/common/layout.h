@@ -57,7 +57,7 @@ struct dirt_gpu_light {
  * DIRT_BIND_PARAMS, _HEADS, _NODES, _COUNTERS (common/constants.h). */
 
 #define DIRT_LIST_END 0xFFFFFFFFu
-#define DIRT_GPU_MAX_VIEWS 7   /* = DIRT_MAX_VIEWS of dirt/views.h */
+#define DIRT_GPU_MAX_VIEWS 7   /* = DIRT_MAX_VIEWS of views/views.h */
 /* Cleared depth bounds: zmin = +inf, zmax = 0 (empty: zmin > zmax). Depths
  * are positive, so their float bits order like the floats. */
 #define DIRT_DEPTH_CLEAR_MIN 0x7F800000u
@@ -76,7 +76,7 @@ struct dirt_gpu_vertex {
     DIRT_V4 normal;      /* xyz world normal, w texture v */
 };
 
-/* One view (192 bytes); see dirt/views.h. */
+/* One view (192 bytes); see views/views.h. */
 struct dirt_gpu_view {
     DIRT_V4 view_proj[4]; /* columns of proj * view */
     DIRT_V4 eye_near;     /* xyz centre of projection, w znear */

@@ -1,4 +1,4 @@
-// A pass over a ray batch (dirt/tracer.h, set_batch): the number of rays
+// A pass over a ray batch (views/tracer.h, set_batch): the number of rays
 // and the owner of each come from the DIRT_BIND_RAY_BATCH buffer
 // (dirt_gpu_ray_batch, then uint owner[]), which the host also dispatches
 // from. A tracer's passes do so when u_ray_batch is set (else the batch is

@@ -3,7 +3,7 @@
 // file (no #version) for the trace passes: it declares the model's material
 // and texel tables (integrator/model.glsl with DIRT_MODEL_BUFFERS and
 // DIRT_MODEL_SURFACE_ONLY, unless the shader included the full model) and the trace's alpha uniforms, which the host sets from
-// a dirt_trace_alpha (dirt/ray.h).
+// a dirt_trace_alpha (core/ray.h).
 #ifndef DIRT_ALPHA_GLSL
 #define DIRT_ALPHA_GLSL
 

@@ -1,5 +1,5 @@
 // DIRT engine: the light-transport model in GLSL, the twin of
-// src/include/dirt/integrator.h (src/integrator/bsdf.c, lights.c,
+// src/integrator/integrator.h (src/integrator/bsdf.c, lights.c,
 // texture.c). Function for function and formula for formula: every
 // dirt_X_g here computes what dirt_X computes in C, with the same operations
 // in the same order, so the two differ only by float rounding (GLSL's

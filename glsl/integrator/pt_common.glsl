@@ -29,7 +29,7 @@ layout(location = DIRT_LOC_PT_AO_DISTANCE) uniform float u_ao_distance;
 // record p of the per-pixel buffers is image pixel u_pixel_offset + p, which
 // keys the random numbers and gives the pixel's coordinates.
 layout(location = DIRT_LOC_PT_PIXEL_OFFSET) uniform uint u_pixel_offset;
-// The tracer's surface_offset (dirt/tracer.h): rays leaving a surface start
+// The tracer's surface_offset (views/tracer.h): rays leaving a surface start
 // this much farther off it along ng; shadow rays stop this far off the
 // emitter's plane. 0 for DIRT (the reference's rays exactly).
 layout(location = DIRT_LOC_PT_SURFACE_OFFSET) uniform float u_surface_offset;

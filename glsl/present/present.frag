@@ -1,6 +1,6 @@
 #version 450 core
 // The window's presentation (src/gl/present.c, dirt_gpu_present of
-// dirt/window.h): each pixel of the destination rectangle shows the nearest
+// gl/window.h): each pixel of the destination rectangle shows the nearest
 // texel of an RGBA32F image (texelFetch), in one of the modes below, as the
 // 8-bit sRGB value dirt_image_write_png stores for it. The default
 // framebuffer is not an sRGB one: the encoding is done here and the value

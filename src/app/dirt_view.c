@@ -1,6 +1,6 @@
 /* dirt-view: the interactive viewer on the render session (doc/viewer.md).
  *
- * A GLFW window with panels (dirt/ui.h) over the progressive render of one
+ * A GLFW window with panels (gl/ui.h) over the progressive render of one
  * session, and optionally a second session on the same camera for a split
  * or difference view. Every displayed frame adds a bounded number of
  * samples (--samples-per-frame, default 1), never a whole render. This

@@ -11,8 +11,8 @@
  *   view_outputs.c     screenshots, saved renders, reports, dirt-render
  *                      command lines
  * (view_camera.c: the free camera's maths; view_script.c: the script's
- * parser.) The program calls no GL: the sessions render, dirt/window.h
- * presents, dirt/ui.h draws the panels. */
+ * parser.) The program calls no GL: the sessions render, gl/window.h
+ * presents, gl/ui.h draws the panels. */
 #ifndef DIRT_APP_VIEW_H
 #define DIRT_APP_VIEW_H
 

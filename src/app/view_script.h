@@ -10,7 +10,7 @@
  *   dolly FACTOR                    distance to the target times FACTOR
  *   fly FORWARD RIGHT UP            scene units
  *   camera I | auto | default       the scene's camera I, the automatic one
- *   key NAME [FRAMES]               hold a key (dirt/window.h names) N frames (1)
+ *   key NAME [FRAMES]               hold a key (gl/window.h names) N frames (1)
  *   click X Y                       left click at window pixel X, Y
  *   set OPTION VALUE                a command-line option without "--"
  *                                   (flags take on/off)

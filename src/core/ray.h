@@ -32,11 +32,11 @@ typedef struct dirt_hit {
  * section 1, "Alpha"): a hit of a MASK or BLEND material that the alpha test
  * rejects is no hit, and the trace goes on to the next one. Zero-initialised
  * = no test (every surface opaque, the trace as fast as without alpha).
- * The tables are the integrator's (dirt_gpu_model_tables, dirt/gpu_tables.h):
+ * The tables are the integrator's (dirt_gpu_model_tables, integrator/gpu_tables.h):
  * the trace binds them at DIRT_BIND_MODEL_MATERIALS and _TEXELS and reads
  * the per-primitive materials, UVs and texels. BLEND decisions use the key
  * dirt_rng_u32(seed, first_pixel + owner(i), sample, bounce, dim) for ray i
- * of the batch, owner(i) = i or its ray batch's owner (dirt/tracer.h,
+ * of the batch, owner(i) = i or its ray batch's owner (views/tracer.h,
  * set_batch; doc/rng.md, "Alpha"). */
 typedef struct dirt_trace_alpha {
     uint32_t materials;   /* GL buffer of dirt_gpu_model_material; 0 = no test */

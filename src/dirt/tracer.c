@@ -1,4 +1,4 @@
-/* The DIRT structure as the integrator's tracer (dirt/tracer.h): the trace,
+/* The DIRT structure as the integrator's tracer (views/tracer.h): the trace,
  * visibility and Fetch passes of trace.c behind the technique interface. */
 #include "dirt/ads_internal.h"
 

@@ -28,7 +28,7 @@ struct dirt_gpu {
     void *egl_context;
     /* GLFW (window) */
     void *window;
-    struct gl_window_state *input; /* windowed only: dirt/window.h's input */
+    struct gl_window_state *input; /* windowed only: gl/window.h's input */
     GLuint present_program;        /* present.c, made by the first dirt_gpu_present */
     GLuint present_vao;            /* the empty vertex array its draw binds */
     void *ui;                      /* the dirt_ui attached (ui.cpp), NULL when none */

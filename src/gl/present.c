@@ -1,4 +1,4 @@
-/* Drawing images into the window (dirt/window.h): the presentation program
+/* Drawing images into the window (gl/window.h): the presentation program
  * (glsl/present/), window clears and read-back, RGBA32F textures of CPU
  * images. Every function leaves the GL state it found: the session renders
  * with its own state between presents. */

@@ -1,4 +1,4 @@
-/* DIRT engine: the panels of dirt/ui.h over Dear ImGui 1.86 (Debian's
+/* DIRT engine: the panels of gl/ui.h over Dear ImGui 1.86 (Debian's
  * libimgui-dev: the library, its GLFW and OpenGL 3 backends). A C++
  * translation unit behind a C API, as src/scene/gltf.cpp: nothing of ImGui
  * shows in the header, and no C++ exception leaves it (ImGui allocates

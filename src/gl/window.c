@@ -1,4 +1,4 @@
-/* The input of a windowed dirt_gpu (dirt/window.h): GLFW callbacks fill a
+/* The input of a windowed dirt_gpu (gl/window.h): GLFW callbacks fill a
  * gl_window_state between the two halves of dirt_gpu_window_poll; the key
  * names of the API. */
 #include "gl/window.h"

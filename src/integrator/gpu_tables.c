@@ -1,5 +1,5 @@
 /* DIRT engine: packing and upload of the GPU light-transport model's scene
- * tables (dirt/gpu_tables.h, glsl/common/integrator_layout.h). */
+ * tables (integrator/gpu_tables.h, glsl/common/integrator_layout.h). */
 #include "integrator/gpu_tables.h"
 
 #include <math.h>

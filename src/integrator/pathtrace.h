@@ -7,7 +7,7 @@
  * finally accumulation. The light-transport model, the random numbers and
  * the order in which they are drawn are those of the Embree reference
  * (doc/light-transport.md), so both converge to the same image.
- * The rays are traced through a technique's tracer (dirt/tracer.h: the DIRT
+ * The rays are traced through a technique's tracer (views/tracer.h: the DIRT
  * structure, the MMRT A-buffer); this header knows no technique.
  *
  * Progressive: the accumulation persists between calls. dirt_pt_reset

@@ -127,7 +127,7 @@ typedef struct dirt_mmrt_trace_opts {
                          hit (default: each part of the ray in one view, the
                          first of camera, faces whose frustum holds it) */
     bool count;       /* count pixels tested / nodes visited (atomics) */
-    dirt_trace_alpha alpha; /* alpha-tested traversal (dirt/ray.h): the fragments
+    dirt_trace_alpha alpha; /* alpha-tested traversal (core/ray.h): the fragments
                            of hits it rejects are passed over; zero = none */
     uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
                          set_batch): count is its capacity; 0 = none */
@@ -156,7 +156,7 @@ typedef struct dirt_mmrt_trace_stats {
 bool dirt_mmrt_trace_cpu(dirt_mmrt *mmrt, const dirt_ray *rays, size_t count, dirt_hit *hits,
                          const dirt_mmrt_trace_opts *opts, dirt_mmrt_trace_stats *stats);
 
-/* ---- The A-buffer as the integrator's tracer (dirt/tracer.h) ---- */
+/* ---- The A-buffer as the integrator's tracer (views/tracer.h) ---- */
 
 /* The tracer over the A-buffer of the last dirt_mmrt_build with trace
  * options `opts` (NULL = defaults; the seed jitters the linear march, mixed
@@ -168,7 +168,7 @@ bool dirt_mmrt_trace_cpu(dirt_mmrt *mmrt, const dirt_ray *rays, size_t count, di
  * else the MMRT hit point, ray origin + t direction; the hit's t is set to
  * the distance used). Its surface_offset is 3 thicknesses: rays leave
  * surfaces 3 thicknesses off along the normal and shadow rays stop 3
- * thicknesses off the light's plane (dirt/tracer.h), so that a ray is never
+ * thicknesses off the light's plane (views/tracer.h), so that a ray is never
  * within the thickness of a planar surface it leaves or aims at. No visibility
  * function. Owned by `mmrt`; valid until the next call or destroy. NULL
  * (logged) before a successful build. */

@@ -1,4 +1,4 @@
-/* The MMRT A-buffer as the integrator's tracer (dirt/tracer.h): the
+/* The MMRT A-buffer as the integrator's tracer (views/tracer.h): the
  * Trace -> Fetch -> Shade frame graph of the path tracer traced through the
  * A-buffer. MMRT has no Fetch: the "fetch" turns a hit's data node into the
  * shading point (glsl/mmrt/to_gpoint.comp). MMRT accepts any fragment
@@ -7,7 +7,7 @@
  * the thickness in depth in every view: the tracer's surface_offset
  * (PT_MMRT_OFFSET_THICKNESSES thicknesses) makes Shade start them that far
  * off the surface along its normal and end shadow rays that far off the
- * emitter along its normal (dirt/tracer.h). Before every trace
+ * emitter along its normal (views/tracer.h). Before every trace
  * glsl/mmrt/pt_rays.comp counts the batch's active rays. */
 #include <stddef.h>
 #include <stdlib.h>

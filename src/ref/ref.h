@@ -6,7 +6,7 @@
  *    ray or multithreaded batches. Hits name the frame's primitive id
  *    (triangle index), so they compare directly with DIRT/MMRT hit records.
  *  - rendering: path tracing (NEE + MIS, Russian roulette) and ambient
- *    occlusion with the light-transport model of dirt/integrator.h
+ *    occlusion with the light-transport model of integrator/integrator.h
  *    (doc/light-transport.md) and the shared RNG (doc/rng.md), so the GPU
  *    integrators can be compared to it pixel for pixel.
  *

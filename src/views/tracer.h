@@ -65,7 +65,7 @@ typedef struct dirt_tracer {
      * ray keys them by (call of the sample, pixel), so that the chunking
      * changes no result. NULL when there is nothing to key. */
     void (*begin_chunk)(void *self, uint32_t first);
-    /* Alpha-tested traversal for the traces that follow (dirt/ray.h; the
+    /* Alpha-tested traversal for the traces that follow (core/ray.h; the
      * integrator sets it before each trace: its keys differ per ray kind
      * and path event). A zeroed `alpha` (or NULL) turns the test off.
      * NULL when the technique cannot test alpha. */

@@ -1,4 +1,4 @@
-/* The window's input (dirt/window.h) and panels (dirt/ui.h) under real X
+/* The window's input (gl/window.h) and panels (gl/ui.h) under real X
  * events: test_gl_input.sh runs this program under xvfb-run and answers
  * each "STEP <name> [x y]" line it prints with xdotool (mouse, buttons,
  * wheel, keys, window size). For each step the program polls for up to 5 s

@@ -1,4 +1,4 @@
-/* Drawing images into the window (dirt/window.h), read back with
+/* Drawing images into the window (gl/window.h), read back with
  * dirt_gpu_window_read (run under xvfb-run by test_gl_window.sh):
  *  (a) COLOR mode, 1:1, every tone map with exposure -1, 0 and +1: each pixel
  *      is the byte dirt_image_write_png stores (the expected bytes come from
