@@ -30,21 +30,20 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
      * primitives, keep the trace without). */
     const dirt_trace_alpha *al = &opts.alpha;
     bool large = a->stats.num_large > 0;
-    GLuint *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0)];
-    if (!*prog) {
-        glsl_define defs[2];
-        int n = 0;
-        if (al->materials)
-            defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
-        if (large)
-            defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
-        *prog = gl_program_compute("dirt/trace.comp", defs, n);
-        if (!*prog) {
-            gl_group_pop();
-            return false;
-        }
+    gl_split_program *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0)];
+    glsl_define defs[2];
+    int n = 0;
+    if (al->materials)
+        defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
+    if (large)
+        defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
+    const char *paths[] = {"dirt/trace.comp", NULL};
+    if (!ads_program(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
+                     ADS_TRACE_ARRAYS)) {
+        gl_group_pop();
+        return false;
     }
-    glUseProgram(*prog);
+    glUseProgram(prog->id);
     glUniform1ui(DIRT_LOC_TRACE_COUNT, count);
     glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
@@ -54,7 +53,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, al->materials);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, al->texels);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
         glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
     }
@@ -93,12 +91,11 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
     ads_bind_all(a);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_FETCH_PARAMS, a->fetch_params);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(raster ? a->prog_fetch_miss : a->prog_fetch);
+    glUseProgram(raster ? a->prog_fetch_miss.id : a->prog_fetch.id);
     gl_dispatch_rays(batch, count, 0);
     if (raster) {
         if (a->fetch_fbo_w != a->set.atlas_width || a->fetch_fbo_h != a->set.atlas_height) {
@@ -114,7 +111,7 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
         glDisable(GL_SCISSOR_TEST);
-        glUseProgram(a->prog_fetch_raster);
+        glUseProgram(a->prog_fetch_raster.id);
         glBindVertexArray(a->fetch_vao);
         if (a->num_primitives)
             glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
@@ -206,8 +203,8 @@ bool ads_read_counts(dirt_ads *a, uint64_t *rays, uint64_t *aborted)
 
 void ads_bind_geometry(dirt_ads *a)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
+    gl_split_bind(&a->vertices);
+    gl_split_bind(&a->prim_material);
 }
 
 bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
@@ -256,7 +253,7 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
-    glUseProgram(a->prog_vis);
+    glUseProgram(a->prog_vis.id);
     glUniform1i(DIRT_LOC_VISIBILITY_VIEW, a->set.camera_view);
     glBindVertexArray(a->vis_vao);
     if (a->num_primitives)
@@ -265,7 +262,7 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(a->prog_vis_resolve);
+    glUseProgram(a->prog_vis_resolve.id);
     glUniform1i(DIRT_LOC_VIS_RESOLVE_VIEW, a->set.camera_view);
     glBindTextureUnit(DIRT_UNIT_VISIBILITY, a->vis_color);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);

@@ -37,6 +37,14 @@ struct dirt_gpu {
     dirt_gpu_query_counts queries; /* timer.c: the time queries' counts */
 };
 
+/* ---- capabilities (context.c) ---- */
+
+/* Test hook (the in-process form of DIRT_MAX_BLOCK_BYTES): storage blocks of
+ * `bytes` from now on (caps.max_ssbo_size and block_override), or the
+ * driver's again for 0 or anything not below it. Objects made before keep
+ * what they were made with until they grow or are remade. */
+void gl_gpu_set_block_bytes(dirt_gpu *gpu, int64_t bytes);
+
 /* ---- the window's input (window.c) ---- */
 
 /* Makes the input state of a new window and installs its GLFW callbacks
