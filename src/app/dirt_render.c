@@ -34,6 +34,7 @@ typedef struct options {
     bool skip_existing, placeholders, animated_seed;
     bool cpu_timing;          /* dirt_gpu_opts.cpu_timing */
     seq_frames frames;        /* empty: one frame at --time */
+    dirt_load_opts load;      /* --max-scene-memory */
     int spp;
 } options;
 
@@ -64,6 +65,9 @@ static void usage(FILE *out)
 "                        counts, and exit\n"
 "\n"
 "Scene and camera:\n"
+"      --max-scene-memory SIZE  the most memory the expanded scene may take\n"
+"                        (default 512M; K, M, G: powers of 1024): a scene that\n"
+"                        needs more is refused before it is allocated\n"
 "  -t, --time T          animation time in seconds (default 0)\n"
 "      --frames LIST     frames A:B[:step] (A..B inclusive) or a list such as\n"
 "                        1,5,10-20, each at time frame/fps\n"
@@ -268,7 +272,7 @@ static int parse_args(int argc, char **argv, options *o)
         engines[e] = dirt_engine_names[e];
     /* Options with a value (argv[i + 1]), by kind: s string, i int, l long,
      * u uint32, d double, f float, c choice of `names`, F frames, b colour,
-     * j .json path, g .dot path. */
+     * j .json path, g .dot path, z size in bytes. */
     const struct { const char *s, *l, *alt; char kind; void *dst; double lo, hi;
                    const char *const *names; } opts[] = {
         {"-o", "--output", NULL, 's', &o->output, 0, 0, NULL},
@@ -319,6 +323,8 @@ static int parse_args(int argc, char **argv, options *o)
         {NULL, "--claim-timeout", NULL, 'd', &o->claim_timeout, 1, 1e7, NULL},
         {NULL, "--tonemap", NULL, 'c', &o->tonemap, 0, 0, tonemaps},
         {NULL, "--gpu", NULL, 'c', &o->gpu_platform, 0, 0, dirt_gpu_platform_names},
+        {NULL, "--max-scene-memory", NULL, 'z', &o->load.max_bytes, 1 << 20,
+         (double)SIZE_MAX, NULL},
     };
     const struct { const char *s, *l; bool *dst; } flags[] = {
         {NULL, "--loop", &o->loop}, {NULL, "--png", &o->png_preview},
@@ -523,10 +529,16 @@ int main(int argc, char **argv)
         cli_error(PROG, "cannot append to '%s'", o.log_path);
         goto done;
     }
-    scene = o.scene_path ? dirt_scene_load(o.scene_path, NULL) : dirt_scene_create_default();
+    scene = o.scene_path ? dirt_scene_load(o.scene_path, &o.load) : dirt_scene_create_default();
     if (!scene) {
-        cli_error(PROG, "cannot load scene '%s' (see the error above)",
-                  o.scene_path ? o.scene_path : "default");
+        if (dirt_scene_last_error() == DIRT_SCENE_ERR_TOO_LARGE)
+            cli_error(PROG, "scene '%s' needs more than %.0f MiB once expanded: raise the "
+                      "budget with --max-scene-memory (such as 4G)", o.scene_path,
+                      (o.load.max_bytes ? o.load.max_bytes : DIRT_LOAD_DEFAULT_MAX_BYTES) /
+                          1048576.0);
+        else
+            cli_error(PROG, "cannot load scene '%s' (see the error above)",
+                      o.scene_path ? o.scene_path : "default");
         goto done;
     }
     if (o.info) {
