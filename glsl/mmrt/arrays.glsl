@@ -59,22 +59,22 @@
 
 // ---- bucket heads ----
 #if DIRT_SPLIT_MMRT_HEADS == 0
-layout(std430, binding = DIRT_BIND_MMRT_HEADS) MMRT_HEADS_QUAL buffer Heads {
-    uint heads[];
+layout(std430, binding = DIRT_BIND_MMRT_HEADS) MMRT_HEADS_QUAL buffer MmrtHeads {
+    uint mmrt_heads[];
 };
 uint mmrt_head(uint i)
 {
-    return heads[i];
+    return mmrt_heads[i];
 }
 #ifndef MMRT_HEADS_READONLY
 void mmrt_head_store(uint i, uint v)
 {
-    heads[i] = v;
+    mmrt_heads[i] = v;
 }
 
 uint mmrt_head_exchange(uint i, uint v)
 {
-    return atomicExchange(heads[i], v);
+    return atomicExchange(mmrt_heads[i], v);
 }
 #endif
 #else
@@ -117,19 +117,19 @@ uint mmrt_head_exchange(uint i, uint v)
 
 // ---- bucket tails ----
 #if DIRT_SPLIT_MMRT_TAILS == 0
-layout(std430, binding = DIRT_BIND_MMRT_TAILS) MMRT_TAILS_QUAL buffer Tails {
-    uint tails[];
+layout(std430, binding = DIRT_BIND_MMRT_TAILS) MMRT_TAILS_QUAL buffer MmrtTails {
+    uint mmrt_tails[];
 };
 #ifndef MMRT_TAILS_WRITEONLY
 uint mmrt_tail(uint i)
 {
-    return tails[i];
+    return mmrt_tails[i];
 }
 #endif
 #ifndef MMRT_TAILS_READONLY
 void mmrt_tail_store(uint i, uint v)
 {
-    tails[i] = v;
+    mmrt_tails[i] = v;
 }
 #endif
 #else
@@ -163,19 +163,19 @@ void mmrt_tail_store(uint i, uint v)
 
 // ---- id nodes: field f (DIRT_MMRT_ID_Z, _NEXT, _PREV) of node n ----
 #if DIRT_SPLIT_MMRT_IDS == 0
-layout(std430, binding = DIRT_BIND_MMRT_IDS) MMRT_IDS_QUAL buffer Ids {
-    uint ids[];
+layout(std430, binding = DIRT_BIND_MMRT_IDS) MMRT_IDS_QUAL buffer MmrtIds {
+    uint mmrt_ids[];
 };
 #ifndef MMRT_IDS_WRITEONLY
 uint mmrt_id(uint n, uint f)
 {
-    return ids[n * uint(DIRT_MMRT_ID_UINTS) + f];
+    return mmrt_ids[n * uint(DIRT_MMRT_ID_UINTS) + f];
 }
 #endif
 #ifndef MMRT_IDS_READONLY
 void mmrt_id_store(uint n, uint f, uint v)
 {
-    ids[n * uint(DIRT_MMRT_ID_UINTS) + f] = v;
+    mmrt_ids[n * uint(DIRT_MMRT_ID_UINTS) + f] = v;
 }
 #endif
 #else
@@ -209,25 +209,25 @@ void mmrt_id_store(uint n, uint f, uint v)
 
 // ---- data nodes ----
 #if DIRT_SPLIT_MMRT_DATA == 0
-layout(std430, binding = DIRT_BIND_MMRT_DATA) MMRT_DATA_QUAL buffer Data {
-    dirt_mmrt_gpu_data data[];
+layout(std430, binding = DIRT_BIND_MMRT_DATA) MMRT_DATA_QUAL buffer MmrtData {
+    dirt_mmrt_gpu_data mmrt_data_nodes[];
 };
 #ifndef MMRT_DATA_WRITEONLY
 dirt_mmrt_gpu_data mmrt_data(uint n)
 {
-    return data[n];
+    return mmrt_data_nodes[n];
 }
 
 // The primitive of data node n (its ids.x).
 uint mmrt_data_prim(uint n)
 {
-    return data[n].ids.x;
+    return mmrt_data_nodes[n].ids.x;
 }
 #endif
 #ifndef MMRT_DATA_READONLY
 void mmrt_data_store(uint n, dirt_mmrt_gpu_data d)
 {
-    data[n] = d;
+    mmrt_data_nodes[n] = d;
 }
 #endif
 #else

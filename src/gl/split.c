@@ -162,9 +162,9 @@ bool gl_split_ensure(dirt_gpu *gpu, gl_split *s, const gl_split_desc *d, size_t 
     }
     s->layout = l;
     s->capacity = records;
-    DIRT_INFO("the %s: %.1f MB in %d parts of up to %zu records (storage blocks of %.1f MB)",
-              d->label, records * (double)d->record_bytes / 1e6, l.parts, per,
-              dirt_gpu_get_caps(gpu)->max_ssbo_size / 1e6);
+    DIRT_INFO("the %s: %.1f MB in %d part%s of up to %zu records (texel buffers; storage "
+              "blocks of %.1f MB)", d->label, records * (double)d->record_bytes / 1e6, l.parts,
+              l.parts == 1 ? "" : "s", per, dirt_gpu_get_caps(gpu)->max_ssbo_size / 1e6);
     return true;
 }
 

@@ -108,7 +108,7 @@ uint32_t gl_split_key(dirt_split_layout layout);
 
 /* A program built for the layouts of the split arrays its shaders read:
  * remade when one changes. Zero-initialised = not made. */
-#define GL_SPLIT_PROGRAM_MAX_ARRAYS 8
+#define GL_SPLIT_PROGRAM_MAX_ARRAYS 12
 typedef struct gl_split_program {
     GLuint id;
     dirt_split_layout built[GL_SPLIT_PROGRAM_MAX_ARRAYS];
