@@ -5,6 +5,7 @@
 // Fetch builds G_1. Image row 0 is the top; GL's row 0 the bottom. Hits are
 // also linked into their tile's hit list (for the raster Fetch).
 #include "common/layout.h"
+#include "common/rows.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -31,7 +32,7 @@ layout(location = DIRT_LOC_VIS_RESOLVE_VIEW) uniform int u_view;
 void main()
 {
     dirt_gpu_view v = views[u_view];
-    uint p = gl_GlobalInvocationID.x;
+    uint p = dirt_row_invocation();
     ivec2 size = v.size.xy;
     if (p >= uint(size.x * size.y))
         return;

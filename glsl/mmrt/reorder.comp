@@ -1,5 +1,6 @@
 #version 450 core
-// MMRT reorder pass: one invocation per pixel (all views). Sorts each of the
+// MMRT reorder pass: one invocation per pixel (all views; launched in rows,
+// common/rows.glsl). Sorts each of the
 // pixel's B bucket lists by depth, nearest first, ties broken by primitive
 // id (a total order: a primitive has at most one fragment per pixel), then
 // sets the next/prev pointers, the head (nearest) and tail (farthest) of
@@ -15,6 +16,7 @@
 // Both keep every node and give the same order.
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
+#include "common/rows.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
@@ -202,7 +204,7 @@ uint sort_bucket(uint slot)
 
 void main()
 {
-    uint g = gl_GlobalInvocationID.x;
+    uint g = dirt_row_invocation();
     uint pixels = uint(params.config.z);
     if (g >= pixels)
         return;

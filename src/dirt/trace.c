@@ -268,7 +268,7 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
-    glDispatchCompute((GLuint)DIRT_GROUPS((size_t)v->width * v->height), 1, 1);
+    gl_dispatch_rows((size_t)v->width * v->height);
     glUseProgram(0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();

@@ -219,6 +219,10 @@ size_t dirt_pt_chunk_pixels(const dirt_gpu *gpu, size_t pixels, size_t limit)
     size_t c = max > 0 ? (size_t)max / largest_per_pixel() : pixels;
     if (limit > 0 && limit < c)
         c = limit;
+    /* The passes over a chunk launch one group per DIRT_GROUP_SIZE pixels
+     * in one dimension, of which GL promises 65535. */
+    if (c > (size_t)65535 * DIRT_GROUP_SIZE)
+        c = (size_t)65535 * DIRT_GROUP_SIZE;
     /* Whole work groups per chunk (except the image's last). */
     if (c > DIRT_GROUP_SIZE)
         c -= c % DIRT_GROUP_SIZE;

@@ -453,7 +453,7 @@ static bool exec_reorder(fg_ctx *ctx, void *user)
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
     glUseProgram(m->prog_reorder.id);
-    glDispatchCompute((GLuint)DIRT_GROUPS(m->set.num_tiles), 1, 1);
+    gl_dispatch_rows((size_t)m->set.num_tiles);
     glUseProgram(0);
     return true;
 }
