@@ -19,6 +19,7 @@ PACKAGES=(
   xvfb xauth xdotool
   slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
+  python3-cffi python3-numpy python3-pytest python3-matplotlib binutils
 )
 
 # Tests that may skip even in CI, each saying why: the NVIDIA

@@ -18,7 +18,7 @@ for r in $(seq "$repeats"); do
     for engine in $engines; do
       # shellcheck disable=SC2086
       xvfb-run -a -s "-screen 0 1600x1000x24" "$view" $scene --window "$size" \
-        --engine "$engine" --spp 0 --test-frames "$frames" -q \
+        --engine "$engine" --spp 1048576 --test-frames "$frames" -q \
         --report "$tmp/$size-$engine-$r.json"
     done
   done

@@ -23,7 +23,7 @@
 #include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
-#include "dirt/mmrt.h"
+#include "mmrt/mmrt.h"
 #include "dirt/scene.h"
 
 #define MAX_S 4

@@ -28,9 +28,9 @@
 
 #include "dirt/gpu.h"
 #include "dirt/log.h"
-#include "dirt/mmrt.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "mmrt/mmrt.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "dirt/scene.h"
 
 static int parse_list(const char *s, int *out, int max)

@@ -24,8 +24,8 @@
 
 #include "dirt/clock.h"
 #include "dirt/log.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "dirt/scene.h"
 
 #ifndef DIRT_SHARED_DIR_DEFAULT

@@ -22,8 +22,8 @@
 #include "dirt/clock.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 
 int main(int argc, char **argv)
 {

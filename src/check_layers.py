@@ -5,11 +5,18 @@ usage: check_layers.py SRC_DIR STAMP
 
 Each folder of src/ is one layer; LAYERS lists what each may use (the
 layers below it; the techniques dirt, mmrt and raster are siblings and do
-not see each other). A public header (src/include/dirt/X.h) belongs to the
-layer that implements it (PUBLIC). The programs (app) include public
-headers only. Headers of glsl/common/ (shared C/GLSL
-layouts) are open to every layer. On success the stamp file is written; on
-a violation every offending line is printed and the exit status is 1.
+not see each other). The consumer API, the headers installed under
+include/dirt/ (src/include/dirt/X.h), belongs to the layers that implement
+it (PUBLIC); every other header is internal and sits beside its code
+(src/LAYER/x.h, included as "LAYER/x.h"; those of src/dirt/ as
+"dirt/x.h", so no internal header of src/dirt/ may share a consumer
+header's name). The programs (app) include consumer headers, their own
+headers and, for the viewer, which links the static layers (the window and
+its panels are not consumer API), the internal headers in VIEWER. Headers
+of glsl/common/ (shared C/GLSL layouts) are open to every layer but not to
+the consumer headers, which are self-contained: they include consumer
+headers and the C library only. On success the stamp file is written; on a
+violation every offending line is printed and the exit status is 1.
 """
 import os
 import re
@@ -31,19 +38,18 @@ LAYERS = {
     "session": BELOW_TECHNIQUES + ["dirt", "mmrt", "raster", "integrator", "ref"],
     "app": BELOW_TECHNIQUES + ["dirt", "mmrt", "raster", "integrator", "ref", "session"],
 }
-# Public header -> the layer that implements it.
+# Consumer header -> the layer that implements it.
 PUBLIC = {
-    "clock.h": "core", "log.h": "core", "stats.h": "core", "ray.h": "core", "vec.h": "core",
-    "version.h": "core",
+    "api.h": "core", "clock.h": "core", "log.h": "core", "stats.h": "core",
+    "types.h": "core", "version.h": "core",
     "file.h": "io", "image.h": "io",
     "scene.h": "scene",
-    "gpu.h": "gl", "window.h": "gl", "ui.h": "gl",
-    "views.h": "views", "tracer.h": "views",
-    "ads.h": "dirt", "mmrt.h": "mmrt", "raster.h": "raster",
-    "integrator.h": "integrator", "gpu_tables.h": "integrator", "pathtrace.h": "integrator",
-    "ref.h": "ref", "raytypes.h": "ref",
+    "gpu.h": "gl",
+    "env.h": "integrator",
     "session.h": "session",
 }
+# Internal headers the viewer (dirt-view) may include besides the consumer API.
+VIEWER = {"gl/window.h", "gl/ui.h", "core/vec.h"}
 # Folders whose internal headers (FOLDER/x.h) other layers may include.
 INTERNAL = set(LAYERS)
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
@@ -87,6 +93,10 @@ def main():
                     missing.append(path)
                 continue
             allowed = set(LAYERS[here]) | {here}
+            consumer = os.path.relpath(root, src).startswith("include")
+            if here == "dirt" and not consumer and name in PUBLIC:
+                errors.append("%s: an internal header of src/dirt/ named like the consumer "
+                              "header dirt/%s" % (os.path.relpath(path, src), name))
             with open(path, encoding="utf-8") as f:
                 for no, line in enumerate(f, 1):
                     m = INCLUDE.match(line)
@@ -94,9 +104,17 @@ def main():
                         continue
                     o = owner(m.group(1), here)
                     inc = m.group(1)
-                    if here == "app" and o not in (None, "app") and not (
-                            inc.startswith("dirt/") and inc[5:] in PUBLIC):
-                        errors.append("%s:%d: the programs use public headers only, not \"%s\""
+                    if consumer and not (inc.startswith("dirt/") and inc[5:] in PUBLIC):
+                        errors.append("%s:%d: a consumer header includes consumer headers "
+                                      "only, not \"%s\"" % (os.path.relpath(path, src), no, inc))
+                    elif here == "app" and o not in (None, "app") and not (
+                            inc.startswith("dirt/") and inc[5:] in PUBLIC) and inc not in VIEWER:
+                        errors.append("%s:%d: the programs use the consumer API only (and the "
+                                      "viewer %s), not \"%s\""
+                                      % (os.path.relpath(path, src), no, ", ".join(sorted(VIEWER)),
+                                         inc))
+                    elif here == "app" and o is None and inc.startswith("common/"):
+                        errors.append("%s:%d: the programs use the consumer API only, not \"%s\""
                                       % (os.path.relpath(path, src), no, inc))
                     elif o is not None and o not in allowed:
                         errors.append("%s:%d: layer '%s' includes \"%s\" of layer '%s'"

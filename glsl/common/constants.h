@@ -10,7 +10,7 @@
  * #error only. The #error checks below run in every C file and every shader
  * that includes it (shaders are validated at build time), so a binding
  * outside its subsystem's range or two overlapping ranges fail the build.
- * src/gl/layout_check.c adds what the preprocessor cannot check
+ * test/common/layout_check.c adds what the preprocessor cannot check
  * (uniqueness of every binding and of each program's uniform locations,
  * record sizes and member offsets). */
 #ifndef DIRT_COMMON_CONSTANTS_H

@@ -6,26 +6,19 @@
  * window and the PNG of the same image agree.
  *
  * This file must stay valid as both C11 and GLSL 4.50: #define and #if
- * only, except the C enum below (hidden from GLSL by GL_core_profile).
+ * only.
  * Float constants carry the f suffix, which both languages accept, so C
  * computes in float exactly as written. */
 #ifndef DIRT_COMMON_DISPLAY_H
 #define DIRT_COMMON_DISPLAY_H
 
-/* ---- Tone-map operators: the values of enum dirt_tonemap ---- */
+/* ---- Tone-map operators: the values of enum dirt_tonemap (dirt/types.h,
+ * the consumer API, which cannot include this file; src/io/png.c checks
+ * that they agree) ---- */
 
 #define DIRT_TONEMAP_ID_CLAMP 0
 #define DIRT_TONEMAP_ID_REINHARD 1
 #define DIRT_TONEMAP_ID_ACES 2
-
-#ifndef GL_core_profile
-/* The tone-map operator applied after exposure (dirt/image.h, dirt/window.h). */
-enum dirt_tonemap {
-    DIRT_TONEMAP_CLAMP = DIRT_TONEMAP_ID_CLAMP,       /* clamp to [0,1] */
-    DIRT_TONEMAP_REINHARD = DIRT_TONEMAP_ID_REINHARD, /* x / (1 + x) per channel */
-    DIRT_TONEMAP_ACES = DIRT_TONEMAP_ID_ACES,         /* Narkowicz's rational fit of the ACES curve */
-};
-#endif
 
 /* Narkowicz 2015 fit of the ACES filmic curve (sRGB primaries), for x > 0:
  *   x (A x + B) / (x (C x + D) + E)        (0 for x <= 0 and NaN) */

@@ -2,7 +2,7 @@
  * shared by C (src/integrator/gpu_tables.c packs them) and GLSL. Same rules
  * as common/layout.h, which this file includes: only structs of
  * DIRT_V4/DIRT_IV4/DIRT_UV4 members and #defines, valid C11 and GLSL 4.50;
- * src/gl/layout_check.c checks sizes and offsets with _Static_assert.
+ * test/common/layout_check.c checks sizes and offsets with _Static_assert.
  *
  * These records are the integrator's, not the raster preview's
  * (dirt_gpu_material / dirt_gpu_light of layout.h). Every value a record

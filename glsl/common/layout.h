@@ -1,7 +1,7 @@
 /* Data layouts shared by C and GLSL: the single definition of every record
  * that crosses the CPU/GPU boundary. Included from C (src/) and from GLSL
  * (glsl/). Every member is a 16-byte vector so std430 and C agree without
- * padding rules; src/gl/layout_check.c checks every size and member offset
+ * padding rules; test/common/layout_check.c checks every size and member offset
  * with _Static_assert. Binding points and other shared numbers are in
  * common/constants.h (the registry).
  *

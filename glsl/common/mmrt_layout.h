@@ -2,7 +2,7 @@
  * Vardis, Vasilakis, Papaioannou, I3D 2016): data layouts shared by C
  * (src/mmrt/) and GLSL (glsl/mmrt/). Same rules as common/layout.h: valid
  * C11 and GLSL 4.50, structs of DIRT_V4/DIRT_IV4/DIRT_UV4 members and
- * #defines only; src/gl/layout_check.c checks sizes and offsets.
+ * #defines only; test/common/layout_check.c checks sizes and offsets.
  *
  * MMRT reuses from common/layout.h: dirt_gpu_vertex (DIRT_BIND_VERTICES),
  * dirt_gpu_view (DIRT_BIND_VIEWS), the depth bounds + Hi-Z pyramid layout

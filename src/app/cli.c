@@ -5,7 +5,6 @@
 #include "dirt/file.h"
 
 #include <errno.h>
-#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -129,35 +128,6 @@ bool cli_value(const char *prog, const char *option, const char *val, char kind,
         if (!ok)
             cli_error(prog, "%s expects R,G,B (non-negative), got '%s'", option, val);
         return ok;
-    }
-    case 'z': {
-        char *end = NULL;
-        errno = 0;
-        unsigned long long v = val[0] >= '0' && val[0] <= '9' ? strtoull(val, &end, 10) : 0;
-        unsigned long long unit = 1;
-        bool ok = end && end != val && !errno;
-        if (ok && *end) {
-            const char *units = "KMG";
-            const char *u = strchr(units, *end >= 'a' ? *end - 32 : *end);
-            ok = u && *end;
-            if (ok) {
-                unit = 1ull << (10 * (unsigned)(u - units + 1));
-                end++;
-                ok = !*end || !strcmp(end, "B") || !strcmp(end, "iB");
-            }
-        }
-        double bytes = (double)v * (double)unit;
-        if (!ok || v > ULLONG_MAX / unit || bytes < lo || bytes > hi) {
-            if (hi >= 1e18)
-                cli_error(prog, "%s expects a size of at least %.0f MiB, such as 512M or 4G "
-                          "(K, M, G: powers of 1024), got '%s'", option, lo / 1048576.0, val);
-            else
-                cli_error(prog, "%s expects a size from %.0f to %.0f bytes, such as 512M (K, "
-                          "M, G: powers of 1024), got '%s'", option, lo, hi, val);
-            return false;
-        }
-        *(size_t *)dst = (size_t)(v * unit);
-        return true;
     }
     case 'v': {
         float *xyz = dst;

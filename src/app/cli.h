@@ -34,9 +34,7 @@ bool cli_float(const char *prog, const char *option, const char *text, double lo
  * 'd' double, 'f' float (in [lo, hi]), 'c' the index (int) of `val` in the
  * NULL-terminated `names` ("" entries are skipped), 'j' / 'g' a path that
  * must end in .json / .dot, 'b' three non-negative floats "R,G,B" (float[3]),
- * 'v' three finite floats "X,Y,Z" (float[3]), 'z' a size in bytes (size_t,
- * in [lo, hi]): a whole number, or one with K, M or G (powers of 1024; an
- * optional B or iB after it: 512M, 4GiB).
+ * 'v' three finite floats "X,Y,Z" (float[3]).
  * Other kinds are left to the caller (true). On
  * failure prints "prog: ..." and returns false. */
 bool cli_value(const char *prog, const char *option, const char *val, char kind, void *dst,

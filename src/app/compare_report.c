@@ -1,4 +1,4 @@
-/* dirt-compare's outputs from the rows (app/compare.h). */
+/* dirt-compare's results, CSV and table from the rows (app/compare.h). */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -8,9 +8,9 @@
 #include "app/cli.h"
 #include "app/compare.h"
 #include "dirt/file.h"
-#include "dirt/raytypes.h"
+#include "dirt/types.h"
 
-static const cJSON *jget(const cJSON *o, const char *path)
+const cJSON *compare_jget(const cJSON *o, const char *path)
 {
     char buf[128];
     snprintf(buf, sizeof(buf), "%s", path);
@@ -21,32 +21,24 @@ static const cJSON *jget(const cJSON *o, const char *path)
     return x;
 }
 
-static double jd(const cJSON *o, const char *path)
+double compare_jd(const cJSON *o, const char *path)
 {
-    const cJSON *x = jget(o, path);
+    const cJSON *x = compare_jget(o, path);
     return cJSON_IsNumber(x) ? x->valuedouble : NAN;
 }
 
-static const char *js(const cJSON *o, const char *path)
+const char *compare_js(const cJSON *o, const char *path)
 {
-    const cJSON *x = jget(o, path);
+    const cJSON *x = compare_jget(o, path);
     return cJSON_IsString(x) ? x->valuestring : "";
 }
 
-static bool row_ok(const cJSON *r)
+bool compare_row_ok(const cJSON *r)
 {
-    return !strcmp(js(r, "status"), "ok");
+    return !strcmp(compare_js(r, "status"), "ok");
 }
 
-typedef struct buf {
-    char *p;
-    size_t n, cap;
-} buf;
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void bprintf(buf *b, const char *fmt, ...)
+void compare_bprintf(compare_buf *b, const char *fmt, ...)
 {
     va_list ap;
     for (;;) {
@@ -67,7 +59,7 @@ static void bprintf(buf *b, const char *fmt, ...)
     }
 }
 
-static bool write_buf(const char *prog, const char *dir, const char *name, buf *b)
+bool compare_write_buf(const char *prog, const char *dir, const char *name, compare_buf *b)
 {
     char path[1024];
     snprintf(path, sizeof(path), "%s/%s", dir, name);
@@ -75,29 +67,30 @@ static bool write_buf(const char *prog, const char *dir, const char *name, buf *
     if (!ok)
         cli_error(prog, "cannot write %s", path);
     free(b->p);
-    *b = (buf){0};
+    *b = (compare_buf){0};
     return ok;
 }
 
 /* Rows of one scene, resolution, spp and bounces: MMRT's settings vary. */
 static bool same_group(const cJSON *p, const cJSON *a)
 {
-    return !strcmp(js(p, "scene.path"), js(a, "scene.path")) &&
-           jd(p, "settings.width") == jd(a, "settings.width") &&
-           jd(p, "settings.height") == jd(a, "settings.height") &&
-           jd(p, "settings.spp") == jd(a, "settings.spp") &&
-           jd(p, "settings.bounces") == jd(a, "settings.bounces");
+    return !strcmp(compare_js(p, "scene.path"), compare_js(a, "scene.path")) &&
+           compare_jd(p, "settings.width") == compare_jd(a, "settings.width") &&
+           compare_jd(p, "settings.height") == compare_jd(a, "settings.height") &&
+           compare_jd(p, "settings.spp") == compare_jd(a, "settings.spp") &&
+           compare_jd(p, "settings.bounces") == compare_jd(a, "settings.bounces");
 }
 
 /* "1.921 (0.2 % of the diagonal), hiz" / "..., linear 30". */
 static void setting_str(const cJSON *r, char *out, size_t n)
 {
-    double t = jd(r, "mmrt.thickness_used"), d = jd(r, "scene.diagonal");
+    double t = compare_jd(r, "mmrt.thickness_used"), d = compare_jd(r, "scene.diagonal");
     char march[32];
-    if (!strcmp(js(r, "settings.mmrt_march"), "linear") && jd(r, "settings.mmrt_samples") > 0)
-        snprintf(march, sizeof(march), "linear %.0f", jd(r, "settings.mmrt_samples"));
+    if (!strcmp(compare_js(r, "settings.mmrt_march"), "linear") &&
+        compare_jd(r, "settings.mmrt_samples") > 0)
+        snprintf(march, sizeof(march), "linear %.0f", compare_jd(r, "settings.mmrt_samples"));
     else
-        snprintf(march, sizeof(march), "%s", js(r, "settings.mmrt_march"));
+        snprintf(march, sizeof(march), "%s", compare_js(r, "settings.mmrt_march"));
     snprintf(out, n, "%.4g (%.2g %% of the diagonal), %s", t, d > 0 ? 100 * t / d : NAN, march);
 }
 
@@ -113,6 +106,8 @@ static const char *const csv_cols[][2] = {
     {"mmrt_thickness_used", "mmrt.thickness_used"}, {"mmrt_march", "settings.mmrt_march"},
     {"mmrt_samples", "settings.mmrt_samples"},
     {"warmup", "settings.warmup"}, {"repeat", "settings.repeat"},
+    {"lighting", "lighting.source"}, {"lighting_environment", "lighting.environment"},
+    {"lighting_summary", "lighting.summary"},
     {"clock", "environment.clock"},
     {"mmrt_fragments", "mmrt.records"}, {"mmrt_used_bytes", "mmrt.memory.structure_used"},
     {"mmrt_allocated_bytes", "mmrt.memory.structure_allocated"},
@@ -135,17 +130,17 @@ static const char *const csv_cols[][2] = {
     {"dirt_frame_median_ms", "dirt.frame.median_ms"}, {"ratio_frame", "ratios.frame"},
 };
 
-static void csv_field(buf *b, const cJSON *x)
+static void csv_field(compare_buf *b, const cJSON *x)
 {
     if (cJSON_IsNumber(x)) {
-        bprintf(b, "%.10g", x->valuedouble);
+        compare_bprintf(b, "%.10g", x->valuedouble);
     } else if (cJSON_IsString(x)) {
-        bprintf(b, "\"");
+        compare_bprintf(b, "\"");
         for (const char *c = x->valuestring; *c; c++)
-            bprintf(b, *c == '"' ? "\"\"" : "%c", *c);
-        bprintf(b, "\"");
+            compare_bprintf(b, *c == '"' ? "\"\"" : "%c", *c);
+        compare_bprintf(b, "\"");
     } else if (cJSON_IsBool(x)) {
-        bprintf(b, cJSON_IsTrue(x) ? "true" : "false");
+        compare_bprintf(b, cJSON_IsTrue(x) ? "true" : "false");
     }
 }
 
@@ -154,37 +149,37 @@ bool compare_write_results(const char *prog, const char *dir, const cJSON *doc)
     char *text = cJSON_Print(doc);
     if (!text)
         return false;
-    buf b = {0};
-    bprintf(&b, "%s\n", text);
+    compare_buf b = {0};
+    compare_bprintf(&b, "%s\n", text);
     free(text);
-    bool ok = write_buf(prog, dir, "results.json", &b);
+    bool ok = compare_write_buf(prog, dir, "results.json", &b);
     size_t ncols = sizeof(csv_cols) / sizeof(csv_cols[0]);
     for (size_t c = 0; c < ncols; c++)
-        bprintf(&b, "%s%s", c ? "," : "", csv_cols[c][0]);
+        compare_bprintf(&b, "%s%s", c ? "," : "", csv_cols[c][0]);
     for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        bprintf(&b, ",dirt_agree_%s,mmrt_agree_%s", dirt_ray_type_names[t],
+        compare_bprintf(&b, ",dirt_agree_%s,mmrt_agree_%s", dirt_ray_type_names[t],
                 dirt_ray_type_names[t]);
-    bprintf(&b, "\n");
+    compare_bprintf(&b, "\n");
     const cJSON *r;
-    cJSON_ArrayForEach(r, jget(doc, "configurations"))
+    cJSON_ArrayForEach(r, compare_jget(doc, "configurations"))
     {
         for (size_t c = 0; c < ncols; c++) {
             if (c)
-                bprintf(&b, ",");
-            csv_field(&b, jget(r, csv_cols[c][1]));
+                compare_bprintf(&b, ",");
+            csv_field(&b, compare_jget(r, csv_cols[c][1]));
         }
         for (int t = 0; t < DIRT_RAY_TYPES; t++) {
             char p[96];
             for (int e = 0; e < 2; e++) {
                 snprintf(p, sizeof(p), "%s.agreement.fraction.%s", e ? "mmrt" : "dirt",
                          dirt_ray_type_names[t]);
-                bprintf(&b, ",");
-                csv_field(&b, jget(r, p));
+                compare_bprintf(&b, ",");
+                csv_field(&b, compare_jget(r, p));
             }
         }
-        bprintf(&b, "\n");
+        compare_bprintf(&b, "\n");
     }
-    return write_buf(prog, dir, "results.csv", &b) && ok;
+    return compare_write_buf(prog, dir, "results.csv", &b) && ok;
 }
 
 cJSON *compare_read_results(const char *dir)
@@ -210,6 +205,24 @@ cJSON *compare_read_results(const char *dir)
     return cJSON_IsArray(rows) ? rows : (cJSON_Delete(rows), NULL);
 }
 
+/* Appends `line` (one table line, with its newline) to `b` unless it is in
+ * `listed` already (then adds it there); frees it. */
+static void print_once(compare_buf *b, compare_buf *listed, compare_buf *line)
+{
+    if (!line->p)
+        return;
+    bool found = false;
+    for (const char *q = listed->p ? strstr(listed->p, line->p) : NULL; q && !found;
+         q = strstr(q + 1, line->p))
+        found = q == listed->p || q[-1] == '\n';
+    if (!found) {
+        compare_bprintf(b, "%s", line->p);
+        compare_bprintf(listed, "%s", line->p);
+    }
+    free(line->p);
+    *line = (compare_buf){0};
+}
+
 static double mb(double bytes)
 {
     return bytes / 1048576.0;
@@ -217,291 +230,212 @@ static double mb(double bytes)
 
 bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
 {
-    buf b = {0};
-    const cJSON *rows = jget(doc, "configurations"), *r, *first = NULL;
-    cJSON_ArrayForEach(r, rows) if (row_ok(r) && !first) first = r;
-    bprintf(&b, "# DIRT vs MMRT (dirt-compare)\n\n");
+    compare_buf b = {0};
+    const cJSON *rows = compare_jget(doc, "configurations"), *r, *first = NULL;
+    cJSON_ArrayForEach(r, rows) if (compare_row_ok(r) && !first) first = r;
+    compare_bprintf(&b, "# DIRT vs MMRT (dirt-compare)\n\n");
     if (first)
-        bprintf(&b, "Machine: %s  \nRenderer: %s  \nCommit: %s  \nTimes: %s clock, median of "
-                "%g repeats after %g warm-up (min-max in results.csv/json); build = the "
-                "structure's passes, trace = every trace pass of spp samples of path "
-                "tracing, frame = every pass: the build and spp whole samples (raygen, "
-                "traces, fetch, shade, resolve, accumulate).\n\n",
-                js(first, "environment.machine"), js(first, "environment.renderer"),
-                js(first, "environment.commit"), js(first, "environment.clock"),
-                jd(first, "settings.repeat"), jd(first, "settings.warmup"));
-    bprintf(&b, "In the layout of the DIRT paper's Table 2 (MMRT / DIRT at equal settings). "
-                "Records: MMRT fragments, DIRT id nodes (c n_p). MB: the structure's used "
-                "bytes. Ratios DIRT / MMRT.\n\n");
-    bprintf(&b, "| scene | triangles | resolution | views | S | B (D/M) | thickness | spp "
-                "| MMRT fragments | MMRT MB | MMRT build ms | MMRT trace ms | DIRT entries | "
-                "DIRT MB | DIRT build ms | DIRT trace ms | entries ratio | MB ratio | build "
-                "ratio | trace ratio | frame ratio | MMRT relMSE | DIRT relMSE | status |\n");
-    bprintf(&b, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-                "---|---|---|---|---|---|\n");
+        compare_bprintf(&b, "Machine: %s  \nRenderer: %s  \nCommit: %s  \nTimes: %s clock, "
+                        "median of %g repeats after %g warm-up (min-max in results.csv/json); "
+                        "build = the structure's passes, trace = every trace pass of spp "
+                        "samples of path tracing, frame = every pass: the build and spp whole "
+                        "samples (raygen, traces, fetch, shade, resolve, accumulate).\n\n",
+                        compare_js(first, "environment.machine"),
+                        compare_js(first, "environment.renderer"),
+                        compare_js(first, "environment.commit"),
+                        compare_js(first, "environment.clock"),
+                        compare_jd(first, "settings.repeat"), compare_jd(first, "settings.warmup"));
+    /* The lighting, per scene (the same in each of its rows). */
+    compare_bprintf(&b, "Lighting per scene (the same for MMRT, DIRT and the Embree reference; "
+                        "doc/compare.md, \"Lighting\"):\n\n");
     cJSON_ArrayForEach(r, rows)
     {
-        bprintf(&b, "| %s | %.0f | %.0fx%.0f | %s | %.0f | %.0f/%.0f | %.4g | %.0f |",
-                js(r, "scene.name"), jd(r, "scene.triangles"), jd(r, "settings.width"),
-                jd(r, "settings.height"), js(r, "settings.views"),
-                jd(r, "settings.dirt_tile_size"), jd(r, "settings.dirt_buckets"),
-                jd(r, "settings.mmrt_buckets"),
-                isnan(jd(r, "mmrt.thickness_used")) ? jd(r, "settings.mmrt_thickness")
-                                                    : jd(r, "mmrt.thickness_used"),
-                jd(r, "settings.spp"));
-        if (!row_ok(r)) {
-            bprintf(&b, " | | | | | | | | | | | | | | | | failed: %s |\n", js(r, "reason"));
+        bool seen = false;
+        for (const cJSON *p = rows->child; p != r && !seen; p = p->next)
+            seen = !strcmp(compare_js(p, "scene.path"), compare_js(r, "scene.path")) &&
+                   !strcmp(compare_js(p, "lighting.summary"), compare_js(r, "lighting.summary"));
+        if (!seen)
+            compare_bprintf(&b, "- %s: %s\n", compare_js(r, "scene.name"),
+                            *compare_js(r, "lighting.summary")
+                                ? compare_js(r, "lighting.summary")
+                                : "not recorded (a row of an older run)");
+    }
+    compare_bprintf(&b, "\n");
+    compare_bprintf(&b, "In the layout of the DIRT paper's Table 2 (MMRT / DIRT at equal "
+                        "settings). Records: MMRT fragments, DIRT id nodes (c n_p). MB: the "
+                        "structure's used bytes. Ratios DIRT / MMRT.\n\n");
+    compare_bprintf(&b, "| scene | triangles | resolution | views | S | B (D/M) | thickness | spp "
+                        "| MMRT fragments | MMRT MB | MMRT build ms | MMRT trace ms | DIRT entries "
+                        "| DIRT MB | DIRT build ms | DIRT trace ms | entries ratio | MB ratio | "
+                        "build ratio | trace ratio | frame ratio | MMRT relMSE | DIRT relMSE | "
+                        "status |\n");
+    compare_bprintf(&b, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+                        "---|---|---|---|---|---|\n");
+    cJSON_ArrayForEach(r, rows)
+    {
+        double th = isnan(compare_jd(r, "mmrt.thickness_used"))
+                        ? compare_jd(r, "settings.mmrt_thickness")
+                        : compare_jd(r, "mmrt.thickness_used");
+        compare_bprintf(&b, "| %s | %.0f | %.0fx%.0f | %s | %.0f | %.0f/%.0f | %.4g | %.0f |",
+                        compare_js(r, "scene.name"), compare_jd(r, "scene.triangles"),
+                        compare_jd(r, "settings.width"), compare_jd(r, "settings.height"),
+                        compare_js(r, "settings.views"), compare_jd(r, "settings.dirt_tile_size"),
+                        compare_jd(r, "settings.dirt_buckets"),
+                        compare_jd(r, "settings.mmrt_buckets"), th, compare_jd(r, "settings.spp"));
+        if (!compare_row_ok(r)) {
+            compare_bprintf(&b, " | | | | | | | | | | | | | | | | failed: %s |\n",
+                            compare_js(r, "reason"));
             continue;
         }
-        bprintf(&b, " %.0f | %.2f | %.2f | %.2f | %.0f | %.2f | %.2f | %.2f | %.3f | %.3f | "
-                    "%.3f | %.3f | %.3f | %.3g | %.3g | ok |\n",
-                jd(r, "mmrt.records"), mb(jd(r, "mmrt.memory.structure_used")),
-                jd(r, "mmrt.build.median_ms"), jd(r, "mmrt.trace.median_ms"),
-                jd(r, "dirt.records"), mb(jd(r, "dirt.memory.structure_used")),
-                jd(r, "dirt.build.median_ms"), jd(r, "dirt.trace.median_ms"),
-                jd(r, "ratios.records"), jd(r, "ratios.memory"), jd(r, "ratios.build"),
-                jd(r, "ratios.trace"), jd(r, "ratios.frame"), jd(r, "mmrt.rel_mse"),
-                jd(r, "dirt.rel_mse"));
+        compare_bprintf(&b, " %.0f | %.2f | %.2f | %.2f | %.0f | %.2f | %.2f | %.2f | %.3f | "
+                            "%.3f | %.3f | %.3f | %.3f | %.3g | %.3g | ok |\n",
+                        compare_jd(r, "mmrt.records"),
+                        mb(compare_jd(r, "mmrt.memory.structure_used")),
+                        compare_jd(r, "mmrt.build.median_ms"),
+                        compare_jd(r, "mmrt.trace.median_ms"),
+                        compare_jd(r, "dirt.records"),
+                        mb(compare_jd(r, "dirt.memory.structure_used")),
+                        compare_jd(r, "dirt.build.median_ms"),
+                        compare_jd(r, "dirt.trace.median_ms"),
+                        compare_jd(r, "ratios.records"), compare_jd(r, "ratios.memory"),
+                        compare_jd(r, "ratios.build"), compare_jd(r, "ratios.trace"),
+                        compare_jd(r, "ratios.frame"), compare_jd(r, "mmrt.rel_mse"),
+                        compare_jd(r, "dirt.rel_mse"));
     }
-    /* Memory against the formulas. */
-    bprintf(&b, "\n## Memory against the analytic formulas\n\n"
-                "DIRT: its Table 3 (`bytes_table3`); MMRT: the DLLB formula of its paper "
-                "(`bytes_paper`). \"exact part\": the terms the formula counts exactly, "
-                "measured vs formula; depth extra: measured depth bounds minus what the "
-                "formula counts for them (by design, see doc/compare.md).\n\n"
-                "| scene | resolution | technique | used MB | allocated MB | formula MB | "
-                "exact part measured | exact part formula | equal | depth extra B |\n"
-                "|---|---|---|---|---|---|---|---|---|---|\n");
+    /* Memory against the formulas: one line per structure (DIRT's is
+     * measured again in every row of MMRT's settings, and MMRT's does not
+     * depend on its thickness or march): repeats are left out. */
+    compare_buf listed = {0};
+    compare_bprintf(&b, "\n## Memory against the analytic formulas\n\n"
+                        "DIRT: its Table 3 (`bytes_table3`); MMRT: the DLLB formula of its paper "
+                        "(`bytes_paper`). \"exact part\": the terms the formula counts exactly, "
+                        "measured vs formula; depth extra: measured depth bounds minus what the "
+                        "formula counts for them (by design, see doc/compare.md). One line per "
+                        "structure: the same structure measured in several configurations (DIRT's "
+                        "beside each MMRT setting, MMRT's at each thickness and march) is listed "
+                        "once.\n\n"
+                        "| scene | resolution | views | technique | structure | used MB | "
+                        "allocated MB | formula MB | exact part measured | exact part formula | "
+                        "equal | depth extra B |\n"
+                        "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     cJSON_ArrayForEach(r, rows)
     {
-        if (!row_ok(r))
+        if (!compare_row_ok(r))
             continue;
         for (int e = 0; e < 2; e++) {
-            const cJSON *m = jget(r, e ? "dirt.memory" : "mmrt.memory");
-            bprintf(&b, "| %s | %.0fx%.0f | %s | %.3f | %.3f | %.3f | %.0f | %.0f | %s | %.0f |\n",
-                    js(r, "scene.name"), jd(r, "settings.width"), jd(r, "settings.height"),
-                    e ? "DIRT" : "MMRT", mb(jd(m, "structure_used")),
-                    mb(jd(m, "structure_allocated")), mb(jd(m, "formula.bytes")),
-                    jd(m, "formula.exact_part_measured"), jd(m, "formula.exact_part_formula"),
-                    cJSON_IsTrue(jget(m, "formula.equal")) ? "yes" : "**no**",
-                    jd(m, "formula.depth_extra"));
+            const cJSON *m = compare_jget(r, e ? "dirt.memory" : "mmrt.memory");
+            char setting[96], t[32] = "";
+            if (compare_jd(r, "settings.time") != 0)
+                snprintf(t, sizeof(t), ", t %g s", compare_jd(r, "settings.time"));
+            if (e)
+                snprintf(setting, sizeof(setting), "S%g B%g L%g%s",
+                         compare_jd(r, "settings.dirt_tile_size"),
+                         compare_jd(r, "settings.dirt_buckets"),
+                         compare_jd(r, "settings.dirt_large"), t);
+            else
+                snprintf(setting, sizeof(setting), "B%g%s",
+                         compare_jd(r, "settings.mmrt_buckets"), t);
+            compare_buf line = {0};
+            compare_bprintf(&line, "| %s | %.0fx%.0f | %s | %s | %s | %.3f | %.3f | %.3f | %.0f "
+                            "| %.0f | %s | %.0f |\n",
+                            compare_js(r, "scene.name"), compare_jd(r, "settings.width"),
+                            compare_jd(r, "settings.height"), compare_js(r, "settings.views"),
+                            e ? "DIRT" : "MMRT", setting, mb(compare_jd(m, "structure_used")),
+                            mb(compare_jd(m, "structure_allocated")),
+                            mb(compare_jd(m, "formula.bytes")),
+                            compare_jd(m, "formula.exact_part_measured"),
+                            compare_jd(m, "formula.exact_part_formula"),
+                            cJSON_IsTrue(compare_jget(m, "formula.equal")) ? "yes" : "**no**",
+                            compare_jd(m, "formula.depth_extra"));
+            print_once(&b, &listed, &line);
         }
     }
-    /* Agreement. */
-    bprintf(&b, "\n## Hit agreement with Embree per ray type (%%)\n\n| scene | resolution | "
-                "thickness | technique |");
+    /* Agreement: DIRT's once per structure, MMRT's per thickness and march. */
+    compare_bprintf(&b, "\n## Hit agreement with Embree per ray type (%%)\n\n"
+                        "DIRT's agreement does not depend on MMRT's settings: it is listed once "
+                        "per DIRT setting.\n\n| scene | resolution | technique | setting |");
     for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        bprintf(&b, " %s |", dirt_ray_type_names[t]);
-    bprintf(&b, "\n|---|---|---|---|---|---|---|---|---|\n");
+        compare_bprintf(&b, " %s |", dirt_ray_type_names[t]);
+    compare_bprintf(&b, "\n|---|---|---|---|---|---|---|---|---|\n");
     cJSON_ArrayForEach(r, rows)
     {
-        if (!row_ok(r) || !jget(r, "dirt.agreement"))
+        if (!compare_row_ok(r) || !compare_jget(r, "dirt.agreement"))
             continue;
         for (int e = 0; e < 2; e++) {
-            bprintf(&b, "| %s | %.0fx%.0f | %.4g | %s |", js(r, "scene.name"),
-                    jd(r, "settings.width"), jd(r, "settings.height"),
-                    jd(r, "mmrt.thickness_used"), e ? "MMRT" : "DIRT");
+            char setting[160];
+            if (e)
+                setting_str(r, setting, sizeof(setting));
+            else
+                snprintf(setting, sizeof(setting), "S%g B%g",
+                         compare_jd(r, "settings.dirt_tile_size"),
+                         compare_jd(r, "settings.dirt_buckets"));
+            compare_buf line = {0};
+            compare_bprintf(&line, "| %s | %.0fx%.0f | %s | %s |", compare_js(r, "scene.name"),
+                            compare_jd(r, "settings.width"), compare_jd(r, "settings.height"),
+                            e ? "MMRT" : "DIRT", setting);
             for (int t = 0; t < DIRT_RAY_TYPES; t++) {
                 char p[96];
                 snprintf(p, sizeof(p), "%s.agreement.fraction.%s", e ? "mmrt" : "dirt",
                          dirt_ray_type_names[t]);
-                bprintf(&b, " %.2f |", 100 * jd(r, p));
+                compare_bprintf(&line, " %.2f |", 100 * compare_jd(r, p));
             }
-            bprintf(&b, "\n");
+            compare_bprintf(&line, "\n");
+            print_once(&b, &listed, &line);
         }
     }
+    free(listed.p);
     /* MMRT's best setting per scene (thickness, march, samples) beside its
      * default (default thickness, Hi-Z), with their images. */
-    bprintf(&b, "\n## MMRT's best setting per scene (relMSE of the path-traced image vs "
-                "Embree)\n\nDefault: MMRT's default thickness (0.2 %% of the scene's diagonal) "
-                "and the Hi-Z march; best: the lowest relMSE over the thicknesses, marches and "
-                "samples swept at that scene, resolution and spp.\n\n"
-                "| scene | resolution | spp | default | relMSE at default | best setting | "
-                "relMSE at best | DIRT relMSE | images (MMRT default, MMRT best, Embree) |\n"
-                "|---|---|---|---|---|---|---|---|---|\n");
+    compare_bprintf(&b, "\n## MMRT's best setting per scene (relMSE of the path-traced image "
+                        "vs Embree)\n\nDefault: MMRT's default thickness (0.2 %% of the scene's "
+                        "diagonal) and the Hi-Z march; best: the lowest relMSE over the "
+                        "thicknesses, marches and samples swept at that scene, resolution and "
+                        "spp.\n\n| scene | resolution | spp | default | relMSE at default | "
+                        "best setting | relMSE at best | DIRT relMSE | images (MMRT default, "
+                        "MMRT best, Embree) |\n|---|---|---|---|---|---|---|---|---|\n");
     int nrows = cJSON_GetArraySize(rows);
     for (int i = 0; i < nrows; i++) {
         const cJSON *a = cJSON_GetArrayItem(rows, i);
-        if (!row_ok(a))
+        if (!compare_row_ok(a))
             continue;
         bool seen = false;
         for (int k = 0; k < i && !seen; k++) {
             const cJSON *p = cJSON_GetArrayItem(rows, k);
-            seen = row_ok(p) && same_group(p, a);
+            seen = compare_row_ok(p) && same_group(p, a);
         }
         if (seen)
             continue;
         const cJSON *def = NULL, *best = NULL;
         for (int k = i; k < nrows; k++) {
             const cJSON *p = cJSON_GetArrayItem(rows, k);
-            if (!row_ok(p) || !same_group(p, a))
+            if (!compare_row_ok(p) || !same_group(p, a))
                 continue;
-            bool is_def = cJSON_IsTrue(jget(p, "settings.mmrt_default")) ||
-                          (!jget(p, "settings.mmrt_default") &&
-                           cJSON_IsTrue(jget(p, "settings.mmrt_thickness_default")) &&
-                           !strcmp(js(p, "settings.mmrt_march"), "hiz"));
+            bool is_def = cJSON_IsTrue(compare_jget(p, "settings.mmrt_default")) ||
+                          (!compare_jget(p, "settings.mmrt_default") &&
+                           cJSON_IsTrue(compare_jget(p, "settings.mmrt_thickness_default")) &&
+                           !strcmp(compare_js(p, "settings.mmrt_march"), "hiz"));
             if (is_def && !def)
                 def = p;
-            if (!best || jd(p, "mmrt.rel_mse") < jd(best, "mmrt.rel_mse"))
+            if (!best || compare_jd(p, "mmrt.rel_mse") < compare_jd(best, "mmrt.rel_mse"))
                 best = p;
         }
         char ds[96] = "not swept (add 0 and hiz)", de[32] = "-", bs[96], im[256] = "-";
         if (def) {
             setting_str(def, ds, sizeof(ds));
-            snprintf(de, sizeof(de), "%.4g", jd(def, "mmrt.rel_mse"));
+            snprintf(de, sizeof(de), "%.4g", compare_jd(def, "mmrt.rel_mse"));
         }
         setting_str(best, bs, sizeof(bs));
-        if (*js(best, "images.mmrt"))
+        bool dimg = def && *compare_js(def, "images.mmrt");
+        if (*compare_js(best, "images.mmrt"))
             snprintf(im, sizeof(im), "%s%s%s, [best](%s), [Embree](%s)",
-                     def && *js(def, "images.mmrt") ? "[default](" : "",
-                     def && *js(def, "images.mmrt") ? js(def, "images.mmrt") : "-",
-                     def && *js(def, "images.mmrt") ? ")" : "", js(best, "images.mmrt"),
-                     js(best, "images.embree"));
-        bprintf(&b, "| %s | %.0fx%.0f | %.0f | %s | %s | %s | %.4g | %.3g | %s |\n",
-                js(a, "scene.name"), jd(a, "settings.width"), jd(a, "settings.height"),
-                jd(a, "settings.spp"), ds, de, bs, jd(best, "mmrt.rel_mse"),
-                jd(def ? def : best, "dirt.rel_mse"), im);
+                     dimg ? "[default](" : "", dimg ? compare_js(def, "images.mmrt") : "-",
+                     dimg ? ")" : "", compare_js(best, "images.mmrt"),
+                     compare_js(best, "images.embree"));
+        compare_bprintf(&b, "| %s | %.0fx%.0f | %.0f | %s | %s | %s | %.4g | %.3g | %s |\n",
+                        compare_js(a, "scene.name"), compare_jd(a, "settings.width"),
+                        compare_jd(a, "settings.height"), compare_jd(a, "settings.spp"), ds, de, bs,
+                        compare_jd(best, "mmrt.rel_mse"),
+                        compare_jd(def ? def : best, "dirt.rel_mse"), im);
     }
-    return write_buf(prog, dir, "table.md", &b);
-}
-
-/* ---- plots (gnuplot) ---- */
-
-static bool write_dat(const char *prog, const char *dir, const char *name, buf *b)
-{
-    return write_buf(prog, dir, name, b);
-}
-
-bool compare_write_plots(const char *prog, const char *dir, const cJSON *doc)
-{
-    const cJSON *rows = jget(doc, "configurations"), *r;
-    buf b = {0};
-    /* plot.dat: one line per ok row, blocks per scene (two blank lines); its
-     * last columns number the rows across the blocks and label them with the
-     * scene and the settings that vary (the x axis of ratios_per_scene:
-     * gnuplot's column 0 restarts per block). */
-    bprintf(&b, "# scene pixels triangles mmrt_MB dirt_MB mmrt_build dirt_build mmrt_trace "
-                "dirt_trace ratio_mem ratio_build ratio_trace thickness_rel");
-    for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        bprintf(&b, " mmrt_%s dirt_%s", dirt_ray_type_names[t], dirt_ray_type_names[t]);
-    bprintf(&b, " mmrt_relmse dirt_relmse ratio_frame row label\n");
-    const char *last = NULL;
-    int blocks = 0, nok = 0;
-    bool agreement = false; /* any agreement figure (none with --no-quality) */
-    cJSON_ArrayForEach(r, rows)
-    {
-        if (!row_ok(r))
-            continue;
-        nok++;
-        if (!last || strcmp(last, js(r, "scene.name"))) {
-            if (last)
-                bprintf(&b, "\n\n");
-            blocks++;
-            last = js(r, "scene.name");
-        }
-        bprintf(&b, "\"%s\" %.0f %.0f %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g",
-                js(r, "scene.name"), jd(r, "settings.width") * jd(r, "settings.height"),
-                jd(r, "scene.triangles"), mb(jd(r, "mmrt.memory.structure_used")),
-                mb(jd(r, "dirt.memory.structure_used")), jd(r, "mmrt.build.median_ms"),
-                jd(r, "dirt.build.median_ms"), jd(r, "mmrt.trace.median_ms"),
-                jd(r, "dirt.trace.median_ms"), jd(r, "ratios.memory"), jd(r, "ratios.build"),
-                jd(r, "ratios.trace"), jd(r, "mmrt.thickness_used") / jd(r, "scene.diagonal"));
-        for (int t = 0; t < DIRT_RAY_TYPES; t++) {
-            char p[96];
-            for (int e = 0; e < 2; e++) {
-                snprintf(p, sizeof(p), "%s.agreement.fraction.%s", e ? "dirt" : "mmrt",
-                         dirt_ray_type_names[t]);
-                double v = jd(r, p);
-                agreement |= !isnan(v);
-                bprintf(&b, isnan(v) ? " NaN" : " %.6g", 100 * v);
-            }
-        }
-        bprintf(&b, " %.6g %.6g %.6g %d \"%s %.0fx%.0f S%.0f B%.0f/%.0f th %.2g%%\"\n",
-                jd(r, "mmrt.rel_mse"), jd(r, "dirt.rel_mse"), jd(r, "ratios.frame"), nok - 1,
-                js(r, "scene.name"), jd(r, "settings.width"), jd(r, "settings.height"),
-                jd(r, "settings.dirt_tile_size"), jd(r, "settings.dirt_buckets"),
-                jd(r, "settings.mmrt_buckets"),
-                100 * jd(r, "mmrt.thickness_used") / jd(r, "scene.diagonal"));
-    }
-    if (!write_dat(prog, dir, "plot.dat", &b))
-        return false;
-    if (!nok)
-        return true; /* nothing to plot */
-    /* One gnuplot script, each plot to SVG and PNG. */
-    static const struct {
-        const char *name, *xlabel, *ylabel, *body;
-        bool logx;
-        int height; /* pixels; 0 = 500 (the rotated labels of a row each want room) */
-    } plots[] = {
-        /* A key per scene: below the plot, small, when there are many. */
-        {"memory_vs_resolution", "pixels", "structure MB",
-         "if (NB > 4) { set key below horizontal font ',7' }\n"
-         "plot for [i=0:NB-1] D u 2:4 index i w lp t word(SC, i+1).' MMRT', "
-         "for [i=0:NB-1] D u 2:5 index i w lp dt 2 t word(SC, i+1).' DIRT'\n"
-         "set key outside right vertical font ''", true},
-        {"time_vs_resolution", "pixels", "median ms",
-         "if (NB > 2) { set key below horizontal font ',7' }\n"
-         "plot for [i=0:NB-1] D u 2:6 index i w lp t word(SC, i+1).' MMRT build', "
-         "for [i=0:NB-1] D u 2:7 index i w lp t word(SC, i+1).' DIRT build', "
-         "for [i=0:NB-1] D u 2:8 index i w lp dt 2 t word(SC, i+1).' MMRT trace', "
-         "for [i=0:NB-1] D u 2:9 index i w lp dt 2 t word(SC, i+1).' DIRT trace'\n"
-         "set key outside right vertical font ''", true},
-        {"memory_vs_triangles", "triangles", "structure MB",
-         "plot D u 3:4 w p pt 7 t 'MMRT', D u 3:5 w p pt 5 t 'DIRT'", true},
-        {"time_vs_triangles", "triangles", "median ms",
-         "plot D u 3:6 w p pt 7 t 'MMRT build', D u 3:7 w p pt 5 t 'DIRT build', "
-         "D u 3:8 w p pt 6 t 'MMRT trace', D u 3:9 w p pt 4 t 'DIRT trace'", true},
-        {"ratios_per_scene", "configuration", "DIRT / MMRT",
-         "set xtics rotate by -45 font ',8'\n"
-         "plot D u 27:10:xtic(28) w lp t 'memory', D u 27:11 w lp t 'build', "
-         "D u 27:12 w lp t 'trace', D u 27:26 w lp t 'frame'\n"
-         "set xtics norotate font ''", false, 760},
-        {"agreement_vs_thickness", "MMRT thickness / scene diagonal", "agreement with Embree %",
-         "plot for [k=0:4] D u 13:(column(14+2*k)) w lp t word(RT, k+1)", true},
-    };
-    buf g = {0};
-    bprintf(&g, "D = '%s/plot.dat'\nNB = %d\nRT = '", dir, blocks);
-    for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        bprintf(&g, "%s%s", t ? " " : "", dirt_ray_type_names[t]);
-    bprintf(&g, "'\nSC = '");
-    last = NULL;
-    cJSON_ArrayForEach(r, rows)
-    {
-        if (!row_ok(r) || (last && !strcmp(last, js(r, "scene.name"))))
-            continue;
-        bprintf(&g, "%s", last ? " " : "");
-        for (const char *c = js(r, "scene.name"); *c; c++)
-            bprintf(&g, "%c", *c == ' ' || *c == '\'' || *c == '_' ? '-' : *c);
-        last = js(r, "scene.name");
-    }
-    bprintf(&g, "'\nset key outside right\nset grid\nset datafile missing 'NaN'\n");
-    for (size_t p = 0; p < sizeof(plots) / sizeof(plots[0]); p++) {
-        /* Without agreement figures (--no-quality) that plot has no points. */
-        if (!agreement && !strcmp(plots[p].name, "agreement_vs_thickness"))
-            continue;
-        for (int f = 0; f < 2; f++) {
-            /* noenhanced: names with '_' are not subscripts */
-            bprintf(&g, "set terminal %s noenhanced size 900,%d\nset output '%s/%s.%s'\n",
-                    f ? "pngcairo" : "svg", plots[p].height ? plots[p].height : 500, dir,
-                    plots[p].name, f ? "png" : "svg");
-            char title[64];
-            snprintf(title, sizeof(title), "%s", plots[p].name);
-            for (char *c = title; *c; c++)
-                *c = *c == '_' ? ' ' : *c;
-            bprintf(&g, "set title '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s\n%s\nset output\n",
-                    title, plots[p].xlabel, plots[p].ylabel,
-                    plots[p].logx ? "set logscale x" : "unset logscale x", plots[p].body);
-        }
-    }
-    if (!write_buf(prog, dir, "plots.gp", &g))
-        return false;
-    char cmd[2200];
-    snprintf(cmd, sizeof(cmd), "gnuplot '%s/plots.gp' 2>'%s/plots.log'", dir, dir);
-    int st = system(cmd);
-    if (st != 0) {
-        cli_error(prog, "gnuplot failed (exit %d; is gnuplot-nox installed? see %s/plots.log)",
-                  st, dir);
-        return false;
-    }
-    return true;
+    return compare_write_buf(prog, dir, "table.md", &b);
 }

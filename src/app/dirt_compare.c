@@ -12,7 +12,11 @@
 
 #include "app/cli.h"
 #include "app/compare.h"
+#include "app/options.h"
+#include "app/provenance.h"
+#include "app/setup.h"
 #include "dirt/clock.h"
+#include "dirt/env.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
 #include "dirt/version.h"
@@ -25,302 +29,91 @@
 typedef struct int_list { int n; int v[MAX_LIST]; } int_list;
 typedef struct dbl_list { int n; double v[MAX_LIST]; } dbl_list;
 
+/* The sweep and the measurement, from the shared option table. */
 typedef struct options {
     const char *scenes[MAX_SCENES];
     int num_scenes;
     const char *dir;
     int_list w, h, views, tile, dbuckets, mbuckets, march, samples, spp, bounces;
-    dbl_list thickness, time;
+    dbl_list thickness, time;   /* thickness < 0: a fraction of the diagonal */
     int warmup, repeat, agree_w, agree_h, face;
-    int large;                  /* --dirt-large: 0 none, else up to that many */
+    int large;                  /* --large: 0 none, else up to that many */
     bool quality, images, quiet;
     uint32_t seed;
+    const char *env_path;       /* --env FILE|sky, for every scene */
+    dirt_env_opts env;          /* --env-intensity, --env-rotation */
+    float background[3];        /* --background, for every scene */
+    bool background_set;
 } options;
 
-static const char *const view_names[] = {"default", "single", "cube", "cube+camera", NULL};
-static const char *const march_names[] = {"hiz", "linear", NULL};
+static const char *const *const view_names = app_views_names;
+static const char *const *const march_names = app_march_names;
 
-static void usage(FILE *out)
+static void to_ints(const app_list *l, int_list *out)
 {
-    fprintf(out,
-"Usage: " PROG " SCENE... -o DIR [options]\n"
-"\n"
-"Measures DIRT against the MMRT fragment A-buffer on each configuration of a\n"
-"sweep (every combination of the lists below, per SCENE; \"default\" is the\n"
-"embedded scene) and writes DIR/table.md (the DIRT paper's Table 2 layout),\n"
-"DIR/results.csv, DIR/results.json (doc/compare.md) and plots (SVG + PNG,\n"
-"gnuplot). A rerun with the same DIR skips the configurations already done.\n"
-"\n"
-"Sweeps (comma-separated lists):\n"
-"  --res WxH,...          image sizes (default 256x128)\n"
-"  --views LIST           single, cube, cube+camera (default cube+camera)\n"
-"  --tile LIST            DIRT tile size S in 1,2,4,8 (default 1: the paper's\n"
-"                         Table 2 compares at 1x1 tiles)\n"
-"  --dirt-buckets LIST    DIRT buckets B (default 4, MMRT's)\n"
-"  --mmrt-buckets LIST    MMRT buckets (default 4)\n"
-"  --thickness LIST       MMRT thickness, world units (0 = its default, 0.2%% of\n"
-"                         the scene's diagonal; default 0)\n"
-"  --thickness-rel LIST   MMRT thickness as fractions of the diagonal (added to\n"
-"                         the --thickness list)\n"
-"  --march LIST           MMRT march: hiz, linear (default hiz)\n"
-"  --samples LIST         MMRT linear march: samples per view (0 = its default,\n"
-"                         30; default 0; Hi-Z rows take none)\n"
-"  --spp LIST             samples per pixel of the path-traced image (default 1)\n"
-"  --bounces LIST         path events (default 4)\n"
-"  --time LIST            animation times in seconds (default 0)\n"
-"  --frames A:B[:FPS]     times frame/FPS for frames A..B (default FPS 24)\n"
-"\n"
-"Measurement:\n"
-"      --warmup N         unmeasured runs before the repeats (default 1)\n"
-"      --repeat N         measured runs; min, median and max per pass (default 3)\n"
-"      --face N           cube face size (default max(W, H) / 2)\n"
-"      --dirt-large N     DIRT's large primitives: at most N (0..16) of the\n"
-"                         largest triangles are tested by every ray instead of\n"
-"                         listed (doc/dirt-trace.md; default 16, 0 = none)\n"
-"      --agree-res WxH    camera G-buffer of the hit-agreement rays (default:\n"
-"                         the image size)\n"
-"      --no-quality       skip hit agreement and relMSE against Embree\n"
-"      --images           write each configuration's images into DIR/images\n"
-"      --seed N           (default 7)\n"
-"      --preset FILE      read options from FILE (one or more per line, # comments;\n"
-"                         data/compare-table*.txt)\n"
-"  -q, --quiet            no progress\n"
-"  -h, --help\n"
-"\n"
-"Exit status: 0 all done, 1 a configuration failed (recorded with its reason)\n"
-"or an output could not be written, 2 bad option or input, 3 no OpenGL 4.5.\n");
+    out->n = l->n;
+    for (int i = 0; i < l->n; i++)
+        out->v[i] = (int)l->v[i][0];
 }
 
-static bool parse_ints(const char *opt, const char *v, int_list *l, long lo, long hi,
-                       const char *const *names)
+/* The sweep of the parsed options; false after printing why. */
+static bool from_app(const app_opts *a, options *o)
 {
-    l->n = 0;
-    char buf[512];
-    snprintf(buf, sizeof(buf), "%s", v);
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
-         tok = strtok_r(NULL, ",", &save)) {
-        if (l->n == MAX_LIST) {
-            cli_error(PROG, "%s: at most %d values", opt, MAX_LIST);
-            return false;
-        }
-        int x;
-        if (names ? !cli_value(PROG, opt, tok, 'c', &x, 0, 0, names)
-                  : !cli_value(PROG, opt, tok, 'i', &x, lo, hi, NULL))
-            return false;
-        l->v[l->n++] = x;
+    memset(o, 0, sizeof(*o));
+    o->num_scenes = a->num_scenes;
+    for (int i = 0; i < a->num_scenes; i++)
+        o->scenes[i] = a->scenes[i];
+    o->dir = a->output;
+    const app_list *res = &a->lists[APP_OPT_RES];
+    o->w.n = o->h.n = res->n;
+    for (int i = 0; i < res->n; i++) {
+        o->w.v[i] = (int)res->v[i][0];
+        o->h.v[i] = (int)res->v[i][1];
     }
-    if (!l->n)
-        cli_error(PROG, "%s expects a list", opt);
-    return l->n > 0;
-}
-
-/* Appends to `l` (--thickness and --thickness-rel share one list). */
-static bool parse_dbls(const char *opt, const char *v, dbl_list *l, double lo, double hi)
-{
-    char buf[512];
-    snprintf(buf, sizeof(buf), "%s", v);
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
-         tok = strtok_r(NULL, ",", &save)) {
-        if (l->n == MAX_LIST) {
-            cli_error(PROG, "%s: at most %d values", opt, MAX_LIST);
-            return false;
-        }
-        if (!cli_float(PROG, opt, tok, lo, hi, &l->v[l->n]))
-            return false;
-        l->n++;
-    }
-    return true;
-}
-
-static bool parse_size(const char *opt, const char *tok, int *w, int *h)
-{
-    char *x = strchr(tok, 'x');
-    char a[32], b[32];
-    if (!x || x == tok || (size_t)(x - tok) >= sizeof(a) || strlen(x + 1) >= sizeof(b)) {
-        cli_error(PROG, "%s expects WxH, not '%s'", opt, tok);
+    to_ints(&a->lists[APP_OPT_VIEWS], &o->views);
+    to_ints(&a->lists[APP_OPT_TILE], &o->tile);
+    to_ints(&a->lists[APP_OPT_DIRT_BUCKETS], &o->dbuckets);
+    to_ints(&a->lists[APP_OPT_MMRT_BUCKETS], &o->mbuckets);
+    to_ints(&a->lists[APP_OPT_MARCH], &o->march);
+    to_ints(&a->lists[APP_OPT_SAMPLES], &o->samples);
+    to_ints(&a->lists[APP_OPT_SPP], &o->spp);
+    to_ints(&a->lists[APP_OPT_BOUNCES], &o->bounces);
+    /* --thickness-rel's fractions follow --thickness's values (negated:
+     * resolved per scene). */
+    static const app_list none;
+    const app_list *th = &a->lists[APP_OPT_THICKNESS], *rel = &a->lists[APP_OPT_THICKNESS_REL];
+    if (!a->given[APP_OPT_THICKNESS] && rel->n)
+        th = &none;
+    if (th->n + rel->n > MAX_LIST) {
+        cli_error(PROG, "--thickness and --thickness-rel: at most %d values", MAX_LIST);
         return false;
     }
-    memcpy(a, tok, (size_t)(x - tok));
-    a[x - tok] = 0;
-    snprintf(b, sizeof(b), "%s", x + 1);
-    long lw, lh;
-    if (!cli_int(PROG, opt, a, 1, 16384, &lw) || !cli_int(PROG, opt, b, 1, 16384, &lh))
-        return false;
-    *w = (int)lw, *h = (int)lh;
-    return true;
-}
-
-static bool parse_res(const char *opt, const char *v, options *o)
-{
-    o->w.n = o->h.n = 0;
-    char buf[512];
-    snprintf(buf, sizeof(buf), "%s", v);
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
-         tok = strtok_r(NULL, ",", &save)) {
-        if (o->w.n == MAX_LIST) {
-            cli_error(PROG, "%s: at most %d sizes", opt, MAX_LIST);
-            return false;
-        }
-        if (!parse_size(opt, tok, &o->w.v[o->w.n], &o->h.v[o->h.n]))
-            return false;
-        o->w.n++, o->h.n++;
-    }
-    return o->w.n > 0;
-}
-
-static bool parse_frames(const char *v, dbl_list *l)
-{
-    long a, b;
-    double fps = 24;
-    char buf[128];
-    snprintf(buf, sizeof(buf), "%s", v);
-    char *c1 = strchr(buf, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-    if (!c1) {
-        cli_error(PROG, "--frames expects A:B[:FPS]");
+    for (int i = 0; i < th->n; i++)
+        o->thickness.v[o->thickness.n++] = th->v[i][0];
+    for (int i = 0; i < rel->n; i++)
+        o->thickness.v[o->thickness.n++] = -rel->v[i][0];
+    if (a->frames.count > MAX_LIST) {
+        cli_error(PROG, "--frames: at most %d frames", MAX_LIST);
         return false;
     }
-    *c1 = 0;
-    if (c2)
-        *c2 = 0;
-    if (!cli_int(PROG, "--frames", buf, 0, 1000000, &a) ||
-        !cli_int(PROG, "--frames", c1 + 1, a, a + MAX_LIST - 1, &b) ||
-        (c2 && !cli_float(PROG, "--frames", c2 + 1, 1e-3, 1e4, &fps)))
-        return false;
-    l->n = 0;
-    for (long f = a; f <= b; f++)
-        l->v[l->n++] = (double)f / fps;
-    return true;
-}
-
-static bool parse_args(int argc, char **argv, options *o, int depth);
-
-/* --preset FILE: whitespace-separated options, '#' starts a comment. */
-static bool read_preset(const char *path, options *o, int depth)
-{
-    if (depth > 4) {
-        cli_error(PROG, "--preset nested too deeply");
-        return false;
-    }
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error(PROG, "--preset %s: %s", path, strerror(errno));
-        return false;
-    }
-    static char store[8192];
-    static size_t used;
-    char *argv[128];
-    int argc = 1;
-    argv[0] = PROG;
-    char line[1024];
-    while (fgets(line, sizeof(line), f)) {
-        char *hash = strchr(line, '#');
-        if (hash)
-            *hash = 0;
-        for (char *save = NULL, *tok = strtok_r(line, " \t\r\n", &save); tok;
-             tok = strtok_r(NULL, " \t\r\n", &save)) {
-            size_t n = strlen(tok) + 1;
-            if (argc == 128 || used + n > sizeof(store)) {
-                fclose(f);
-                cli_error(PROG, "--preset %s: too long", path);
-                return false;
-            }
-            memcpy(store + used, tok, n);
-            argv[argc++] = store + used;
-            used += n;
-        }
-    }
-    fclose(f);
-    return parse_args(argc, argv, o, depth + 1);
-}
-
-static bool parse_args(int argc, char **argv, options *o, int depth)
-{
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes = a[0] == '-' && strcmp(a, "--no-quality") && strcmp(a, "--images") &&
-                     strcmp(a, "-q") && strcmp(a, "--quiet") && strcmp(a, "-h") &&
-                     strcmp(a, "--help");
-        if (takes && !v) {
-            cli_error(PROG, "%s expects a value", a);
-            return false;
-        }
-        bool ok = true;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            exit(DIRT_EXIT_OK);
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            o->dir = v;
-        } else if (!strcmp(a, "--res")) {
-            ok = parse_res(a, v, o);
-        } else if (!strcmp(a, "--views")) {
-            ok = parse_ints(a, v, &o->views, 0, 0, view_names);
-        } else if (!strcmp(a, "--tile")) {
-            ok = parse_ints(a, v, &o->tile, 1, 8, NULL);
-            for (int k = 0; ok && k < o->tile.n; k++)
-                if (o->tile.v[k] & (o->tile.v[k] - 1)) {
-                    cli_error(PROG, "--tile expects 1, 2, 4 or 8");
-                    ok = false;
-                }
-        } else if (!strcmp(a, "--dirt-buckets")) {
-            ok = parse_ints(a, v, &o->dbuckets, 1, 256, NULL);
-        } else if (!strcmp(a, "--mmrt-buckets")) {
-            ok = parse_ints(a, v, &o->mbuckets, 1, 256, NULL);
-        } else if (!strcmp(a, "--thickness")) {
-            ok = parse_dbls(a, v, &o->thickness, 0, 1e30);
-        } else if (!strcmp(a, "--thickness-rel")) {
-            int first = o->thickness.n;
-            ok = parse_dbls(a, v, &o->thickness, 1e-9, 1);
-            for (int k = first; ok && k < o->thickness.n; k++)
-                o->thickness.v[k] = -o->thickness.v[k]; /* resolved per scene */
-        } else if (!strcmp(a, "--march")) {
-            ok = parse_ints(a, v, &o->march, 0, 0, march_names);
-        } else if (!strcmp(a, "--samples")) {
-            ok = parse_ints(a, v, &o->samples, 0, 65536, NULL);
-        } else if (!strcmp(a, "--spp")) {
-            ok = parse_ints(a, v, &o->spp, 1, 1 << 16, NULL);
-        } else if (!strcmp(a, "--bounces")) {
-            ok = parse_ints(a, v, &o->bounces, 1, 64, NULL);
-        } else if (!strcmp(a, "--time")) {
-            o->time.n = 0;
-            ok = parse_dbls(a, v, &o->time, -1e9, 1e9);
-        } else if (!strcmp(a, "--frames")) {
-            ok = parse_frames(v, &o->time);
-        } else if (!strcmp(a, "--warmup")) {
-            ok = cli_value(PROG, a, v, 'i', &o->warmup, 0, 100, NULL);
-        } else if (!strcmp(a, "--repeat")) {
-            ok = cli_value(PROG, a, v, 'i', &o->repeat, 1, MAX_REPEAT, NULL);
-        } else if (!strcmp(a, "--face")) {
-            ok = cli_value(PROG, a, v, 'i', &o->face, 1, 8192, NULL);
-        } else if (!strcmp(a, "--dirt-large")) {
-            ok = cli_value(PROG, a, v, 'i', &o->large, 0, DIRT_ADS_MAX_LARGE, NULL);
-        } else if (!strcmp(a, "--agree-res")) {
-            ok = parse_size(a, v, &o->agree_w, &o->agree_h);
-        } else if (!strcmp(a, "--seed")) {
-            ok = cli_value(PROG, a, v, 'u', &o->seed, 0, 4294967295.0, NULL);
-        } else if (!strcmp(a, "--preset")) {
-            ok = read_preset(v, o, depth);
-        } else if (!strcmp(a, "--no-quality")) {
-            o->quality = false;
-        } else if (!strcmp(a, "--images")) {
-            o->images = true;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            o->quiet = true;
-        } else if (a[0] == '-') {
-            cli_error(PROG, "unknown option %s (see --help)", a);
-            return false;
-        } else {
-            if (o->num_scenes == MAX_SCENES) {
-                cli_error(PROG, "at most %d scenes", MAX_SCENES);
-                return false;
-            }
-            o->scenes[o->num_scenes++] = a;
-            continue;
-        }
-        if (!ok)
-            return false;
-        if (takes)
-            i++;
-    }
+    for (size_t i = 0; i < a->frames.count; i++)
+        o->time.v[o->time.n++] = (double)a->frames.frames[i] / a->fps;
+    for (int i = 0; !a->frames.count && i < a->lists[APP_OPT_TIME].n; i++)
+        o->time.v[o->time.n++] = a->lists[APP_OPT_TIME].v[i][0];
+    o->warmup = a->warmup;
+    o->repeat = a->repeat;
+    o->agree_w = a->agree_res[0];
+    o->agree_h = a->agree_res[1];
+    o->face = a->s.face_size;
+    o->large = (int)a->large;
+    o->quality = !a->no_quality;
+    o->images = a->images;
+    o->quiet = a->quiet;
+    o->seed = a->s.seed;
+    o->env_path = a->env_path;
+    o->env = (dirt_env_opts){.intensity = a->env_intensity, .rotation = a->env_rotation};
+    memcpy(o->background, a->s.background, sizeof(o->background));
+    o->background_set = a->given[APP_OPT_BACKGROUND];
     return true;
 }
 
@@ -331,11 +124,20 @@ typedef struct config {
     double thickness, time; /* thickness < 0: a fraction of the diagonal */
 } config;
 
+/* A scene and the lighting it is measured under (resolve_lighting). */
 typedef struct scene_info {
     const char *path, *name;
     dirt_scene *scene;
     uint64_t triangles;
     double diagonal;
+    uint64_t emitters;          /* emissive triangles (dirt_material_is_emissive), time 0 */
+    size_t lights;              /* punctual lights */
+    const char *source;         /* "scene", "fallback", "--env" or "--background" */
+    const char *environment;    /* "none", "sky", "map" or "background" */
+    const dirt_env *env;        /* the session's env (borrowed; NULL: the background) */
+    float background[3];
+    char summary[1200];         /* one line for the table and the CSV */
+    char key[1100];             /* the lighting's part of a configuration's id */
 } scene_info;
 
 static double median3(double *v, int n, double *mn, double *mx)
@@ -391,8 +193,87 @@ static void set_reason(char *why, size_t n, const char *engine, const char *what
         snprintf(why, n, "%s: %s (see the log)", engine, what);
 }
 
-static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float thickness,
-                                      uint32_t seed)
+/* The shortest decimal that reads back as the float `v` (0.2f: 0.2, not
+ * 0.200000003), for the outputs. */
+static double shortest(float v)
+{
+    char t[32];
+    for (int p = 1; p < 10; p++) {
+        snprintf(t, sizeof(t), "%.*g", p, (double)v);
+        if ((float)strtod(t, NULL) == v)
+            break;
+    }
+    return strtod(t, NULL);
+}
+
+/* Decides the lighting of `si` (its scene loaded, frame `f` at time 0):
+ * --env / --background for every scene (beside the scene's own lights);
+ * else the scene's own emitters and punctual lights with a black
+ * environment; else, for a scene with neither, the built-in sky, `*sky`
+ * (made on first use; the caller destroys it). False (logged) when the sky
+ * cannot be made. */
+static bool resolve_lighting(scene_info *si, const dirt_frame *f, const options *o,
+                             const dirt_env *env_map, dirt_env **sky)
+{
+    const dirt_material *m = dirt_scene_materials(si->scene);
+    size_t nm = dirt_scene_num_materials(si->scene);
+    si->emitters = 0;
+    for (size_t t = 0; f && t < f->num_triangles; t++)
+        si->emitters += f->material[t] < nm && dirt_material_is_emissive(&m[f->material[t]]);
+    si->lights = dirt_scene_num_lights(si->scene);
+    /* "its own lights (2 emissive triangles and 1 punctual light)" */
+    char own[160] = "no light of its own", tri[64] = "", pun[64] = "";
+    if (si->emitters)
+        snprintf(tri, sizeof(tri), "%llu emissive triangle%s", (unsigned long long)si->emitters,
+                 si->emitters == 1 ? "" : "s");
+    if (si->lights)
+        snprintf(pun, sizeof(pun), "%zu punctual light%s", si->lights, si->lights == 1 ? "" : "s");
+    if (si->emitters || si->lights)
+        snprintf(own, sizeof(own), "its own lights (%s%s%s)", tri,
+                 si->emitters && si->lights ? " and " : "", pun);
+    memset(si->background, 0, sizeof(si->background));
+    si->env = NULL;
+    if (o->env_path) {
+        si->source = "--env";
+        si->environment = !strcmp(o->env_path, "sky") ? "sky" : "map";
+        si->env = env_map;
+        float in = o->env.intensity > 0 ? o->env.intensity : 1;
+        snprintf(si->summary, sizeof(si->summary),
+                 "--env %s (intensity %g, rotation %g deg) and %s", o->env_path,
+                 shortest(in), shortest(o->env.rotation), own);
+        snprintf(si->key, sizeof(si->key), "env=%s,%g,%g", o->env_path, shortest(in),
+                 shortest(o->env.rotation));
+    } else if (o->background_set) {
+        si->source = "--background";
+        si->environment = "background";
+        memcpy(si->background, o->background, sizeof(si->background));
+        double r = shortest(o->background[0]), g = shortest(o->background[1]),
+               b = shortest(o->background[2]);
+        snprintf(si->summary, sizeof(si->summary),
+                 "--background %g,%g,%g (a constant environment) and %s", r, g, b,
+                 own);
+        snprintf(si->key, sizeof(si->key), "bg=%g,%g,%g", r, g, b);
+    } else if (si->emitters || si->lights) {
+        si->source = "scene";
+        si->environment = "none";
+        snprintf(si->summary, sizeof(si->summary),
+                 "as authored: %s; no environment (black)", own);
+        snprintf(si->key, sizeof(si->key), "scene");
+    } else {
+        if (!*sky && !(*sky = dirt_env_sky(NULL)))
+            return false;
+        si->source = "fallback";
+        si->environment = "sky";
+        si->env = *sky;
+        snprintf(si->summary, sizeof(si->summary),
+                 "fallback: no light of its own, so the built-in sky (as --env sky)");
+        snprintf(si->key, sizeof(si->key), "sky");
+    }
+    return true;
+}
+
+static dirt_session_opts session_opts(const scene_info *si, const config *c, enum dirt_engine e,
+                                      float thickness, uint32_t seed)
 {
     return (dirt_session_opts){.face_size = g_face,
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
@@ -401,7 +282,8 @@ static dirt_session_opts session_opts(const config *c, enum dirt_engine e, float
         .large = g_large ? g_large : -1,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
-        .bounces = c->bounces, .seed = seed, .background = {1, 1, 1}};
+        .bounces = c->bounces, .seed = seed, .env = si->env,
+        .background = {si->background[0], si->background[1], si->background[2]}};
 }
 
 static const char *ray_key(int t)
@@ -414,7 +296,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
                       float thickness, const options *o, const dirt_image *ref, char *why,
                       size_t whysz, const char *image_path)
 {
-    dirt_session_opts so = session_opts(c, e, thickness, o->seed);
+    dirt_session_opts so = session_opts(si, c, e, thickness, o->seed);
     dirt_session *s = dirt_session_create(gpu, si->scene, &so);
     if (!s) {
         set_reason(why, whysz, dirt_engine_names[e], "the session could not be made");
@@ -499,7 +381,7 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
     const char *formula_name, *note;
     if (st.has_ads) {
         const dirt_ads_stats *a = &st.ads;
-        int tiles = dirt_ads_views(dirt_session_ads(s))->num_tiles;
+        double tiles = (double)a->tiles;
         formula_name = "dirt_table3";
         formula = a->bytes_table3;
         /* Table 3 = tiles (8 B x 1.33 + 4 B x B) + 8 B x c n_p: heads and
@@ -586,10 +468,10 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
     snprintf(march, sizeof(march), "%s", march_names[c->march]);
     if (c->march == DIRT_MMRT_MARCH_LINEAR && c->samples) /* linear alone: 30 samples */
         snprintf(march, sizeof(march), "linear%d", c->samples);
-    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|L%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u",
+    snprintf(buf, n, "%s|%dx%d|f%d|%s|t%g|spp%d|k%d|S%d|Bd%d|L%d|Bm%d|th%g|%s|w%d|r%d|q%d|s%u|%s",
              si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
              c->dbuckets, o->large, c->mbuckets, c->thickness, march, o->warmup,
-             o->repeat, o->quality ? 1 : 0, o->seed);
+             o->repeat, o->quality ? 1 : 0, o->seed, si->key);
 }
 
 static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
@@ -677,6 +559,21 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "warmup", o->warmup);
     cJSON_AddNumberToObject(set, "repeat", o->repeat);
     cJSON_AddNumberToObject(set, "seed", o->seed);
+    cJSON *lj = cJSON_AddObjectToObject(row, "lighting");
+    cJSON_AddStringToObject(lj, "source", si->source);
+    cJSON_AddStringToObject(lj, "summary", si->summary);
+    cJSON_AddNumberToObject(lj, "emitter_triangles", (double)si->emitters);
+    cJSON_AddNumberToObject(lj, "punctual_lights", (double)si->lights);
+    cJSON_AddStringToObject(lj, "environment", si->environment);
+    if (o->env_path)
+        cJSON_AddStringToObject(lj, "env", o->env_path);
+    else
+        cJSON_AddNullToObject(lj, "env");
+    cJSON_AddNumberToObject(lj, "env_intensity", o->env.intensity > 0 ? o->env.intensity : 1);
+    cJSON_AddNumberToObject(lj, "env_rotation", o->env.rotation);
+    cJSON *bj = cJSON_AddArrayToObject(lj, "background");
+    for (int k = 0; k < 3; k++)
+        cJSON_AddItemToArray(bj, cJSON_CreateNumber(shortest(si->background[k])));
     cJSON *ej = cJSON_AddObjectToObject(row, "environment");
     cJSON_AddStringToObject(ej, "machine", ev->machine);
     cJSON_AddStringToObject(ej, "renderer", ev->renderer);
@@ -686,7 +583,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     const dirt_image *ref = NULL;
     dirt_session *rs = NULL;
     if (o->quality) {
-        dirt_session_opts ro = session_opts(c, DIRT_ENGINE_EMBREE, 0, o->seed);
+        dirt_session_opts ro = session_opts(si, c, DIRT_ENGINE_EMBREE, 0, o->seed);
         rs = dirt_session_create(gpu, si->scene, &ro);
         ref = rs && dirt_session_set_time(rs, c->time, NULL) &&
                       dirt_session_add_samples(rs, c->spp, NULL, NULL)
@@ -754,44 +651,40 @@ static bool dir_ok(const char *dir)
     return true;
 }
 
-static void set_default(int_list *l, int v)
-{
-    if (!l->n)
-        l->v[l->n++] = v;
-}
-
 int main(int argc, char **argv)
 {
-    options o = {.warmup = 1, .repeat = 3, .quality = true, .seed = 7, .large = DIRT_ADS_MAX_LARGE};
-    if (!parse_args(argc, argv, &o, 0))
+    static app_opts ao; /* its lists are large */
+    app_opts_init(&app_compare_program, &ao);
+    int prc = app_parse(&app_compare_program, argc, argv, &ao);
+    if (prc != APP_PARSE_OK || ao.help || ao.version) {
+        if (prc == APP_PARSE_OK && ao.help)
+            app_print_help(&app_compare_program, stdout);
+        else if (prc == APP_PARSE_OK)
+            prc = app_version(PROG, &ao);
+        app_opts_free(&ao);
+        return prc;
+    }
+    options o;
+    bool parsed = app_check(&app_compare_program, &ao) && from_app(&ao, &o);
+    if (!parsed) {
+        app_opts_free(&ao);
         return DIRT_EXIT_USAGE;
+    }
     g_face = o.face;
     g_large = o.large;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");
+        app_opts_free(&ao);
         return DIRT_EXIT_USAGE;
     }
-    if (!o.w.n) {
-        o.w.v[o.w.n++] = 256;
-        o.h.v[o.h.n++] = 128;
-    }
-    set_default(&o.views, DIRT_SESSION_VIEWS_CUBE_CAMERA);
-    set_default(&o.tile, 1);
-    set_default(&o.dbuckets, 4);
-    set_default(&o.mbuckets, 4);
-    set_default(&o.march, 0);
-    set_default(&o.samples, 0);
-    set_default(&o.spp, 1);
-    set_default(&o.bounces, 4);
-    if (!o.thickness.n)
-        o.thickness.v[o.thickness.n++] = 0;
-    if (!o.time.n)
-        o.time.v[o.time.n++] = 0;
     /* Bad input up front: scenes, DIR, configurations. */
     scene_info si[MAX_SCENES];
     memset(si, 0, sizeof(si));
     int rc = DIRT_EXIT_OK;
+    dirt_env *env_map = NULL, *sky = NULL; /* --env; the fallback */
+    if (!app_load_env(PROG, &ao, &env_map))
+        rc = DIRT_EXIT_USAGE;
     for (int i = 0; i < o.num_scenes && rc == DIRT_EXIT_OK; i++) {
         si[i].path = o.scenes[i];
         bool def = !strcmp(o.scenes[i], "default");
@@ -802,9 +695,7 @@ int main(int argc, char **argv)
             rc = DIRT_EXIT_USAGE;
             break;
         }
-        si[i].scene = def ? dirt_scene_create_default() : dirt_scene_load(o.scenes[i], NULL);
-        if (!si[i].scene) {
-            cli_error(PROG, "%s is not a loadable glTF scene (see above)", o.scenes[i]);
+        if (!(si[i].scene = app_load_scene(PROG, o.scenes[i], &ao))) {
             rc = DIRT_EXIT_USAGE;
             break;
         }
@@ -816,8 +707,12 @@ int main(int argc, char **argv)
                 d2 += (double)(f->bounds_max[k] - f->bounds_min[k]) *
                       (f->bounds_max[k] - f->bounds_min[k]);
             si[i].diagonal = sqrt(d2);
-            dirt_frame_destroy(f);
         }
+        if (!f || !resolve_lighting(&si[i], f, &o, env_map, &sky)) {
+            cli_error(PROG, "%s: out of memory (see above)", o.scenes[i]);
+            rc = DIRT_EXIT_FAILURE;
+        }
+        dirt_frame_destroy(f);
     }
     if (rc == DIRT_EXIT_OK && !dir_ok(o.dir))
         rc = DIRT_EXIT_USAGE;
@@ -861,11 +756,8 @@ int main(int argc, char **argv)
                                                 }
     dirt_gpu *gpu = NULL;
     if (rc == DIRT_EXIT_OK) {
-        gpu = dirt_gpu_create(&(dirt_gpu_opts){0});
-        if (!gpu) {
-            cli_error(PROG, "no OpenGL 4.5 context");
+        if (!(gpu = app_gpu(PROG, &ao)))
             rc = DIRT_EXIT_NO_GPU;
-        }
     }
     env ev;
     if (gpu) {
@@ -876,8 +768,9 @@ int main(int argc, char **argv)
         for (size_t i = 0; i < n && rc == DIRT_EXIT_OK; i++) {
             char why[256];
             for (int e = 0; e < 2 && rc == DIRT_EXIT_OK; e++) {
-                dirt_session_opts so = session_opts(&cfg[i], e ? DIRT_ENGINE_MMRT
-                                                               : DIRT_ENGINE_DIRT, 0, o.seed);
+                dirt_session_opts so = session_opts(&si[cfg[i].scene], &cfg[i],
+                                                    e ? DIRT_ENGINE_MMRT : DIRT_ENGINE_DIRT, 0,
+                                                    o.seed);
                 if (!dirt_session_check_opts(&so, why, sizeof(why))) {
                     cli_error(PROG, "impossible configuration %dx%d (%s): %s", cfg[i].w,
                               cfg[i].h, dirt_engine_names[so.engine], why);
@@ -901,6 +794,14 @@ int main(int argc, char **argv)
         old = compare_read_results(o.dir);
         doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "tool", PROG);
+        /* What made the results: the command line, version and commit. */
+        app_provenance prov;
+        app_provenance_init(&prov, argc, argv, NULL);
+        cJSON *pj = cJSON_AddObjectToObject(doc, "provenance");
+        cJSON_AddStringToObject(pj, "command_line", prov.command_line);
+        cJSON_AddStringToObject(pj, "version", dirt_version());
+        cJSON_AddStringToObject(pj, "commit", dirt_version_commit());
+        cJSON_AddStringToObject(pj, "device", ev.renderer);
         cJSON_AddNumberToObject(doc, "schema_version", 1);
         rows = cJSON_AddArrayToObject(doc, "configurations");
     }
@@ -968,5 +869,8 @@ int main(int argc, char **argv)
     dirt_gpu_destroy(gpu);
     for (int i = 0; i < o.num_scenes; i++)
         dirt_scene_destroy(si[i].scene);
+    dirt_env_destroy(env_map);
+    dirt_env_destroy(sky);
+    app_opts_free(&ao);
     return rc;
 }

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "dirt/vec.h"
+#include "core/vec.h"
 
 /* The few vector operations the camera needs (the programs see public
  * headers only). */

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdbool.h>
 
-#include "dirt/vec.h"
+#include "core/vec.h"
 
 static inline dirt_vec3 v3(float x, float y, float z)
 {

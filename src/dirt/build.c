@@ -20,7 +20,7 @@
 #include "gl/graph_gl.h"
 #include "views/views_gpu.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
     "clear", "depth bounds", "mip", "fill primitives", "count nodes", "candidate bound",
@@ -862,6 +862,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     struct dirt_gpu_ads_counters counters = a->counters_cpu;
     st->primitives = a->num_primitives;
+    st->tiles = (uint64_t)a->set.num_tiles;
     st->samples = counters.fill.y;
     st->nodes = counters.fill.x;
     st->buckets_per_sample = st->samples ? (double)st->nodes / (double)st->samples : 0;

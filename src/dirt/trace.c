@@ -5,7 +5,7 @@
 #include "dirt/ads_internal.h"
 #include "gl/program.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                   const dirt_trace_opts *opts_in, bool link, dirt_trace_stats *stats)

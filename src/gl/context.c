@@ -1,6 +1,7 @@
 /* GL 4.5 core contexts: headless EGL (Mesa surfaceless, then EGL devices) and
  * GLFW windows; the capability probe. */
 #include "gl/gl.h"
+#include "gl/window.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>

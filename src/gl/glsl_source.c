@@ -1,35 +1,34 @@
 #include "gl/glsl_source.h"
 
+#include "gl/glsl_embedded.h"
+
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "dirt/log.h"
 
-#ifndef DIRT_GLSL_DIR
-#define DIRT_GLSL_DIR ""
-#endif
-
 const char *glsl_root(void)
 {
-    static char exe_rel[4096];
     const char *env = getenv("DIRT_GLSL_DIR");
-    if (env && *env)
-        return env;
-    if (DIRT_GLSL_DIR[0] && access(DIRT_GLSL_DIR, R_OK) == 0)
-        return DIRT_GLSL_DIR;
-    ssize_t n = readlink("/proc/self/exe", exe_rel, sizeof(exe_rel) - 64);
-    if (n > 0) {
-        exe_rel[n] = '\0';
-        char *slash = strrchr(exe_rel, '/');
-        if (slash) {
-            strcpy(slash, "/../share/dirt/glsl");
-            return exe_rel;
-        }
+    return env && *env ? env : NULL;
+}
+
+const glsl_embedded_file *glsl_embedded_find(const char *rel)
+{
+    size_t lo = 0, hi = glsl_embedded_count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        int c = strcmp(rel, glsl_embedded_files[mid].path);
+        if (c == 0)
+            return &glsl_embedded_files[mid];
+        if (c < 0)
+            hi = mid;
+        else
+            lo = mid + 1;
     }
-    return "glsl";
+    return NULL;
 }
 
 /* Growable string. */
@@ -71,8 +70,26 @@ static void sb_printf(sbuf *b, const char *fmt, ...)
         sb_append(b, tmp, (size_t)n < sizeof(tmp) ? (size_t)n : sizeof(tmp) - 1);
 }
 
+/* How messages name a root: the directory, or the embedded glsl/. */
+static const char *root_name(const char *root)
+{
+    return root ? root : "glsl (embedded)";
+}
+
 static char *read_text(const char *root, const char *rel)
 {
+    if (!root) {
+        const glsl_embedded_file *e = glsl_embedded_find(rel);
+        char *copy = e ? malloc(e->size + 1) : NULL;
+        if (!e)
+            DIRT_ERROR("no shader source glsl/%s in the library (set DIRT_GLSL_DIR to read "
+                       "shaders from a directory)", rel);
+        else if (!copy)
+            DIRT_ERROR("out of memory reading shader source glsl/%s", rel);
+        else
+            memcpy(copy, e->text, e->size + 1);
+        return copy;
+    }
     char full[4096];
     snprintf(full, sizeof(full), "%s/%s", root, rel);
     FILE *f = fopen(full, "rb");
@@ -162,7 +179,7 @@ static bool append_file(sbuf *b, const char *root, const char *rel, glsl_files *
         char inc[256];
         int kind = parse_include(p, len, inc, sizeof(inc));
         if (kind < 0) {
-            DIRT_ERROR("%s/%s:%d: malformed #include", root, rel, line_no);
+            DIRT_ERROR("%s/%s:%d: malformed #include", root_name(root), rel, line_no);
             ok = false;
         } else if (kind > 0) {
             if (find_file(files, inc) < 0) {
@@ -186,7 +203,7 @@ static bool append_file(sbuf *b, const char *root, const char *rel, glsl_files *
                     }
                     sb_printf(b, "#line %d %d\n", line_no + 1, index);
                 } else if (len > 0 && strncmp(q, "//", 2) != 0 && q < p + len) {
-                    DIRT_ERROR("%s/%s: the first line must be #version", root, rel);
+                    DIRT_ERROR("%s/%s: the first line must be #version", root_name(root), rel);
                     ok = false;
                 }
             }
@@ -194,7 +211,7 @@ static bool append_file(sbuf *b, const char *root, const char *rel, glsl_files *
         p = eol ? eol + 1 : p + len;
     }
     if (ok && top && !seen_version) {
-        DIRT_ERROR("%s/%s: no #version line", root, rel);
+        DIRT_ERROR("%s/%s: no #version line", root_name(root), rel);
         ok = false;
     }
     free(text);

@@ -23,13 +23,20 @@ typedef struct glsl_files {
     char path[GLSL_MAX_FILES][256]; /* relative to the glsl root */
 } glsl_files;
 
-/* Directory of the shader sources: $DIRT_GLSL_DIR when set, else the source
- * tree's glsl/ compiled in, else <exe dir>/../share/dirt/glsl. */
+/* Directory of the shader sources when they are not the library's own:
+ * $DIRT_GLSL_DIR when set and not empty (development: edited shaders are
+ * read at every program compile), else NULL, which glsl_assemble takes as
+ * the sources embedded into the library at build time (glsl/embed.py). */
 const char *glsl_root(void);
 
-/* Reads `path` (relative to `root`), which must start with a #version line,
- * inserts the defines right after it, and replaces every line
- * `#include "rel/path.glsl"` (relative to `root`) by that file's text. A file
+struct glsl_embedded_file;
+/* The embedded file `rel` (relative to glsl/), NULL when there is none. */
+const struct glsl_embedded_file *glsl_embedded_find(const char *rel);
+
+/* Reads `path` (relative to `root`; a NULL root: the embedded sources),
+ * which must start with a #version line, inserts the defines right after
+ * it, and replaces every line `#include "rel/path.glsl"` (relative to
+ * `root`) by that file's text. A file
  * is included at most once (later includes of it are dropped), so cycles are
  * harmless. Returns a malloc'd string or NULL after logging (missing file,
  * missing #version, malformed include, too many files). `files` may be NULL. */

@@ -2,7 +2,7 @@
  * (glsl/present/), window clears and read-back, RGBA32F textures of CPU
  * images. Every function leaves the GL state it found: the session renders
  * with its own state between presents. */
-#include "dirt/window.h"
+#include "gl/window.h"
 
 #include <math.h>
 #include <stdlib.h>

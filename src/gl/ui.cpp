@@ -11,7 +11,7 @@
 extern "C" {
 #include "gl/gl.h"
 }
-#include "dirt/ui.h"
+#include "gl/ui.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>

@@ -1,7 +1,7 @@
 /* The input of a windowed dirt_gpu (dirt/window.h): GLFW callbacks fill a
  * gl_window_state between the two halves of dirt_gpu_window_poll; the key
  * names of the API. */
-#include "dirt/window.h"
+#include "gl/window.h"
 
 #include <GLFW/glfw3.h>
 #include <ctype.h>

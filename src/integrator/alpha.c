@@ -2,7 +2,7 @@
  * light-transport model (doc/light-transport.md section 1, "Alpha"; the
  * random source in doc/rng.md, "Alpha"). The GLSL twin is
  * glsl/integrator/alpha.glsl. */
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #include "integrator/rng.h"
 

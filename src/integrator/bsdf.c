@@ -1,7 +1,7 @@
 /* DIRT engine: the glTF metallic-roughness BSDF, its sampling, and the small
  * warps shared by the integrators. Specification: doc/light-transport.md.
  * Every function here has a GLSL twin; keep them formula for formula. */
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #include <math.h>
 

@@ -10,7 +10,7 @@
 
 #include "common/layout.h"
 #include "core/vec3.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "gl/gl.h"
 #include "integrator/rng.h"
 

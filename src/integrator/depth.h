@@ -6,7 +6,7 @@
 
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
-#include "dirt/tracer.h"
+#include "views/tracer.h"
 
 /* Writes width x height depths (row 0 = top) into `depth`: the distance
  * along the camera's forward axis to the first hit of the pinhole ray

@@ -2,7 +2,7 @@
  * (doc/light-transport.md, "Environment"). Every function that the path
  * tracers call per sample has a GLSL twin in glsl/integrator/model.glsl;
  * keep them formula for formula. */
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #include <math.h>
 #include <stdio.h>

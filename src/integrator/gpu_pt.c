@@ -1,5 +1,5 @@
 /* GPU path tracer: the Trace -> Fetch -> Shade loop on a frame graph. */
-#include "dirt/pathtrace.h"
+#include "integrator/pathtrace.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -9,14 +9,18 @@
 #include "common/layout.h"
 #include "dirt/clock.h"
 #include "dirt/file.h"
-#include "dirt/gpu_tables.h"
-#include "dirt/integrator.h"
+#include "integrator/gpu_tables.h"
+#include "integrator/integrator.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gl/graph_gl.h"
 #include "gl/split.h"
 #include "integrator/depth.h"
 #include "integrator/rng.h"
+
+/* The session's per-event figures (dirt/types.h) hold every event the
+ * shaders count (common/constants.h). */
+_Static_assert(DIRT_MAX_EVENTS == DIRT_PT_MAX_EVENTS, "DIRT_MAX_EVENTS differs from common/constants.h");
 
 const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
     [DIRT_PT_PASS_RAYGEN] = "raygen",

@@ -1,6 +1,6 @@
 /* DIRT engine: packing and upload of the GPU light-transport model's scene
  * tables (dirt/gpu_tables.h, glsl/common/integrator_layout.h). */
-#include "dirt/gpu_tables.h"
+#include "integrator/gpu_tables.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -9,7 +9,7 @@
 #include "dirt/log.h"
 #include "gl/gl.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 _Static_assert(DIRT_MODEL_LIGHT_DIRECTIONAL == DIRT_LIGHT_DIRECTIONAL &&
                DIRT_MODEL_LIGHT_POINT == DIRT_LIGHT_POINT &&
                DIRT_MODEL_LIGHT_SPOT == DIRT_LIGHT_SPOT, "light kinds");

@@ -1,6 +1,6 @@
 /* DIRT engine: lights and camera rays of the light-transport model
  * (doc/light-transport.md, "Lights" and "Camera"). */
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #include <math.h>
 #include <stdlib.h>

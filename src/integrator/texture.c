@@ -1,6 +1,6 @@
 /* DIRT engine: texture lookups and material evaluation of the light-transport
  * model (doc/light-transport.md, "Textures" and "Materials"). */
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -194,12 +194,6 @@ void dirt_material_surface(const dirt_material *m, float specular,
     } else {
         out->emission = v3(0.0f, 0.0f, 0.0f);
     }
-}
-
-bool dirt_material_is_emissive(const dirt_material *m)
-{
-    float e = fmaxf(m->emissive[0], fmaxf(m->emissive[1], m->emissive[2]));
-    return e > 0.0f && m->emissive_strength > 0.0f && isfinite(e * m->emissive_strength);
 }
 
 bool dirt_material_normal_ts(const dirt_material *m, const dirt_texture *textures,

@@ -18,15 +18,16 @@
 #include "dirt/log.h"
 #include "io/atomic_file.h"
 
-/* Routes OpenEXRCore's messages to the engine log. */
+/* Routes OpenEXRCore's messages to the engine log. It may be called with
+ * the context's lock held (an error inside exr_add_channel, say), so it
+ * asks the context nothing (exr_get_file_name would wait for that lock
+ * for ever); the caller's message that follows names the file. */
 static void log_exr_error(exr_const_context_t ctxt, exr_result_t code,
                           const char *msg)
 {
-    const char *name = NULL;
-    if (ctxt)
-        exr_get_file_name(ctxt, &name);
-    DIRT_ERROR("OpenEXR (%s): %s: %s", name ? name : "?",
-               exr_get_error_code_as_string(code), msg ? msg : "");
+    (void)ctxt;
+    DIRT_ERROR("OpenEXR: %s: %s", exr_get_error_code_as_string(code),
+               msg ? msg : "");
 }
 
 /* pwrite-like callback onto the atomic file's stdio stream (user data).
@@ -140,6 +141,15 @@ bool dirt_image_write_exr(const dirt_image *img, const char *path,
         EXR_TRY(exr_add_channel(ctx, part, img->channels[i].name, extra_type,
                                 EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1),
                 "exr_add_channel");
+    /* After the required attributes: a name among them is refused. */
+    for (size_t i = 0; i < o.num_attrs; i++) {
+        const dirt_image_attr *a = &o.attrs[i];
+        if (!a->name || !a->name[0] || !a->value) {
+            DIRT_ERROR("EXR '%s': attribute %zu without a name or value", path, i);
+            goto error;
+        }
+        EXR_TRY(exr_attr_set_string(ctx, part, a->name, a->value), "exr_attr_set_string");
+    }
     EXR_TRY(exr_write_header(ctx), "exr_write_header");
 
     int32_t lines = 0;

@@ -15,6 +15,13 @@
 #include "dirt/log.h"
 #include "io/atomic_file.h"
 
+/* The consumer API's tone-map ids (dirt/types.h) are the shaders'
+ * (common/display.h). */
+_Static_assert(DIRT_TONEMAP_CLAMP == DIRT_TONEMAP_ID_CLAMP &&
+                   DIRT_TONEMAP_REINHARD == DIRT_TONEMAP_ID_REINHARD &&
+                   DIRT_TONEMAP_ACES == DIRT_TONEMAP_ID_ACES,
+               "enum dirt_tonemap differs from common/display.h");
+
 unsigned char dirt_linear_to_srgb8(float v)
 {
     if (!(v > 0.0f)) /* negative, zero and NaN */

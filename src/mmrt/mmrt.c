@@ -9,7 +9,7 @@
 #include "gl/program.h"
 #include "mmrt_internal.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 _Static_assert(DIRT_MMRT_END == DIRT_LIST_END, "list end");
 
 const char *const dirt_mmrt_pass_names[DIRT_MMRT_NUM_PASSES] = {

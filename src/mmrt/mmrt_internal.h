@@ -6,7 +6,7 @@
 
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
-#include "dirt/mmrt.h"
+#include "mmrt/mmrt.h"
 #include "gl/gl.h"
 #include "gl/graph_gl.h"
 #include "gl/split.h"

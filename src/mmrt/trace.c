@@ -6,7 +6,7 @@
 #include "gl/program.h"
 #include "mmrt_internal.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 /* Default thickness: this fraction of the scene's bounding-box diagonal. */
 #define MMRT_DEFAULT_THICKNESS 0.002f

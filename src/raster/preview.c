@@ -20,7 +20,7 @@
  * one buffer while they fit one storage block, else parts of whole
  * triangles, each drawn on its own) and the graph is declared again when
  * their parts change. */
-#include "dirt/raster.h"
+#include "raster/raster.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -34,7 +34,7 @@
 #include "gl/split.h"
 #include "core/vec3.h"
 
-/* Record sizes and offsets are checked in src/gl/layout_check.c. */
+/* Record sizes and offsets are checked in test/common/layout_check.c. */
 
 #define PASS_DRAW "preview draw"
 #define PASS_READBACK "preview readback"

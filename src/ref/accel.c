@@ -2,7 +2,7 @@
  *
  * One triangle geometry (geomID 0) holds every triangle of the frame in
  * order, so Embree's primID is the frame's primitive id. */
-#include "dirt/ref.h"
+#include "ref/ref.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "dirt/clock.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/log.h"
 #include "ref/parallel.h"
 

@@ -1,19 +1,15 @@
-#include "dirt/raytypes.h"
+#include "ref/raytypes.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/log.h"
 #include "integrator/rng.h"
 #include "core/vec3.h"
 
 _Static_assert(sizeof(dirt_ray) == sizeof(dirt_ref_ray), "ray layouts");
-
-const char *const dirt_ray_type_names[DIRT_RAY_TYPES] = {
-    "primary", "visibility", "specular", "glossy", "diffuse",
-};
 
 static void light_target(const dirt_scene *scene, const dirt_frame *f, float diag, float out[3])
 {

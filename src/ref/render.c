@@ -3,7 +3,7 @@
  * doc/light-transport.md (section "Path tracing") and the random numbers in
  * doc/rng.md; the GPU implementation must make the same decisions with the
  * same dimensions of the same RNG. */
-#include "dirt/ref.h"
+#include "ref/ref.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "dirt/clock.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/log.h"
 #include "integrator/rng.h"
 #include "core/vec3.h"

@@ -619,6 +619,12 @@ const dirt_material *dirt_scene_materials(const dirt_scene *s)
     return s ? s->materials : NULL;
 }
 
+bool dirt_material_is_emissive(const dirt_material *m)
+{
+    float e = fmaxf(m->emissive[0], fmaxf(m->emissive[1], m->emissive[2]));
+    return e > 0.0f && m->emissive_strength > 0.0f && isfinite(e * m->emissive_strength);
+}
+
 size_t dirt_scene_num_textures(const dirt_scene *s)
 {
     return s ? s->num_textures : 0;

@@ -6,6 +6,7 @@
 #include "dirt/file.h"
 #include "dirt/log.h"
 #include "dirt/session.h"
+#include "session/session_internal.h"
 
 /* The figures every frame and the summary share. */
 static void add_figures(cJSON *o, const dirt_session_stats *s)
@@ -97,6 +98,7 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
     cJSON_AddNumberToObject(f, "height", st->height);
     cJSON_AddNumberToObject(f, "time", st->time);
     cJSON_AddNumberToObject(f, "samples", st->samples);
+    cJSON_AddNumberToObject(f, "seed", st->seed);
     add_figures(f, st);
     add_details(f, st);
     return f;
@@ -104,9 +106,16 @@ struct cJSON *dirt_session_stats_json(const dirt_session_stats *st)
 
 bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count)
 {
-    if (!count) {
-        DIRT_ERROR("no frames to write stats of");
-        return false;
+    return dirt_session_write_stats_attrs(path, frames, count, NULL, 0);
+}
+
+bool dirt_session_write_stats_attrs(const char *path, const dirt_session_stats *frames,
+                                    size_t count, const dirt_image_attr *attrs, size_t num_attrs)
+{
+    session_begin();
+    if (!count || !frames || !path || (num_attrs && !attrs)) {
+        DIRT_ERROR("no frames to write stats of, no path, or no attributes");
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
     }
     const dirt_session_stats *last = &frames[count - 1];
     /* Means of the times; rays per frame; aborted rays summed; the largest
@@ -126,7 +135,7 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
         mean.shade_ms += f->shade_ms / (double)count;
         mean.total_ms += f->total_ms / (double)count;
         mean.rays += f->rays;
-        for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+        for (int k = 0; k < DIRT_MAX_EVENTS; k++)
             mean.paths_at_event[k] += f->paths_at_event[k];
         mean.aborted += f->aborted;
         mean.invalid_samples += f->invalid_samples;
@@ -136,7 +145,7 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
             mean.bytes_total_allocated = f->bytes_total_allocated;
     }
     mean.rays /= count;
-    for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
+    for (int k = 0; k < DIRT_MAX_EVENTS; k++)
         mean.paths_at_event[k] /= count;
 
     cJSON *root = cJSON_CreateObject();
@@ -150,6 +159,11 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     cJSON_AddNumberToObject(root, "bounces", last->bounces);
     cJSON_AddStringToObject(root, "mode", last->mode == DIRT_PT_AO ? "ao" : "pt");
     cJSON_AddNumberToObject(root, "frames_rendered", (double)count);
+    if (num_attrs) {
+        cJSON *prov = cJSON_AddObjectToObject(root, "provenance");
+        for (size_t i = 0; prov && i < num_attrs; i++)
+            cJSON_AddStringToObject(prov, attrs[i].name, attrs[i].value);
+    }
     add_figures(root, &mean);
     add_details(root, last);
     cJSON *list = cJSON_AddArrayToObject(root, "frames");
@@ -174,9 +188,9 @@ bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames
     doc[len + 1] = '\0';
     bool ok = dirt_write_file_atomic(path, doc, len + 1);
     free(doc);
-    return ok;
+    return ok || session_fail(DIRT_SESSION_ERR_IO);
 oom:
     cJSON_Delete(root);
     DIRT_ERROR("out of memory writing '%s'", path);
-    return false;
+    return session_fail(DIRT_SESSION_ERR_OUT_OF_MEMORY);
 }

@@ -3,7 +3,7 @@
 #ifndef DIRT_VIEWS_HIZ_H
 #define DIRT_VIEWS_HIZ_H
 
-#include "dirt/views.h"
+#include "views/views.h"
 #include "gl/gl.h"
 #include "gl/split.h"
 

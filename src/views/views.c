@@ -1,5 +1,5 @@
 /* Views of the image-space acceleration structure and tile-frustum math. */
-#include "dirt/views.h"
+#include "views/views.h"
 
 #include <math.h>
 #include <string.h>

@@ -4,7 +4,7 @@
 #define DIRT_VIEWS_VIEWS_GPU_H
 
 #include "common/layout.h"
-#include "dirt/views.h"
+#include "views/views.h"
 
 /* Fills out[0 .. DIRT_MAX_VIEWS) (unused entries zeroed). */
 void views_pack_gpu(const dirt_view_set *set, struct dirt_gpu_view out[DIRT_MAX_VIEWS]);

@@ -2,13 +2,18 @@
 # dirt-compare as a user runs it: bad input exits 2 up front with a one-line
 # reason; a sweep on the default scene (2 sizes x 2 MMRT thicknesses) and on
 # the shared Cornell box writes every output (checked by compare_check.py
-# against doc/compare.md's schema, plots read back); a rerun with the same DIR
+# against doc/compare.md's schema and the rows: the memory table without
+# repeats, the figures' data per facet and series with their bars and parity
+# line, the figures read back); a rerun with the same DIR
 # measures nothing and rewrites the same rows; the bytes per buffer of a row
 # equal what dirt-render --stats reports for the same settings (DIRT and
 # MMRT); a configuration that fails mid-sweep (an A-buffer beyond what the
-# GPU holds in one array, known only once built) is recorded as failed with
-# its reason, the configurations after it are measured, and the exit status is 1;
-# --no-quality leaves out only the agreement plot.
+# GPU holds in one array, known only once built) is recorded as failed with its
+# reason, the configurations after it are measured, and the exit status is 1;
+# --no-quality leaves out only the agreement plot; each scene is lit as
+# authored (its emitters and punctual lights), a scene without light by the
+# built-in sky, every scene by --background or --env when given, and each
+# row's Embree image is dirt-render's with the same settings and lighting.
 #   test_compare.sh PATH/TO/dirt-compare PATH/TO/doc/compare.md PATH/TO/dirt-render
 set -u
 cmp=$1 doc=$2 render=$3
@@ -37,8 +42,44 @@ expect2 "impossible size" default -o "$tmp/o1" --res 16384x16384
 expect2 "bad list" default -o "$tmp/o1" --res 64x
 expect2 "bad views" default -o "$tmp/o1" --views sideways
 expect2 "no DIR" default
+expect2 "--env and --background" default -o "$tmp/o1" --env sky --background 1,1,1
+expect2 "--env-intensity without --env" default -o "$tmp/o1" --env-intensity 2
+expect2 "missing --env map" default -o "$tmp/o1" --env "$tmp/none.exr"
+expect2 "bad --background" default -o "$tmp/o1" --background 1,1
 [ -e "$tmp/o1" ] && [ -n "$(ls -A "$tmp/o1")" ] && fail "files left in o1"
-"$cmp" --help | grep -q -- '--thickness LIST' || fail "--help"
+"$cmp" --help | grep -q -- '--thickness T,\.\.\.' || fail "--help"
+"$cmp" --version >"$tmp/stdout" 2>&1; rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 3 ]; } && grep -Eq '^dirt-compare [0-9]+\.[0-9]+\.[0-9]+ \(commit ' "$tmp/stdout" ||
+  fail "--version: exit $rc"
+expect2 "bad tile size" default -o "$tmp/o1" --tile 1,3
+"$cmp" --help | grep -q -- '--env FILE' || fail "--help: no --env"
+
+# dirt-render's arguments for row I of a results.json and ENGINE: the same
+# settings and lighting (lighting.source: the scene's own lights alone, the
+# built-in sky as fallback, or the --env / --background given).
+cat >"$tmp/render_args.py" <<'PY'
+import json, sys
+row = json.load(open(sys.argv[1]))["configurations"][int(sys.argv[2])]
+s, e, L = row["settings"], sys.argv[3], row["lighting"]
+a = [] if row["scene"]["path"] == "default" else [row["scene"]["path"]]
+a += ["-W", s["width"], "-H", s["height"], "--views", s["views"], "-t", s["time"],
+      "--spp", s["spp"], "--bounces", s["bounces"], "--seed", s["seed"], "--engine", e]
+if L["source"] == "fallback":
+    a += ["--env", "sky"]
+elif L["source"] == "--env":
+    a += ["--env", L["env"], "--env-intensity", L["env_intensity"],
+          "--env-rotation", L["env_rotation"]]
+elif L["source"] == "--background":
+    a += ["--background", ",".join(str(x) for x in L["background"])]
+if s["face_size"]:
+    a += ["--face-size", s["face_size"]]
+if e == "dirt":
+    a += ["-S", s["dirt_tile_size"], "-B", s["dirt_buckets"]]
+elif e == "mmrt":
+    a += ["-B", s["mmrt_buckets"], "--march", s["mmrt_march"],
+          "--thickness", repr(s["mmrt_thickness"])]
+print("\n".join(str(x) for x in a))
+PY
 
 scenes=(default)
 rows=4
@@ -77,23 +118,7 @@ stats_rows=(0)
 [ "$rows" -gt 4 ] && stats_rows+=($((rows - 1)))
 for r in "${stats_rows[@]}"; do
   for e in dirt mmrt; do
-    python3 - "$out/results.json" "$r" "$e" >"$tmp/render_args" <<'PY'
-import json, sys
-row = json.load(open(sys.argv[1]))["configurations"][int(sys.argv[2])]
-s, e = row["settings"], sys.argv[3]
-a = [] if row["scene"]["path"] == "default" else [row["scene"]["path"]]
-a += ["-W", s["width"], "-H", s["height"], "--views", s["views"], "-t", s["time"],
-      "--spp", s["spp"], "--bounces", s["bounces"], "--seed", s["seed"],
-      "--background", "1,1,1", "--engine", e]
-if s["face_size"]:
-    a += ["--face-size", s["face_size"]]
-if e == "dirt":
-    a += ["-S", s["dirt_tile_size"], "-B", s["dirt_buckets"]]
-else:
-    a += ["-B", s["mmrt_buckets"], "--march", s["mmrt_march"],
-          "--thickness", repr(s["mmrt_thickness"])]
-print("\n".join(str(x) for x in a))
-PY
+    python3 "$tmp/render_args.py" "$out/results.json" "$r" "$e" >"$tmp/render_args"
     mapfile -t rargs <"$tmp/render_args"
     "$render" "${rargs[@]}" -o "$tmp/stats_$e.exr" --stats "$tmp/stats_$e.json" -q ||
       { fail "dirt-render ${rargs[*]}: exit $?"; continue; }
@@ -116,6 +141,111 @@ PY
       fail "row $r $e: bytes per buffer differ from dirt-render --stats"
   done
 done
+
+# Lighting. Each scene as authored: the Cornell box (the default scene
+# without the shared scenes) by its emissive ceiling, a generated room by its
+# point light, and a generated scene without light by the built-in sky; then
+# --background and --env for every scene. Each row records its lighting, the
+# table states it per scene, a rerun with other lighting measures every row
+# again (its id holds the lighting), and the Embree reference of every row is
+# byte for byte dirt-render's image of the same settings and lighting.
+lit=default
+[ "$rows" -gt 4 ] && lit=$cornell
+python3 - "$tmp" <<'PY'
+import base64, json, struct, sys
+floor = [-2, 0, -2, 2, 0, -2, 2, 0, 2, -2, 0, 2]
+wall = [-2, 0, -2, 2, 0, -2, 2, 3, -2, -2, 3, -2]
+pos = floor + wall
+idx = [0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7]
+pb = struct.pack("<%df" % len(pos), *pos)
+ib = struct.pack("<%dH" % len(idx), *idx)
+uri = "data:application/octet-stream;base64," + base64.b64encode(pb + ib).decode()
+for name, light in (("point", True), ("unlit", False)):
+    g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+         "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 1.5, 5]}],
+         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1}}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+         "buffers": [{"byteLength": len(pb) + len(ib), "uri": uri}],
+         "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pb)},
+                         {"buffer": 0, "byteOffset": len(pb), "byteLength": len(ib)}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                        "min": [-2, 0, -2], "max": [2, 3, 2]},
+                       {"bufferView": 1, "componentType": 5123, "count": 12,
+                        "type": "SCALAR"}]}
+    if light:
+        g["extensionsUsed"] = ["KHR_lights_punctual"]
+        g["scenes"][0]["nodes"].append(2)
+        g["nodes"].append({"translation": [0.5, 2, 0.5],
+                           "extensions": {"KHR_lights_punctual": {"light": 0}}})
+        g["extensions"] = {"KHR_lights_punctual": {"lights": [
+            {"type": "point", "intensity": 20, "color": [1, 0.9, 0.8]}]}}
+    json.dump(g, open("%s/%s.gltf" % (sys.argv[1], name), "w"))
+PY
+lscenes=("$lit" "$tmp/point.gltf" "$tmp/unlit.gltf")
+largs=(--res 40x30 --views single --warmup 0 --repeat 1 --agree-res 8x6 --images)
+lighting_run() { # WHAT EXPECTED_SOURCES OPTIONS...: checks one run into $tmp/lit
+  local what=$1 want=$2; shift 2
+  "$cmp" "${lscenes[@]}" -o "$tmp/lit" "${largs[@]}" "$@" 2>"$tmp/lit.log" ||
+    { fail "lighting $what: exit $?"; cat "$tmp/lit.log" >&2; return; }
+  python3 - "$tmp/lit" "$want" "$what" <<'PY' || fail "lighting $what: rows or table"
+import json, sys
+d, want, what = sys.argv[1], sys.argv[2].split(","), sys.argv[3]
+rows = json.load(open(d + "/results.json"))["configurations"]
+table = open(d + "/table.md").read()
+bad = []
+own = [(2, 0), (0, 1), (0, 0)] # emissive triangles, punctual lights per scene
+env = {"scene": "none", "fallback": "sky", "--background": "background", "--env": "sky"}
+for r, w, (e, p) in zip(rows, want, own):
+    L = r["lighting"]
+    if (L["source"], L["environment"], L["emitter_triangles"], L["punctual_lights"]) != \
+            (w, env[w], e, p):
+        bad.append("%s: %s" % (r["scene"]["name"], L))
+    if "- %s: %s\n" % (r["scene"]["name"], L["summary"]) not in table:
+        bad.append("table.md does not state the lighting of " + r["scene"]["name"])
+if len(rows) != 3:
+    bad.append("%d rows" % len(rows))
+if what == "as authored":
+    if "- %s: as authored: its own lights (2 emissive triangles); no environment" % \
+            rows[0]["scene"]["name"] not in table or \
+            "- point.gltf: as authored: its own lights (1 punctual light)" not in table \
+            or "- unlit.gltf: fallback: no light of its own, so the built-in sky" not in table:
+        bad.append("table.md: " + table.split("In the layout")[0])
+for b in bad:
+    print(what + ":", b, file=sys.stderr)
+sys.exit(1 if bad else 0)
+PY
+  grep -q "(3 measured, 0 from the earlier run" "$tmp/lit.log" ||
+    fail "lighting $what: rows of another lighting were reused"
+  # one size and one thickness: the figures over triangles and the ratios
+  # only (compare_check.py: no agreement figure of a single point)
+  python3 "$check" "$tmp/lit" "$doc" 3 || fail "lighting $what: outputs (compare_check.py)"
+  [ -s "$tmp/lit/ratios_per_scene.png" ] || fail "lighting $what: no ratios figure"
+  for i in 0 1 2; do
+    python3 "$tmp/render_args.py" "$tmp/lit/results.json" $i embree >"$tmp/render_args"
+    mapfile -t rargs <"$tmp/render_args"
+    "$render" "${rargs[@]}" -o "$tmp/lit_$i.png" -q ||
+      { fail "dirt-render ${rargs[*]}: exit $?"; continue; }
+    png=$(python3 -c 'import json, sys
+print(json.load(open(sys.argv[1]))["configurations"][int(sys.argv[2])]["images"]["embree"])' \
+      "$tmp/lit/results.json" $i)
+    cmp -s "$tmp/lit_$i.png" "$tmp/lit/$png" ||
+      fail "lighting $what: row $i's Embree image is not dirt-render ${rargs[*]}'s"
+  done
+}
+lighting_run "as authored" scene,scene,fallback
+cp "$tmp/lit_1.png" "$tmp/authored_1.png"
+cp "$tmp/lit/results.json" "$tmp/authored.json"
+lighting_run "--background" --background,--background,--background --background 0.3,0.2,0.1
+cmp -s "$tmp/lit_1.png" "$tmp/authored_1.png" && fail "--background did not change the image"
+# the agreement rays aim at the scene's own light whatever the environment
+python3 - "$tmp/authored.json" "$tmp/lit/results.json" <<'PY' ||
+import json, sys
+a, b = ([(r["dirt"]["agreement"]["fraction"], r["mmrt"]["agreement"]["fraction"])
+         for r in json.load(open(p))["configurations"]] for p in sys.argv[1:])
+sys.exit(0 if a == b and len(a) == 3 else 1)
+PY
+  fail "the hit agreement changed with --background"
+lighting_run "--env" --env,--env,--env --env sky --env-intensity 0.5 --env-rotation 30
 
 # A configuration that fails mid-sweep. 40 stacked quads filling a camera's
 # view: 40 fragments a pixel, so MMRT's data nodes (32 B each) at 512x256
@@ -170,9 +300,10 @@ sys.exit(0 if ok else 1)
 PY
 grep -q "configuration 2 failed: mmrt: " "$tmp/fails.log" || fail "no line naming the failed configuration"
 grep -q "1 failed)" "$tmp/fails.log" || fail "the summary does not count the failure"
-# --no-quality: no agreement figures, so no agreement plot; the others are made.
-if "$cmp" default -o "$tmp/nq" --res 32x16 --repeat 1 --warmup 0 --no-quality -q \
-    >"$tmp/nq.log" 2>&1; then
+# --no-quality: no agreement figures, so no agreement plot (two thicknesses
+# notwithstanding); the others are made.
+if "$cmp" default -o "$tmp/nq" --res 32x16,48x24 --thickness-rel 0.002,0.01 --repeat 1 \
+    --warmup 0 --no-quality -q >"$tmp/nq.log" 2>&1; then
   for p in memory_vs_resolution time_vs_resolution ratios_per_scene; do
     [ -s "$tmp/nq/$p.png" ] || fail "--no-quality: no $p.png"
   done

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# dirt-render as a user runs it: --help, and every kind of bad input exits 2
-# with a one-line reason and leaves no file (not even a temporary one)
-# behind; good inputs write real images.
-#   test_render_cli.sh PATH/TO/dirt-render
+# dirt-render as a user runs it: --help, --version, and every kind of bad
+# input exits 2 with a one-line reason and leaves no file (not even a
+# temporary one) behind; good inputs write real images whose EXR headers and
+# stats files record what made them (read back with OpenEXR's own API).
+#   test_render_cli.sh PATH/TO/dirt-render PATH/TO/exr_compare
 set -u
-render=$1
+render=$1 exr=$2
 json=$(dirname "$0")/json_check.py
 tmp=$(mktemp -d /tmp/dirt-e2e-XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
@@ -65,6 +66,15 @@ out=$tmp/out; mkdir -p "$out"
 expect_rc 0 "--help" -- --help
 grep -q '^Usage: dirt-render' "$tmp/stdout" && ok || fail "--help prints no usage"
 
+# --version: the version and commit, then the renderer (exit 3 without a
+# GL context, the version printed all the same).
+"$render" --version >"$tmp/stdout" 2>"$tmp/stderr"
+rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 3 ]; } && ok || fail "--version exit $rc"
+head -n 1 "$tmp/stdout" | grep -Eq '^dirt-render [0-9]+\.[0-9]+\.[0-9]+ \(commit [^ ]+\)$' && ok \
+  || fail "--version's first line: $(head -n 1 "$tmp/stdout")"
+grep -q '^OpenGL renderer: ' "$tmp/stdout" && ok || fail "--version names no renderer"
+
 # bad options
 expect_rc 2 "unknown option" -- --bogus -o "$out/a.png"
 expect_rc 2 "no output" --
@@ -106,6 +116,11 @@ expect_rc 2 "two frame fields" -- -o "$out/a_##_%d.png" --frames 1:2
 expect_rc 2 "chunk without frames" -- -o "$out/a.png" --chunk 1/2
 expect_rc 2 "chunk out of range" -- -o "$out/a_#.png" --frames 1:4 --chunk 3/2
 expect_rc 2 "slurm chunk outside slurm" -- -o "$out/a_#.png" --frames 1:4 --chunk slurm
+expect_rc 2 "bad --max-scene-memory" -- -o "$out/a.png" --max-scene-memory 5X
+expect_rc 2 "fractional --max-scene-memory" -- -o "$out/a.png" --max-scene-memory 0.5
+# The scene's budget: good.gltf's 3 vertices and 1 triangle need more than 16 bytes.
+expect_rc 2 "scene over --max-scene-memory" -- "$tmp/good.gltf" -o "$out/a.png" --max-scene-memory 16
+grep -q 'max-scene-memory' "$tmp/stderr" && ok || fail "the budget's error does not name --max-scene-memory"
 no_leftovers "$out"
 
 # bad files
@@ -126,11 +141,23 @@ no_leftovers "$out"
 # The Embree engine needs no GPU: EXR with AOVs and the stats JSON.
 expect_rc 0 "embree engine" -- --engine embree -o "$out/e.exr" -W 16 -H 12 --spp 2 --stats "$out/e.json"
 head -c 4 "$out/e.exr" | od -An -tx1 | grep -q '76 2f 31 01' && ok || fail "e.exr is not an EXR"
+# Provenance: every attribute present and not empty, with this run's values.
+prov=(dirt.scene dirt.engine dirt.seed dirt.samples dirt.time dirt.device dirt.command_line
+  dirt.version dirt.commit)
+"$exr" --attrs "$out/e.exr" "${prov[@]}" >"$tmp/attrs" && ok || { fail "e.exr's provenance"; cat "$tmp/attrs" >&2; }
+grep -qx 'dirt.engine=embree' "$tmp/attrs" && grep -qx 'dirt.scene=default' "$tmp/attrs" &&
+  grep -qx 'dirt.seed=0' "$tmp/attrs" && grep -qx 'dirt.samples=2' "$tmp/attrs" &&
+  grep -qx 'dirt.device=CPU' "$tmp/attrs" &&
+  grep -qx "dirt.command_line=$render --engine embree -o $out/e.exr -W 16 -H 12 --spp 2 --stats $out/e.json" "$tmp/attrs" \
+  && ok || { fail "e.exr's provenance values"; cat "$tmp/attrs" >&2; }
 grep -aq 'albedo.R' "$out/e.exr" && grep -aq 'N.X' "$out/e.exr" && ok || fail "e.exr lacks the AOV channels"
 "$json" "$out/e.json" 'd["engine"] == "embree" and d["device"] == "CPU"' \
   'd["build_ms"] > 0 and d["mrays_per_s"] > 0' \
   'd["rays"] >= 16 * 12 * 2 and d["spp"] == 2 and d["width"] == 16 and d["height"] == 12' \
-  'all(p["clock"] == "cpu" for p in d["passes"])' && ok || fail "e.json figures"
+  'all(p["clock"] == "cpu" for p in d["passes"])' \
+  'all(d["provenance"][k] for k in ("scene", "engine", "seed", "samples", "time", "device", "command_line", "version", "commit"))' \
+  'd["provenance"]["engine"] == "embree" and d["provenance"]["seed"] == "0" and d["frames"][0]["seed"] == 0' \
+  && ok || fail "e.json figures"
 rm -f "$out"/e.*
 
 # Good inputs need a GL context; without one the program says so with exit 3.
@@ -166,6 +193,12 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'all(p["clock"] in ("gpu", "cpu") and p["ms"] >= 0 for p in d["passes"])' \
   'set(p["name"] for p in d["passes"]) >= {"depth bounds", "fill primitives", "trace", "fetch", "shade"}' \
   && ok || fail "d.json figures"
+# A DIRT EXR's provenance, and a scene within an explicit budget.
+expect_rc 0 "exr with a seed and a budget" -- "$tmp/good.gltf" -o "$out/p.exr" -W 16 -H 16 --spp 3 --seed 9 --max-scene-memory 1K
+"$exr" --attrs "$out/p.exr" "${prov[@]}" >"$tmp/attrs" && grep -qx 'dirt.engine=dirt' "$tmp/attrs" &&
+  grep -qx "dirt.scene=$tmp/good.gltf" "$tmp/attrs" && grep -qx 'dirt.seed=9' "$tmp/attrs" &&
+  grep -qx 'dirt.samples=3' "$tmp/attrs" && grep -q '^dirt.device=OpenGL ' "$tmp/attrs" && ok ||
+  { fail "p.exr's provenance"; cat "$tmp/attrs" >&2; }
 expect_rc 0 "raster engine" -- --engine raster -o "$out/r.png" -W 32 -H 24
 mkdir -p "$out/ads"
 expect_rc 0 "debug pictures and graph" -- -o "$out/g.png" -W 32 -H 24 --spp 1 --debug-ads "$out/ads" --graph-dot "$out/pt.dot"

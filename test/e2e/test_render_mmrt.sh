@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # dirt-render --engine mmrt: bad MMRT options exit 2 with a one-line reason and
 # leave nothing behind; good ones render a PNG and write the stats JSON with
-# DIRT's keys plus "fragments".
+# DIRT's keys plus "fragments"; 0 thickness and samples are the defaults.
 #   test_render_mmrt.sh PATH/TO/dirt-render
 set -u
 render=$1
@@ -30,10 +30,11 @@ out=$tmp/out
 mkdir -p "$out"
 expect_rc 2 "unknown march" -- --engine mmrt -o "$out/a.png" --march zigzag
 expect_rc 2 "march without value" -- --engine mmrt -o "$out/a.png" --march
-expect_rc 2 "zero thickness" -- --engine mmrt -o "$out/a.png" --thickness 0
+expect_rc 2 "thickness out of range" -- --engine mmrt -o "$out/a.png" --thickness 2e12
 expect_rc 2 "negative thickness" -- --engine mmrt -o "$out/a.png" --thickness -1
 expect_rc 2 "thickness not a number" -- --engine mmrt -o "$out/a.png" --thickness abc
-expect_rc 2 "zero samples" -- --engine mmrt -o "$out/a.png" --march linear --samples 0
+expect_rc 2 "negative samples" -- --engine mmrt -o "$out/a.png" --march linear --samples -1
+expect_rc 2 "samples out of range" -- --engine mmrt -o "$out/a.png" --march linear --samples 65537
 expect_rc 2 "raster fetch" -- --engine mmrt -o "$out/a.png" --fetch raster
 expect_rc 2 "direct visibility" -- --engine mmrt -o "$out/a.png" --direct-visibility
 if [ -n "$(ls -A "$out")" ]; then fail "files left: $(ls -A "$out")"; else ok; fi
@@ -55,6 +56,14 @@ if [ $rc -eq 3 ]; then
 fi
 [ $rc -eq 0 ] && ok || { fail "mmrt render exit $rc"; cat "$tmp/stderr" >&2; }
 [ -s "$out/m.png" ] && head -c 8 "$out/m.png" | grep -q PNG && ok || fail "no PNG written"
+# 0 is the session's default of the thickness and the march's samples (the
+# same meaning in every program): the same pixels as leaving them out.
+"$render" --engine mmrt -o "$out/lin.png" -W 32 -H 24 --spp 2 --march linear -q &&
+  "$render" --engine mmrt -o "$out/lin0.png" -W 32 -H 24 --spp 2 --march linear \
+    --thickness 0 --samples 0 -q && cmp -s "$out/lin.png" "$out/lin0.png" && ok ||
+  fail "--thickness 0 --samples 0 are not the defaults"
+"$render" --engine mmrt -o "$out/lin1.png" -W 32 -H 24 --spp 2 --march linear --samples 3 -q &&
+  ! cmp -s "$out/lin.png" "$out/lin1.png" && ok || fail "--samples 3 changed nothing"
 "$json" "$out/m.json" 'd["engine"] == "mmrt"' 'd["fragments"] > 0' 'd["rays"] > 0' \
   'all(d[k] >= 0 for k in ("build_ms", "trace_ms", "fetch_ms", "shade_ms", "mrays_per_s"))' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \

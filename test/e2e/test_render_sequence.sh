@@ -3,9 +3,12 @@
 # into new directories, JSON Lines logs, kill and resume with
 # --skip-existing, two workers sharing a directory with --placeholders,
 # shares of a job array, stale temp files, per-frame seeds, reference MSE.
-# usage: test_render_sequence.sh DIRT_RENDER
+# Frames are compared pixel for pixel (exr_compare --exact): their headers
+# differ by the command line and the time that made them.
+# usage: test_render_sequence.sh DIRT_RENDER EXR_COMPARE
 set -u
-render=$1
+render=$1 exr=$2
+same() { "$exr" --exact "$1" "$2" >/dev/null; }
 json=$(dirname "$0")/json_check.py
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -72,7 +75,7 @@ rendered=$(python3 -c 'import json,sys; print(json.loads(open(sys.argv[1]).readl
 # in one process and compare every frame.
 "$render" "$scene" -o "$tmp/one64/f_##.exr" --frames 0:7 -W 24 -H 18 --spp 64 -q || fail "one-process 64"
 for i in 00 01 02 03 04 05 06 07; do
-  cmp -s "$tmp/kill/f_$i.exr" "$tmp/one64/f_$i.exr" && ok || fail "resumed frame $i differs"
+  same "$tmp/kill/f_$i.exr" "$tmp/one64/f_$i.exr" && ok || fail "resumed frame $i differs"
 done
 
 # 4. Two workers on one directory with --placeholders: every frame once.
@@ -111,10 +114,10 @@ SLURM_ARRAY_TASK_ID=7 SLURM_ARRAY_TASK_MIN=5 SLURM_ARRAY_TASK_COUNT=3 \
 # 7. Noise over time: the same seed on every frame of a still scene, unless
 #    --animated-seed (its seeds are in the log).
 "$render" -o "$tmp/seed/s_#.exr" --frames 0:1 "${small[@]}" || fail "still frames"
-cmp -s "$tmp/seed/s_0.exr" "$tmp/seed/s_1.exr" && ok || fail "a still scene's frames differ"
+same "$tmp/seed/s_0.exr" "$tmp/seed/s_1.exr" && ok || fail "a still scene's frames differ"
 "$render" -o "$tmp/seed/a_#.exr" --frames 0:1 "${small[@]}" --animated-seed --log "$tmp/seed.jsonl" \
   || fail "animated seed"
-cmp -s "$tmp/seed/a_0.exr" "$tmp/seed/a_1.exr" && fail "--animated-seed frames are equal" || ok
+same "$tmp/seed/a_0.exr" "$tmp/seed/a_1.exr" && fail "--animated-seed frames are equal" || ok
 python3 -c 'import json,sys; s=[json.loads(l)["seed"] for l in open(sys.argv[1]) if "seed" in l]; sys.exit(len(set(s)) != 2)' \
   "$tmp/seed.jsonl" && ok || fail "per-frame seeds not recorded"
 

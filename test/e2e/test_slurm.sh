@@ -6,10 +6,12 @@
 # kills one task's dirt-render mid-frame (SIGKILL: its claim and temp file
 # stay behind), resubmits the array, and checks that every frame exists
 # once, complete, equal to a one-process render, with no claim or temp file
-# left. Needs root (the daemons run as root); skips (77) elsewhere.
-# usage: test_slurm.sh DIRT_RENDER SOURCE_ROOT
+# left (frames compared pixel for pixel: their headers differ by the command
+# line that made them). Needs root (the daemons run as root); skips (77)
+# elsewhere.
+# usage: test_slurm.sh DIRT_RENDER SOURCE_ROOT EXR_COMPARE
 set -u
-render=$(realpath "$1") root=$(realpath "$2")
+render=$(realpath "$1") root=$(realpath "$2") exr=$(realpath "$3")
 passes=0 fails=0
 ok() { passes=$((passes + 1)); }
 fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
@@ -134,7 +136,7 @@ done
   || fail "one-process render"
 for i in $(seq 0 8); do
   n=$(printf %04d "$i")
-  cmp -s "$T/out/f_$n.exr" "$T/one/f_$n.exr" && ok || fail "frame $n missing or differs"
+  "$exr" --exact "$T/out/f_$n.exr" "$T/one/f_$n.exr" >/dev/null && ok || fail "frame $n missing or differs"
 done
 [ "$(ls "$T/out" | grep -c '\.exr$')" -eq 9 ] && ok || fail "frames: $(ls "$T/out")"
 [ "$(ls "$T/out" | grep -c -e '\.claim\.' -e '\.tmp\.')" -eq 0 ] && ok \

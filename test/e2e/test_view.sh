@@ -11,10 +11,12 @@
 #  - a resize changes the render size and the render follows;
 #  - animation: the timeline and playing move the time, and the image at
 #    the reported time equals dirt-render -t (BoxAnimated from ../shared);
+#  - a saved EXR's header records what made it (read with OpenEXR's API),
+#    its dirt-render options among them;
 #  - a bad scene, option, script or output path exits 2 before a window.
-#   test_view.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK DOC/VIEWER.MD
+#   test_view.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK DOC/VIEWER.MD EXR_COMPARE
 set -u
-view=$1 render=$2 check=$3 doc=$4
+view=$1 render=$2 check=$3 doc=$4 exr=$5
 tmp=$(mktemp -d /tmp/dirt-view-XXXXXX)
 trap 'rm -rf "$tmp"; [ -n "${xvfb_pid:-}" ] && kill "$xvfb_pid" 2>/dev/null' EXIT
 fails=0 passes=0
@@ -64,6 +66,15 @@ for engine in dirt mmrt; do
     fail "$engine: the viewer's image is not dirt-render's"; fi
 done
 [ -s "$tmp/v-dirt.png" ] && ok || fail "--save-image X.exr wrote no PNG beside it"
+# The saved EXR's provenance: this run's engine, seed and samples, its command
+# line, and the dirt-render options of the image.
+"$exr" --attrs "$tmp/v-mmrt.exr" dirt.scene dirt.engine dirt.seed dirt.samples dirt.time \
+  dirt.device dirt.command_line dirt.version dirt.commit dirt.render_args >"$tmp/attrs" &&
+  grep -qx 'dirt.engine=mmrt' "$tmp/attrs" && grep -qx 'dirt.seed=7' "$tmp/attrs" &&
+  grep -qx 'dirt.samples=3' "$tmp/attrs" && grep -qx 'dirt.scene=default' "$tmp/attrs" &&
+  grep -q '^dirt.command_line=.*dirt-view --window 160x120 --no-ui --engine mmrt --seed 7' "$tmp/attrs" &&
+  grep -q '^dirt.render_args=-W 160 -H 120 --engine mmrt --seed 7 --bounces 3' "$tmp/attrs" && ok ||
+  { fail "the saved EXR's provenance"; cat "$tmp/attrs" >&2; }
 
 # 2. A screenshot holds the panels and the render.
 printf 'wait-samples 2\nscreenshot %s\nsave-image %s\nreport %s\nquit\n' \
@@ -209,6 +220,10 @@ expect2 "malformed scene" "$tmp/bad.gltf" --test-frames 1
 expect2 "missing environment map" --env "$tmp/none.exr" --test-frames 1
 expect2 "--env and --background" --env sky --background 1,1,1 --test-frames 1
 expect2 "bad option" --spp -3
+expect2 "zero spp" --spp 0
+expect2 "camera and auto camera" --camera 0 --auto-camera --test-frames 1
+[ -r "$anim" ] && expect2 "scene over --max-scene-memory" "$anim" --max-scene-memory 1K --test-frames 1
+[ -r "$anim" ] && { grep -q 'max-scene-memory' "$tmp/bad.err" && ok || fail "the budget's error"; }
 expect2 "unknown option" --frobnicate
 printf 'orbit 1\n' >"$tmp/bad.txt"
 expect2 "bad script" --script "$tmp/bad.txt"
@@ -216,6 +231,14 @@ printf 'set nonsense 1\n' >"$tmp/bad.txt"
 expect2 "bad script option" --script "$tmp/bad.txt"
 expect2 "unwritable screenshot" --screenshot /proc/nope/shot.png --test-frames 1
 expect2 "screenshot not png" --screenshot "$tmp/x.jpg" --test-frames 1
+
+# --version: the version and commit, then the renderer (exit 3 without a GL
+# context); --help lists the options the script's `set` takes.
+"$view" --version >"$tmp/ver.out" 2>&1; rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 3 ]; } && grep -Eq '^dirt-view [0-9]+\.[0-9]+\.[0-9]+ \(commit ' "$tmp/ver.out" &&
+  grep -q '^OpenGL renderer: ' "$tmp/ver.out" && ok || fail "--version: exit $rc"
+"$view" --help >"$tmp/help.out" && grep -q -- '--samples-per-frame N' "$tmp/help.out" &&
+  grep -q -- '--max-scene-memory SIZE' "$tmp/help.out" && ok || fail "--help"
 
 # 6. doc/viewer.md lists every binding the program has.
 missing=0

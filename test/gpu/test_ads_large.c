@@ -19,8 +19,8 @@
 #include "ads_common.h"
 #include "check.h"
 #include "dirt/ads.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "dirt/scene.h"
 #include "gpu.h"
 

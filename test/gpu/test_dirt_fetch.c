@@ -11,8 +11,8 @@
 
 #include "check.h"
 #include "dirt/ads.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "gpu.h"
 
 static void run(dirt_gpu *gpu, const char *label, dirt_scene *scene)

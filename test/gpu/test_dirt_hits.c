@@ -11,8 +11,8 @@
 
 #include "check.h"
 #include "dirt/ads.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "gpu.h"
 
 /* Relative t tolerance for "the same hit" on a shared edge or vertex. */

@@ -34,8 +34,8 @@
 
 #include "check.h"
 #include "dirt/ads.h"
-#include "dirt/pathtrace.h"
-#include "dirt/ref.h"
+#include "integrator/pathtrace.h"
+#include "ref/ref.h"
 #include "gpu.h"
 
 #define W 64

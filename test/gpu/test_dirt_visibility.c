@@ -9,9 +9,9 @@
 
 #include "check.h"
 #include "dirt/ads.h"
-#include "dirt/pathtrace.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "integrator/pathtrace.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "gpu.h"
 
 static void run(dirt_gpu *gpu, const char *label, dirt_scene *scene, int w, int h)

@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/session.h"
 #include "gpu.h"
 #include "session_util.h"

@@ -25,8 +25,8 @@
 #include <time.h>
 
 #include "check.h"
-#include "dirt/ui.h"
-#include "dirt/window.h"
+#include "gl/ui.h"
+#include "gl/window.h"
 #include "gl/gl.h"
 
 #include <GLFW/glfw3.h>

@@ -24,7 +24,7 @@
 #include "check.h"
 #include "common/display.h"
 #include "dirt/image.h"
-#include "dirt/window.h"
+#include "gl/window.h"
 #include "gl/gl.h"
 #include "gpu.h"
 

@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "gl/gl.h"
+#include "gl/window.h"
 
 int main(void)
 {

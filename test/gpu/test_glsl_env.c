@@ -25,8 +25,8 @@
 
 #include "check.h"
 #include "core/vec3.h"
-#include "dirt/gpu_tables.h"
-#include "dirt/integrator.h"
+#include "integrator/gpu_tables.h"
+#include "integrator/integrator.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gpu.h"

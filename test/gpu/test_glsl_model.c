@@ -72,8 +72,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/gpu_tables.h"
-#include "dirt/integrator.h"
+#include "integrator/gpu_tables.h"
+#include "integrator/integrator.h"
 #include "dirt/log.h"
 #include "gl/gl.h"
 #include "gl/program.h"

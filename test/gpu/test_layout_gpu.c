@@ -15,7 +15,7 @@
 #include "common/mmrt_layout.h"
 #include "common/mmrt_pt_layout.h"
 #include "gl/gl.h"
-#include "session/layout_check.h"
+#include "layout_check.h"
 #include "gl/program.h"
 #include "gpu.h"
 

@@ -20,7 +20,7 @@
 #include "common/constants.h"
 #include "dirt/ads.h"
 #include "dirt/ads_internal.h"
-#include "dirt/mmrt.h"
+#include "mmrt/mmrt.h"
 #include "gl/gl.h"
 #include "gpu.h"
 #include "mmrt/mmrt_internal.h"

@@ -9,9 +9,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/mmrt.h"
+#include "mmrt/mmrt.h"
 #include "dirt/scene.h"
-#include "dirt/views.h"
+#include "views/views.h"
 
 /* A frame with room for `cap` triangles; num_triangles counts those added. */
 static inline dirt_frame *mt_frame_new(size_t cap)

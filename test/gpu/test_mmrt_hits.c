@@ -18,9 +18,9 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "dirt/mmrt.h"
-#include "dirt/raytypes.h"
-#include "dirt/ref.h"
+#include "mmrt/mmrt.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 #include "gpu.h"
 
 /* Agreement floors in percent, per thickness and ray type (see above). */

@@ -29,11 +29,11 @@
 
 #include "check.h"
 #include "common/layout.h"
-#include "dirt/integrator.h"
-#include "dirt/mmrt.h"
+#include "integrator/integrator.h"
+#include "mmrt/mmrt.h"
 #include "gl/gl.h"
-#include "dirt/pathtrace.h"
-#include "dirt/ref.h"
+#include "integrator/pathtrace.h"
+#include "ref/ref.h"
 #include "gpu.h"
 #include "test_mmrt_common.h"
 

@@ -26,7 +26,7 @@
 
 #include "../unit/test_scene_util.h"
 #include "check.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/session.h"
 #include "gpu.h"
 #include "session_util.h"

@@ -32,7 +32,7 @@
 
 typedef struct counts {
     int events;
-    uint64_t n[DIRT_PT_MAX_EVENTS];
+    uint64_t n[DIRT_MAX_EVENTS];
     dirt_image *img;
 } counts;
 

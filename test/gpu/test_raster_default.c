@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/raster.h"
+#include "raster/raster.h"
 #include "dirt/scene.h"
 #include "gpu.h"
 

@@ -9,7 +9,7 @@
 
 #include "check.h"
 #include "dirt/log.h"
-#include "dirt/raster.h"
+#include "raster/raster.h"
 #include "dirt/scene.h"
 #include "gpu.h"
 

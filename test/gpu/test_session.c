@@ -8,8 +8,9 @@
 #include <string.h>
 
 #include "common/integrator_layout.h"
-#include "dirt/gpu_tables.h"
+#include "integrator/gpu_tables.h"
 #include "dirt/session.h"
+#include "session/session_internal.h"
 #include "gl/gl.h"
 #include "gpu.h"
 

@@ -26,7 +26,7 @@
 #include "check.h"
 #include "common/constants.h"
 #include "dirt/ads.h"
-#include "dirt/pathtrace.h"
+#include "integrator/pathtrace.h"
 #include "dirt/session.h"
 #include "gl/gl.h"
 #include "gl/graph_gl.h"

@@ -20,7 +20,7 @@
 #include "common/constants.h"
 #include "dirt/ads.h"
 #include "dirt/clock.h"
-#include "dirt/pathtrace.h"
+#include "integrator/pathtrace.h"
 #include "dirt/session.h"
 #include "gl/gl.h"
 #include "gl/graph_gl.h"

@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/session.h"
 #include "gpu.h"
 #include "session_util.h"

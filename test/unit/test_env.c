@@ -23,7 +23,7 @@
 
 #include "check.h"
 #include "dirt/image.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 
 #define PI 3.14159265358979323846
 

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "gl/glsl_embedded.h"
 #include "gl/glsl_source.h"
 
 static char root[256];
@@ -34,8 +35,85 @@ static int count(const char *s, const char *needle)
     return n;
 }
 
-int main(void)
+/* Bytes of `path`, NUL-terminated (malloc'd; *size without the NUL), NULL
+ * when unreadable. */
+static char *slurp(const char *path, size_t *size)
 {
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        long n = ftell(f);
+        if (n >= 0 && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n + 1)) &&
+            fread(buf, 1, (size_t)n, f) == (size_t)n) {
+            buf[n] = '\0';
+            *size = (size_t)n;
+        } else {
+            free(buf);
+            buf = NULL;
+        }
+    }
+    fclose(f);
+    return buf;
+}
+
+/* The library's embedded shaders are the source tree's glsl/ byte for byte,
+ * every one of them, and assemble (root NULL) to the same text as from the
+ * tree; DIRT_GLSL_DIR overrides them. */
+static void check_embedded(const char *tree)
+{
+    CHECK(glsl_embedded_count > 20);
+    size_t found = 0;
+    for (size_t i = 0; i < glsl_embedded_count; i++) {
+        const glsl_embedded_file *e = &glsl_embedded_files[i];
+        if (i > 0)
+            CHECK(strcmp(glsl_embedded_files[i - 1].path, e->path) < 0);
+        CHECK(glsl_embedded_find(e->path) == e);
+        char path[1024];
+        snprintf(path, sizeof(path), "%s/%s", tree, e->path);
+        size_t size = 0;
+        char *disk = slurp(path, &size);
+        CHECK(disk && size == e->size && memcmp(disk, e->text, size) == 0 && e->text[size] == 0);
+        if (disk && size == e->size && memcmp(disk, e->text, size) == 0)
+            found++;
+        free(disk);
+        const char *stage = glsl_stage_of(e->path);
+        if (stage) {
+            glsl_define defs[] = {{"DIRT_NUM_VIEWS", "7"}};
+            char *a = glsl_assemble(NULL, e->path, defs, 1, NULL);
+            char *b = glsl_assemble(tree, e->path, defs, 1, NULL);
+            CHECK(a && b && strcmp(a, b) == 0);
+            free(a);
+            free(b);
+        }
+    }
+    CHECK(found == glsl_embedded_count);
+    CHECK(glsl_embedded_find("views/hiz.comp") != NULL);
+    CHECK(glsl_embedded_find("views/nope.comp") == NULL);
+    CHECK(glsl_embedded_find("") == NULL);
+    CHECK(glsl_assemble(NULL, "views/nope.comp", NULL, 0, NULL) == NULL);
+
+    unsetenv("DIRT_GLSL_DIR");
+    CHECK(glsl_root() == NULL);
+    setenv("DIRT_GLSL_DIR", "", 1);
+    CHECK(glsl_root() == NULL);
+    setenv("DIRT_GLSL_DIR", root, 1);
+    CHECK(glsl_root() && strcmp(glsl_root(), root) == 0);
+    /* A tree of its own: main.comp exists only there. */
+    char *over = glsl_assemble(glsl_root(), "main.comp", NULL, 0, NULL);
+    CHECK(over != NULL);
+    free(over);
+    CHECK(glsl_assemble(NULL, "main.comp", NULL, 0, NULL) == NULL);
+    unsetenv("DIRT_GLSL_DIR");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_glsl_source GLSL_SOURCE_DIR\n");
+        return 2;
+    }
     snprintf(root, sizeof(root), "/tmp/dirt-glsl-test-XXXXXX");
     if (!mkdtemp(root))
         return 1;
@@ -92,6 +170,8 @@ int main(void)
     CHECK(glsl_stage_of("a.frag") && strcmp(glsl_stage_of("a.frag"), "frag") == 0);
     CHECK(glsl_stage_of("a.glsl") == NULL);
     CHECK(glsl_stage_of("noext") == NULL);
+
+    check_embedded(argv[1]);
 
     char cmd[600];
     snprintf(cmd, sizeof(cmd), "rm -rf '%s'", root);

@@ -1,5 +1,5 @@
 /* The shared-constants registry at run time, without GL: the binding table
- * of src/gl/layout_check.c against the ranges (each binding named once, in
+ * of test/common/layout_check.c against the ranges (each binding named once, in
  * the range the table says, the ranges tiling [0, DIRT_BIND_LAST]), the
  * per-program uniform locations (distinct, within GL's guaranteed 1024),
  * the workgroup rounding and the public node sizes. */
@@ -7,8 +7,8 @@
 
 #include "check.h"
 #include "common/constants.h"
-#include "dirt/mmrt.h"
-#include "session/layout_check.h"
+#include "mmrt/mmrt.h"
+#include "layout_check.h"
 
 static void test_bindings(void)
 {

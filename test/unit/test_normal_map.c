@@ -18,7 +18,7 @@
 #include "check.h"
 
 #include "core/vec3.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/scene.h"
 
 #include <math.h>

@@ -20,8 +20,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/integrator.h"
-#include "dirt/ref.h"
+#include "integrator/integrator.h"
+#include "ref/ref.h"
 #include "integrator/rng.h"
 
 /* Up to 8 quads, 2 triangles each. */

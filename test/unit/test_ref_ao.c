@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/ref.h"
+#include "ref/ref.h"
 
 typedef struct mesh {
     dirt_frame f;

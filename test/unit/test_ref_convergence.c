@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/ref.h"
+#include "ref/ref.h"
 
 #define SEEDS 16
 

@@ -42,8 +42,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/integrator.h"
-#include "dirt/ref.h"
+#include "integrator/integrator.h"
+#include "ref/ref.h"
 
 #define PI 3.14159265358979323846
 

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "integrator/rng.h"
 
 #define PI 3.14159265358979323846

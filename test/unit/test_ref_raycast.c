@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "dirt/ref.h"
+#include "ref/ref.h"
 #include "integrator/rng.h"
 
 #define NRAYS 100000

@@ -22,7 +22,7 @@
 #include <stdio.h>
 
 #include "check.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "integrator/rng.h"
 #include "core/vec3.h"
 

@@ -9,7 +9,7 @@
 #include "test_scene_util.h"
 
 #include "dirt/image.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/scene.h"
 
 #include <stdio.h>

@@ -24,6 +24,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "dirt/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -34,42 +36,42 @@ typedef struct dirt_atomic_file dirt_atomic_file;
  * mode 0644, or the permission bits of the file it replaces when `path`
  * already exists. Returns NULL after logging why (directory missing or not
  * writable, path too long, out of memory). */
-dirt_atomic_file *dirt_atomic_open(const char *path);
+DIRT_API dirt_atomic_file *dirt_atomic_open(const char *path);
 
 /* Binary stdio stream onto the temporary file, owned by `f`: write (and
  * seek) freely, never fclose it. Errors on it are detected at commit. */
-FILE *dirt_atomic_stream(dirt_atomic_file *f);
+DIRT_API FILE *dirt_atomic_stream(dirt_atomic_file *f);
 
 /* Path of the temporary file (for messages) and the final path. */
-const char *dirt_atomic_temp_path(const dirt_atomic_file *f);
-const char *dirt_atomic_target_path(const dirt_atomic_file *f);
+DIRT_API const char *dirt_atomic_temp_path(const dirt_atomic_file *f);
+DIRT_API const char *dirt_atomic_target_path(const dirt_atomic_file *f);
 
 /* Flushes, fsyncs and renames the temporary file to the target path, then
  * fsyncs the directory (a failure there is only a warning). Frees `f` in
  * every case. On failure (including any earlier error on the stream) logs
  * why, removes the temporary file and returns false; the target path keeps
  * its previous content or absence. */
-bool dirt_atomic_commit(dirt_atomic_file *f);
+DIRT_API bool dirt_atomic_commit(dirt_atomic_file *f);
 
 /* Discards the write: closes and removes the temporary file and frees `f`.
  * The target path is untouched. Accepts NULL. */
-void dirt_atomic_abort(dirt_atomic_file *f);
+DIRT_API void dirt_atomic_abort(dirt_atomic_file *f);
 
 /* Files to remove when a signal ends the process: the open temporary files
  * are added and removed by the functions above; a program adds its own (a
  * claim file). dirt_cleanup_add returns a slot (-1 when the list of 32 is
  * full or the path too long: logged); dirt_cleanup_remove forgets it. Main
  * thread only. */
-int dirt_cleanup_add(const char *path);
-void dirt_cleanup_remove(int slot);
+DIRT_API int dirt_cleanup_add(const char *path);
+DIRT_API void dirt_cleanup_remove(int slot);
 /* Installs the handlers (SIGINT, SIGTERM, SIGHUP, SIGQUIT) that remove
  * those files, then end the process with the signal's default action.
  * False after logging. */
-bool dirt_cleanup_on_signals(void);
+DIRT_API bool dirt_cleanup_on_signals(void);
 
 /* Convenience: atomically replaces `path` with `size` bytes from `data`.
  * Returns false after logging why; nothing is left behind on failure. */
-bool dirt_write_file_atomic(const char *path, const void *data, size_t size);
+DIRT_API bool dirt_write_file_atomic(const char *path, const void *data, size_t size);
 
 #ifdef __cplusplus
 }

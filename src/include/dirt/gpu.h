@@ -12,6 +12,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dirt/api.h"
+
 #include "dirt/stats.h"
 
 #ifdef __cplusplus
@@ -34,7 +36,7 @@ enum dirt_gpu_platform {
 };
 
 /* "auto", "device", "surfaceless"; NULL-terminated (for option parsers). */
-extern const char *const dirt_gpu_platform_names[4];
+DIRT_API extern const char *const dirt_gpu_platform_names[4];
 
 /* Options for dirt_gpu_create. Zero-initialised = headless, debug output on
  * at warning level and above. */
@@ -103,12 +105,12 @@ typedef struct dirt_split_layout {
 
 /* Makes a GL 4.5 core context. Returns NULL after logging why (no EGL display,
  * no GL 4.5, no window system). */
-dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts);
-void dirt_gpu_destroy(dirt_gpu *gpu);
+DIRT_API dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts);
+DIRT_API void dirt_gpu_destroy(dirt_gpu *gpu);
 
-const dirt_gpu_caps *dirt_gpu_get_caps(const dirt_gpu *gpu);
+DIRT_API const dirt_gpu_caps *dirt_gpu_get_caps(const dirt_gpu *gpu);
 /* One line: "OpenGL 4.5 (Core Profile) Mesa ... | llvmpipe ... | conservative raster: no". */
-void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size);
+DIRT_API void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size);
 
 /* The one timing rule: the clock every pass on this GPU is measured with.
  * DIRT_CLOCK_CPU (glFinish before and after, CPU wall clock) when the GPU
@@ -122,7 +124,7 @@ void dirt_gpu_describe(const dirt_gpu *gpu, char *buf, size_t size);
  * graph's asynchronous timers (the path tracer's) read their results one or
  * more samples late, from a ring of queries, and never wait for them
  * (doc/frame-graph.md, Timing). */
-enum dirt_clock dirt_gpu_clock(const dirt_gpu *gpu);
+DIRT_API enum dirt_clock dirt_gpu_clock(const dirt_gpu *gpu);
 
 /* The GPU clock's time queries since creation (tests and diagnostics).
  * issued = harvested + dropped + those still in flight. */
@@ -136,23 +138,17 @@ typedef struct dirt_gpu_query_counts {
                              its oldest result first */
 } dirt_gpu_query_counts;
 
-dirt_gpu_query_counts dirt_gpu_queries(const dirt_gpu *gpu);
+DIRT_API dirt_gpu_query_counts dirt_gpu_queries(const dirt_gpu *gpu);
 /* dirt_gpu_queries(gpu).waits: 0 over a stretch of work means no query
  * result stalled the CPU there. */
-uint64_t dirt_gpu_query_waits(const dirt_gpu *gpu);
+DIRT_API uint64_t dirt_gpu_query_waits(const dirt_gpu *gpu);
 
 /* Waits for all GPU work (glFinish). */
-void dirt_gpu_finish(dirt_gpu *gpu);
-
-/* Windowed contexts only (false/no-op otherwise). */
-bool dirt_gpu_window_should_close(dirt_gpu *gpu);
-void dirt_gpu_window_swap(dirt_gpu *gpu);
-void dirt_gpu_window_poll(dirt_gpu *gpu);
-void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height);
+DIRT_API void dirt_gpu_finish(dirt_gpu *gpu);
 
 /* Number of GL debug messages of severity medium/high or type error logged
  * since creation (tests use it to prove a run was clean). */
-uint64_t dirt_gpu_error_count(const dirt_gpu *gpu);
+DIRT_API uint64_t dirt_gpu_error_count(const dirt_gpu *gpu);
 
 #ifdef __cplusplus
 }

@@ -15,8 +15,9 @@
 #include <stdint.h>
 #include <stddef.h>
 
-#include "common/display.h" /* enum dirt_tonemap */
+#include "dirt/api.h"
 #include "dirt/file.h"
+#include "dirt/types.h" /* enum dirt_tonemap */
 
 #ifdef __cplusplus
 extern "C" {
@@ -41,36 +42,48 @@ typedef struct dirt_image {
 
 /* Allocates a width x height image, RGBA all zero, no extra channels.
  * 1 <= width, height <= DIRT_IMAGE_MAX_DIM. NULL after logging on failure. */
-dirt_image *dirt_image_create(int width, int height);
+DIRT_API dirt_image *dirt_image_create(int width, int height);
 
 /* Frees the image and all its planes. Accepts NULL. */
-void dirt_image_destroy(dirt_image *img);
+DIRT_API void dirt_image_destroy(dirt_image *img);
 
 /* Adds a zero-filled extra plane called `name` and returns it (owned by the
  * image, valid until destroy). Fails (NULL, logged) when the name is empty,
  * longer than DIRT_IMAGE_MAX_CHANNEL_NAME, already present, or one of the
  * RGBA names "R", "G", "B", "A", or when out of memory. Pointers returned
  * earlier for other channels stay valid. */
-float *dirt_image_add_channel(dirt_image *img, const char *name);
+DIRT_API float *dirt_image_add_channel(dirt_image *img, const char *name);
 
 /* The plane of the extra channel `name`, or NULL when there is none (not
  * logged: absence is a normal answer). RGBA is not found this way. */
-float *dirt_image_find_channel(const dirt_image *img, const char *name);
+DIRT_API float *dirt_image_find_channel(const dirt_image *img, const char *name);
 
 /* ---- EXR ---------------------------------------------------------------- */
 
-/* Zero-initialised = defaults: everything stored as 32-bit FLOAT. */
+/* A text attribute of a file: its name and value (NUL-terminated,
+ * borrowed). */
+typedef struct dirt_image_attr {
+    const char *name;
+    const char *value;
+} dirt_image_attr;
+
+/* Zero-initialised = defaults: everything stored as 32-bit FLOAT, no
+ * attributes beyond the required ones. */
 typedef struct dirt_exr_options {
     bool half_rgba;  /* store R,G,B,A as 16-bit HALF (round to nearest even) */
     bool half_extra; /* store the extra channels as HALF */
+    const dirt_image_attr *attrs; /* `num_attrs` string attributes for the header */
+    size_t num_attrs;
 } dirt_exr_options;
 
 /* Writes a single-part scanline OpenEXR file, ZIP compression, channels
  * R,G,B,A plus every extra channel (sorted by name in the file as EXR
- * requires). Data window = display window = (0,0)-(w-1,h-1). `opts` may be
- * NULL for defaults. Atomic; false after logging on failure. */
-bool dirt_image_write_exr(const dirt_image *img, const char *path,
-                          const dirt_exr_options *opts);
+ * requires). Data window = display window = (0,0)-(w-1,h-1). Every
+ * attribute of opts->attrs is a string attribute of the header (a name
+ * the header already holds, such as "channels", is an error). `opts` may
+ * be NULL for defaults. Atomic; false after logging on failure. */
+DIRT_API bool dirt_image_write_exr(const dirt_image *img, const char *path,
+                                   const dirt_exr_options *opts);
 
 /* Reads part 0 of a scanline OpenEXR file (any compression; HALF, FLOAT or
  * UINT channels, all converted to float). Channels R, G, B, A go to rgba
@@ -79,19 +92,19 @@ bool dirt_image_write_exr(const dirt_image *img, const char *path,
  * name. The image is the data window, its top row first. Subsampled
  * channels are skipped with a warning. NULL after logging on failure (file
  * missing or unreadable, tiled or deep file, too large). */
-dirt_image *dirt_image_read_exr(const char *path);
+DIRT_API dirt_image *dirt_image_read_exr(const char *path);
 
 /* Reads a Radiance RGBE (.hdr) file through stb_image: linear RGB, alpha 1,
  * the first row on top. NULL after logging on failure (missing, unreadable
  * or malformed file, too large). */
-dirt_image *dirt_image_read_hdr(const char *path);
+DIRT_API dirt_image *dirt_image_read_hdr(const char *path);
 
 /* ---- PNG preview -------------------------------------------------------- */
 
 /* enum dirt_tonemap (DIRT_TONEMAP_CLAMP: clamp to [0,1]; _REINHARD: x / (1 + x)
- * per channel; _ACES: Narkowicz's rational fit of the ACES curve) is defined
- * in common/display.h with the curves' constants, shared with the shaders
- * and the gl layer's dirt/window.h. */
+ * per channel; _ACES: Narkowicz's rational fit of the ACES curve) is in
+ * dirt/types.h; the curves' constants are in glsl/common/display.h, shared
+ * with the shaders. */
 
 /* Zero-initialised = defaults: exposure 0, clamp, RGB without alpha. */
 typedef struct dirt_png_options {
@@ -104,16 +117,16 @@ typedef struct dirt_png_options {
  * tonemap, clamp to [0,1] (NaN -> 0), apply the sRGB transfer function and
  * round to nearest 8-bit value. Extra channels are ignored. `opts` may be
  * NULL. Atomic; false after logging on failure. */
-bool dirt_image_write_png(const dirt_image *img, const char *path,
-                          const dirt_png_options *opts);
+DIRT_API bool dirt_image_write_png(const dirt_image *img, const char *path,
+                                   const dirt_png_options *opts);
 
 /* Writes 8-bit RGBA pixels (row 0 = top, width * height * 4 bytes) as
  * they are (a window's screenshot). Atomic; false after logging. */
-bool dirt_write_png_rgba8(const char *path, int width, int height, const uint8_t *rgba);
+DIRT_API bool dirt_write_png_rgba8(const char *path, int width, int height, const uint8_t *rgba);
 
 /* The 8-bit value the PNG writer stores for a linear value that has already
  * been exposed and tonemapped: round(255 * srgb(clamp(v, 0, 1))). */
-unsigned char dirt_linear_to_srgb8(float v);
+DIRT_API unsigned char dirt_linear_to_srgb8(float v);
 
 /* ---- by extension ------------------------------------------------------- */
 
@@ -125,8 +138,8 @@ typedef struct dirt_image_write_options {
 /* Writes .exr or .png (extension matched case-insensitively) with the
  * matching options; `opts` may be NULL. Any other extension is an error
  * (false, logged, nothing written). */
-bool dirt_image_write(const dirt_image *img, const char *path,
-                      const dirt_image_write_options *opts);
+DIRT_API bool dirt_image_write(const dirt_image *img, const char *path,
+                               const dirt_image_write_options *opts);
 
 /* ---- metrics (src/io/metrics.c) ----------------------------------------- */
 
@@ -144,13 +157,13 @@ typedef struct dirt_image_error {
 
 /* Fills `out` (all three metrics). False after logging when an argument is
  * NULL or the sizes differ. */
-bool dirt_image_compare(const dirt_image *img, const dirt_image *ref,
-                        dirt_image_error *out);
+DIRT_API bool dirt_image_compare(const dirt_image *img, const dirt_image *ref,
+                                 dirt_image_error *out);
 
 /* Single metrics; NAN (after logging) when dirt_image_compare would fail. */
-double dirt_image_mse(const dirt_image *img, const dirt_image *ref);
-double dirt_image_rmse(const dirt_image *img, const dirt_image *ref);
-double dirt_image_rel_mse(const dirt_image *img, const dirt_image *ref);
+DIRT_API double dirt_image_mse(const dirt_image *img, const dirt_image *ref);
+DIRT_API double dirt_image_rmse(const dirt_image *img, const dirt_image *ref);
+DIRT_API double dirt_image_rel_mse(const dirt_image *img, const dirt_image *ref);
 
 #ifdef __cplusplus
 }

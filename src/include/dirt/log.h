@@ -7,6 +7,8 @@
 
 #include <stdarg.h>
 
+#include "dirt/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -25,20 +27,20 @@ typedef void (*dirt_log_fn)(void *user, enum dirt_log_level level,
 
 /* Messages above `level` are dropped. Default: DIRT_LOG_INFO, or the value of
  * the environment variable DIRT_LOG (error|warn|info|debug) when set. */
-void dirt_log_set_level(enum dirt_log_level level);
-enum dirt_log_level dirt_log_get_level(void);
+DIRT_API void dirt_log_set_level(enum dirt_log_level level);
+DIRT_API enum dirt_log_level dirt_log_get_level(void);
 
 /* Replaces the stderr sink; NULL restores it. Not thread-safe against
  * concurrent logging: call it at start-up. */
-void dirt_log_set_callback(dirt_log_fn fn, void *user);
+DIRT_API void dirt_log_set_callback(dirt_log_fn fn, void *user);
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-void dirt_log(enum dirt_log_level level, const char *file, int line,
-              const char *fmt, ...);
-void dirt_logv(enum dirt_log_level level, const char *file, int line,
-               const char *fmt, va_list ap);
+DIRT_API void dirt_log(enum dirt_log_level level, const char *file, int line,
+                       const char *fmt, ...);
+DIRT_API void dirt_logv(enum dirt_log_level level, const char *file, int line,
+                        const char *fmt, va_list ap);
 
 #define DIRT_ERROR(...) dirt_log(DIRT_LOG_ERROR, __FILE__, __LINE__, __VA_ARGS__)
 #define DIRT_WARN(...)  dirt_log(DIRT_LOG_WARN, __FILE__, __LINE__, __VA_ARGS__)

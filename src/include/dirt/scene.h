@@ -17,6 +17,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dirt/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -90,7 +92,7 @@ typedef struct dirt_material {
  * (strength 1), no texture in any slot, normal scale 1, opaque (cutoff
  * 0.5), no transmission, ior 1.5, specular 1 of colour 1, identity
  * transforms; the name empty. */
-void dirt_material_default(dirt_material *m);
+DIRT_API void dirt_material_default(dirt_material *m);
 
 enum dirt_camera_type { DIRT_CAMERA_PERSPECTIVE = 0, DIRT_CAMERA_ORTHOGRAPHIC = 1 };
 
@@ -152,15 +154,15 @@ enum dirt_scene_error {
 };
 
 /* "ok", "JSON nested deeper than the limit", ...; "?" out of range. */
-const char *dirt_scene_error_str(enum dirt_scene_error e);
+DIRT_API const char *dirt_scene_error_str(enum dirt_scene_error e);
 /* "OK", "TOO_DEEP", ...: the id's name (for messages and tests). */
-const char *dirt_scene_error_name(enum dirt_scene_error e);
+DIRT_API const char *dirt_scene_error_name(enum dirt_scene_error e);
 
 /* The outcome of this thread's last dirt_scene_load / dirt_scene_load_memory /
  * dirt_scene_load_obj_memory:
  * DIRT_SCENE_ERR_OK after a success, else the first reason the load met
  * (the log says more). */
-enum dirt_scene_error dirt_scene_last_error(void);
+DIRT_API enum dirt_scene_error dirt_scene_last_error(void);
 
 /* Default of dirt_load_opts.max_bytes: 512 MiB of expanded scene data
  * (about 3 million triangles with their vertex arrays; an accessor of 2^27
@@ -200,11 +202,11 @@ typedef struct dirt_load_opts {
  * node with one static mesh (no cameras, lights or animation); its MTL
  * materials map onto the metallic-roughness model as doc/scenes.md says.
  * `opts` may be NULL. */
-dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
+DIRT_API dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
 
 /* The glTF extensions the loader honours, NULL-terminated, in one list that
  * decides both checks above ("KHR_lights_punctual", ...). */
-const char *const *dirt_scene_gltf_extensions(void);
+DIRT_API const char *const *dirt_scene_gltf_extensions(void);
 
 /* Loads a glTF held in memory: `size` bytes of .glb (they start with "glTF")
  * or of .gltf JSON (not necessarily NUL-terminated), whose buffers and images
@@ -213,8 +215,8 @@ const char *const *dirt_scene_gltf_extensions(void);
  * the scene (its file stem, as for dirt_scene_load: "room.glb" -> "room").
  * The bytes are not kept: the caller may free them on return. Same failure
  * behaviour as dirt_scene_load; `opts` may be NULL. */
-dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
-                                   const dirt_load_opts *opts);
+DIRT_API dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
+                                            const dirt_load_opts *opts);
 /* (When `name` ends in ".obj" the bytes are OBJ text, loaded as by
  * dirt_scene_load_obj_memory without MTL text.) */
 
@@ -224,9 +226,9 @@ dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *na
  * material). Texture maps cannot be read from memory: they warn and the
  * materials keep their factors. `name` as for dirt_scene_load_memory. Same
  * failure behaviour as dirt_scene_load; `opts` may be NULL. */
-dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const void *mtl,
-                                       size_t mtl_size, const char *name,
-                                       const dirt_load_opts *opts);
+DIRT_API dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const void *mtl,
+                                                size_t mtl_size, const char *name,
+                                                const dirt_load_opts *opts);
 
 /* The project's own default scene, data/default_scene.gltf embedded into the
  * library at build time (nothing is read from disk), named "default": a
@@ -235,9 +237,9 @@ dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const v
  * (diffuse, metal, glossy), lit by an emissive ceiling panel, and one camera
  * inside the room near the front wall looking at the back wall. Never fails
  * except on out-of-memory (NULL, logged). */
-dirt_scene *dirt_scene_create_default(void);
+DIRT_API dirt_scene *dirt_scene_create_default(void);
 
-void dirt_scene_destroy(dirt_scene *scene);
+DIRT_API void dirt_scene_destroy(dirt_scene *scene);
 
 /* Writes a human-readable summary of the scene to `out` (a FILE *), one
  * labelled line per item with the labels padded to one column: name;
@@ -250,30 +252,33 @@ void dirt_scene_destroy(dirt_scene *scene);
  * as dirt_scene_clip_bounds gives them); and the rest pose's bounds.
  * Returns false (logged) on NULL arguments, out-of-memory or a write error.
  * Evaluates the scene (dirt_scene_clip_bounds once per clip). */
-bool dirt_scene_print_info(const dirt_scene *scene, void *out);
+DIRT_API bool dirt_scene_print_info(const dirt_scene *scene, void *out);
 
 /* Read-only views into the scene. Pointers are owned by the scene. */
-const char *dirt_scene_name(const dirt_scene *scene);
-size_t dirt_scene_num_materials(const dirt_scene *scene);
-const dirt_material *dirt_scene_materials(const dirt_scene *scene);
-size_t dirt_scene_num_textures(const dirt_scene *scene);
-const dirt_texture *dirt_scene_textures(const dirt_scene *scene);
-size_t dirt_scene_num_cameras(const dirt_scene *scene);
-const dirt_camera_def *dirt_scene_cameras(const dirt_scene *scene);
-size_t dirt_scene_num_lights(const dirt_scene *scene);
-const dirt_light_def *dirt_scene_lights(const dirt_scene *scene);
-size_t dirt_scene_num_nodes(const dirt_scene *scene);
+DIRT_API const char *dirt_scene_name(const dirt_scene *scene);
+DIRT_API size_t dirt_scene_num_materials(const dirt_scene *scene);
+DIRT_API const dirt_material *dirt_scene_materials(const dirt_scene *scene);
+/* True when the material emits (max(emissive) * emissive_strength is
+ * positive and finite): its triangles are area lights in every engine. */
+DIRT_API bool dirt_material_is_emissive(const dirt_material *m);
+DIRT_API size_t dirt_scene_num_textures(const dirt_scene *scene);
+DIRT_API const dirt_texture *dirt_scene_textures(const dirt_scene *scene);
+DIRT_API size_t dirt_scene_num_cameras(const dirt_scene *scene);
+DIRT_API const dirt_camera_def *dirt_scene_cameras(const dirt_scene *scene);
+DIRT_API size_t dirt_scene_num_lights(const dirt_scene *scene);
+DIRT_API const dirt_light_def *dirt_scene_lights(const dirt_scene *scene);
+DIRT_API size_t dirt_scene_num_nodes(const dirt_scene *scene);
 /* Name of node i ("" when unnamed), NULL when out of range. */
-const char *dirt_scene_node_name(const dirt_scene *scene, size_t node);
+DIRT_API const char *dirt_scene_node_name(const dirt_scene *scene, size_t node);
 
 /* Triangles every frame of this scene has. */
-size_t dirt_scene_num_triangles(const dirt_scene *scene);
+DIRT_API size_t dirt_scene_num_triangles(const dirt_scene *scene);
 
 /* Animation clips (glTF animations). */
-size_t dirt_scene_num_clips(const dirt_scene *scene);
-const char *dirt_scene_clip_name(const dirt_scene *scene, size_t clip);
+DIRT_API size_t dirt_scene_num_clips(const dirt_scene *scene);
+DIRT_API const char *dirt_scene_clip_name(const dirt_scene *scene, size_t clip);
 /* Length of the clip in seconds (largest sampler input time). */
-float dirt_scene_clip_duration(const dirt_scene *scene, size_t clip);
+DIRT_API float dirt_scene_clip_duration(const dirt_scene *scene, size_t clip);
 
 /* Options for dirt_scene_evaluate. Zero-initialised = defaults:
  * clip 0 (the first animation, if any), time clamped to the clip. */
@@ -335,14 +340,14 @@ typedef struct dirt_frame {
 /* Evaluates the scene at time t (seconds). `opts` may be NULL. Returns a new
  * frame owned by the caller (dirt_frame_destroy), or NULL on out-of-memory.
  * Deterministic: the same (scene, t, opts) gives the same bits. */
-dirt_frame *dirt_scene_evaluate(const dirt_scene *scene, float t,
-                                const dirt_eval_opts *opts);
+DIRT_API dirt_frame *dirt_scene_evaluate(const dirt_scene *scene, float t,
+                                         const dirt_eval_opts *opts);
 
 /* Re-evaluates into an existing frame of the same scene (no allocation). */
-bool dirt_scene_evaluate_into(const dirt_scene *scene, float t,
-                              const dirt_eval_opts *opts, dirt_frame *frame);
+DIRT_API bool dirt_scene_evaluate_into(const dirt_scene *scene, float t,
+                                       const dirt_eval_opts *opts, dirt_frame *frame);
 
-void dirt_frame_destroy(dirt_frame *frame);
+DIRT_API void dirt_frame_destroy(dirt_frame *frame);
 
 /* Union of the frame bounds over the animation `opts` selects (NULL = clip
  * 0; see dirt_eval_opts): the frames at t = 0, at every key time of the
@@ -355,8 +360,8 @@ void dirt_frame_destroy(dirt_frame *frame);
  * up to the distance a vertex moves in D / n. All 0 when the scene has no
  * triangles. Returns false (logged) on NULL arguments or out-of-memory;
  * deterministic. Cost: up to about 2100 evaluations of the scene. */
-bool dirt_scene_clip_bounds(const dirt_scene *scene, const dirt_eval_opts *opts,
-                            float min[3], float max[3]);
+DIRT_API bool dirt_scene_clip_bounds(const dirt_scene *scene, const dirt_eval_opts *opts,
+                                     float min[3], float max[3]);
 
 /* The automatic camera for an axis-aligned box (min <= max componentwise):
  * a perspective pinhole looking at the box centre from the +Z side, slightly
@@ -369,22 +374,22 @@ bool dirt_scene_clip_bounds(const dirt_scene *scene, const dirt_eval_opts *opts,
  * the six floats: the same box gives the same bits. Pass the bounds of
  * dirt_scene_clip_bounds to frame a whole clip with one camera for every
  * frame (no zoom as objects move). */
-void dirt_camera_auto_bounds(const float min[3], const float max[3], dirt_camera *out);
+DIRT_API void dirt_camera_auto_bounds(const float min[3], const float max[3], dirt_camera *out);
 
 /* dirt_camera_auto_bounds of one frame's bounds (radius-1 sphere at the
  * origin for a NULL frame or one without triangles). Used when the scene has
  * no camera; it follows the frame, so over an animation it zooms as objects
  * move (dirt_scene_clip_bounds + dirt_camera_auto_bounds does not). */
-void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out);
+DIRT_API void dirt_camera_auto(const dirt_frame *frame, dirt_camera *out);
 
 /* The camera a frame is seen from by default: its first camera when that is
  * a perspective one, else dirt_camera_auto (the techniques' views need a
  * perspective camera). */
-void dirt_camera_default(const dirt_frame *frame, dirt_camera *out);
+DIRT_API void dirt_camera_default(const dirt_frame *frame, dirt_camera *out);
 
 /* Builds a camera looking from eye at target with the given up vector. */
-void dirt_camera_look_at(dirt_camera *cam, const float eye[3],
-                         const float target[3], const float up[3]);
+DIRT_API void dirt_camera_look_at(dirt_camera *cam, const float eye[3],
+                                  const float target[3], const float up[3]);
 
 /* A perspective camera given by its pose and lens, as dirt-render's
  * --eye/--look-at/--up/--fov/--znear/--zfar and dirt-view's free camera
@@ -396,13 +401,13 @@ typedef struct dirt_camera_look {
 } dirt_camera_look;
 
 /* The camera of `look` (pinhole, aspect from the image). */
-void dirt_camera_from_look(const dirt_camera_look *look, dirt_camera *out);
+DIRT_API void dirt_camera_from_look(const dirt_camera_look *look, dirt_camera *out);
 
 /* Column-major projection matrix (OpenGL clip space, -1..1 depth) of the
  * camera for an image of the given aspect (width / height) when the camera
  * has none. Infinite far plane when zfar is 0. */
-void dirt_camera_projection(const dirt_camera *cam, float image_aspect,
-                            float out[16]);
+DIRT_API void dirt_camera_projection(const dirt_camera *cam, float image_aspect,
+                                     float out[16]);
 
 #ifdef __cplusplus
 }

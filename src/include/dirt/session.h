@@ -9,12 +9,19 @@
  * camera, options) restarts it. The structure is rebuilt only when the
  * frame, the camera or its own options change.
  *
- * Typical use:
- *   dirt_session *s = dirt_session_create(gpu, scene, &opts);
- *   dirt_session_set_time(s, t);
- *   dirt_session_add_samples(s, 16);
- *   const dirt_image *img = dirt_session_image(s);   // beauty + AOVs
+ * Typical use (examples/render.c is a whole program):
+ *   dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){0});  // headless EGL
+ *   dirt_scene *scene = dirt_scene_create_default();
+ *   dirt_session *s = dirt_session_create(gpu, scene, &(dirt_session_opts){.seed = 3});
+ *   dirt_session_set_time(s, 0.5, NULL);                // restarts the accumulation
+ *   dirt_session_add_samples(s, 16, NULL, NULL);        // progressive: add more later
+ *   const dirt_image *img = dirt_session_image(s);      // beauty + AOVs
  *   const dirt_session_stats *st = dirt_session_get_stats(s);
+ *   dirt_session_destroy(s);
+ *   dirt_scene_destroy(scene);
+ *   dirt_gpu_destroy(gpu);
+ * A call that fails logs why and returns false, NULL or 0;
+ * dirt_session_last_error() tells the reason as an id.
  */
 #ifndef DIRT_SESSION_H
 #define DIRT_SESSION_H
@@ -23,20 +30,52 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "dirt/ads.h"
+#include "dirt/api.h"
+#include "dirt/env.h"
 #include "dirt/gpu.h"
 #include "dirt/image.h"
-#include "dirt/mmrt.h"
-#include "dirt/pathtrace.h"
-#include "dirt/raytypes.h"
 #include "dirt/scene.h"
 #include "dirt/stats.h"
+#include "dirt/types.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef struct dirt_session dirt_session;
+
+/* Why a session call failed: one X-macro list gives the enum
+ * (DIRT_SESSION_ERR_<id>), the messages (dirt_session_error_str) and the
+ * names (dirt_session_error_name) the tests and the Python module use. */
+#define DIRT_SESSION_ERRORS(X)                                                          \
+    X(OK, "ok")                                                                         \
+    X(ARGUMENT, "a missing argument (no scene, no camera, no path) or a bad count")     \
+    X(OPTION, "an option out of range or contradicting another (dirt_session_check_opts)") \
+    X(NO_GPU, "a GPU engine (dirt, mmrt, raster) or a display without a GPU")           \
+    X(CAMERA, "no such camera in the scene")                                            \
+    X(CLIP, "no such animation clip in the scene")                                      \
+    X(NOT_READY, "nothing to give yet: no samples, or no structure built")              \
+    X(UNSUPPORTED, "the engine has no such thing (a structure, pictures, a frame graph)") \
+    X(IO, "a file cannot be written")                                                   \
+    X(OUT_OF_MEMORY, "out of memory")                                                   \
+    X(RENDER, "the engine failed: a GPU limit, a GL error, a shader (the log says which)")
+
+enum dirt_session_error {
+#define DIRT_SESSION_ERR_ENUM_(id, msg) DIRT_SESSION_ERR_##id,
+    DIRT_SESSION_ERRORS(DIRT_SESSION_ERR_ENUM_)
+#undef DIRT_SESSION_ERR_ENUM_
+    DIRT_SESSION_NUM_ERRORS
+};
+
+/* The outcome of this thread's last call of a session function that can
+ * fail (those returning bool, a pointer or a texture name, and
+ * dirt_session_check_opts): DIRT_SESSION_ERR_OK after a success, else the
+ * reason (the log says more). */
+DIRT_API enum dirt_session_error dirt_session_last_error(void);
+/* "ok", "no such camera in the scene", ...; "?" out of range. */
+DIRT_API const char *dirt_session_error_str(enum dirt_session_error e);
+/* "OK", "CAMERA", ...: the id's name. */
+DIRT_API const char *dirt_session_error_name(enum dirt_session_error e);
 
 enum dirt_engine {
     DIRT_ENGINE_DIRT = 0,  /* path tracing through the DIRT structure (GPU) */
@@ -46,7 +85,7 @@ enum dirt_engine {
     DIRT_NUM_ENGINES
 };
 
-extern const char *const dirt_engine_names[DIRT_NUM_ENGINES]; /* "dirt", "mmrt", ... */
+DIRT_API extern const char *const dirt_engine_names[DIRT_NUM_ENGINES]; /* "dirt", "mmrt", ... */
 
 /* How DIRT's structure is built (doc/dirt-build.md; both give the same
  * lists). AUTO: by measurement per device (dirt_session_auto_build). */
@@ -64,7 +103,7 @@ enum dirt_session_build {
  * until a measurement there says otherwise (perf/gpu-check.sh measures
  * both). The environment variable DIRT_BUILD=raster|compute overrides it
  * (dirt_build_from_env). */
-enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu);
+DIRT_API enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu);
 
 /* DIRT's bucket count when dirt_session_opts.buckets is 0, on `gpu` (NULL:
  * 16): 8 on a software renderer (llvmpipe: the best whole frame at S = 2
@@ -72,7 +111,7 @@ enum dirt_build_mode dirt_session_auto_build(const dirt_gpu *gpu);
  * interleaved runs of perf/bench-defaults.py, perf/results/
  * defaults-llvmpipe.md), 16 (the authors' demo's) on a hardware GPU until
  * a measurement there says otherwise. */
-int dirt_session_auto_buckets(const dirt_gpu *gpu);
+DIRT_API int dirt_session_auto_buckets(const dirt_gpu *gpu);
 
 /* Views of the structure; DEFAULT = camera view and cube faces. */
 enum dirt_session_views {
@@ -96,7 +135,7 @@ typedef struct dirt_session_opts {
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
     enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
     int large;                  /* dirt: large primitives tested by every ray instead of
-                                   listed (dirt_ads_opts.large): 0 = up to 16, < 0 = none,
+                                   listed (doc/dirt-trace.md): 0 = up to 16, < 0 = none,
                                    n = up to n (at most 16) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
@@ -109,7 +148,7 @@ typedef struct dirt_session_opts {
     int bounces;                /* 0 = 4 */
     uint32_t seed;
     float background[3];        /* the constant environment (unless `env`) */
-    const struct dirt_env *env; /* environment light (dirt_env_load; borrowed:
+    const dirt_env *env;        /* environment light (dirt/env.h; borrowed:
                                    it must outlive its use in the session;
                                    NULL = the background) */
     float ao_distance;          /* 0 = infinite */
@@ -124,7 +163,7 @@ typedef struct dirt_session_opts {
 /* True when `opts` are valid (the checks dirt_session_create and
  * dirt_session_set_opts make, except that a GPU engine needs a GPU); else
  * false with the reason in `why` (may be NULL; one line, no prefix). */
-bool dirt_session_check_opts(const dirt_session_opts *opts, char *why, size_t size);
+DIRT_API bool dirt_session_check_opts(const dirt_session_opts *opts, char *why, size_t size);
 
 /* Which camera the session looks through. */
 enum dirt_camera_choice {
@@ -136,7 +175,7 @@ enum dirt_camera_choice {
 
 /* Figures of the accumulation since the last restart (times and rays add
  * up over dirt_session_add_samples calls; the build's are the last build's).
- * The path tracer's pass times may lag (dirt/pathtrace.h, dirt_pt_stats):
+ * The path tracer's pass times may lag:
  * with the GPU clock (time queries) no sample waits for its times, so after
  * dirt_session_add_samples they hold the times the GPU had delivered by
  * then, and the last samples' come later: with the next calls (a viewer
@@ -151,6 +190,7 @@ typedef struct dirt_session_stats {
     int samples;                /* accumulated */
     int bounces;
     enum dirt_pt_mode mode;
+    uint32_t seed;              /* dirt_session_opts.seed */
     double time;                /* scene time of the frame */
     double build_ms;            /* the structure's last build (embree: BVH) */
     double trace_ms, fetch_ms, visibility_ms, shade_ms;
@@ -161,7 +201,7 @@ typedef struct dirt_session_stats {
      * mmrt, embree; summed over the samples): what the GPU engines trace
      * after event 1 (compaction). 0 events for the raster preview. */
     int events;
-    uint64_t paths_at_event[DIRT_PT_MAX_EVENTS];
+    uint64_t paths_at_event[DIRT_MAX_EVENTS];
     int num_passes;
     dirt_pass_time passes[32];  /* build passes, then the path tracer's */
     int num_buffers;
@@ -177,47 +217,47 @@ typedef struct dirt_session_stats {
 /* A session on `scene` (and `gpu`, which may be NULL for the embree engine
  * only). Evaluates time 0 of clip 0 and takes the default camera. NULL after
  * logging on bad options or when the engine cannot be made. */
-dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
-                                  const dirt_session_opts *opts);
+DIRT_API dirt_session *dirt_session_create(dirt_gpu *gpu, const dirt_scene *scene,
+                                           const dirt_session_opts *opts);
 /* Accepts NULL. */
-void dirt_session_destroy(dirt_session *s);
+DIRT_API void dirt_session_destroy(dirt_session *s);
 
 /* Sets the options. Rebuilds only what they touch (engine objects, the
  * structure, the integrator state). *restarted (may be NULL) says whether the
  * accumulation restarts (it does for any change that alters the image).
  * False after logging on bad options; the session keeps the old ones. */
-bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool *restarted);
-const dirt_session_opts *dirt_session_get_opts(const dirt_session *s);
+DIRT_API bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool *restarted);
+DIRT_API const dirt_session_opts *dirt_session_get_opts(const dirt_session *s);
 
 /* Evaluates the scene at `time` seconds of `eval` (clip, loop; NULL = clip 0,
  * clamped). Restarts the accumulation. False after logging (bad clip). */
-bool dirt_session_set_time(dirt_session *s, double time, const dirt_eval_opts *eval);
-const dirt_frame *dirt_session_frame(const dirt_session *s);
+DIRT_API bool dirt_session_set_time(dirt_session *s, double time, const dirt_eval_opts *eval);
+DIRT_API const dirt_frame *dirt_session_frame(const dirt_session *s);
 
 /* Chooses the camera: `index` is the scene camera for DIRT_CAMERA_SCENE,
  * `cam` the camera for DIRT_CAMERA_EXPLICIT (else ignored, may be NULL).
  * Restarts the accumulation. False after logging (no such camera). */
-bool dirt_session_set_camera(dirt_session *s, enum dirt_camera_choice choice, int index,
-                             const dirt_camera *cam);
+DIRT_API bool dirt_session_set_camera(dirt_session *s, enum dirt_camera_choice choice, int index,
+                                      const dirt_camera *cam);
 /* The camera in use at the current time (aperture and focus applied). */
-const dirt_camera *dirt_session_camera(const dirt_session *s);
+DIRT_API const dirt_camera *dirt_session_camera(const dirt_session *s);
 
 /* Image size in use (height resolved from the camera's aspect). */
-void dirt_session_size(const dirt_session *s, int *width, int *height);
+DIRT_API void dirt_session_size(const dirt_session *s, int *width, int *height);
 
 /* Builds the technique's structure for the current frame, camera and
  * options now (dirt_session_add_samples does it when needed). */
-bool dirt_session_build(dirt_session *s);
+DIRT_API bool dirt_session_build(dirt_session *s);
 
 /* Restarts the accumulation (0 samples). */
-void dirt_session_reset(dirt_session *s);
+DIRT_API void dirt_session_reset(dirt_session *s);
 /* Adds `count` samples (raster: renders the preview; count is ignored),
  * building the structure first when the frame, camera or options changed.
  * `progress` (may be NULL) is called after every sample. False after
  * logging on failure. */
-bool dirt_session_add_samples(dirt_session *s, int count,
-                              void (*progress)(void *user, int done, int total), void *user);
-int dirt_session_samples(const dirt_session *s);
+DIRT_API bool dirt_session_add_samples(dirt_session *s, int count,
+                                       void (*progress)(void *user, int done, int total), void *user);
+DIRT_API int dirt_session_samples(const dirt_session *s);
 
 /* The accumulated image: RGBA beauty (the mean) and the engine's AOVs
  * (dirt, mmrt, embree: "albedo.R/G/B", "N.X/Y/Z", "Z" and "ID": the depth
@@ -225,39 +265,58 @@ int dirt_session_samples(const dirt_session *s);
  * raster: "N.X/Y/Z", "Z"). Owned by
  * the session, valid until the next call that changes it. NULL (logged)
  * before any sample or on a readback failure. */
-const dirt_image *dirt_session_image(dirt_session *s);
+DIRT_API const dirt_image *dirt_session_image(dirt_session *s);
+
+/* Writes the accumulated image (dirt_session_image: beauty and AOVs) to
+ * `path` by its extension, .exr or .png (dirt_image_write; `opts` may be
+ * NULL), atomically. False (logged) with no samples (NOT_READY) or when the
+ * file cannot be written (IO). */
+DIRT_API bool dirt_session_write_image(dirt_session *s, const char *path,
+                                       const dirt_image_write_options *opts);
 
 /* The beauty as an RGBA32F GL texture (texel (x, y) = pixel (x, y), row 0 =
  * top) for display: on the GPU engines it never leaves the GPU; embree's
  * image is uploaded. Owned by the session. 0 (logged) before any sample. */
-uint32_t dirt_session_display_texture(dirt_session *s);
+DIRT_API uint32_t dirt_session_display_texture(dirt_session *s);
 
-const dirt_session_stats *dirt_session_get_stats(const dirt_session *s);
+DIRT_API const dirt_session_stats *dirt_session_get_stats(const dirt_session *s);
 /* Waits for the path tracer's pass times still in flight and adds them to
  * the stats (dirt_session_image does it with its readback): for a caller
  * that reads the figures of every call without reading the image back. */
-void dirt_session_drain_times(dirt_session *s);
+DIRT_API void dirt_session_drain_times(dirt_session *s);
 
 /* Writes a stats document as JSON (through cJSON), atomically: the
  * figures of `frames[count - 1]`'s run (engine, device, size, samples),
  * their means, and every frame's record in "frames". False after logging
  * when the file cannot be written. */
-bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count);
+DIRT_API bool dirt_session_write_stats(const char *path, const dirt_session_stats *frames, size_t count);
+/* The same with an object "provenance" of the `num_attrs` text attributes
+ * (what made the frames: the ones the programs write into their EXR
+ * headers, dirt/image.h), each name a key. */
+DIRT_API bool dirt_session_write_stats_attrs(const char *path, const dirt_session_stats *frames,
+                                             size_t count, const dirt_image_attr *attrs,
+                                             size_t num_attrs);
 
 /* One stats record as a cJSON object (the "frames" entries of
  * dirt_session_write_stats), owned by the caller (cJSON_Delete). NULL when
  * out of memory. */
 struct cJSON;
-struct cJSON *dirt_session_stats_json(const dirt_session_stats *stats);
+DIRT_API struct cJSON *dirt_session_stats_json(const dirt_session_stats *stats);
 
-/* Frame graph DOT of the path tracer (dirt, mmrt) or of the raster preview.
- * False (logged) before the first samples or for the embree engine. */
-bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
+/* Frame graph DOT of the path tracer (dirt, mmrt). False (logged) before
+ * the first samples or for the engines without a path tracer (embree,
+ * raster). */
+DIRT_API bool dirt_session_write_graph_dot(const dirt_session *s, const char *path);
 
-/* The DIRT structure or MMRT A-buffer of the last build (NULL for other
- * engines or before a build): for pictures and checks. */
-dirt_ads *dirt_session_ads(dirt_session *s);
-dirt_mmrt *dirt_session_mmrt(dirt_session *s);
+/* Writes the DIRT structure of the current frame (built first when
+ * needed) as pictures into the directory `dir`, which must exist: per view
+ * <dir>/ads_v<i>_<name>_lists.png (heat map of the list length per tile),
+ * _zmin.png and _zmax.png (depth bounds), and <dir>/ads_graph.dot (the
+ * build's frame graph); unless `quiet`, prints the build's figures (counts,
+ * bytes against the DIRT paper's Table 3, pass times) on stderr and the
+ * file names on stdout. False (logged) for engines other than dirt, or when
+ * the build or a file fails. */
+DIRT_API bool dirt_session_write_debug_ads(dirt_session *s, const char *dir, bool quiet);
 
 /* Pictures of the last build's structure, one value per DIRT tile or MMRT
  * pixel in R (A = 1 where a view covers the picture, else 0; G = B = 0),
@@ -273,12 +332,12 @@ enum dirt_session_picture {
 /* A new image (caller destroys it); *max (may be NULL) gets the range's
  * top: the longest list, the number of buckets, or 1 for depths. Blocking
  * readback. NULL (logged) before a build or for embree and raster. */
-dirt_image *dirt_session_picture(dirt_session *s, enum dirt_session_picture what, float *max);
+DIRT_API dirt_image *dirt_session_picture(dirt_session *s, enum dirt_session_picture what, float *max);
 
 /* The scene the session renders (borrowed). */
-const dirt_scene *dirt_session_scene(const dirt_session *s);
+DIRT_API const dirt_scene *dirt_session_scene(const dirt_session *s);
 
-/* Hit agreement with Embree per ray type (dirt/raytypes.h) of the DIRT
+/* Hit agreement with Embree per ray type (enum dirt_ray_type) of the DIRT
  * structure or MMRT A-buffer of the session's last build, on the rays of a
  * width x height camera G-buffer of the session's frame and camera (seed).
  * The rays and the criteria are those of the tests gpu/dirt_hits (DIRT: the
@@ -298,8 +357,8 @@ typedef struct dirt_session_agreement {
 } dirt_session_agreement;
 
 /* False after logging (not built, not dirt/mmrt, out of memory, GL). */
-bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t seed,
-                                dirt_session_agreement *out);
+DIRT_API bool dirt_session_hit_agreement(dirt_session *s, int width, int height, uint32_t seed,
+                                         dirt_session_agreement *out);
 
 #ifdef __cplusplus
 }

@@ -5,6 +5,8 @@
 
 #include <stdint.h>
 
+#include "dirt/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -16,7 +18,7 @@ enum dirt_clock {
     DIRT_CLOCK_CPU,      /* CPU wall clock (around glFinish for GPU work) */
 };
 
-extern const char *const dirt_clock_names[3]; /* "none", "gpu", "cpu" */
+DIRT_API extern const char *const dirt_clock_names[3]; /* "none", "gpu", "cpu" */
 
 /* The time of one pass (summed over its runs), ms. */
 typedef struct dirt_pass_time {

@@ -11,15 +11,17 @@
 #define DIRT_VERSION_MINOR 1
 #define DIRT_VERSION_PATCH 0
 
+#include "dirt/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* "MAJOR.MINOR.PATCH" of the library in use; a static string. */
-const char *dirt_version(void);
+DIRT_API const char *dirt_version(void);
 /* The commit the library was built from (`git describe --always --dirty`),
  * or "unknown" outside a git checkout; a static string. */
-const char *dirt_version_commit(void);
+DIRT_API const char *dirt_version_commit(void);
 
 #ifdef __cplusplus
 }

@@ -1,8 +1,8 @@
 /* The shared-constants registry (glsl/common/constants.h) seen from C at
  * run time, for tests and messages. layout_check.c also holds every
  * compile-time check of the registry and of the C/GLSL twin records. */
-#ifndef DIRT_SESSION_LAYOUT_CHECK_H
-#define DIRT_SESSION_LAYOUT_CHECK_H
+#ifndef DIRT_TEST_LAYOUT_CHECK_H
+#define DIRT_TEST_LAYOUT_CHECK_H
 
 #include <stddef.h>
 

@@ -20,9 +20,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dirt/env.h"
 #include "dirt/scene.h"
 
-#include "dirt/vec.h"
+#include "core/vec.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -223,10 +224,6 @@ void dirt_material_surface(const dirt_material *m, float specular,
                            const dirt_texture *textures, size_t num_textures,
                            float u, float v, dirt_surface *out);
 
-/* True when the material can emit (max(emissive) * emissive_strength > 0):
- * its triangles are area lights. */
-bool dirt_material_is_emissive(const dirt_material *m);
-
 /* ---- alpha coverage (src/integrator/texture.c; doc/light-transport.md
  * section 1, "Alpha") ----------------------------------------------------- */
 
@@ -358,8 +355,9 @@ static inline unsigned dirt_nee_source_count(size_t num_area, size_t num_punctua
  * the column (for w >= 4) from a first guess by atan2 corrected by the sign
  * of e.x cos(phi_k) + e.z sin(phi_k) = sin(phi - phi_k) at its edges
  * (col_cos, col_sin). The poles (e.x = e.z = 0) read column 0. A constant
- * background is the 1 x 1 map. */
-typedef struct dirt_env {
+ * background is the 1 x 1 map. The consumer API (dirt/env.h) makes, loads
+ * and destroys maps; this is their content. */
+struct dirt_env {
     int width, height;
     float *rgb;       /* width * height * 3: texel radiance (times intensity),
                          row 0 = the image's first row (+Y) */
@@ -372,31 +370,8 @@ typedef struct dirt_env {
                          edges phi_i (computed in double) */
     float total;      /* cdf[width * height - 1]; 0: nothing to sample */
     float rot_cos, rot_sin; /* cosf / sinf of the rotation (radians) */
-} dirt_env;
+};
 
-/* Zero-initialised = intensity 1, no rotation. */
-typedef struct dirt_env_opts {
-    float intensity;  /* radiance scale; 0 = 1 */
-    float rotation;   /* degrees about +Y (the map turns counter-clockwise
-                         seen from above) */
-} dirt_env_opts;
-
-/* A map of width x height texels from `rgb` (row-major, 3 floats per texel,
- * copied; each finite and >= 0, else an error). NULL after logging on bad
- * input or out-of-memory. */
-dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_env_opts *opts);
-/* The constant environment `rgb` (1 x 1). */
-dirt_env *dirt_env_constant(const float rgb[3]);
-/* Reads an equirectangular map from an OpenEXR (.exr) or Radiance (.hdr)
- * file; "sky" is the built-in procedural sky (dirt_env_sky). NULL after
- * logging (missing, unreadable or malformed file, negative or non-finite
- * texels); `why` (may be NULL) receives the reason in one line. */
-dirt_env *dirt_env_load(const char *path, const dirt_env_opts *opts, char *why, size_t size);
-/* The built-in sky (512 x 256 texels, each the value at its centre): a
- * horizon-to-zenith blue gradient over a dim ground and a sun of radiance
- * 400 and 2 degrees radius, 40 degrees high (doc/light-transport.md). */
-dirt_env *dirt_env_sky(const dirt_env_opts *opts);
-void dirt_env_destroy(dirt_env *env);
 
 /* True when next-event estimation samples the map (total > 0). NULL: false. */
 bool dirt_env_samples(const dirt_env *env);

@@ -16,9 +16,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/ray.h"
 #include "dirt/gpu.h"
-#include "dirt/ray.h"
-#include "dirt/views.h"
+#include "views/views.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -27,25 +27,18 @@
 
 #include "common/constants.h" /* DIRT_MMRT_*_NODE_BYTES */
 
-#include "dirt/tracer.h"
+#include "views/tracer.h"
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
 #include "dirt/stats.h"
-#include "dirt/views.h"
+#include "dirt/types.h"
+#include "views/views.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef struct dirt_mmrt dirt_mmrt;
-
-/* How the reorder pass sorts bucket lists of three or more nodes (same
- * result either way). */
-enum dirt_mmrt_sort {
-    DIRT_MMRT_SORT_AUTO = 0,      /* list on software renderers, else registers */
-    DIRT_MMRT_SORT_REGISTERS = 1, /* chunks of 8 in registers, merged */
-    DIRT_MMRT_SORT_LIST = 2,      /* insertion sort in the linked list itself */
-};
 
 /* Zero-initialised = single camera view 640x480, B = 4 (the MMRT paper's
  * setting), automatic initial node capacity and sort. views.tile_size is
@@ -57,43 +50,11 @@ typedef struct dirt_mmrt_opts {
     enum dirt_mmrt_sort sort;
 } dirt_mmrt_opts;
 
-enum { DIRT_MMRT_PASS_CLEAR, DIRT_MMRT_PASS_DEPTH, DIRT_MMRT_PASS_MIP, DIRT_MMRT_PASS_STORE,
-       DIRT_MMRT_PASS_REORDER, DIRT_MMRT_NUM_PASSES };
-
 extern const char *const dirt_mmrt_pass_names[DIRT_MMRT_NUM_PASSES];
 
 /* Node sizes in bytes: DIRT_MMRT_ID_NODE_BYTES (12, {z, next, prev}) and
  * DIRT_MMRT_DATA_NODE_BYTES (32, dirt_mmrt_data_node), defined once in the
  * shared registry. */
-
-typedef struct dirt_mmrt_stats {
-    /* Counts of the last build. */
-    uint64_t primitives;
-    uint64_t pixels;          /* sum of the views' pixels */
-    uint64_t covered_pixels;  /* pixels with at least one fragment */
-    uint64_t fragments;       /* stored fragments = id nodes = data nodes */
-    uint32_t max_layers;      /* most fragments in one pixel */
-    double avg_layers;        /* fragments / covered pixels */
-    uint64_t long_lists;      /* bucket lists longer than the register sort
-                                 (sorted in merged chunks) */
-    int store_runs;           /* 1, or more when the node pools grew */
-    enum dirt_mmrt_sort sort; /* the reorder's sort (never AUTO) */
-    /* Bytes. */
-    uint64_t bytes_vertices;  /* vertex buffer + per-primitive materials */
-    uint64_t bytes_depth;     /* depth bounds incl. Hi-Z pyramid: 8 B per entry */
-    uint64_t bytes_heads;     /* head + tail pointers: 8 B * B * pixels */
-    uint64_t bytes_id_nodes_allocated, bytes_id_nodes_used;     /* 12 B per node */
-    uint64_t bytes_data_nodes_allocated, bytes_data_nodes_used; /* 32 B per node */
-    uint64_t bytes_total_allocated, bytes_total_used;
-    /* MMRT paper Table 2 (DLLB): pixels * (8 + 8 B) + fragments * (12 +
-     * data), data = 32 B here; without the Hi-Z pyramid levels above 0. */
-    double bytes_paper;
-    /* Pass times of the last build, ms, measured by `clock` (the GPU's one
-     * clock, dirt_gpu_clock); all -1 and DIRT_CLOCK_NONE when not measured.
-     * The store entry adds up every run of the store pass. */
-    double ms[DIRT_MMRT_NUM_PASSES];
-    enum dirt_clock clock;
-} dirt_mmrt_stats;
 
 /* Compiles the programs. NULL on failure (logged). */
 dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts);
@@ -148,11 +109,6 @@ void dirt_mmrt_data_free(dirt_mmrt_data *data);
 void dirt_mmrt_unpack_normal(uint32_t packed, float out[3]);
 
 /* ---- Trace ---- */
-
-enum dirt_mmrt_march {
-    DIRT_MMRT_MARCH_HIZ = 0,    /* min/max pyramid walk (exact pixel traversal) */
-    DIRT_MMRT_MARCH_LINEAR = 1, /* N jittered samples per view */
-};
 
 /* Zero-initialised = Hi-Z over the whole pyramid, thickness 0.2 % of the
  * scene's bounding-box diagonal. */

@@ -9,24 +9,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "dirt/ray.h"
-#include "dirt/ref.h"
+#include "core/ray.h"
+#include "ref/ref.h"
 #include "dirt/scene.h"
+#include "dirt/types.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-enum dirt_ray_type {
-    DIRT_RAY_PRIMARY,    /* camera rays through pixel centres */
-    DIRT_RAY_VISIBILITY, /* towards a point of the light (tmax = 1: dir spans the segment) */
-    DIRT_RAY_SPECULAR,   /* mirror reflection */
-    DIRT_RAY_GLOSSY,     /* GGX (alpha = 0.1) visible-normal sample around the mirror */
-    DIRT_RAY_DIFFUSE,    /* cosine-weighted */
-    DIRT_RAY_TYPES
-};
-
-extern const char *const dirt_ray_type_names[DIRT_RAY_TYPES];
 
 /* Primary hits of a width x height camera image (Embree). */
 typedef struct dirt_gbuffer {

@@ -11,8 +11,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "common/display.h" /* enum dirt_tonemap (also in dirt/image.h, of the io layer) */
 #include "dirt/gpu.h"
+#include "dirt/types.h" /* enum dirt_tonemap */
 
 #ifdef __cplusplus
 extern "C" {
@@ -63,6 +63,12 @@ typedef struct dirt_window_input {
     bool close_requested;              /* the window's close button (stays true once
                                           pressed: dirt_gpu_window_should_close) */
 } dirt_window_input;
+
+/* Windowed contexts only (false/no-op otherwise). */
+bool dirt_gpu_window_should_close(dirt_gpu *gpu);
+void dirt_gpu_window_swap(dirt_gpu *gpu);
+void dirt_gpu_window_poll(dirt_gpu *gpu);
+void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height);
 
 /* The input gathered by the last dirt_gpu_window_poll. */
 bool dirt_gpu_window_input(dirt_gpu *gpu, dirt_window_input *out);

@@ -26,15 +26,14 @@
 #include "dirt/image.h"
 #include "dirt/scene.h"
 #include "dirt/stats.h"
-#include "dirt/tracer.h"
+#include "dirt/types.h"
+#include "views/tracer.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef struct dirt_pt dirt_pt;
-
-enum dirt_pt_mode { DIRT_PT_PATH = 0, DIRT_PT_AO = 1 };
 
 /* Zero-initialised = path tracing, 1 spp, 4 bounces (as the reference), seed 0, black
  * background. */

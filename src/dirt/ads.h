@@ -18,29 +18,15 @@
 #include "dirt/gpu.h"
 #include "dirt/scene.h"
 #include "dirt/stats.h"
-#include "dirt/tracer.h"
-#include "dirt/views.h"
+#include "dirt/types.h"
+#include "views/tracer.h"
+#include "views/views.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef struct dirt_ads dirt_ads;
-
-/* How the structure is built (doc/dirt-build.md). Both give the same
- * structure: the same primitives in every (tile, bucket) list (the order
- * within a list comes from atomics), the same depth bounds and pyramid. */
-enum dirt_build_mode {
-    DIRT_BUILD_DEFAULT = 0, /* raster, unless the environment variable
-                               DIRT_BUILD=compute|raster says otherwise (how
-                               the test suites run every DIRT test with
-                               either build; explicit modes are never
-                               overridden) */
-    DIRT_BUILD_RASTER,      /* a geometry-shader quad per (primitive, view), the range
-                               per fragment */
-    DIRT_BUILD_COMPUTE,     /* compute passes only: candidate tiles per (primitive,
-                               view), the range per candidate tile */
-};
 
 /* The mode DIRT_BUILD_DEFAULT stands for: DIRT_BUILD=compute gives
  * COMPUTE, DIRT_BUILD=raster RASTER, anything else `fallback`. */
@@ -70,12 +56,6 @@ typedef struct dirt_ads_opts {
                                  DIRT_ADS_LARGE_AREA) */
 } dirt_ads_opts;
 
-/* Most large primitives a structure keeps (= DIRT_GPU_MAX_LARGE). */
-#define DIRT_ADS_MAX_LARGE 16
-/* A triangle is large when its area is at least this fraction of the squared
- * diagonal of the frame's bounds. */
-#define DIRT_ADS_LARGE_AREA 0.05
-
 /* The large primitives of `frame`: of the triangles whose area is at least
  * `area` (0: DIRT_ADS_LARGE_AREA) times the squared diagonal of the frame's
  * bounds (and not 0), the `max` largest (ties: the lower id first; max is
@@ -84,52 +64,6 @@ typedef struct dirt_ads_opts {
  * opts.large, area = opts.large_area. */
 int dirt_ads_select_large(const dirt_frame *frame, int max, double area,
                           uint32_t ids[DIRT_ADS_MAX_LARGE]);
-
-/* The build's passes (doc/dirt-build.md): clear; depth bounds (exact range
- * per candidate, stored); mip; fill primitives (from the stored candidates);
- * count nodes (bucket ranges, node offsets: the node pool's size); candidate
- * bound (only when the candidate buffer's size is unknown: an upper bound of
- * the candidates, from the geometry stage, or in the compute build from the
- * candidate tiles pass); candidate tiles (compute build only: the work
- * records of every (primitive, view) footprint, before depth bounds). */
-enum { DIRT_ADS_PASS_CLEAR, DIRT_ADS_PASS_DEPTH, DIRT_ADS_PASS_MIP, DIRT_ADS_PASS_FILL,
-       DIRT_ADS_PASS_COUNT, DIRT_ADS_PASS_BOUND, DIRT_ADS_PASS_TILES, DIRT_ADS_NUM_PASSES };
-
-typedef struct dirt_ads_stats {
-    /* Counts of the last build. */
-    uint64_t primitives;
-    uint64_t samples;         /* n_p: (primitive, tile) pairs with a non-empty clip */
-    uint64_t nodes;           /* id nodes = sum over samples of buckets overlapped */
-    double buckets_per_sample; /* c = nodes / samples */
-    int fill_runs;            /* fill passes run: 1 (the pool is sized from the count) */
-    int depth_runs;           /* depth passes run: 1, or 2 when the candidates
-                                 outgrew their buffer (never on a first build) */
-    bool bound_pass;          /* the candidate bound pass ran (first build, or the
-                                 view set or the primitive count changed) */
-    bool conservative_nv;     /* the hardware conservative path was used (raster build) */
-    enum dirt_build_mode build; /* how it was built (RASTER or COMPUTE) */
-    uint64_t work_records;    /* compute build: work records of the candidate tiles
-                                 (0 for the raster build) */
-    int num_large;            /* large primitives (not in the lists, not in `samples`) */
-    uint32_t large[DIRT_ADS_MAX_LARGE]; /* their ids, ascending */
-    /* Bytes. */
-    uint64_t bytes_vertices;  /* vertex buffer */
-    uint64_t bytes_depth;     /* depth bounds incl. pyramid: 8 B per entry */
-    uint64_t bytes_heads;     /* 4 B * B * tiles */
-    uint64_t bytes_nodes_allocated, bytes_nodes_used; /* 8 B per node */
-    uint64_t bytes_candidates_allocated, bytes_candidates_used; /* 16 B per candidate
-                                 (build scratch: n_p records, not in Table 3), and
-                                 per work record in the compute build */
-    uint64_t bytes_total_allocated, bytes_total_used;
-    /* DIRT paper Table 3 per tile: 8 B * 1.33 (depth + mips) + 4 B * B
-     * (heads) + 8 B * c * n_p / tiles (nodes), times the tiles. */
-    double bytes_table3;
-    /* Pass times of the last build, ms, summed over the runs of each pass
-     * (0 for a pass that did not run), measured by `clock` (the GPU's one
-     * clock, dirt_gpu_clock); all -1 and DIRT_CLOCK_NONE when not measured. */
-    double ms[DIRT_ADS_NUM_PASSES];
-    enum dirt_clock clock;
-} dirt_ads_stats;
 
 extern const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES];
 
@@ -185,11 +119,6 @@ bool dirt_ads_trace(dirt_ads *ads, const dirt_ray *rays, size_t count, dirt_hit 
                     const dirt_trace_opts *opts, dirt_trace_stats *stats);
 
 /* ---- Fetch ---- */
-
-enum dirt_fetch_mode {
-    DIRT_FETCH_COMPUTE = 0, /* reads the primitive's vertices (compute pass) */
-    DIRT_FETCH_RASTER = 1,  /* the paper's geometry pass over the hit lists */
-};
 
 /* A shading point G (layout of dirt_gpu_gpoint, glsl/common/layout.h):
  * prim = DIRT_HIT_NONE for a miss. */

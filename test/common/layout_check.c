@@ -7,7 +7,7 @@
  * under std430 member i starts at byte 16 * i and the record's size is 16
  * times its vector count; the C compiler must give the same numbers, which
  * the asserts below pin down member by member. */
-#include "session/layout_check.h"
+#include "layout_check.h"
 
 #include <stdint.h>
 
@@ -16,8 +16,8 @@
 #include "common/mmrt_layout.h"
 #include "common/mmrt_pt_layout.h"
 #include "dirt/ads.h"
-#include "dirt/mmrt.h"
-#include "dirt/ref.h"
+#include "mmrt/mmrt.h"
+#include "ref/ref.h"
 
 /* Record `type` has `n` 16-byte vectors. */
 #define RECORD(type, n) _Static_assert(sizeof(struct type) == 16 * (n), #type " size")

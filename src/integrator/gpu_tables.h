@@ -13,7 +13,7 @@
 #include <stdint.h>
 
 #include "dirt/gpu.h"
-#include "dirt/integrator.h"
+#include "integrator/integrator.h"
 #include "dirt/scene.h"
 
 #include "common/integrator_layout.h"

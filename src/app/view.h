@@ -1,0 +1,150 @@
+/* dirt-view's state and its parts, one job per file:
+ *   dirt_view.c        options, start, the frame loop, exit
+ *   view_sessions.c    the render sessions kept in step with the settings
+ *                      (the main one and the raster preview), the scene
+ *   view_split.c       the split view: the comparison session
+ *   view_look.c        which camera is shown, the free camera's moves
+ *   view_input.c       the window's input: mouse, keys, drops, focus
+ *   view_display.c     what the window shows: the image, the buffers
+ *   view_panels.c      the panels
+ *   view_script_run.c  the script's actions as the frames pass
+ *   view_outputs.c     screenshots, saved renders, reports, dirt-render
+ *                      command lines
+ * (view_camera.c: the free camera's maths; view_script.c: the script's
+ * parser.) The program calls no GL: the sessions render, dirt/window.h
+ * presents, dirt/ui.h draws the panels. */
+#ifndef DIRT_APP_VIEW_H
+#define DIRT_APP_VIEW_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "app/options.h"
+#include "app/provenance.h"
+#include "app/view_script.h"
+#include "dirt/env.h"
+#include "dirt/session.h"
+#include "gl/ui.h"
+#include "gl/window.h"
+
+#define PROG "dirt-view"
+
+/* The buffers the window can show (--buffer, keys 1 to 9). */
+enum buffer {
+    BUF_BEAUTY, BUF_ALBEDO, BUF_NORMAL, BUF_DEPTH, BUF_ID,
+    BUF_LISTS, BUF_BUCKETS, BUF_ZMIN, BUF_ZMAX, NUM_BUFFERS
+};
+
+/* What the camera is: the scene's default, the automatic one, a scene
+ * camera, or the free camera (a dirt_camera_look). */
+enum cam_mode { CAM_DEFAULT, CAM_AUTO, CAM_SCENE, CAM_LOOK };
+
+#define RING 240
+
+typedef struct viewer {
+    app_opts o;                 /* the command line, then the panels and the script */
+    app_provenance prov;        /* of saved renders */
+    dirt_gpu *gpu;
+    dirt_ui *ui;
+    dirt_scene *scene;
+    char scene_name[4096];
+    dirt_env *env, *env_old;    /* --env (o.s.env), and the one it replaced */
+    float env_intensity, env_rotation; /* what env was made with */
+    dirt_session *s, *cmp;
+    int cmp_engine;             /* engine of cmp, -1 none */
+    dirt_session *pre;          /* the raster preview shown while the camera moves */
+    bool moving;                /* input moved the camera in this frame */
+    bool hold;                  /* an output was taken in this frame: no new samples */
+    dirt_session_opts applied;  /* the options s has */
+    int rw, rh;                 /* render size in use */
+    /* camera */
+    enum cam_mode cam_mode;
+    int cam_index;
+    dirt_camera_look look;
+    bool cam_dirty;
+    float diag;                 /* the scene's bounding-box diagonal */
+    /* time */
+    double applied_time;
+    int applied_clip;
+    bool applied_loop, time_dirty;
+    /* display */
+    uint32_t aux_tex;
+    int aux_w, aux_h;
+    long aux_key;               /* generation the aux texture shows, -1 none */
+    float aux_lo, aux_hi;
+    long generation;            /* bumps on every restart and sample */
+    /* numbers */
+    float frame_ms[RING], sample_ms[RING];
+    int ring_pos, ring_count;
+    dirt_session_stats last;    /* stats after the last frame's samples */
+    dirt_pass_time frame_passes[32];
+    int num_frame_passes;
+    /* input and script */
+    int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
+    view_script script;
+    size_t next_action;
+    long wait_frames;
+    int wait_samples;
+    char wait_file[4096];
+    bool click_pending;
+    double click_x, click_y;
+    long frame;
+    bool show_help, quit;
+    int exit_code;
+    int shots;                  /* numbers the P / O files */
+    char shot_path[4][4096];    /* window screenshots asked for in this frame */
+    int num_shots;
+    char status[512];
+    float panels[4][4];
+    int num_panels;
+    int win_w, win_h;
+} viewer;
+
+/* The status line of the Settings panel, also printed unless --quiet. */
+void view_status(viewer *v, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* view_sessions.c */
+dirt_session_opts view_wanted_opts(const viewer *v, int engine);
+bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
+void view_render_size(viewer *v, int win_w, int win_h);
+bool view_sync_sessions(viewer *v);
+
+/* view_split.c */
+bool view_sync_compare(viewer *v);
+void view_sample_compare(viewer *v);
+void view_present_split(const viewer *v, dirt_present_opts *p);
+
+/* view_look.c */
+bool view_apply_camera(viewer *v, dirt_session *s);
+void view_to_look(viewer *v);
+void view_reset_camera(viewer *v);
+void view_cycle_camera(viewer *v);
+void view_camera_args(const viewer *v, char *buf, size_t size);
+
+/* view_input.c */
+void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool ui_mouse,
+                       bool ui_keys);
+bool view_open_drops(viewer *v, const dirt_window_input *in);
+void view_focus_at(viewer *v);
+
+/* view_display.c */
+void view_fit(const viewer *v, int w, int h, int r[4]);
+void view_draw(viewer *v, bool preview);
+
+/* view_panels.c */
+void view_panels(viewer *v);
+
+/* view_script_run.c */
+bool view_run_script(viewer *v);
+bool view_check_script(const view_script *sc, const app_opts *o);
+
+/* view_outputs.c */
+bool view_save_render(viewer *v, const char *path);
+bool view_screenshot(viewer *v, const char *path);
+bool view_take_screenshots(viewer *v);
+void view_render_args(const viewer *v, char *buf, size_t size);
+bool view_write_report(viewer *v, const char *path);
+extern const char *const view_bindings[][2];
+extern const size_t view_num_bindings;
+
+#endif

@@ -1,0 +1,170 @@
+/* What dirt-view's window shows (view.h): the render fitted into the
+ * window, the raster preview while the camera moves, and the buffers:
+ * AOVs and the structure's pictures as heat maps. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/view.h"
+
+/* A colour per primitive id (a hash), black for misses. */
+static void id_colour(float id, float rgb[3])
+{
+    if (!(id >= 0)) {
+        rgb[0] = rgb[1] = rgb[2] = 0;
+        return;
+    }
+    uint32_t h = (uint32_t)id * 2654435761u;
+    h ^= h >> 15;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    for (int k = 0; k < 3; k++)
+        rgb[k] = 0.15f + 0.85f * (float)((h >> (8 * k)) & 255) / 255.0f;
+}
+
+/* Makes the texture of a non-beauty buffer (AOVs: from the image; the
+ * structure's pictures: from the last build). False when there is none. */
+static bool aux_texture(viewer *v)
+{
+    long key = v->generation * NUM_BUFFERS + v->o.buffer;
+    if (key == v->aux_key)
+        return v->aux_tex != 0;
+    v->aux_key = key;
+    dirt_image *pic = NULL;
+    const dirt_image *img = NULL;
+    float top = 1;
+    int b = v->o.buffer;
+    if (b >= BUF_LISTS) {
+        pic = dirt_session_picture(v->s, (enum dirt_session_picture)(b - BUF_LISTS), &top);
+        img = pic;
+    } else {
+        img = dirt_session_samples(v->s) > 0 ? dirt_session_image(v->s) : NULL;
+    }
+    if (!img)
+        return false;
+    size_t n = (size_t)img->width * img->height;
+    float *rgba = malloc(n * 4 * sizeof(float));
+    if (!rgba) {
+        dirt_image_destroy(pic);
+        return false;
+    }
+    const char *names[3] = {NULL, NULL, NULL};
+    if (b == BUF_ALBEDO)
+        names[0] = "albedo.R", names[1] = "albedo.G", names[2] = "albedo.B";
+    else if (b == BUF_NORMAL)
+        names[0] = "N.X", names[1] = "N.Y", names[2] = "N.Z";
+    else if (b == BUF_DEPTH)
+        names[0] = "Z";
+    else if (b == BUF_ID)
+        names[0] = "ID";
+    const float *ch[3] = {0};
+    for (int k = 0; k < 3; k++)
+        ch[k] = names[k] ? dirt_image_find_channel(img, names[k]) : NULL;
+    bool ok = b >= BUF_LISTS || ch[0];
+    v->aux_lo = 0;
+    v->aux_hi = top;
+    if (b == BUF_DEPTH && ok) {
+        float lo = INFINITY, hi = -INFINITY;
+        for (size_t i = 0; i < n; i++) {
+            if (isfinite(ch[0][i])) {
+                lo = fminf(lo, ch[0][i]);
+                hi = fmaxf(hi, ch[0][i]);
+            }
+        }
+        v->aux_lo = isfinite(lo) ? lo : 0;
+        v->aux_hi = hi > lo ? hi : v->aux_lo + 1;
+    }
+    for (size_t i = 0; ok && i < n; i++) {
+        float *px = rgba + 4 * i;
+        if (b >= BUF_LISTS) {
+            memcpy(px, img->rgba + 4 * i, 4 * sizeof(float));
+            if (!isfinite(px[0]))
+                px[0] = -1; /* empty: below the ramp (black) */
+        } else if (b == BUF_ID) {
+            id_colour(ch[0][i], px);
+            px[3] = 1;
+        } else {
+            for (int k = 0; k < 3; k++)
+                px[k] = ch[k] ? ch[k][i] : (b == BUF_DEPTH && !isfinite(ch[0][i]) ? -1 : 0);
+            if (b == BUF_DEPTH)
+                px[0] = isfinite(ch[0][i]) ? ch[0][i] : v->aux_lo - 1;
+            px[3] = 1;
+        }
+    }
+    if (ok) {
+        v->aux_tex = dirt_gpu_texture_upload(v->gpu, v->aux_tex, img->width, img->height, rgba);
+        v->aux_w = img->width;
+        v->aux_h = img->height;
+    }
+    free(rgba);
+    dirt_image_destroy(pic);
+    return ok && v->aux_tex;
+}
+
+/* The rectangle an image of w x h takes in the window: 1:1 at the top
+ * left when it follows the window, else fitted and centred. */
+void view_fit(const viewer *v, int w, int h, int r[4])
+{
+    if (w == v->win_w && h == v->win_h) {
+        r[0] = r[1] = 0, r[2] = w, r[3] = h;
+        return;
+    }
+    double s = fmin((double)v->win_w / w, (double)v->win_h / h);
+    r[2] = (int)(w * s);
+    r[3] = (int)(h * s);
+    if (r[2] < 1)
+        r[2] = 1;
+    if (r[3] < 1)
+        r[3] = 1;
+    r[0] = (v->win_w - r[2]) / 2;
+    r[1] = (v->win_h - r[3]) / 2;
+}
+
+/* Draws the frame's image: the raster preview while the camera moves (or
+ * before the first sample), the beauty with the split view, or a buffer
+ * (AOV or structure picture) through the present shader's modes. */
+void view_draw(viewer *v, bool preview)
+{
+    static const float grey[3] = {0.08f, 0.08f, 0.09f};
+    dirt_gpu_window_clear(v->gpu, grey);
+    bool have_pre = v->pre && dirt_session_samples(v->pre) > 0;
+    if (v->o.buffer == BUF_BEAUTY && have_pre &&
+        (preview || dirt_session_samples(v->s) == 0)) {
+        int r[4];
+        view_fit(v, v->rw, v->rh, r);
+        dirt_present_opts p = {.texture = dirt_session_display_texture(v->pre), .x = r[0],
+                               .y = r[1], .w = r[2], .h = r[3], .exposure = v->o.exposure,
+                               .tonemap = (enum dirt_tonemap)v->o.tonemap};
+        if (p.texture)
+            dirt_gpu_present(v->gpu, &p);
+        return;
+    }
+    if (dirt_session_samples(v->s) == 0)
+        return;
+    int r[4];
+    dirt_present_opts p = {.exposure = v->o.exposure, .tonemap = v->o.tonemap};
+    if (v->o.buffer == BUF_BEAUTY) {
+        p.texture = dirt_session_display_texture(v->s);
+        view_fit(v, v->rw, v->rh, r);
+        view_present_split(v, &p);
+    } else {
+        if (!aux_texture(v))
+            return;
+        p.texture = v->aux_tex;
+        view_fit(v, v->aux_w, v->aux_h, r);
+        if (v->o.buffer == BUF_NORMAL) {
+            p.mode = DIRT_PRESENT_SIGNED;
+        } else if (v->o.buffer == BUF_DEPTH || v->o.buffer >= BUF_LISTS) {
+            p.mode = DIRT_PRESENT_HEAT;
+            p.lo = v->aux_lo;
+            p.hi = v->aux_hi > v->aux_lo ? v->aux_hi : v->aux_lo + 1;
+        } else {
+            p.exposure = 0;
+            p.tonemap = 0;
+        }
+    }
+    p.x = r[0], p.y = r[1], p.w = r[2], p.h = r[3];
+    if (p.texture)
+        dirt_gpu_present(v->gpu, &p);
+}

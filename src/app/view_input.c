@@ -1,0 +1,147 @@
+/* dirt-view's window input (view.h): the mouse and keys as the user gives
+ * them (and the script's held keys), scenes dropped on the window, and a
+ * double click's focus. */
+#include <math.h>
+#include <stdio.h>
+
+#include "app/view.h"
+#include "app/view_camera.h"
+
+static bool key_held(const viewer *v, const dirt_window_input *in, enum dirt_key k)
+{
+    return in->key[k] || v->held[k] > 0;
+}
+
+
+/* The mouse (off the panels) moves the free camera and double clicks
+ * focus; keys (when no panel has the keyboard) fly and toggle. */
+void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool ui_mouse,
+                       bool ui_keys)
+{
+    if (!ui_mouse) {
+        if (in->button[DIRT_MOUSE_LEFT] && !in->button_pressed[DIRT_MOUSE_LEFT] &&
+            (in->mouse_dx != 0 || in->mouse_dy != 0)) {
+            view_to_look(v);
+            vcam_orbit(&v->look, (float)in->mouse_dx * 0.3f, (float)in->mouse_dy * 0.3f);
+            v->cam_dirty = v->moving = true;
+        }
+        if ((in->button[DIRT_MOUSE_RIGHT] || in->button[DIRT_MOUSE_MIDDLE]) &&
+            (in->mouse_dx != 0 || in->mouse_dy != 0) && in->height > 0) {
+            view_to_look(v);
+            vcam_pan(&v->look, (float)(in->mouse_dx / in->height),
+                     (float)(-in->mouse_dy / in->height));
+            v->cam_dirty = v->moving = true;
+        }
+        if (in->scroll != 0) {
+            view_to_look(v);
+            vcam_dolly(&v->look, powf(0.85f, (float)in->scroll));
+            v->cam_dirty = v->moving = true;
+        }
+        if (in->double_clicks > 0) {
+            v->click_pending = true;
+            v->click_x = in->mouse_x;
+            v->click_y = in->mouse_y;
+        }
+    }
+    if (ui_keys)
+        return;
+    float speed = 0.25f * v->diag * (float)dt * (key_held(v, in, DIRT_KEY_SHIFT) ? 5.0f : 1.0f);
+    float fw = 0, rt = 0, up = 0;
+    fw += key_held(v, in, DIRT_KEY_W) ? speed : 0;
+    fw -= key_held(v, in, DIRT_KEY_S) ? speed : 0;
+    rt += key_held(v, in, DIRT_KEY_D) ? speed : 0;
+    rt -= key_held(v, in, DIRT_KEY_A) ? speed : 0;
+    up += key_held(v, in, DIRT_KEY_E) ? speed : 0;
+    up -= key_held(v, in, DIRT_KEY_Q) ? speed : 0;
+    if (fw != 0 || rt != 0 || up != 0) {
+        view_to_look(v);
+        vcam_fly(&v->look, fw, rt, up);
+        v->cam_dirty = v->moving = true;
+    }
+    const bool *p = in->key_pressed;
+    if (p[DIRT_KEY_ESCAPE])
+        v->quit = true;
+    if (p[DIRT_KEY_F1])
+        v->show_help = !v->show_help;
+    if (p[DIRT_KEY_H])
+        v->o.no_ui = !v->o.no_ui;
+    if (p[DIRT_KEY_R]) {
+        view_reset_camera(v);
+        view_status(v, "camera reset");
+    }
+    if (p[DIRT_KEY_C])
+        view_cycle_camera(v);
+    for (int k = 0; k < 9; k++)
+        if (p[DIRT_KEY_1 + k])
+            v->o.buffer = k;
+    if (p[DIRT_KEY_TAB])
+        v->o.s.engine = (enum dirt_engine)((v->o.s.engine + 1) % DIRT_NUM_ENGINES);
+    if (p[DIRT_KEY_V])
+        v->o.compare = v->o.compare ? 0 : (v->o.s.engine == DIRT_ENGINE_MMRT ? 1 : 2);
+    if (p[DIRT_KEY_X])
+        v->o.diff = !v->o.diff;
+    if (p[DIRT_KEY_SPACE])
+        v->o.play = !v->o.play;
+    if (p[DIRT_KEY_RIGHT] || p[DIRT_KEY_LEFT]) {
+        v->o.play = false;
+        v->o.time += p[DIRT_KEY_RIGHT] ? 1.0 / 24 : -1.0 / 24;
+    }
+    if (p[DIRT_KEY_MINUS])
+        v->o.exposure -= 1;
+    if (p[DIRT_KEY_EQUAL])
+        v->o.exposure += 1;
+    if (p[DIRT_KEY_P] || p[DIRT_KEY_O]) {
+        char path[64];
+        snprintf(path, sizeof(path), "dirt-view-%d.%s", ++v->shots, p[DIRT_KEY_P] ? "png" : "exr");
+        if (p[DIRT_KEY_O])
+            view_save_render(v, path);
+        else
+            view_screenshot(v, path); /* taken after the frame is drawn: see the loop */
+    }
+}
+
+/* Focus on the surface under the cursor: the Z AOV at that pixel. */
+void view_focus_at(viewer *v)
+{
+    v->click_pending = false;
+    if (dirt_session_samples(v->s) == 0 || v->win_w <= 0)
+        return;
+    int r[4];
+    view_fit(v, v->rw, v->rh, r);
+    int x = (int)floor((v->click_x - r[0]) * v->rw / r[2]);
+    int y = (int)floor((v->click_y - r[1]) * v->rh / r[3]);
+    const dirt_image *img = dirt_session_image(v->s);
+    const float *z = img ? dirt_image_find_channel(img, "Z") : NULL;
+    if (!z || x < 0 || y < 0 || x >= img->width || y >= img->height)
+        return;
+    float d = z[(size_t)y * img->width + x];
+    if (!isfinite(d) || !(d > 0)) {
+        view_status(v, "nothing under the cursor to focus on");
+        return;
+    }
+    v->o.s.focus = d;
+    if (!(v->o.s.aperture > 0))
+        v->o.s.aperture = 0.01f * v->diag;
+    view_status(v, "focus %.4g (aperture %.4g)", d, v->o.s.aperture);
+}
+
+/* Opens the scene last dropped on the window (within --max-scene-memory);
+ * a scene that does not load leaves the shown one. False when the sessions
+ * for the new one cannot be made. */
+bool view_open_drops(viewer *v, const dirt_window_input *in)
+{
+    if (in->num_drops <= 0)
+        return true;
+    char keep[4096];
+    snprintf(keep, sizeof(keep), "%s", in->drops[in->num_drops - 1]);
+    dirt_load_opts lo = {.max_bytes = v->o.max_scene_bytes};
+    dirt_scene *sc = dirt_scene_load(keep, &lo);
+    if (!sc) {
+        view_status(v, "could not open '%s' (see the log); kept the scene", keep);
+        return true;
+    }
+    if (!view_load_scene(v, sc, keep))
+        return false;
+    view_status(v, "opened %s", keep);
+    return true;
+}

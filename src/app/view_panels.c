@@ -1,0 +1,278 @@
+/* dirt-view's panels (view.h): Settings (every knob of both techniques,
+ * the camera, the display, the animation, files), Numbers (frame times,
+ * passes, buffers) and the key bindings. */
+#include <math.h>
+#include <stdio.h>
+
+#include "app/view.h"
+
+static const char *const buffer_labels[NUM_BUFFERS] = {
+    "beauty", "albedo", "normal", "depth (Z)", "primitive id (first hit)",
+    "list length per tile / fragments per pixel", "bucket occupancy",
+    "depth bounds: min", "depth bounds: max"};
+
+static void note_panel(viewer *v)
+{
+    if (v->num_panels < 4)
+        dirt_ui_panel_rect(v->panels[v->num_panels++]);
+}
+
+static void panel_settings(viewer *v)
+{
+    app_opts *o = &v->o;
+    if (dirt_ui_begin("Settings", NULL, 8, 8, 330, (float)(v->win_h - 16 > 200 ? v->win_h - 16 : 200))) {
+        int samples = dirt_session_samples(v->s);
+        dirt_ui_text("%s", v->scene_name);
+        dirt_ui_text("%zu triangles, %d x %d", dirt_scene_num_triangles(v->scene), v->rw, v->rh);
+        dirt_ui_text("%d / %d samples in %.1f s%s", samples, o->spp,
+                     dirt_session_get_stats(v->s)->total_ms / 1000.0,
+                     o->spp && samples >= o->spp ? " (done)" : "");
+        if (v->status[0])
+            dirt_ui_text_disabled("%s", v->status);
+        if (dirt_ui_header("Render", true)) {
+            int eng = (int)o->s.engine;
+            if (dirt_ui_combo("engine", &eng, app_engine_names, DIRT_NUM_ENGINES))
+                o->s.engine = (enum dirt_engine)eng;
+            dirt_ui_combo("compare with", &o->compare, app_compare_names, 5);
+            if (o->compare) {
+                dirt_ui_slider_float("split", &o->split, 0.0f, 1.0f, "%.2f", false);
+                dirt_ui_checkbox("difference heat map", &o->diff);
+                if (o->diff)
+                    dirt_ui_slider_float("difference range", &o->diff_range, 1e-4f, 10.0f, "%.4f",
+                                         true);
+            }
+            dirt_ui_slider_int("target spp (0 = no limit)", &o->spp, 0, 4096);
+            dirt_ui_slider_int("samples per frame", &o->samples_per_frame, 1, 64);
+            int mode = (int)o->s.mode;
+            if (dirt_ui_combo("mode", &mode, app_mode_names, 2))
+                o->s.mode = (enum dirt_pt_mode)mode;
+            int bounces = o->s.bounces ? o->s.bounces : 4;
+            if (dirt_ui_slider_int("bounces", &bounces, 1, 16))
+                o->s.bounces = bounces;
+            if (o->s.mode == DIRT_PT_AO)
+                dirt_ui_slider_float("AO distance (0 = inf)", &o->s.ao_distance, 0.0f, v->diag,
+                                     "%.3f", false);
+            if (o->env_path) {
+                dirt_ui_text("environment: %s", o->env_path);
+                float intensity = o->env_intensity > 0 ? o->env_intensity : 1.0f;
+                if (dirt_ui_slider_float("env intensity", &intensity, 0.01f, 100.0f, "%.3f", true))
+                    o->env_intensity = intensity;
+                dirt_ui_slider_float("env rotation", &o->env_rotation, -180.0f, 180.0f,
+                                     "%.1f deg", false);
+            } else {
+                dirt_ui_color3("background", o->s.background);
+            }
+            int seed = (int)o->s.seed;
+            if (dirt_ui_input_int("seed", &seed, 1) && seed >= 0)
+                o->s.seed = (uint32_t)seed;
+            bool follow = o->s.width == 0;
+            if (dirt_ui_checkbox("resolution follows the window", &follow)) {
+                o->s.width = follow ? 0 : v->rw;
+                o->s.height = follow ? 0 : v->rh;
+            }
+            if (!follow) {
+                int w = o->s.width, h = o->s.height;
+                if (dirt_ui_input_int("width", &w, 16) && w >= 16 && w <= 16384)
+                    o->s.width = w;
+                if (dirt_ui_input_int("height (0 = aspect)", &h, 16) && h >= 0 && h <= 16384)
+                    o->s.height = h;
+            }
+        }
+        if (dirt_ui_header("Structure", false)) {
+            int vm = (int)o->s.views;
+            const char *vnames[] = {"cube+camera (default)", "single", "cube", "cube+camera"};
+            if (dirt_ui_combo("views", &vm, vnames, 4))
+                o->s.views = (enum dirt_session_views)vm;
+            const char *tiles[] = {"1", "2", "4", "8"};
+            int ti = o->s.tile_size == 1 ? 0 : o->s.tile_size == 4 ? 2 : o->s.tile_size == 8 ? 3 : 1;
+            if (dirt_ui_combo("tile size S", &ti, tiles, 4))
+                o->s.tile_size = 1 << ti;
+            int b = o->s.buckets ? o->s.buckets
+                    : o->s.engine == DIRT_ENGINE_MMRT ? 4 : dirt_session_auto_buckets(v->gpu);
+            if (dirt_ui_slider_int("buckets", &b, 1, 64))
+                o->s.buckets = b;
+            int lg = o->large < 0 ? DIRT_ADS_MAX_LARGE : (int)o->large;
+            if (dirt_ui_slider_int("large primitives", &lg, 0, DIRT_ADS_MAX_LARGE))
+                o->large = lg;
+            int top = (int)o->hiz_top;
+            if (dirt_ui_slider_int("Hi-Z top (-1 = all)", &top, -1, 15))
+                o->hiz_top = top;
+            int fetch = (int)o->s.fetch;
+            if (dirt_ui_combo("Fetch", &fetch, app_fetch_names, 2))
+                o->s.fetch = (enum dirt_fetch_mode)fetch;
+            dirt_ui_checkbox("direct visibility", &o->s.direct_visibility);
+            dirt_ui_checkbox("emulate conservative raster", &o->s.force_emulation);
+            int march = (int)o->s.march;
+            if (dirt_ui_combo("MMRT march", &march, app_march_names, 2))
+                o->s.march = (enum dirt_mmrt_march)march;
+            int ms = o->s.march_samples ? o->s.march_samples : 30;
+            if (dirt_ui_slider_int("MMRT samples", &ms, 1, 256))
+                o->s.march_samples = ms;
+            dirt_ui_slider_float("MMRT thickness (0 = auto)", &o->s.thickness, 0.0f,
+                                 0.05f * v->diag, "%.4f", false);
+        }
+        if (dirt_ui_header("Camera", false)) {
+            char cam[1024];
+            view_camera_args(v, cam, sizeof(cam));
+            dirt_ui_text("%s", cam[0] ? cam : "(the scene's default camera)");
+            if (dirt_ui_button("reset"))
+                view_reset_camera(v);
+            dirt_ui_same_line();
+            if (dirt_ui_button("next scene camera"))
+                view_cycle_camera(v);
+            dirt_ui_same_line();
+            if (dirt_ui_button("print")) {
+                char args[4096];
+                view_render_args(v, args, sizeof(args));
+                printf("camera: %s\ndirt-render %s --spp %d\n", cam, args,
+                       dirt_session_samples(v->s));
+            }
+            if (v->cam_mode == CAM_LOOK) {
+                if (dirt_ui_slider_float("field of view", &v->look.fov_deg, 5.0f, 120.0f, "%.1f",
+                                         false))
+                    v->cam_dirty = true;
+            }
+            dirt_ui_slider_float("aperture", &o->s.aperture, 0.0f, 0.05f * v->diag, "%.4f", false);
+            dirt_ui_slider_float("focus distance", &o->s.focus, 0.0f, 2.0f * v->diag, "%.3f",
+                                 false);
+        }
+        if (dirt_ui_header("Display", true)) {
+            dirt_ui_combo("buffer", &o->buffer, buffer_labels, NUM_BUFFERS);
+            dirt_ui_slider_float("exposure", &o->exposure, -10.0f, 10.0f, "%.1f", false);
+            dirt_ui_combo("tone map", &o->tonemap, app_tonemap_names, 3);
+        }
+        size_t clips = dirt_scene_num_clips(v->scene);
+        if (dirt_ui_header("Animation", clips > 0)) {
+            if (!clips) {
+                dirt_ui_text_disabled("the scene has no animation");
+            } else {
+                int clip = o->clip < 0 ? 0 : o->clip;
+                float dur = dirt_scene_clip_duration(v->scene, (size_t)clip);
+                float t = (float)o->time;
+                if (dirt_ui_button(o->play ? "pause" : "play"))
+                    o->play = !o->play;
+                dirt_ui_same_line();
+                if (dirt_ui_button("step")) {
+                    o->play = false;
+                    o->time += 1.0 / 24;
+                }
+                if (dirt_ui_slider_float("time", &t, 0.0f, dur > 0 ? dur : 1.0f, "%.3f s", false))
+                    o->time = t;
+                const char *names[64];
+                int n = clips < 64 ? (int)clips : 64;
+                for (int i = 0; i < n; i++)
+                    names[i] = dirt_scene_clip_name(v->scene, (size_t)i);
+                dirt_ui_combo("clip", &o->clip, names, n);
+                dirt_ui_checkbox("loop", &o->loop);
+                float sp = (float)o->speed;
+                if (dirt_ui_slider_float("speed", &sp, -4.0f, 4.0f, "%.2f x", false))
+                    o->speed = sp;
+            }
+        }
+        if (dirt_ui_header("Files", false)) {
+            if (dirt_ui_button("screenshot (P)")) {
+                char path[64];
+                snprintf(path, sizeof(path), "dirt-view-%d.png", ++v->shots);
+                view_screenshot(v, path);
+            }
+            dirt_ui_same_line();
+            if (dirt_ui_button("save render (O)")) {
+                char path[64];
+                snprintf(path, sizeof(path), "dirt-view-%d.exr", ++v->shots);
+                view_save_render(v, path);
+            }
+            dirt_ui_text_disabled("drop a .gltf / .glb on the window to open it");
+        }
+    }
+    note_panel(v);
+    dirt_ui_end();
+}
+
+static void panel_numbers(viewer *v)
+{
+    float w = 360, x = (float)v->win_w - w - 8;
+    if (x < 346)
+        x = 346;
+    if (dirt_ui_begin("Numbers", NULL, x, 8, w, 420)) {
+        const dirt_session_stats *st = &v->last;
+        float fmax = 1;
+        for (int i = 0; i < v->ring_count; i++)
+            fmax = fmaxf(fmax, v->frame_ms[i]);
+        char cap[96];
+        float last = v->ring_count ? v->frame_ms[(v->ring_pos + RING - 1) % RING] : 0;
+        snprintf(cap, sizeof(cap), "frame %.1f ms", last);
+        if (v->ring_count > 0)
+            dirt_ui_plot_lines("##frame", v->frame_ms, v->ring_count, v->ring_count < RING ? 0 : v->ring_pos,
+                           cap, 0, fmax, 50);
+        float smax = 1;
+        for (int i = 0; i < v->ring_count; i++)
+            smax = fmaxf(smax, v->sample_ms[i]);
+        float lasts = v->ring_count ? v->sample_ms[(v->ring_pos + RING - 1) % RING] : 0;
+        snprintf(cap, sizeof(cap), "samples of the frame %.1f ms", lasts);
+        if (v->ring_count > 0)
+            dirt_ui_plot_lines("##samples", v->sample_ms, v->ring_count,
+                           v->ring_count < RING ? 0 : v->ring_pos, cap, 0, smax, 50);
+        dirt_ui_text("%s", st->device);
+        dirt_ui_text("%.2f Mrays/s, %llu rays, %llu aborted", st->mrays_per_s,
+                     (unsigned long long)st->rays, (unsigned long long)st->aborted);
+        static const char *const ph[] = {"pass (last frame)", "ms", "clock"};
+        if (dirt_ui_table_begin("passes", 3, ph)) {
+            for (int i = 0; i < v->num_frame_passes; i++) {
+                dirt_ui_table_row();
+                dirt_ui_table_cell("%s", v->frame_passes[i].name);
+                dirt_ui_table_cell("%.3f", v->frame_passes[i].ms);
+                dirt_ui_table_cell("%s", dirt_clock_names[v->frame_passes[i].clock]);
+            }
+            dirt_ui_table_end();
+        }
+        static const char *const bh[] = {"buffer", "used MB", "allocated MB"};
+        if (dirt_ui_table_begin("buffers", 3, bh)) {
+            for (int i = 0; i < st->num_buffers; i++) {
+                dirt_ui_table_row();
+                dirt_ui_table_cell("%s", st->buffers[i].name);
+                dirt_ui_table_cell("%.3f", st->buffers[i].used / 1048576.0);
+                dirt_ui_table_cell("%.3f", st->buffers[i].allocated / 1048576.0);
+            }
+            dirt_ui_table_row();
+            dirt_ui_table_cell("total");
+            dirt_ui_table_cell("%.3f", st->bytes_total_used / 1048576.0);
+            dirt_ui_table_cell("%.3f", st->bytes_total_allocated / 1048576.0);
+            dirt_ui_table_end();
+        }
+    }
+    note_panel(v);
+    dirt_ui_end();
+}
+
+static void panel_help(viewer *v)
+{
+    bool open = true;
+    if (dirt_ui_begin("Key bindings (F1)", &open, (float)v->win_w / 2 - 220, 60, 440, 480)) {
+        static const char *const hh[] = {"input", "does"};
+        if (dirt_ui_table_begin("bindings", 2, hh)) {
+            for (size_t i = 0; i < view_num_bindings; i++) {
+                dirt_ui_table_row();
+                dirt_ui_table_cell("%s", view_bindings[i][0]);
+                dirt_ui_table_cell("%s", view_bindings[i][1]);
+            }
+            dirt_ui_table_end();
+        }
+    }
+    note_panel(v);
+    dirt_ui_end();
+    if (!open)
+        v->show_help = false;
+}
+
+/* The panels of this frame: Settings, Numbers and, with F1, the key
+ * bindings; their rectangles go to the report. */
+void view_panels(viewer *v)
+{
+    v->num_panels = 0;
+    if (v->o.no_ui)
+        return;
+    panel_settings(v);
+    panel_numbers(v);
+    if (v->show_help)
+        panel_help(v);
+}

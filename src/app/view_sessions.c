@@ -1,0 +1,204 @@
+/* dirt-view's render sessions (view.h): the main one and the raster
+ * preview shown while the camera moves, kept in step with the settings
+ * (options, time, camera), and the scene they render. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "app/view.h"
+
+/* The session options the viewer's settings ask for, for `engine`. */
+dirt_session_opts view_wanted_opts(const viewer *v, int engine)
+{
+    dirt_session_opts s = app_session_opts(&v->o);
+    s.engine = (enum dirt_engine)engine;
+    s.width = v->rw;
+    s.height = v->rh;
+    if (s.engine != DIRT_ENGINE_MMRT) {
+        s.march = 0;
+        s.march_samples = 0;
+        s.thickness = 0;
+    }
+    if (!(s.aperture > 0))
+        s.focus = 0;
+    return s;
+}
+
+static float scene_diagonal(const dirt_frame *f)
+{
+    float d2 = 0;
+    for (int k = 0; k < 3; k++)
+        d2 += (f->bounds_max[k] - f->bounds_min[k]) * (f->bounds_max[k] - f->bounds_min[k]);
+    return d2 > 0 ? sqrtf(d2) : 1.0f;
+}
+
+
+/* Makes the main session for the scene (the comparison and the preview
+ * follow at the next sync); false after logging. */
+static bool make_sessions(viewer *v)
+{
+    dirt_session_destroy(v->s);
+    dirt_session_destroy(v->cmp);
+    dirt_session_destroy(v->pre);
+    v->s = v->cmp = v->pre = NULL;
+    v->cmp_engine = -1;
+    v->applied = view_wanted_opts(v, v->o.s.engine);
+    v->s = dirt_session_create(v->gpu, v->scene, &v->applied);
+    if (!v->s)
+        return false;
+    v->cam_dirty = v->time_dirty = true;
+    v->aux_key = -1;
+    v->generation++;
+    return true;
+}
+
+/* Shows `sc` (taken; loaded from `path`, NULL: the default scene) from
+ * its default camera. False after logging. */
+bool view_load_scene(viewer *v, dirt_scene *sc, const char *path)
+{
+    dirt_session_destroy(v->s);
+    dirt_session_destroy(v->cmp);
+    dirt_session_destroy(v->pre);
+    v->s = v->cmp = v->pre = NULL;
+    dirt_scene_destroy(v->scene);
+    v->scene = sc;
+    snprintf(v->scene_name, sizeof(v->scene_name), "%s", path ? path : "default scene");
+    if (!make_sessions(v))
+        return false;
+    v->diag = scene_diagonal(dirt_session_frame(v->s));
+    view_reset_camera(v);
+    char title[4200];
+    snprintf(title, sizeof(title), "dirt-view: %s", v->scene_name);
+    dirt_gpu_window_set_title(v->gpu, title);
+    return true;
+}
+
+/* Render size: the window's, or the fixed one (height from the camera's
+ * aspect when only the width is fixed). */
+void view_render_size(viewer *v, int win_w, int win_h)
+{
+    if (v->o.s.width > 0) {
+        v->rw = v->o.s.width;
+        v->rh = v->o.s.height;
+    } else {
+        int sc = v->o.scale > 0 ? v->o.scale : 1;
+        v->rw = win_w / sc >= 16 ? win_w / sc : 16;
+        v->rh = win_h / sc >= 16 ? win_h / sc : 16;
+    }
+}
+
+/* Remakes the environment map when its intensity or rotation changed (the
+ * map bakes both in); the old one is kept until the sessions have the new
+ * one (v->env_old, freed at the end of sync_sessions). False when the map
+ * could not be remade (the old settings come back). */
+static bool sync_env(viewer *v)
+{
+    if (!v->o.env_path ||
+        (v->o.env_intensity == v->env_intensity && v->o.env_rotation == v->env_rotation))
+        return true;
+    char why[512];
+    dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation};
+    dirt_env *e = dirt_env_load(v->o.env_path, &eo, why, sizeof(why));
+    if (!e) {
+        view_status(v, "environment: %s", why);
+        v->o.env_intensity = v->env_intensity;
+        v->o.env_rotation = v->env_rotation;
+        return false;
+    }
+    dirt_env_destroy(v->env_old);
+    v->env_old = v->env;
+    v->env = e;
+    v->o.s.env = e;
+    v->env_intensity = v->o.env_intensity;
+    v->env_rotation = v->o.env_rotation;
+    return true;
+}
+
+static bool sync_all(viewer *v);
+
+/* Brings the sessions to the settings; restarts what changed. */
+bool view_sync_sessions(viewer *v)
+{
+    sync_env(v);
+    bool ok = sync_all(v);
+    /* The replaced map goes once no session holds it. */
+    dirt_session *all[] = {v->s, v->cmp, v->pre};
+    bool held = false;
+    for (int i = 0; i < 3; i++)
+        held |= all[i] && dirt_session_get_opts(all[i])->env == v->env_old;
+    if (v->env_old && !held) {
+        dirt_env_destroy(v->env_old);
+        v->env_old = NULL;
+    }
+    return ok;
+}
+
+static bool sync_all(viewer *v)
+{
+    dirt_session_opts want = view_wanted_opts(v, v->o.s.engine);
+    if (memcmp(&want, &v->applied, sizeof(want)) != 0) {
+        bool restarted = false;
+        if (!dirt_session_set_opts(v->s, &want, &restarted)) {
+            view_status(v, "the session refused the settings (see the log); kept the old ones");
+            int w = v->o.s.width, h = v->o.s.height;
+            v->o.s = v->applied;
+            v->o.s.width = w;
+            v->o.s.height = h;
+            return false;
+        }
+        v->applied = want;
+        v->generation++;
+    }
+    if (v->time_dirty || v->o.time != v->applied_time || v->o.clip != v->applied_clip ||
+        v->o.loop != v->applied_loop) {
+        dirt_eval_opts eval = {.clip = v->o.clip, .loop = v->o.loop};
+        if (!dirt_session_set_time(v->s, v->o.time, &eval)) {
+            view_status(v, "clip %d does not exist; back to clip %d", v->o.clip, v->applied_clip);
+            v->o.clip = v->applied_clip;
+            return false;
+        }
+        v->applied_time = v->o.time;
+        v->applied_clip = v->o.clip;
+        v->applied_loop = v->o.loop;
+        v->time_dirty = false;
+        v->cam_dirty = true; /* an animated scene camera follows the time */
+        if (v->cmp)
+            dirt_session_set_time(v->cmp, v->o.time, &eval);
+        if (v->pre)
+            dirt_session_set_time(v->pre, v->o.time, &eval);
+        v->generation++;
+    }
+    if (v->cam_dirty) {
+        if (!view_apply_camera(v, v->s)) {
+            view_status(v, "no such camera; back to the default one");
+            v->cam_mode = CAM_DEFAULT;
+            view_apply_camera(v, v->s);
+        }
+        if (v->cmp)
+            view_apply_camera(v, v->cmp);
+        if (v->pre)
+            view_apply_camera(v, v->pre);
+        v->cam_dirty = false;
+        v->generation++;
+    }
+    if (!view_sync_compare(v))
+        return false;
+    /* The raster preview, made the first time the camera moves. */
+    if (v->moving && !v->o.no_preview && v->applied.engine != DIRT_ENGINE_RASTER) {
+        dirt_session_opts po = view_wanted_opts(v, DIRT_ENGINE_RASTER);
+        dirt_eval_opts eval = {.clip = v->o.clip, .loop = v->o.loop};
+        if (!v->pre) {
+            v->pre = dirt_session_create(v->gpu, v->scene, &po);
+            if (!v->pre || !dirt_session_set_time(v->pre, v->o.time, &eval) ||
+                !view_apply_camera(v, v->pre)) {
+                dirt_session_destroy(v->pre);
+                v->pre = NULL;
+                v->o.no_preview = true;
+                view_status(v, "the raster preview could not be made (see the log); off");
+            }
+        } else if (memcmp(&po, dirt_session_get_opts(v->pre), sizeof(po)) != 0) {
+            dirt_session_set_opts(v->pre, &po, NULL);
+        }
+    }
+    return true;
+}

@@ -1,0 +1,145 @@
+"""The Python module against the engine's own oracles: the Embree engine
+(same seed, the same paths), progressive accumulation (1 + 1 + 2 samples
+= 4, bit for bit) and the engine's error ids. Runs against whichever `dirt`
+package is on the path: the build tree's (meson test python) or the
+installed one (test install)."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import dirt
+
+SIZE = dict(width=48, height=36)
+
+
+def rel_mse(img, ref):
+    """The engine's relative MSE (dirt_image_rel_mse): RGB, (img - ref)^2 /
+    (ref^2 + 1e-2), the mean in double."""
+    a = img[..., :3].astype(np.float64)
+    b = ref[..., :3].astype(np.float64)
+    return float(np.mean((a - b) ** 2 / (b * b + 1e-2)))
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return dirt.Scene()
+
+
+def test_dirt_equals_embree(scene):
+    images = {}
+    for engine in ("dirt", "embree"):
+        with dirt.Session(scene, engine=engine, seed=3, bounces=2, **SIZE) as s:
+            s.add_samples(2)
+            images[engine] = s.image()
+            assert images[engine].shape == (36, 48, 4)
+            assert images[engine].dtype == np.float32
+            assert s.stats()["samples"] == 2
+    assert images["dirt"][..., :3].mean() > 0.05  # lit, not black
+    err = rel_mse(images["dirt"], images["embree"])
+    assert err <= 1e-6, err
+    # A different seed gives different paths: the comparison can fail.
+    with dirt.Session(scene, engine="embree", seed=4, bounces=2, **SIZE) as s:
+        s.add_samples(2)
+        assert rel_mse(images["dirt"], s.image()) > 1e-4
+
+
+def test_progressive_equals_one_render(scene):
+    with dirt.Session(scene, engine="dirt", seed=5, bounces=2, **SIZE) as s:
+        for n in (1, 1, 2):
+            s.add_samples(n)
+        assert s.samples == 4
+        progressive = s.image()
+        s.reset()
+        s.add_samples(4)
+        assert np.array_equal(progressive, s.image())
+        s.set_options(seed=6)
+        s.add_samples(4)
+        assert not np.array_equal(progressive, s.image())
+
+
+def test_aovs_stats_options_and_outputs(scene, tmp_path):
+    with dirt.Session(scene, engine="embree", seed=1, bounces=1, **SIZE) as s:
+        s.add_samples(1)
+        assert sorted(s.aovs()) == sorted(["albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z",
+                                          "Z", "ID"])
+        assert s.aov("albedo").shape == (36, 48, 3)
+        assert np.array_equal(s.aov("albedo")[..., 1], s.aov("albedo.G"))
+        z, ids = s.aov("Z"), s.aov("ID")
+        assert z.shape == (36, 48) and np.all(np.isfinite(z[ids >= 0]))
+        assert np.all(ids < scene.triangles) and np.all(ids >= -1)
+        with pytest.raises(KeyError):
+            s.aov("nope")
+        st = s.stats()
+        assert st["engine"] == "embree" and st["samples"] == 1 and st["rays"] > 0
+        assert st["width"] == 48 and st["height"] == 36 and st["device"] == "CPU"
+        assert len(st["paths_at_event"]) == st["events"] + 1
+        assert all(p["name"] and p["clock"] in ("cpu", "gpu", "none") for p in st["passes"])
+        assert "ads" not in st and "mmrt" not in st
+        opts = s.options
+        assert opts["engine"] == "embree" and opts["seed"] == 1 and opts["bounces"] == 1
+        assert s.size == (48, 36)
+        s.write(tmp_path / "x.exr")
+        s.write(tmp_path / "x.png", exposure=1, tonemap="aces")
+        assert (tmp_path / "x.exr").stat().st_size > 1000
+        assert (tmp_path / "x.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_structure_stats(scene):
+    with dirt.Session(scene, engine="dirt", seed=1, bounces=1, **SIZE) as s:
+        s.add_samples(1)
+        st = s.stats()
+        assert st["ads"]["primitives"] == scene.triangles
+        assert st["ads"]["tiles"] > 0 and st["ads"]["nodes"] > 0
+        assert st["aborted"] == 0
+
+
+def test_bad_scenes_raise_with_the_loaders_id(tmp_path):
+    with pytest.raises(dirt.Error) as e:
+        dirt.Scene(tmp_path / "missing.glb")
+    assert e.value.kind == "scene" and e.value.id == "IO"
+    deep = tmp_path / "deep.gltf"
+    deep.write_text('{"asset": {"version": "2.0"}, "x": ' + "[" * 40 + "]" * 40 + "}")
+    with pytest.raises(dirt.Error) as e:
+        dirt.Scene(deep, max_depth=16)
+    assert e.value.id == "TOO_DEEP"
+    assert e.value.code == dirt.lib.DIRT_SCENE_ERR_TOO_DEEP
+    trunc = tmp_path / "t.glb"
+    trunc.write_bytes(b"glTF\x02\x00\x00\x00\xff\x00\x00\x00")
+    with pytest.raises(dirt.Error) as e:
+        dirt.Scene(trunc)
+    assert e.value.id == "TRUNCATED"
+
+
+def test_session_errors_are_ids(scene, tmp_path):
+    with pytest.raises(TypeError):
+        dirt.Session(scene, widht=64)
+    with pytest.raises(ValueError):
+        dirt.Session(scene, engine="cycles")
+    with pytest.raises(ValueError):
+        dirt.Session(scene, width="64")
+    with pytest.raises(dirt.Error) as e:
+        dirt.Session(scene, tile_size=3, **SIZE)
+    assert e.value.kind == "session" and e.value.id == "OPTION"
+    with pytest.raises(dirt.Error) as e:
+        dirt.Session(scene, engine="mmrt", fetch="raster", **SIZE)
+    assert e.value.id == "OPTION"
+    with dirt.Session(scene, engine="embree", **SIZE) as s:
+        with pytest.raises(dirt.Error) as e:
+            s.image()
+        assert e.value.id == "NOT_READY"
+        with pytest.raises(dirt.Error) as e:
+            s.set_camera(7)
+        assert e.value.id == "CAMERA" and "camera 7" in e.value.reason
+        with pytest.raises(dirt.Error) as e:
+            s.set_options(bounces=-1)
+        assert e.value.id == "OPTION"
+        s.add_samples(1)
+        with pytest.raises(dirt.Error) as e:
+            s.write(tmp_path / "no" / "such" / "dir.exr")
+        assert e.value.id == "IO"
+        s.set_camera(eye=(0, 1, 3), target=(0, 1, 0), fov=50)
+        s.set_time(0.0)
+        s.add_samples(1)
+        assert math.isfinite(float(s.image()[..., :3].sum()))
