@@ -2,39 +2,47 @@
 """How time and memory grow with triangles and with pixels, for every engine
 (issue 24, item 5): dirt-render on a family of generated closed rooms full
 of objects (perf/make-scale-scene.py) from 10^4 to 10^7 triangles at one
-image size, and on one room at images from 0.1 to 8 megapixels; each run
-renders two frames of one sample (the scene is static: the second is the
-steady frame; the first also makes the programs and sizes the buffers) with
-the path tracer's defaults (4 bounces, seed 1) for dirt, mmrt and embree,
-and the preview for raster.
+image size, and on one room at images from 0.1 to 8 megapixels. Each run
+renders --frames frames (default 1; 2 measures the steady second frame: the
+scene is static, the first frame also sizes the buffers) of one sample
+with the path tracer's defaults (4 bounces, seed 1) for the path-tracing
+engines (dirt: DIRT with the device's default build; dirt-raster and
+dirt-compute: each build; mmrt; embree) and the preview for raster.
 
-Per run it keeps: the steady frame's time (the sum of the passes dirt-render
+Per run it keeps: the last frame's time (the sum of the passes dirt-render
 --stats reports, with the clock that measured them: the CPU clock around
 glFinish on a software renderer, GPU timer queries on a GPU), the first
-frame's, the whole process's wall time and peak resident memory (the
-GPU's memory is the process's on a software renderer), the engine's own GPU
-bytes (--stats bytes_allocated) and, for dirt and mmrt, the relative MSE of
-the steady frame against Embree's with the same seed (checked before the
-time counts: DIRT's must be below --max-rel-mse, MMRT's is approximate and
-only recorded). Runs are interleaved: every round runs every configuration
-and engine once in turn, so load changes hit all alike; the figures are the
-minimum over the rounds (--repeat).
+frame's, the whole process's wall time (load and setup included) and peak
+resident memory (the GPU's memory is the process's on a software renderer),
+the engine's own GPU bytes (--stats bytes_allocated) and, for DIRT and
+MMRT, the relative MSE of the last frame against Embree's with the same
+seed. DIRT's must be below --max-rel-mse (default 1e-2: at one sample a
+path that meets a shared edge on the other triangle goes elsewhere, so
+equal hits still give about 1e-3 with millions of triangles; a broken
+trace gives 0.1 and more); MMRT's is approximate and only recorded. Runs
+are interleaved: every round runs every configuration and engine once in
+turn, so load changes hit all alike; the figures are the minimum over the
+rounds (--repeat).
 
     perf/bench-scale.py OUT [--render build/src/app/dirt-render]
-        [--triangles 1e4,1e5,1e6,1e7] [--fixed-res 640x480]
-        [--res 368x276,640x480,1152x864,1632x1224,3264x2448]
-        [--fixed-triangles 1e5] [--engines dirt,mmrt,embree,raster]
-        [--repeat 2] [--timeout 3600] [--quick] [--scenes DIR]
+        [--triangles 1e4,1e5,1e6,1e7] [--fixed-res 320x240]
+        [--res 368x276,816x612,1632x1224,3264x2448] [--fixed-triangles 1e4]
+        [--engines dirt,mmrt,embree,raster] [--frames 1] [--repeat 1]
+        [--timeout 1800] [--max-rel-mse 1e-2] [--quick] [--scenes DIR]
 
-OUT gets results.json (every run), results.csv and table.md (the minimum
-per configuration and engine, engines side by side), plot.dat, plots.gp
-and time_vs_triangles, memory_vs_triangles, time_vs_megapixels and
-memory_vs_megapixels as PNG and SVG (gnuplot). The scenes are written to
---scenes (default OUT/scenes; 10^7 triangles is a 240 MB file): keep them
-out of the repository. --quick: 10^4 and 3 x 10^4 triangles at 160x120 and
-images of 0.02 and 0.08 megapixels, one round (a check of the script, or a
-GPU's dry run; see perf/gpu-check.sh). Exit status: 0 when every run
-succeeded and agreed, 1 otherwise (the failures are in the results).
+The default grid (0.08 MP for the triangle sweep; 0.1, 0.5, 2 and 8 MP of
+a room of 10^4 triangles) takes about 10 minutes on llvmpipe on 2 cores;
+on a GPU use larger images (perf/gpu-check.sh). OUT gets results.json
+(every run, with the command, machine and device), results.csv and
+table.md (the minimum per configuration and engine, engines side by
+side), plot.dat, plots.gp and time_vs_triangles, memory_vs_triangles,
+time_vs_megapixels and memory_vs_megapixels as PNG and SVG (gnuplot). The
+scenes are written to --scenes (default OUT/scenes; made once, reused;
+10^7 triangles is a 240 MB file): keep them out of the repository.
+--quick: 10^4 and 3 x 10^4 triangles at 160x120 and images of 0.02 and
+0.08 megapixels (a check of the script, or a dry run of perf/gpu-check.sh).
+Exit status: 0 when every run succeeded and agreed, 1 otherwise (the
+failures are in the results), 2 on bad arguments.
 """
 import argparse
 import csv
@@ -47,7 +55,15 @@ import sys
 import tempfile
 import time
 
-ENGINES = ("dirt", "mmrt", "embree", "raster")
+ENGINES = ("dirt", "dirt-raster", "dirt-compute", "mmrt", "embree", "raster")
+DEFAULT_ENGINES = "dirt,mmrt,embree,raster"
+# dirt-render's options per engine: dirt is DIRT with the build the device
+# gets by default (--build auto), dirt-raster and dirt-compute each build
+ENGINE_ARGS = {"dirt": ["--engine", "dirt"],
+               "dirt-raster": ["--engine", "dirt", "--build", "raster"],
+               "dirt-compute": ["--engine", "dirt", "--build", "compute"],
+               "mmrt": ["--engine", "mmrt"], "embree": ["--engine", "embree"],
+               "raster": ["--engine", "raster"]}
 
 
 def parse_count(s):
@@ -66,8 +82,8 @@ def make_scenes(counts, scene_dir, root):
     return paths
 
 
-def run_one(render, scene, w, h, engine, ref, timeout, tmp):
-    """One dirt-render process: two frames of one sample. Returns a dict."""
+def run_one(render, scene, w, h, engine, ref, timeout, tmp, frames):
+    """One dirt-render process: `frames` frames of one sample. Returns a dict."""
     tag = "%s_%dx%d_%s" % (os.path.basename(scene).split(".")[0], w, h, engine)
     out = os.path.join(tmp, tag + "_#.exr")
     stats, log = os.path.join(tmp, tag + ".json"), os.path.join(tmp, tag + ".jsonl")
@@ -75,8 +91,8 @@ def run_one(render, scene, w, h, engine, ref, timeout, tmp):
         if os.path.exists(p):
             os.remove(p)
     cmd = [render, scene, "-o", out, "-W", str(w), "-H", str(h), "--spp", "1",
-           "--frames", "0:1", "--engine", engine, "--seed", "1", "--stats", stats,
-           "--log", log, "--max-scene-memory", "16G", "-q"]
+           "--frames", "0:%d" % (frames - 1)] + ENGINE_ARGS[engine] + [
+           "--seed", "1", "--stats", stats, "--log", log, "--max-scene-memory", "16G", "-q"]
     if ref:
         cmd += ["--mse-reference", ref]
     rec = {"engine": engine, "scene": scene, "width": w, "height": h, "cmd": " ".join(cmd)}
@@ -189,7 +205,7 @@ def write_outputs(outdir, runs, a, scenes_tris):
                 r = best.get(k + (e,))
                 if r:
                     cells += ["%.0f" % r["frame_ms"], "%.0f" % r["peak_rss_mb"]]
-                    if e == "dirt" and "rel_mse" in r:
+                    if e.startswith("dirt") and "rel_mse" in r and not rel:
                         rel = "%.2g" % r["rel_mse"]
                 elif k + (e,) in failed:
                     cells += ["failed", ""]
@@ -215,12 +231,13 @@ def write_outputs(outdir, runs, a, scenes_tris):
             f.write("\n\n")
     gp = ["D = '%s/plot.dat'" % outdir, "set key outside right", "set grid",
           "set datafile missing 'NaN'", "set logscale xy"]
-    plots = [("time_vs_triangles", 0, "triangles", "steady frame ms (%s)" % a.fixed_res_s,
+    plots = [("time_vs_triangles", 0, "triangles",
+              "%s frame ms (%s)" % (a.frame_word, a.fixed_res_s),
               "ms"),
              ("memory_vs_triangles", 0, "triangles", "peak resident MB (%s)" % a.fixed_res_s,
               "mb"),
              ("time_vs_megapixels", 1, "megapixels",
-              "steady frame ms (%d triangles)" % a.fixed_triangles, "ms"),
+              "%s frame ms (%d triangles)" % (a.frame_word, a.fixed_triangles), "ms"),
              ("memory_vs_megapixels", 1, "megapixels",
               "peak resident MB (%d triangles)" % a.fixed_triangles, "mb")]
     for name, block, xl, yl, what in plots:
@@ -247,17 +264,19 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--render", default="build/src/app/dirt-render")
     ap.add_argument("--triangles", default="1e4,1e5,1e6,1e7")
-    ap.add_argument("--fixed-res", default="640x480")
-    ap.add_argument("--res", default="368x276,640x480,1152x864,1632x1224,3264x2448")
-    ap.add_argument("--fixed-triangles", default="1e5")
-    ap.add_argument("--engines", default=",".join(ENGINES))
-    ap.add_argument("--repeat", type=int, default=2)
-    ap.add_argument("--timeout", type=int, default=3600, help="seconds a run may take")
-    ap.add_argument("--max-rel-mse", type=float, default=1e-3,
-                    help="DIRT's steady frame against Embree's (default 1e-3)")
+    ap.add_argument("--fixed-res", default="320x240")
+    ap.add_argument("--res", default="368x276,816x612,1632x1224,3264x2448")
+    ap.add_argument("--fixed-triangles", default="1e4")
+    ap.add_argument("--engines", default=DEFAULT_ENGINES)
+    ap.add_argument("--frames", type=int, default=1, choices=(1, 2))
+    ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--timeout", type=int, default=1800, help="seconds a run may take")
+    ap.add_argument("--max-rel-mse", type=float, default=1e-2,
+                    help="DIRT's last frame against Embree's (default 1e-2)")
     ap.add_argument("--scenes")
     ap.add_argument("--quick", action="store_true")
     a = ap.parse_args()
+    a.frame_word = "steady (2nd)" if a.frames == 2 else "first"
     if a.quick:
         a.triangles, a.fixed_res, a.res, a.fixed_triangles, a.repeat = \
             "1e4,3e4", "160x120", "160x120,320x240", "1e4", 1
@@ -270,16 +289,21 @@ def main():
         a.res = [tuple(int(v) for v in r.split("x")) for r in a.res.split(",")]
         a.engines = [e for e in a.engines.split(",") if e]
     except ValueError as e:
-        sys.exit("bench-scale: bad list: %s" % e)
+        print("bench-scale: bad list: %s" % e, file=sys.stderr)
+        return 2
     bad = [e for e in a.engines if e not in ENGINES]
     if bad or not os.access(a.render, os.X_OK):
-        sys.exit("bench-scale: unknown engine %s" % bad if bad else
-                 "bench-scale: %s is not a program (build first, or --render)" % a.render)
+        print("bench-scale: unknown engine %s (known: %s)" % (bad, ",".join(ENGINES)) if bad else
+              "bench-scale: %s is not a program (build first, or --render)" % a.render,
+              file=sys.stderr)
+        return 2
     os.makedirs(a.out, exist_ok=True)
     scenes = make_scenes(sorted(set(a.triangles + [a.fixed_triangles])),
                          a.scenes or os.path.join(a.out, "scenes"), root)
     cfgs = configs(a)
-    order = [e for e in ("embree", "dirt", "mmrt", "raster") if e in a.engines]
+    # Embree first: its image is the others' reference
+    order = (["embree"] if "embree" in a.engines else []) + \
+        [e for e in ENGINES if e in a.engines and e != "embree"]
     runs, ok = [], True
     tris_of = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -287,8 +311,9 @@ def main():
             for sweep, n, (w, h) in cfgs:
                 ref = None
                 for e in order:
-                    r = run_one(a.render, scenes[n], w, h, e, ref if e in ("dirt", "mmrt") else None,
-                                a.timeout, tmp)
+                    r = run_one(a.render, scenes[n], w, h, e,
+                                None if e in ("embree", "raster") else ref, a.timeout, tmp,
+                                a.frames)
                     r["round"] = rnd
                     r["sweep"] = sweep
                     # the actual triangle count: from the generator's file name
@@ -299,7 +324,7 @@ def main():
                     if e == "embree" and r["status"] == "ok":
                         base = os.path.basename(scenes[n]).split(".")[0]
                         ref = os.path.join(tmp, "%s_%dx%d_embree_#.exr" % (base, w, h))
-                    if e == "dirt" and r["status"] == "ok" and "rel_mse" in r and \
+                    if e.startswith("dirt") and r["status"] == "ok" and "rel_mse" in r and \
                             not r["rel_mse"] <= a.max_rel_mse:
                         r["status"] = "disagrees"
                         r["reason"] = "relative MSE %.3g against Embree" % r["rel_mse"]
