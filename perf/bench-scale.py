@@ -28,11 +28,15 @@ rounds (--repeat).
         [--triangles 1e4,1e5,1e6,1e7] [--fixed-res 320x240]
         [--res 368x276,816x612,1632x1224,3264x2448] [--fixed-triangles 1e4]
         [--engines dirt,mmrt,embree,raster] [--frames 1] [--repeat 1]
-        [--timeout 1800] [--max-rel-mse 1e-2] [--quick] [--scenes DIR]
+        [--max-mp mmrt=2] [--timeout 1800] [--max-rel-mse 1e-2] [--quick]
+        [--scenes DIR]
 
 The default grid (0.08 MP for the triangle sweep; 0.1, 0.5, 2 and 8 MP of
-a room of 10^4 triangles) takes about 10 minutes on llvmpipe on 2 cores;
-on a GPU use larger images (perf/gpu-check.sh). OUT gets results.json
+a room of 10^4 triangles, MMRT up to 2 MP: --max-mp) takes about 10
+minutes on llvmpipe on 2 cores (MMRT alone takes 3 minutes at 2 MP there;
+--max-mp '' runs it at 8 MP too, for an hour or more); on a GPU use larger
+images (perf/gpu-check.sh). Runs past --max-mp are "skipped" in the
+results, not failures. OUT gets results.json
 (every run, with the command, machine and device), results.csv and
 table.md (the minimum per configuration and engine, engines side by
 side), plot.dat, plots.gp and time_vs_triangles, memory_vs_triangles,
@@ -76,8 +80,10 @@ def make_scenes(counts, scene_dir, root):
     for n in counts:
         p = os.path.join(scene_dir, "room_%d.glb" % n)
         if not os.path.exists(p):
-            subprocess.run([sys.executable, os.path.join(root, "perf", "make-scale-scene.py"),
-                            p, str(n)], check=True, stdout=subprocess.DEVNULL)
+            r = subprocess.run([sys.executable, os.path.join(root, "perf", "make-scale-scene.py"),
+                                p, str(n)], stdout=subprocess.DEVNULL)
+            if r.returncode != 0:
+                return None  # the generator said why
         paths[n] = p
     return paths
 
@@ -189,7 +195,8 @@ def write_outputs(outdir, runs, a, scenes_tris):
                 w.writerow([k[0], k[1], k[2], "%.3f" % (k[1] * k[2] / 1e6), e, r["status"],
                             "%.1f" % r["frame_ms"] if ok else "",
                             "%.1f" % r["first_frame_ms"] if ok else "",
-                            "%.1f" % r["wall_s"], "%.0f" % r["peak_rss_mb"],
+                            "%.1f" % r["wall_s"] if "wall_s" in r else "",
+                            "%.0f" % r["peak_rss_mb"] if "peak_rss_mb" in r else "",
                             "%.1f" % r["gpu_mb"] if ok else "",
                             "%.3g" % r["rel_mse"] if "rel_mse" in r else "",
                             "+".join(r.get("clock", [])), r.get("reason", "")])
@@ -208,7 +215,7 @@ def write_outputs(outdir, runs, a, scenes_tris):
                     if e.startswith("dirt") and "rel_mse" in r and not rel:
                         rel = "%.2g" % r["rel_mse"]
                 elif k + (e,) in failed:
-                    cells += ["failed", ""]
+                    cells += [failed[k + (e,)]["status"], ""]
                 else:
                     cells += ["", ""]
             f.write("| %d | %dx%d | %.2f | %s | %s |\n" % (k[0], k[1], k[2], k[1] * k[2] / 1e6,
@@ -269,6 +276,9 @@ def main():
     ap.add_argument("--fixed-triangles", default="1e4")
     ap.add_argument("--engines", default=DEFAULT_ENGINES)
     ap.add_argument("--frames", type=int, default=1, choices=(1, 2))
+    ap.add_argument("--max-mp", default="mmrt=2",
+                    help="ENGINE=MP,...: images past MP megapixels are skipped for ENGINE "
+                    "(default mmrt=2: MMRT takes 3 minutes at 2 MP on llvmpipe; '' for none)")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--timeout", type=int, default=1800, help="seconds a run may take")
     ap.add_argument("--max-rel-mse", type=float, default=1e-2,
@@ -288,7 +298,9 @@ def main():
         a.fixed_res = tuple(int(v) for v in a.fixed_res.split("x"))
         a.res = [tuple(int(v) for v in r.split("x")) for r in a.res.split(",")]
         a.engines = [e for e in a.engines.split(",") if e]
-    except ValueError as e:
+        a.max_mp = {kv.split("=")[0]: float(kv.split("=")[1])
+                    for kv in a.max_mp.split(",") if kv}
+    except (ValueError, IndexError) as e:
         print("bench-scale: bad list: %s" % e, file=sys.stderr)
         return 2
     bad = [e for e in a.engines if e not in ENGINES]
@@ -300,6 +312,9 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     scenes = make_scenes(sorted(set(a.triangles + [a.fixed_triangles])),
                          a.scenes or os.path.join(a.out, "scenes"), root)
+    if scenes is None:
+        print("bench-scale: cannot make the scenes (see above)", file=sys.stderr)
+        return 1
     cfgs = configs(a)
     # Embree first: its image is the others' reference
     order = (["embree"] if "embree" in a.engines else []) + \
@@ -311,6 +326,16 @@ def main():
             for sweep, n, (w, h) in cfgs:
                 ref = None
                 for e in order:
+                    if w * h / 1e6 > a.max_mp.get(e, float("inf")) * 1.001:
+                        if n not in tris_of:
+                            tris_of[n] = scene_triangles(a.render, scenes[n])
+                        runs.append({"engine": e, "width": w, "height": h, "round": rnd,
+                                     "sweep": sweep, "triangles": tris_of[n],
+                                     "status": "skipped", "reason": "past --max-mp %s=%g" % (
+                                         e, a.max_mp[e])})
+                        print("round %d: %8d triangles %9s %-6s skipped (--max-mp)" % (
+                            rnd + 1, tris_of[n], "%dx%d" % (w, h), e), flush=True)
+                        continue
                     r = run_one(a.render, scenes[n], w, h, e,
                                 None if e in ("embree", "raster") else ref, a.timeout, tmp,
                                 a.frames)
@@ -328,7 +353,7 @@ def main():
                             not r["rel_mse"] <= a.max_rel_mse:
                         r["status"] = "disagrees"
                         r["reason"] = "relative MSE %.3g against Embree" % r["rel_mse"]
-                    if r["status"] != "ok":
+                    if r["status"] not in ("ok", "skipped"):
                         ok = False
                     runs.append(r)
                     print("round %d: %8d triangles %9s %-6s %s" % (

@@ -25,7 +25,11 @@ import math
 import struct
 import sys
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError:
+    sys.exit("make-scale-scene.py: needs numpy (Debian: python3-numpy; run it with "
+             "/usr/bin/python3)")
 
 ROOM = (-2.0, 2.0, 0.0, 3.0, -5.0, 0.0)  # x0, x1, y0, y1, z0, z1
 
