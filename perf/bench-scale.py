@@ -363,7 +363,8 @@ def main():
                         flush=True)
     meta = {"machine": platform.node(), "cpus": os.cpu_count(), "render": a.render,
             "command": " ".join(sys.argv), "device": next((r["device"] for r in runs
-                                                           if r.get("device")), ""),
+                                                           if r.get("device") and
+                                                           r["engine"] != "embree"), ""),
             "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "runs": runs}
     with open(os.path.join(a.out, "results.json"), "w") as f:
         json.dump(meta, f, indent=1)
