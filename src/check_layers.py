@@ -41,7 +41,7 @@ LAYERS = {
 # Consumer header -> the layer that implements it.
 PUBLIC = {
     "api.h": "core", "clock.h": "core", "log.h": "core", "stats.h": "core",
-    "types.h": "core", "version.h": "core",
+    "types.h": "core", "version.h": "core", "input.h": "core",
     "file.h": "io", "image.h": "io",
     "scene.h": "scene",
     "gpu.h": "gl",

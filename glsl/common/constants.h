@@ -414,5 +414,9 @@
 #define DIRT_LOC_TEST_TO_IMAGE_SIZE 0  /* ivec2 */
 /* glsl/graph_test/splat.frag */
 #define DIRT_LOC_TEST_SPLAT_ADD 0      /* uint */
+/* glsl/test/uniform_switch.comp */
+#define DIRT_LOC_TEST_SWITCH_BATCH 0   /* int */
+#define DIRT_LOC_TEST_SWITCH_COUNT 1   /* uint */
+#define DIRT_LOC_TEST_SWITCH_SLOT 2    /* uint */
 
 #endif

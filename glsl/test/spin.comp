@@ -8,7 +8,7 @@
 #define SPIN_STEPS 2048
 #endif
 layout(local_size_x = DIRT_GROUP_SIZE) in;
-layout(std430, binding = DIRT_BIND_TEST_OUT) buffer Out { uint values[]; };
+layout(std430, binding = DIRT_BIND_TEST_OUT) writeonly buffer Out { uint values[]; };
 
 void main()
 {

@@ -141,14 +141,18 @@ def _enum_name(ctype, value):
 class Scene:
     """A scene: the default scene (no path), or a glTF 2.0 (.gltf, .glb) or
     OBJ file. max_bytes and max_depth bound the load (dirt_load_opts; 0 =
-    the defaults). Raises Error (kind "scene") with the loader's id."""
+    the defaults); strict turns every warning about the scene into a
+    failure (STRICT); allow_outside lets the scene read files outside its
+    folder (else OUTSIDE). Raises Error (kind "scene") with the loader's
+    id."""
 
-    def __init__(self, path=None, max_bytes=0, max_depth=0):
+    def __init__(self, path=None, max_bytes=0, max_depth=0, strict=False, allow_outside=False):
         _begin()
         if path is None:
             ptr = lib.dirt_scene_create_default()
         else:
-            opts = ffi.new("dirt_load_opts *", {"max_bytes": max_bytes, "max_depth": max_depth})
+            opts = ffi.new("dirt_load_opts *", {"max_bytes": max_bytes, "max_depth": max_depth,
+                                                "strict": strict, "allow_outside": allow_outside})
             ptr = lib.dirt_scene_load(os.fsencode(path), opts)
         if ptr == ffi.NULL:
             _raise("scene")

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "dirt/image.h"
+#include "dirt/scene.h"
 
 enum {
     DIRT_EXIT_OK = 0,
@@ -69,5 +70,57 @@ void cli_progress_sample(void *user, int done, int total);
  * for permissions or a missing directory, unlike access(2) as root). False
  * after printing why. */
 bool cli_creatable(const char *prog, const char *path);
+
+/* ---- what a run reads and writes (dirt/input.h) ----------------------- */
+
+#define CLI_IO_MAX 16
+
+/* The files of one run, for cli_check_io. Unused entries are NULL. */
+typedef struct cli_io {
+    const char *scene_path;          /* as given; NULL for the default scene */
+    const dirt_scene *scene;         /* loaded: the files it read are inputs */
+    const char *in[CLI_IO_MAX][2];   /* {path, role ("--env")}: other inputs */
+    const char *in_frames[2];        /* {pattern, role}: an input per frame
+                                        (--mse-reference), each must exist */
+    const char *out_frames;          /* the output pattern: a file per frame */
+    bool out_png;                    /* and a PNG preview beside each */
+    const long *frames;              /* the frames of the in/out patterns */
+    size_t num_frames;
+    const char *out[CLI_IO_MAX][2];  /* {path, role}: other outputs */
+    const char *out_dirs[4][3];      /* {folder, name prefix, role}: folders the
+                                        run writes `prefix`* files into */
+} cli_io;
+
+/* Checks a run's files before anything is written: every input of an
+ * input pattern exists as a regular file (MISSING, NOT_REGULAR), and no
+ * output is an input (the same file: its name, a hard or symbolic link;
+ * COLLISION) or another output. Returns DIRT_EXIT_OK, or DIRT_EXIT_USAGE
+ * after printing "prog: ID: reason". */
+int cli_check_io(const char *prog, const cli_io *io);
+
+/* The one line a failed scene load prints: "prog: cannot load scene 'x':
+ * ID (what it means; see the error above)", the id of
+ * dirt_scene_last_error(). */
+void cli_scene_error(const char *prog, const char *path);
+
+/* Checks the camera a run will use before anything is made, exit status
+ * DIRT_EXIT_USAGE after printing why (else DIRT_EXIT_OK): an explicit
+ * camera (`look`, when look_set) whose eye is its target or whose up is
+ * parallel to its view; a scene camera (`camera` >= 0, or camera 0 when it
+ * is -1 and the scene has one) whose aspect makes the image, `width` wide,
+ * taller than 16384 or under 1 pixel when `height` is 0 (not given); an
+ * orthographic scene camera with the dirt or mmrt engine and a camera view
+ * (`camera_view`: views that include it). */
+int cli_check_camera(const char *prog, const dirt_scene *scene, int camera, bool look_set,
+                     const dirt_camera_look *look, int width, int height, bool raster_engine,
+                     bool camera_view);
+
+/* Appends one line (`n` bytes, ending in '\n') to the log open on `fd`
+ * (O_APPEND) with one write(2), so that lines of workers sharing a log do
+ * not interleave; a write that fails part way (a full disk) is undone
+ * (the file is cut back to its size before it, unless another writer
+ * appended meanwhile), so the log never ends in a partial line. False
+ * when the line is not in the log. */
+bool cli_log_append(int fd, const char *line, size_t n);
 
 #endif

@@ -679,6 +679,8 @@ int main(int argc, char **argv)
         return DIRT_EXIT_USAGE;
     }
     /* Bad input up front: scenes, DIR, configurations. */
+    char images_dir[4200];
+    snprintf(images_dir, sizeof(images_dir), "%s/images", o.dir);
     scene_info si[MAX_SCENES];
     memset(si, 0, sizeof(si));
     int rc = DIRT_EXIT_OK;
@@ -690,12 +692,19 @@ int main(int argc, char **argv)
         bool def = !strcmp(o.scenes[i], "default");
         si[i].name = def ? "default" : strrchr(o.scenes[i], '/') ? strrchr(o.scenes[i], '/') + 1
                                                                : o.scenes[i];
-        if (!def && access(o.scenes[i], R_OK) != 0) {
-            cli_error(PROG, "cannot read scene %s: %s", o.scenes[i], strerror(errno));
+        if (!(si[i].scene = app_load_scene(PROG, o.scenes[i], &ao))) {
             rc = DIRT_EXIT_USAGE;
             break;
         }
-        if (!(si[i].scene = app_load_scene(PROG, o.scenes[i], &ao))) {
+        /* DIR is the outputs': no scene file (nor file of a scene), preset
+         * or --env map in it. */
+        bool env_file = ao.env_path && strcmp(ao.env_path, "sky");
+        cli_io io = {.scene_path = def ? NULL : o.scenes[i], .scene = si[i].scene,
+                     .in = {{env_file ? ao.env_path : NULL, "--env"}},
+                     .out_dirs = {{o.dir, "", "-o DIR"}, {images_dir, "", "-o DIR"}}};
+        for (int k = 0; k < ao.num_presets && k + 1 < CLI_IO_MAX; k++)
+            io.in[k + 1][0] = ao.presets[k], io.in[k + 1][1] = "--preset";
+        if (cli_check_io(PROG, &io) != DIRT_EXIT_OK) {
             rc = DIRT_EXIT_USAGE;
             break;
         }

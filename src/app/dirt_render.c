@@ -32,7 +32,8 @@ static bool check_options(const app_opts *o)
     } else if (!cli_has_ext(o->output, ".exr") && !cli_has_ext(o->output, ".png")) {
         cli_error(PROG, "output '%s' must end in .exr or .png", o->output);
     } else if (fields < 0) {
-        cli_error(PROG, "output '%s' has more than one frame field or a stray '%%'", o->output);
+        cli_error(PROG, "output '%s' has more than one frame field, a stray '%%' or a field "
+                  "wider than %d", o->output, SEQ_MAX_FIELD_WIDTH);
     } else if (many && fields != 1) {
         cli_error(PROG, "--frames renders several images: the output '%s' needs one frame "
                   "field such as frame_####.exr or frame_%%04d.exr", o->output);
@@ -123,7 +124,7 @@ static int run(app_opts *o, int argc, char **argv)
 {
     const char *scene_path = o->num_scenes ? o->scenes[0] : NULL;
     render_seq q;
-    render_out w = {0};
+    render_out w = {.log = -1};
     dirt_scene *scene = NULL;
     dirt_env *env = NULL;
     dirt_gpu *gpu = NULL;
@@ -136,7 +137,9 @@ static int run(app_opts *o, int argc, char **argv)
         rc = dirt_scene_print_info(scene, stdout) ? DIRT_EXIT_OK : DIRT_EXIT_FAILURE;
         goto done;
     }
-    if (!ok || !app_load_env(PROG, o, &env) || !app_check_scene(PROG, o, scene))
+    /* Every input and output, and the camera, before anything is written. */
+    if (!ok || !app_load_env(PROG, o, &env) || !app_check_scene(PROG, o, scene) ||
+        render_out_start(&w, scene) != DIRT_EXIT_OK)
         goto done;
     bool debug_session = o->debug_ads && o->s.engine != DIRT_ENGINE_DIRT;
     rc = DIRT_EXIT_NO_GPU;

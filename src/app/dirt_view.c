@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "app/cli.h"
 #include "app/setup.h"
@@ -65,10 +66,11 @@ static bool sample(viewer *v, bool *preview)
         v->o.no_preview = true;
         *preview = false;
     }
-    if (!*preview && !v->hold && (v->o.spp == 0 || have < v->o.spp)) {
+    int target = view_target(v, v->s);
+    if (!*preview && !v->hold && (target == 0 || have < target)) {
         int n = v->o.samples_per_frame;
-        if (v->o.spp && have + n > v->o.spp)
-            n = v->o.spp - have;
+        if (target && have + n > target)
+            n = target - have;
         dirt_session_stats before = *dirt_session_get_stats(v->s);
         if (!dirt_session_add_samples(v->s, n, NULL, NULL)) {
             cli_error(PROG, "rendering failed (see the log)");
@@ -94,6 +96,8 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     v->win_w = in.width;
     v->win_h = in.height;
+    v->cursor_x = in.mouse_x;
+    v->cursor_y = in.mouse_y;
     if (!view_open_drops(v, &in))
         return false;
     dirt_ui_begin_frame(v->ui);
@@ -105,9 +109,11 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     }
     view_handle_input(v, &in, dt, ui_mouse, ui_keys);
-    for (int k = 0; k < DIRT_NUM_KEYS; k++)
+    for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         if (v->held[k] > 0)
             v->held[k]--;
+        v->pressed[k] = false;
+    }
     if (v->o.play)
         play(v, dt);
     view_render_size(v, in.width, in.height);
@@ -128,6 +134,10 @@ static bool frame(viewer *v, double dt)
         v->exit_code = DIRT_EXIT_FAILURE;
     }
     dirt_gpu_window_swap(v->gpu);
+    if (v->slow_frame_ms > 0)
+        nanosleep(&(struct timespec){.tv_sec = v->slow_frame_ms / 1000,
+                                     .tv_nsec = (v->slow_frame_ms % 1000) * 1000000L},
+                  NULL);
     v->frame_ms[v->ring_pos] = (float)(dirt_clock_ms() - t0);
     v->sample_ms[v->ring_pos] = (float)(s1 - s0);
     v->ring_pos = (v->ring_pos + 1) % RING;
@@ -156,8 +166,28 @@ static int prepare(viewer *v, dirt_scene **scene)
     for (int i = 0; i < 3; i++)
         if (outs[i] && !cli_creatable(PROG, outs[i]))
             return DIRT_EXIT_USAGE;
-    *scene = app_load_scene(PROG, v->o.num_scenes ? v->o.scenes[0] : NULL, &v->o);
+    const char *scene_path = v->o.num_scenes ? v->o.scenes[0] : NULL;
+    *scene = app_load_scene(PROG, scene_path, &v->o);
     if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene))
+        return DIRT_EXIT_USAGE;
+    /* No output (at exit or from the script) may be an input. */
+    enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
+    const char *souts[SCRIPT_OUTS] = {0};
+    static char spng[SCRIPT_OUTS][4200];
+    vs_outputs(&v->script, souts, spng, SCRIPT_OUTS);
+    char save_png[4200] = "";
+    if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
+        cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
+    bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
+    cli_io io = {.scene_path = scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
+                 .scene = *scene,
+                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"}},
+                 .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
+                         {save_png[0] ? save_png : NULL, "--save-image"},
+                         {v->o.report, "--report"}}};
+    for (size_t i = 0; i < SCRIPT_OUTS; i++)
+        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
+    if (cli_check_io(PROG, &io) != DIRT_EXIT_OK)
         return DIRT_EXIT_USAGE;
     v->env_intensity = v->o.env_intensity;
     v->env_rotation = v->o.env_rotation;
@@ -225,6 +255,10 @@ static int run(viewer *v, dirt_scene *scene)
         fprintf(stderr, "%s: %s, %zu triangles; %s; F1 lists the key bindings\n", PROG,
                 v->scene_name, dirt_scene_num_triangles(v->scene), desc);
     }
+    /* Test hook: every frame takes this much longer (a deliberately slow
+     * frame, for the input that arrives during one). */
+    const char *slow = getenv("DIRT_VIEW_SLOW_FRAME_MS");
+    v->slow_frame_ms = slow ? atoi(slow) : 0;
     double last = dirt_clock_ms();
     while (!v->quit) {
         double now = dirt_clock_ms();
@@ -273,5 +307,8 @@ int main(int argc, char **argv)
     vs_free(&v->script);
     app_opts_free(&v->o);
     free(v);
+    if (rc == DIRT_EXIT_USAGE)
+        seq_remove_made_dirs(); /* a refused run leaves no directory it made */
+    seq_forget_made_dirs();
     return rc;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "app/cli.h"
+#include "dirt/input.h"
 #include "dirt/log.h"
 
 const char *const app_engine_names[] = {"dirt", "mmrt", "embree", "raster", NULL};
@@ -116,11 +117,19 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "focus distance of the thin lens; 0 = the distance to the scene's centre", "0",
         NULL},
     [APP_OPT_MAX_SCENE_MEMORY] = {APP_OPT_MAX_SCENE_MEMORY, NULL, "--max-scene-memory", NULL,
-        "SIZE", 'z', OFF(max_scene_bytes), 1, 1099511627776.0, NULL, "the most memory a "
-        "scene's expanded data may take as it loads (its vertex and index arrays, the "
-        "triangles made of them, an OBJ's textures): a scene that needs more is refused (exit "
-        "2) before the memory is taken. SIZE in bytes, or with a K, M or G suffix (powers of "
-        "1024)", "512M", NULL},
+        "SIZE", 'z', OFF(max_scene_bytes), 1, 1099511627776.0, NULL, "the most memory "
+        "loading the scene may hold (its files, the parsed glTF JSON, textures by their "
+        "declared size, the vertex and index arrays and the triangles made of them; "
+        "doc/scenes.md), and loading the --env map: a scene or map that needs more is refused "
+        "(exit 2, TOO_LARGE) before the memory is taken. SIZE in bytes, or with a K, M or G "
+        "suffix (powers of 1024)", "512M", NULL},
+    [APP_OPT_STRICT] = {APP_OPT_STRICT, NULL, "--strict", NULL, NULL, 'F', OFF(strict), 0, 0,
+        NULL, "every warning about the scene (a missing or undecodable texture, a missing MTL "
+        "library, an ignored extension or MTL statement) exits 2 (STRICT)", NULL, NULL},
+    [APP_OPT_ALLOW_OUTSIDE_PATHS] = {APP_OPT_ALLOW_OUTSIDE_PATHS, NULL, "--allow-outside-paths",
+        NULL, NULL, 'F', OFF(allow_outside_paths), 0, 0, NULL, "let the scene read files "
+        "outside its folder (by default a buffer, image or MTL path that leads out, by '..', "
+        "an absolute path or a symbolic link, exits 2: OUTSIDE)", NULL, NULL},
     /* ---- light transport and the device ---- */
     [APP_OPT_ENGINE] = {APP_OPT_ENGINE, NULL, "--engine", NULL, "NAME", 'c', OFF(s.engine), 0, 0,
         app_engine_names, "dirt: path tracing through the DIRT structure on the GPU; mmrt: the "
@@ -207,7 +216,8 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         NULL},
     [APP_OPT_CLAIM_TIMEOUT] = {APP_OPT_CLAIM_TIMEOUT, NULL, "--claim-timeout", NULL, "S", 'd',
         OFF(claim_timeout), 1, 1e7, NULL, "a claim not refreshed for S seconds belongs to a dead "
-        "worker and is taken over", "600", NULL},
+        "worker and is taken over; one of this host whose process is gone is taken at once",
+        "600", NULL},
     [APP_OPT_CHUNK] = {APP_OPT_CHUNK, NULL, "--chunk", NULL, "K/N", 's', OFF(chunk), 0, 0, NULL,
         "render the K-th of N contiguous shares of the frames; --chunk slurm takes K and N "
         "from the Slurm job array", NULL, NULL},
@@ -528,16 +538,24 @@ static bool read_preset(const app_program *p, const char *path, app_opts *o, int
         cli_error(p->name, "--preset nested too deeply");
         return false;
     }
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error(p->name, "--preset %s: %s", path, strerror(errno));
+    /* A regular file of at most 1 MiB (a FIFO or device fails at once). */
+    enum dirt_input_error e = DIRT_INPUT_ERR_OK;
+    size_t size = 0;
+    char *text = dirt_input_read(path, (size_t)1 << 20, &size, &e);
+    if (!text) {
+        cli_error(p->name, "%s: --preset %s: %s", dirt_input_error_name(e), path,
+                  e == DIRT_INPUT_ERR_IO ? strerror(errno) : dirt_input_error_str(e));
         return false;
     }
+    if (o->num_presets < (int)(sizeof(o->presets) / sizeof(o->presets[0])))
+        o->presets[o->num_presets++] = path;
     char *argv[256];
     int argc = 1;
     argv[0] = (char *)p->name;
     char line[1024];
-    while (fgets(line, sizeof(line), f)) {
+    for (char *next = text, *nl; *next; next = nl ? nl + 1 : next + strlen(next)) {
+        nl = strchr(next, '\n');
+        snprintf(line, sizeof(line), "%.*s", nl ? (int)(nl - next) : (int)strlen(next), next);
         char *hash = strchr(line, '#');
         if (hash)
             *hash = 0;
@@ -545,7 +563,7 @@ static bool read_preset(const app_program *p, const char *path, app_opts *o, int
              tok = strtok_r(NULL, " \t\r\n", &save)) {
             size_t n = strlen(tok) + 1;
             if (argc == 256 || preset_used + n > sizeof(preset_store)) {
-                fclose(f);
+                free(text);
                 cli_error(p->name, "--preset %s: too long", path);
                 return false;
             }
@@ -554,7 +572,7 @@ static bool read_preset(const app_program *p, const char *path, app_opts *o, int
             preset_used += n;
         }
     }
-    fclose(f);
+    free(text);
     return parse_args(p, argc, argv, o, depth + 1);
 }
 

@@ -28,7 +28,7 @@ enum app_opt {
     APP_OPT_TIME, APP_OPT_FRAMES, APP_OPT_FPS, APP_OPT_CLIP, APP_OPT_LOOP, APP_OPT_PLAY,
     APP_OPT_SPEED, APP_OPT_CAMERA, APP_OPT_AUTO_CAMERA, APP_OPT_EYE, APP_OPT_LOOK_AT, APP_OPT_UP,
     APP_OPT_FOV, APP_OPT_ZNEAR, APP_OPT_ZFAR, APP_OPT_APERTURE, APP_OPT_FOCUS,
-    APP_OPT_MAX_SCENE_MEMORY,
+    APP_OPT_MAX_SCENE_MEMORY, APP_OPT_STRICT, APP_OPT_ALLOW_OUTSIDE_PATHS,
     /* light transport and the device */
     APP_OPT_ENGINE, APP_OPT_MODE, APP_OPT_SPP, APP_OPT_BOUNCES, APP_OPT_SEED, APP_OPT_AO_DISTANCE,
     APP_OPT_BACKGROUND, APP_OPT_ENV, APP_OPT_ENV_INTENSITY, APP_OPT_ENV_ROTATION, APP_OPT_THREADS,
@@ -79,7 +79,10 @@ typedef struct app_opts {
     int camera;                 /* --camera: -1 = none given */
     bool auto_camera;
     dirt_camera_look look;      /* --eye, --look-at, --up, --fov, --znear, --zfar */
-    size_t max_scene_bytes;     /* --max-scene-memory (dirt_load_opts.max_bytes) */
+    size_t max_scene_bytes;     /* --max-scene-memory (dirt_load_opts.max_bytes, and
+                                   dirt_env_opts.max_bytes of --env) */
+    bool strict;                /* --strict (dirt_load_opts.strict) */
+    bool allow_outside_paths;   /* --allow-outside-paths (dirt_load_opts.allow_outside) */
     int spp;
     const char *env_path;       /* --env: a map or "sky" */
     float env_intensity, env_rotation;
@@ -107,6 +110,8 @@ typedef struct app_opts {
     double thickness_rel;
     bool no_quality, images;
     const char *preset;
+    const char *presets[8];     /* every --preset file read (inputs of the run) */
+    int num_presets;
     /* every program */
     bool quiet, verbose, help, version;
     /* which options the command line (or a preset) gave */

@@ -12,7 +12,7 @@ static const app_use render_scene_opts[] = {
     {APP_OPT_TIME}, {APP_OPT_FRAMES}, {APP_OPT_FPS}, {APP_OPT_CLIP}, {APP_OPT_LOOP},
     {APP_OPT_CAMERA}, {APP_OPT_AUTO_CAMERA}, {APP_OPT_EYE}, {APP_OPT_LOOK_AT}, {APP_OPT_UP},
     {APP_OPT_FOV}, {APP_OPT_ZNEAR}, {APP_OPT_ZFAR}, {APP_OPT_APERTURE}, {APP_OPT_FOCUS},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_NONE}};
+    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT}, {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_NONE}};
 static const app_use render_technique_opts[] = {
     {APP_OPT_ENGINE}, {APP_OPT_MODE}, {APP_OPT_SPP}, {APP_OPT_BOUNCES}, {APP_OPT_SEED},
     {APP_OPT_AO_DISTANCE}, {APP_OPT_BACKGROUND}, {APP_OPT_ENV}, {APP_OPT_ENV_INTENSITY},
@@ -54,8 +54,10 @@ const app_program app_render_program = {
     .sections = render_sections,
     .epilogue =
         "Exit status: 0 success, 1 render failure, 2 bad option or input (unreadable\n"
-        "or malformed scene, unwritable output), 3 no OpenGL 4.5 context.\n"
-        "Images are written atomically: a failed run leaves no partial file. Each EXR's\n"
+        "or malformed scene, unwritable output, an output that is an input), 3 no\n"
+        "OpenGL 4.5 context; the message of an exit 2 names its reason's id.\n"
+        "Images are written atomically: a failed run leaves no partial file, no\n"
+        "directory it made, no empty log. Each EXR's\n"
         "header records what made it: dirt.scene, dirt.engine, dirt.seed, dirt.samples,\n"
         "dirt.time, dirt.device, dirt.command_line, dirt.version and dirt.commit.\n",
     .max_scenes = 1,
@@ -83,7 +85,8 @@ static const app_use compare_sweep_opts[] = {
 static const app_use compare_measure_opts[] = {
     {APP_OPT_WARMUP}, {APP_OPT_REPEAT}, {APP_OPT_FACE_SIZE}, {APP_OPT_LARGE},
     {APP_OPT_AGREE_RES}, {APP_OPT_NO_QUALITY}, {APP_OPT_IMAGES}, {APP_OPT_SEED, 0, "7"},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_GPU}, {APP_OPT_PRESET}, {APP_OPT_NONE}};
+    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT}, {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_GPU},
+    {APP_OPT_PRESET}, {APP_OPT_NONE}};
 static const app_use compare_lighting_opts[] = {
     {APP_OPT_BACKGROUND, 0, NULL, "none: the lighting above"}, {APP_OPT_ENV},
     {APP_OPT_ENV_INTENSITY}, {APP_OPT_ENV_ROTATION}, {APP_OPT_NONE}};
@@ -121,7 +124,8 @@ const app_program app_compare_program = {
     .sections = compare_sections,
     .epilogue =
         "Exit status: 0 all done, 1 a configuration failed (recorded with its reason)\n"
-        "or an output could not be written, 2 bad option or input, 3 no OpenGL 4.5.\n",
+        "or an output could not be written, 2 bad option or input (a scene, preset or\n"
+        "--env map inside DIR, which the outputs own, included), 3 no OpenGL 4.5.\n",
     .max_scenes = APP_MAX_SCENES,
 };
 
@@ -144,7 +148,7 @@ static const app_use view_scene_opts[] = {
     {APP_OPT_SPEED, RT}, {APP_OPT_CAMERA, RT}, {APP_OPT_AUTO_CAMERA}, {APP_OPT_EYE, RT},
     {APP_OPT_LOOK_AT, RT}, {APP_OPT_UP, RT}, {APP_OPT_FOV, RT}, {APP_OPT_ZNEAR, RT},
     {APP_OPT_ZFAR, RT}, {APP_OPT_APERTURE, RT}, {APP_OPT_FOCUS, RT},
-    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_NONE}};
+    {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT}, {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_NONE}};
 static const app_use view_technique_opts[] = {
     {APP_OPT_ENGINE, RT}, {APP_OPT_MODE, RT}, {APP_OPT_BOUNCES, RT}, {APP_OPT_SEED, RT},
     {APP_OPT_AO_DISTANCE, RT}, {APP_OPT_BACKGROUND, RT}, {APP_OPT_ENV},
@@ -165,8 +169,8 @@ static const app_section view_sections[] = {
     {"Technique (as dirt-render; the DIRT and MMRT options as its sections say):",
      view_technique_opts},
     {"Scripted mode (tests, reproducible demos; a script's `set NAME VALUE` takes the\n"
-     "options above but --window, --auto-camera, --env, --cpu-timing and\n"
-     "--max-scene-memory):", view_script_opts},
+     "options above but --window, --auto-camera, --env, --cpu-timing,\n"
+     "--max-scene-memory, --strict and --allow-outside-paths):", view_script_opts},
     {"Other:", view_other_opts},
     {NULL, NULL}};
 
@@ -182,8 +186,8 @@ const app_program app_view_program = {
         "the window lists the key bindings (also doc/viewer.md, --bindings).\n",
     .sections = view_sections,
     .epilogue =
-        "Exit status: 0 done, 1 a write failed, 2 bad option, scene or script,\n"
-        "3 no window or OpenGL 4.5 context. A saved .exr render records what made it\n"
+        "Exit status: 0 done, 1 a write failed, 2 bad option, scene or script (or an\n"
+        "output that is an input), 3 no window or OpenGL 4.5 context. A saved .exr render records what made it\n"
         "in its header (as dirt-render's do), with dirt.render_args: the dirt-render\n"
         "options of the image.\n",
     .max_scenes = 1,

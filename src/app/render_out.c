@@ -2,17 +2,22 @@
 #include "app/render_out.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/cli.h"
 #include "dirt/clock.h"
+#include "dirt/input.h"
 
 bool render_out_open(render_out *w, const char *prog, const app_opts *o, const render_seq *q,
                      int argc, char **argv)
 {
     memset(w, 0, sizeof(*w));
+    w->log = -1;
     w->prog = prog;
     w->o = o;
     w->one_frame = !q->sequence;
@@ -39,20 +44,66 @@ bool render_out_open(render_out *w, const char *prog, const app_opts *o, const r
         cli_error(prog, "out of memory");
         return false;
     }
-    if (o->log && !(w->log = fopen(o->log, "a"))) {
-        cli_error(prog, "cannot append to '%s'", o->log);
-        return false;
-    }
     return true;
 }
 
-/* Appends one line to the JSON Lines log (one write(2): lines of workers
- * sharing a log do not interleave). */
+int render_out_start(render_out *w, const dirt_scene *scene)
+{
+    const app_opts *o = w->o;
+    const char *prog = w->prog;
+    /* The files of every frame of the range (not only this worker's
+     * share), or of the one frame. */
+    long one = 0;
+    const long *frames = o->frames.count ? o->frames.frames : &one;
+    size_t num_frames = o->frames.count ? o->frames.count : 1;
+    bool env_file = o->env_path && strcmp(o->env_path, "sky");
+    cli_io io = {.scene_path = o->num_scenes ? o->scenes[0] : NULL,
+                 .scene = scene,
+                 .in = {{env_file ? o->env_path : NULL, "--env"}},
+                 .in_frames = {o->mse_reference, "--mse-reference"},
+                 .out_frames = o->output,
+                 .out_png = o->png,
+                 .frames = frames,
+                 .num_frames = num_frames,
+                 .out = {{o->stats, "--stats"}, {o->graph_dot, "--graph-dot"}, {o->log, "--log"}},
+                 .out_dirs = {{o->debug_ads, "ads_", "--debug-ads"}}};
+    if (io.scene_path && !strcmp(io.scene_path, "default"))
+        io.scene_path = NULL;
+    const dirt_session_opts *s = &o->s;
+    int rc = cli_check_io(prog, &io);
+    if (rc == DIRT_EXIT_OK)
+        rc = cli_check_camera(prog, scene, o->auto_camera ? -2 : o->camera,
+                              app_camera_choice(o) == DIRT_CAMERA_EXPLICIT, &o->look, s->width,
+                              s->height,
+                              s->engine == DIRT_ENGINE_RASTER || s->engine == DIRT_ENGINE_EMBREE,
+                              s->views != DIRT_SESSION_VIEWS_CUBE);
+    if (rc != DIRT_EXIT_OK || !o->log)
+        return rc;
+    w->log = open(o->log, O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (w->log < 0 && errno == ENOENT)
+        w->log_made = (w->log = open(o->log, O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC,
+                                     0644)) >= 0;
+    if (w->log < 0) {
+        cli_error(prog, "cannot append to '%s': %s", o->log, strerror(errno));
+        return DIRT_EXIT_USAGE;
+    }
+    return DIRT_EXIT_OK;
+}
+
+/* Appends one line to the JSON Lines log, whole or not at all
+ * (cli_log_append: one write(2), so lines of workers sharing a log do not
+ * interleave). */
 static bool log_line(render_out *w, cJSON *rec)
 {
     char *text = rec ? cJSON_PrintUnformatted(rec) : NULL;
-    bool ok = text && fprintf(w->log, "%s\n", text) > 0 && fflush(w->log) == 0;
-    free(text);
+    size_t n = text ? strlen(text) : 0;
+    char *line = text ? realloc(text, n + 2) : NULL;
+    if (line) {
+        line[n] = '\n';
+        line[n + 1] = 0;
+    }
+    bool ok = line && cli_log_append(w->log, line, n + 1);
+    free(line ? line : text);
     cJSON_Delete(rec);
     if (!ok)
         cli_error(w->prog, "cannot append to '%s'", w->o->log);
@@ -65,10 +116,12 @@ static bool compare_reference(render_out *w, long frame, const dirt_image *img,
 {
     char path[RENDER_PATH_MAX];
     seq_frame_path(w->o->mse_reference, frame, path, sizeof(path));
-    dirt_image *ref = dirt_image_read_exr(path);
+    enum dirt_input_error err = DIRT_INPUT_ERR_OK;
+    dirt_image *ref = dirt_image_read(path, NULL, &err);
     bool ok = ref && dirt_image_compare(img, ref, e);
     if (!ok)
-        cli_error(w->prog, "cannot compare with the reference '%s' (see above)", path);
+        cli_error(w->prog, "%s: cannot compare with the reference '%s' (see above)",
+                  dirt_input_error_name(ref ? DIRT_INPUT_ERR_INVALID : err), path);
     dirt_image_destroy(ref);
     return ok;
 }
@@ -79,8 +132,10 @@ int render_out_frame(render_out *w, dirt_session *s, long frame, char files[2][R
     const app_opts *o = w->o;
     const dirt_image *img = dirt_session_image(s);
     dirt_image_error err = {0};
-    if (!img || (o->mse_reference && !compare_reference(w, frame, img, &err)))
+    if (!img)
         return DIRT_EXIT_FAILURE;
+    if (o->mse_reference && !compare_reference(w, frame, img, &err))
+        return DIRT_EXIT_USAGE; /* a reference that is not one: bad input */
     dirt_session_stats *fs = &w->frames[w->count++];
     *fs = *dirt_session_get_stats(s);
     size_t na;
@@ -100,7 +155,7 @@ int render_out_frame(render_out *w, dirt_session *s, long frame, char files[2][R
     if (o->mse_reference && !o->quiet)
         fprintf(stderr, "%s: frame %ld: MSE %.6g, relative MSE %.6g against the reference\n",
                 w->prog, frame, err.mse, err.rel_mse);
-    if (!w->log)
+    if (w->log < 0)
         return DIRT_EXIT_OK;
     cJSON *rec = dirt_session_stats_json(fs);
     const dirt_camera *cam = dirt_session_camera(s);
@@ -120,7 +175,7 @@ int render_out_frame(render_out *w, dirt_session *s, long frame, char files[2][R
 bool render_out_finish(render_out *w, const dirt_session *s, const render_seq *q)
 {
     const app_opts *o = w->o;
-    if (w->log) {
+    if (w->log >= 0) {
         cJSON *sum = cJSON_CreateObject();
         cJSON *in = cJSON_AddObjectToObject(sum, "summary");
         cJSON_AddNumberToObject(in, "frames", (double)q->frames.count);
@@ -164,9 +219,16 @@ void render_out_close(render_out *w, bool ok)
 {
     for (int k = 0; !ok && k < w->num_written; k++)
         unlink(w->written[k]);
-    if (w->log)
-        fclose(w->log);
+    /* A failed run leaves no empty log and no directory it made. */
+    struct stat st;
+    if (w->log >= 0 && !ok && w->log_made && fstat(w->log, &st) == 0 && st.st_size == 0)
+        unlink(w->o->log);
+    if (w->log >= 0)
+        close(w->log);
+    if (!ok)
+        seq_remove_made_dirs();
+    seq_forget_made_dirs();
     free(w->frames);
-    w->log = NULL;
+    w->log = -1;
     w->frames = NULL;
 }

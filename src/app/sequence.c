@@ -16,6 +16,8 @@
 #include "dirt/file.h"
 
 #define MAX_FRAME 10000000L
+/* The longest file name (NAME_MAX of Linux file systems). */
+#define SEQ_NAME_MAX 255
 #define MAX_FRAMES 1000000L
 
 /* A whole non-negative integer at *p, advancing it. */
@@ -188,8 +190,11 @@ int seq_pattern_fields(const char *pattern)
     int fields = 0;
     for (const char *p = pattern; *p; p++) {
         if (*p == '#') {
+            int width = 1;
             while (p[1] == '#')
-                p++;
+                p++, width++;
+            if (width > SEQ_MAX_FIELD_WIDTH)
+                return -1;
             fields++;
         } else if (*p == '%') {
             if (p[1] == '%') {
@@ -199,9 +204,14 @@ int seq_pattern_fields(const char *pattern)
             p++;
             if (*p == '0')
                 p++;
-            while (*p >= '0' && *p <= '9')
+            int digits = 0, width = 0;
+            while (*p >= '0' && *p <= '9') {
+                if (++digits > 2)
+                    return -1; /* (also keeps the width from overflowing) */
+                width = width * 10 + (*p - '0');
                 p++;
-            if (*p != 'd')
+            }
+            if (*p != 'd' || width > SEQ_MAX_FIELD_WIDTH)
                 return -1;
             fields++;
         }
@@ -217,7 +227,9 @@ void seq_frame_path(const char *pattern, long frame, char *buf, size_t size)
             int width = 0;
             while (p[width] == '#')
                 width++;
-            int n = snprintf(buf + o, size - o, "%0*ld", width, frame);
+            int n = snprintf(buf + o, size - o, "%0*ld", width < SEQ_MAX_FIELD_WIDTH ? width
+                                                                            : SEQ_MAX_FIELD_WIDTH,
+                             frame);
             o += n > 0 ? (size_t)n : 0;
             p += width - 1;
         } else if (*p == '%' && p[1] == '%') {
@@ -230,8 +242,13 @@ void seq_frame_path(const char *pattern, long frame, char *buf, size_t size)
             if (zero)
                 q++;
             int width = 0;
-            while (*q >= '0' && *q <= '9')
-                width = width * 10 + (*q++ - '0');
+            while (*q >= '0' && *q <= '9') {
+                if (width < SEQ_MAX_FIELD_WIDTH)
+                    width = width * 10 + (*q - '0');
+                q++;
+            }
+            if (width > SEQ_MAX_FIELD_WIDTH)
+                width = SEQ_MAX_FIELD_WIDTH;
             int n = snprintf(buf + o, size - o, zero ? "%0*ld" : "%*ld", width, frame);
             o += n > 0 ? (size_t)n : 0;
             p = q; /* at the 'd' */
@@ -242,6 +259,40 @@ void seq_frame_path(const char *pattern, long frame, char *buf, size_t size)
             o = size - 1;
     }
     buf[o < size ? o : size - 1] = '\0';
+}
+
+/* The directories this process made (seq_remove_made_dirs), in order. */
+static char **made_dirs;
+static size_t num_made_dirs;
+
+static void remember_dir(const char *dir)
+{
+    char **grown = realloc(made_dirs, (num_made_dirs + 1) * sizeof(char *));
+    if (!grown)
+        return;
+    made_dirs = grown;
+    if ((made_dirs[num_made_dirs] = strdup(dir)) != NULL)
+        num_made_dirs++;
+}
+
+void seq_remove_made_dirs(void)
+{
+    while (num_made_dirs > 0) {
+        char *d = made_dirs[--num_made_dirs];
+        rmdir(d); /* only when empty: what was completed in it stays */
+        free(d);
+    }
+    free(made_dirs);
+    made_dirs = NULL;
+}
+
+void seq_forget_made_dirs(void)
+{
+    for (size_t i = 0; i < num_made_dirs; i++)
+        free(made_dirs[i]);
+    free(made_dirs);
+    made_dirs = NULL;
+    num_made_dirs = 0;
 }
 
 bool seq_make_parent_dirs(const char *path, char *why, size_t size)
@@ -256,7 +307,9 @@ bool seq_make_parent_dirs(const char *path, char *why, size_t size)
         bool end = *p == '\0';
         if (*p == '/' || end) {
             *p = '\0';
-            if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+            if (mkdir(dir, 0777) == 0) {
+                remember_dir(dir);
+            } else if (errno != EEXIST) {
                 snprintf(why, size, "cannot create directory '%s': %s", dir, strerror(errno));
                 return false;
             }
@@ -308,6 +361,36 @@ static long newest_claim(const char *frame_file, double *age)
     return g;
 }
 
+/* This host's name, as claims and temporary files write it. */
+static void host_name(char *host, size_t size)
+{
+    snprintf(host, size, "?");
+    if (gethostname(host, size - 1) != 0)
+        snprintf(host, size, "?");
+    host[size - 1] = '\0';
+}
+
+/* True when claim generation `g` of `frame_file` names this host and a
+ * process that no longer exists: its worker died (a claim of another host
+ * is judged by its age alone, doc/farm.md). */
+static bool claim_of_dead_local_worker(const char *frame_file, long g)
+{
+    char path[4300], line[256], host[128];
+    snprintf(path, sizeof(path), "%s.claim.%ld", frame_file, g);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    bool got = fgets(line, sizeof(line), f) != NULL;
+    fclose(f);
+    char claim_host[130];
+    long pid = 0;
+    if (!got || sscanf(line, "%129s %ld", claim_host, &pid) != 2 || pid <= 0)
+        return false;
+    host_name(host, sizeof(host));
+    return strcmp(claim_host, host) == 0 && pid != (long)getpid() &&
+           kill((pid_t)pid, 0) != 0 && errno == ESRCH;
+}
+
 static int claim_slot = -1;
 
 bool seq_claim_take(const char *frame_file, double timeout_s, seq_claim *c, char *why,
@@ -318,30 +401,37 @@ bool seq_claim_take(const char *frame_file, double timeout_s, seq_claim *c, char
     for (int attempt = 0; attempt < 16; attempt++) {
         double age = 0;
         long g = newest_claim(frame_file, &age);
-        if (g >= 0 && age < timeout_s)
+        if (g >= 0 && age < timeout_s && !claim_of_dead_local_worker(frame_file, g))
             return false; /* another worker holds it */
         /* No claim, or the newest is stale: make the next generation. */
         snprintf(c->path, sizeof(c->path), "%s.claim.%ld", frame_file, g + 1);
+        /* No signal between making the claim and registering it for
+         * removal (dirt_cleanup_add): a SIGTERM there would leave it. */
+        dirt_cleanup_hold();
         int fd = open(c->path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+        if (fd >= 0)
+            claim_slot = dirt_cleanup_add(c->path);
+        dirt_cleanup_release();
         if (fd < 0) {
             if (errno == EEXIST)
                 continue; /* another worker made it first: look again */
             snprintf(why, size, "cannot claim '%s': %s", frame_file, strerror(errno));
             return false;
         }
-        char host[128] = "?";
-        gethostname(host, sizeof(host) - 1);
+        char host[128];
+        host_name(host, sizeof(host));
         char line[256];
         int n = snprintf(line, sizeof(line), "%s %ld\n", host, (long)getpid());
         bool ok = write(fd, line, (size_t)n) == n;
         close(fd);
         if (!ok) {
             unlink(c->path);
+            dirt_cleanup_remove(claim_slot);
+            claim_slot = -1;
             snprintf(why, size, "cannot write the claim '%s'", c->path);
             return false;
         }
         c->held = true;
-        claim_slot = dirt_cleanup_add(c->path);
         return true;
     }
     snprintf(why, size, "cannot claim '%s': too many workers racing", frame_file);
@@ -362,8 +452,7 @@ void seq_claim_release(seq_claim *c, const char *frame_file, bool frame_done)
 {
     if (!c->held)
         return;
-    dirt_cleanup_remove(claim_slot);
-    claim_slot = -1;
+    /* Removed before it leaves the signal cleanup list. */
     if (frame_done) {
         double age;
         long g = newest_claim(frame_file, &age);
@@ -375,6 +464,8 @@ void seq_claim_release(seq_claim *c, const char *frame_file, bool frame_done)
     } else {
         unlink(c->path);
     }
+    dirt_cleanup_remove(claim_slot);
+    claim_slot = -1;
     c->held = false;
 }
 
@@ -436,9 +527,14 @@ int seq_clean_stale_temps(const char *pattern, long frame, double timeout_s)
         if (!tmp)
             continue;
         size_t name = (size_t)(tmp - e->d_name);
-        if (name < before + after || strncmp(e->d_name, pbase, before) != 0 ||
-            strncmp(e->d_name + name - after, pbase + plen - after, after) != 0 ||
-            (before == plen && name != plen))
+        /* A temporary name at the longest a name may be had its target's
+         * name cut (dirt/file.h): only the start of the name can match. */
+        bool cut = strlen(e->d_name) >= SEQ_NAME_MAX;
+        size_t lead = name < before ? name : before;
+        if (cut ? strncmp(e->d_name, pbase, lead) != 0
+                : name < before + after || strncmp(e->d_name, pbase, before) != 0 ||
+                      strncmp(e->d_name + name - after, pbase + plen - after, after) != 0 ||
+                      (before == plen && name != plen))
             continue;
         char path[8600];
         snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);

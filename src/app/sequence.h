@@ -27,18 +27,27 @@ bool seq_frames_chunk(seq_frames *f, long k, long n, char *why, size_t size);
  * the reason when they are not set or inconsistent. */
 bool seq_slurm_share(long *k, long *n, char *why, size_t size);
 
+/* The widest frame field: frames have at most 8 digits. */
+#define SEQ_MAX_FIELD_WIDTH 32
+
 /* Output names. A pattern holds one frame field: a run of '#' (the frame
  * number zero-padded to the run's length, as Blender writes it) or one
  * printf integer conversion (%d, %04d; "%%" is a literal '%'). 1 when
  * `pattern` has one field, 0 when none, -1 when it is malformed (a second
- * field, a stray '%'). */
+ * field, a stray '%', a field wider than SEQ_MAX_FIELD_WIDTH). */
 int seq_pattern_fields(const char *pattern);
 /* The file of `frame` (the pattern itself when it has no field). */
 void seq_frame_path(const char *pattern, long frame, char *buf, size_t size);
 
 /* Creates the directory that holds `path`, and its parents (mode 0777 less
- * the umask). False with the reason when one cannot be made. */
+ * the umask). False with the reason when one cannot be made. The
+ * directories made are remembered for seq_remove_made_dirs. */
 bool seq_make_parent_dirs(const char *path, char *why, size_t size);
+/* A failed run: removes the directories seq_make_parent_dirs made, newest
+ * first, each only when empty (a frame completed in one keeps it). */
+void seq_remove_made_dirs(void);
+/* A run that succeeded: forgets them. */
+void seq_forget_made_dirs(void);
 
 /* True when every one of `paths` exists as a regular, non-empty file (an
  * atomic writer renames a complete file into place; temp files never
@@ -47,9 +56,12 @@ bool seq_complete(const char *const *paths, int count);
 
 /* Claims for workers sharing a directory: frame file F is claimed by the
  * newest of F.claim.0, F.claim.1, ..., each made with O_EXCL (only one
- * worker can make a given one). A claim whose time stamp is older than
- * `timeout_s` is stale (its worker died): the next generation is made to
- * take it over. A worker keeps its claim fresh with seq_claim_touch. */
+ * worker can make a given one), holding "HOST PID" of its worker. A claim
+ * is stale (its worker died) when its HOST is this host and no process PID
+ * exists, at once; any claim whose time stamp is older than `timeout_s`
+ * (the only sign for a worker of another host). A stale claim is taken
+ * over by making the next generation. A worker keeps its claim fresh with
+ * seq_claim_touch. */
 typedef struct seq_claim {
     char path[4200];
     bool held;

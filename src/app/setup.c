@@ -8,20 +8,33 @@
 #include "dirt/log.h"
 #include "dirt/version.h"
 
+dirt_load_opts app_load_opts(const app_opts *o)
+{
+    return (dirt_load_opts){.max_bytes = o->max_scene_bytes, .strict = o->strict,
+                            .allow_outside = o->allow_outside_paths};
+}
+
+dirt_env_opts app_env_opts(const app_opts *o)
+{
+    return (dirt_env_opts){.intensity = o->env_intensity, .rotation = o->env_rotation,
+                           .max_bytes = o->max_scene_bytes};
+}
+
 dirt_scene *app_load_scene(const char *prog, const char *path, const app_opts *o)
 {
     bool def = !path || !strcmp(path, "default");
-    dirt_load_opts lo = {.max_bytes = o->max_scene_bytes};
+    dirt_load_opts lo = app_load_opts(o);
     dirt_scene *scene = def ? dirt_scene_create_default() : dirt_scene_load(path, &lo);
     if (scene)
         return scene;
     if (!def && dirt_scene_last_error() == DIRT_SCENE_ERR_TOO_LARGE)
-        cli_error(prog, "cannot load scene '%s': it needs more memory than --max-scene-memory "
-                  "allows (%zu bytes; see the error above): raise the budget with "
-                  "--max-scene-memory (such as 4G; a mesh takes about 160 bytes a triangle)", path,
+        cli_error(prog, "cannot load scene '%s': TOO_LARGE (it needs more memory than "
+                  "--max-scene-memory allows, %zu bytes; see the error above): raise the "
+                  "budget with --max-scene-memory (such as 4G; a mesh takes about 160 bytes "
+                  "a triangle)", path,
                   o->max_scene_bytes);
     else
-        cli_error(prog, "cannot load scene '%s' (see the error above)", def ? "default" : path);
+        cli_scene_error(prog, def ? NULL : path);
     return NULL;
 }
 
@@ -31,7 +44,7 @@ bool app_load_env(const char *prog, app_opts *o, dirt_env **env)
     if (!o->env_path)
         return true;
     char why[512];
-    dirt_env_opts eo = {.intensity = o->env_intensity, .rotation = o->env_rotation};
+    dirt_env_opts eo = app_env_opts(o);
     *env = dirt_env_load(o->env_path, &eo, why, sizeof(why));
     if (!*env) {
         cli_error(prog, "--env: %s", why);

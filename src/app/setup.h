@@ -12,13 +12,22 @@
 #include "dirt/env.h"
 #include "dirt/scene.h"
 
-/* Loads `path` (NULL or "default": the embedded default scene) within
- * o->max_scene_bytes. NULL after printing why. */
+/* The loader's options of the command line: --max-scene-memory,
+ * --strict, --allow-outside-paths. */
+dirt_load_opts app_load_opts(const app_opts *o);
+/* The environment's: --env-intensity, --env-rotation, and
+ * --max-scene-memory as the bound of loading the map. */
+dirt_env_opts app_env_opts(const app_opts *o);
+
+/* Loads `path` (NULL or "default": the embedded default scene) with
+ * app_load_opts. NULL after printing why: one line that names the
+ * reason's id (dirt_scene_last_error; TOO_LARGE names --max-scene-memory
+ * too). */
 dirt_scene *app_load_scene(const char *prog, const char *path, const app_opts *o);
 
-/* The environment of --env (with --env-intensity, --env-rotation), set as
- * o->s.env; true without --env. False after printing why. The map is the
- * caller's (dirt_env_destroy). */
+/* The environment of --env (app_env_opts), set as o->s.env; true without
+ * --env. False after printing why (led by the reason's id, dirt/input.h).
+ * The map is the caller's (dirt_env_destroy). */
 bool app_load_env(const char *prog, app_opts *o, dirt_env **env);
 
 /* --camera and --clip exist in `scene`. False after printing why. */

@@ -40,6 +40,7 @@ enum buffer {
 enum cam_mode { CAM_DEFAULT, CAM_AUTO, CAM_SCENE, CAM_LOOK };
 
 #define RING 240
+#define INSPECT_CHANNELS 20
 
 typedef struct viewer {
     app_opts o;                 /* the command line, then the panels and the script */
@@ -81,6 +82,7 @@ typedef struct viewer {
     int num_frame_passes;
     /* input and script */
     int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
+    bool pressed[DIRT_NUM_KEYS]; /* a script key went down in this frame */
     view_script script;
     size_t next_action;
     long wait_frames;
@@ -98,12 +100,25 @@ typedef struct viewer {
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
+    int slow_frame_ms;          /* test hook DIRT_VIEW_SLOW_FRAME_MS: added to every frame */
+    /* the inspector: every channel of both images under the cursor */
+    double cursor_x, cursor_y;  /* window pixels */
+    struct view_probe {
+        bool valid;             /* the cursor is over the image, which has samples */
+        int x, y;               /* render pixel */
+        int count;
+        char names[INSPECT_CHANNELS][32];
+        float values[INSPECT_CHANNELS];
+    } probe[2];                 /* the main session, the comparison */
 } viewer;
 
 /* The status line of the Settings panel, also printed unless --quiet. */
 void view_status(viewer *v, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* view_sessions.c */
+/* The samples session `s` accumulates to: --spp (0: no limit), 1 for the
+ * raster preview (its one image is the whole result). */
+int view_target(const viewer *v, const dirt_session *s);
 dirt_session_opts view_wanted_opts(const viewer *v, int engine);
 bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
@@ -130,6 +145,10 @@ void view_focus_at(viewer *v);
 /* view_display.c */
 void view_fit(const viewer *v, int w, int h, int r[4]);
 void view_draw(viewer *v, bool preview);
+
+/* The values of every channel (R, G, B, A, then the AOVs) of both images
+ * at the render pixel under the cursor (reads the images back). */
+void view_inspect(viewer *v);
 
 /* view_panels.c */
 void view_panels(viewer *v);

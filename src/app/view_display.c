@@ -2,6 +2,7 @@
  * window, the raster preview while the camera moves, and the buffers:
  * AOVs and the structure's pictures as heat maps. */
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -167,4 +168,46 @@ void view_draw(viewer *v, bool preview)
     p.x = r[0], p.y = r[1], p.w = r[2], p.h = r[3];
     if (p.texture)
         dirt_gpu_present(v->gpu, &p);
+}
+
+/* One session's channels at render pixel (x, y); false off the image or
+ * before samples. */
+static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
+{
+    pr->valid = false;
+    if (!s || dirt_session_samples(s) == 0)
+        return false;
+    const dirt_image *img = dirt_session_image(s);
+    if (!img || x < 0 || y < 0 || x >= img->width || y >= img->height)
+        return false;
+    size_t i = (size_t)y * img->width + x;
+    static const char *const rgba[4] = {"R", "G", "B", "A"};
+    pr->count = 0;
+    for (int k = 0; k < 4; k++) {
+        snprintf(pr->names[pr->count], sizeof(pr->names[0]), "%s", rgba[k]);
+        pr->values[pr->count++] = img->rgba[4 * i + k];
+    }
+    for (int c = 0; c < img->channel_count && pr->count < INSPECT_CHANNELS; c++) {
+        snprintf(pr->names[pr->count], sizeof(pr->names[0]), "%s", img->channels[c].name);
+        pr->values[pr->count++] = img->channels[c].data[i];
+    }
+    pr->x = x;
+    pr->y = y;
+    pr->valid = true;
+    return true;
+}
+
+void view_inspect(viewer *v)
+{
+    v->probe[0].valid = v->probe[1].valid = false;
+    if (v->win_w <= 0 || v->rw <= 0)
+        return;
+    int r[4];
+    view_fit(v, v->rw, v->rh, r);
+    int x = (int)floor((v->cursor_x - r[0]) * v->rw / r[2]);
+    int y = (int)floor((v->cursor_y - r[1]) * v->rh / r[3]);
+    if (x < 0 || y < 0 || x >= v->rw || y >= v->rh)
+        return;
+    probe_session(v->s, x, y, &v->probe[0]);
+    probe_session(v->cmp, x, y, &v->probe[1]);
 }

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "app/view.h"
+#include "app/setup.h"
 #include "app/view_camera.h"
 
 static bool key_held(const viewer *v, const dirt_window_input *in, enum dirt_key k)
@@ -19,17 +20,19 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
                        bool ui_keys)
 {
     if (!ui_mouse) {
-        if (in->button[DIRT_MOUSE_LEFT] && !in->button_pressed[DIRT_MOUSE_LEFT] &&
-            (in->mouse_dx != 0 || in->mouse_dy != 0)) {
+        /* Drags: the cursor's motion while the button was down since the
+         * last poll, however short the drag or slow the frame. */
+        double ldx = in->drag_dx[DIRT_MOUSE_LEFT], ldy = in->drag_dy[DIRT_MOUSE_LEFT];
+        if (ldx != 0 || ldy != 0) {
             view_to_look(v);
-            vcam_orbit(&v->look, (float)in->mouse_dx * 0.3f, (float)in->mouse_dy * 0.3f);
+            vcam_orbit(&v->look, (float)ldx * 0.3f, (float)ldy * 0.3f);
             v->cam_dirty = v->moving = true;
         }
-        if ((in->button[DIRT_MOUSE_RIGHT] || in->button[DIRT_MOUSE_MIDDLE]) &&
-            (in->mouse_dx != 0 || in->mouse_dy != 0) && in->height > 0) {
+        double pdx = in->drag_dx[DIRT_MOUSE_RIGHT] + in->drag_dx[DIRT_MOUSE_MIDDLE];
+        double pdy = in->drag_dy[DIRT_MOUSE_RIGHT] + in->drag_dy[DIRT_MOUSE_MIDDLE];
+        if ((pdx != 0 || pdy != 0) && in->height > 0) {
             view_to_look(v);
-            vcam_pan(&v->look, (float)(in->mouse_dx / in->height),
-                     (float)(-in->mouse_dy / in->height));
+            vcam_pan(&v->look, (float)(pdx / in->height), (float)(-pdy / in->height));
             v->cam_dirty = v->moving = true;
         }
         if (in->scroll != 0) {
@@ -58,7 +61,9 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         vcam_fly(&v->look, fw, rt, up);
         v->cam_dirty = v->moving = true;
     }
-    const bool *p = in->key_pressed;
+    bool p[DIRT_NUM_KEYS];
+    for (int k = 0; k < DIRT_NUM_KEYS; k++)
+        p[k] = in->key_pressed[k] || v->pressed[k];
     if (p[DIRT_KEY_ESCAPE])
         v->quit = true;
     if (p[DIRT_KEY_F1])
@@ -125,7 +130,8 @@ void view_focus_at(viewer *v)
     view_status(v, "focus %.4g (aperture %.4g)", d, v->o.s.aperture);
 }
 
-/* Opens the scene last dropped on the window (within --max-scene-memory);
+/* Opens the scene last dropped on the window (with --max-scene-memory,
+ * --strict and --allow-outside-paths);
  * a scene that does not load leaves the shown one. False when the sessions
  * for the new one cannot be made. */
 bool view_open_drops(viewer *v, const dirt_window_input *in)
@@ -134,7 +140,7 @@ bool view_open_drops(viewer *v, const dirt_window_input *in)
         return true;
     char keep[4096];
     snprintf(keep, sizeof(keep), "%s", in->drops[in->num_drops - 1]);
-    dirt_load_opts lo = {.max_bytes = v->o.max_scene_bytes};
+    dirt_load_opts lo = app_load_opts(&v->o);
     dirt_scene *sc = dirt_scene_load(keep, &lo);
     if (!sc) {
         view_status(v, "could not open '%s' (see the log); kept the scene", keep);

@@ -174,6 +174,14 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddItemToObject(r, "window", cJSON_CreateIntArray(win, 2));
     cJSON_AddItemToObject(r, "render", cJSON_CreateIntArray(ren, 2));
     cJSON_AddNumberToObject(r, "samples", dirt_session_samples(v->s));
+    cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
+    cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
+    cJSON_AddBoolToObject(r, "diff", v->o.diff);
+    cJSON_AddStringToObject(r, "buffer", app_buffer_names[v->o.buffer]);
+    cJSON_AddBoolToObject(r, "panels_shown", !v->o.no_ui);
+    cJSON_AddBoolToObject(r, "help_shown", v->show_help);
+    cJSON_AddNumberToObject(r, "exposure", v->o.exposure);
+    cJSON_AddBoolToObject(r, "play", v->o.play);
     cJSON_AddNumberToObject(r, "frames", (double)v->frame);
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
@@ -224,6 +232,20 @@ bool view_write_report(viewer *v, const char *path)
     cJSON *pj = cJSON_AddObjectToObject(r, "provenance");
     for (size_t i = 0; i < na; i++)
         cJSON_AddStringToObject(pj, attrs[i].name, attrs[i].value);
+    view_inspect(v);
+    cJSON *insp = cJSON_AddObjectToObject(r, "inspect");
+    for (int k = 0; k < 2; k++) {
+        const struct view_probe *pr = &v->probe[k];
+        if (!pr->valid)
+            continue;
+        if (k == 0) {
+            int px[2] = {pr->x, pr->y};
+            cJSON_AddItemToObject(insp, "pixel", cJSON_CreateIntArray(px, 2));
+        }
+        cJSON *side = cJSON_AddObjectToObject(insp, k ? "b" : "a");
+        for (int ch = 0; ch < pr->count; ch++)
+            cJSON_AddNumberToObject(side, pr->names[ch], pr->values[ch]);
+    }
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)
         cJSON_AddItemToArray(panels, cJSON_CreateFloatArray(v->panels[i], 4));

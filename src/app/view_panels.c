@@ -3,6 +3,7 @@
  * passes, buffers) and the key bindings. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "app/view.h"
 
@@ -195,6 +196,31 @@ static void panel_numbers(viewer *v)
         x = 346;
     if (dirt_ui_begin("Numbers", NULL, x, 8, w, 420)) {
         const dirt_session_stats *st = &v->last;
+        if (dirt_ui_header("Inspector (under the cursor)", true)) {
+            view_inspect(v);
+            const struct view_probe *a = &v->probe[0], *b = &v->probe[1];
+            if (!a->valid) {
+                dirt_ui_text_disabled("move the cursor over the image");
+            } else {
+                dirt_ui_text("pixel %d, %d", a->x, a->y);
+                const char *heads[3] = {"channel", dirt_engine_names[v->applied.engine],
+                                        b->valid ? dirt_engine_names[v->cmp_engine] : ""};
+                if (dirt_ui_table_begin("inspect", b->valid ? 3 : 2, heads)) {
+                    for (int c = 0; c < a->count; c++) {
+                        dirt_ui_table_row();
+                        dirt_ui_table_cell("%s", a->names[c]);
+                        dirt_ui_table_cell("%.6g", a->values[c]);
+                        float vb = NAN;
+                        for (int j = 0; b->valid && j < b->count; j++)
+                            if (!strcmp(b->names[j], a->names[c]))
+                                vb = b->values[j];
+                        if (b->valid)
+                            dirt_ui_table_cell("%.6g", vb);
+                    }
+                    dirt_ui_table_end();
+                }
+            }
+        }
         float fmax = 1;
         for (int i = 0; i < v->ring_count; i++)
             fmax = fmaxf(fmax, v->frame_ms[i]);

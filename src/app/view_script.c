@@ -1,11 +1,14 @@
 /* dirt-view's script parser (view_script.h). */
 #include "app/view_script.h"
 
+#include "dirt/input.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 static const struct {
     const char *word;
@@ -197,41 +200,18 @@ error:
 bool vs_load(const char *path, view_script *out, char *why, size_t size)
 {
     memset(out, 0, sizeof(*out));
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(why, size, "cannot read script '%s': %s", path, strerror(errno));
+    enum dirt_input_error e;
+    size_t len = 0;
+    char *text = dirt_input_read(path, (size_t)64 << 20, &len, &e);
+    if (!text) {
+        snprintf(why, size, "%s: cannot read script '%s': %s%s%s", dirt_input_error_name(e), path,
+                 dirt_input_error_str(e), e == DIRT_INPUT_ERR_IO ? ": " : "",
+                 e == DIRT_INPUT_ERR_IO ? strerror(errno) : "");
         return false;
     }
-    char *text = NULL;
-    size_t len = 0, cap = 0;
-    bool ok = true;
-    for (;;) {
-        if (len + 4096 + 1 > cap) {
-            cap = cap ? 2 * cap : 8192;
-            char *grown = realloc(text, cap);
-            if (!grown || cap > ((size_t)64 << 20)) {
-                free(grown ? grown : text);
-                text = NULL;
-                ok = false;
-                break;
-            }
-            text = grown;
-        }
-        size_t got = fread(text + len, 1, 4096, f);
-        len += got;
-        if (got < 4096)
-            break;
-    }
-    ok = ok && !ferror(f);
-    fclose(f);
-    if (!ok) {
-        snprintf(why, size, "cannot read script '%s' (read error, or larger than 64 MiB)", path);
-        free(text);
-        return false;
-    }
-    text[len] = '\0';
+    bool ok;
     if (memchr(text, '\0', len)) {
-        snprintf(why, size, "script '%s' is not text", path);
+        snprintf(why, size, "INVALID: script '%s' is not text", path);
         free(text);
         return false;
     }
@@ -241,6 +221,25 @@ bool vs_load(const char *path, view_script *out, char *why, size_t size)
         snprintf(why, size, "script '%s', %s", path, inner);
     free(text);
     return ok;
+}
+
+size_t vs_outputs(const view_script *s, const char **out, char (*png)[4200], size_t max)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < s->count && n < max; i++) {
+        const vs_action *a = &s->actions[i];
+        if (a->kind != VS_SCREENSHOT && a->kind != VS_SAVE_IMAGE && a->kind != VS_REPORT)
+            continue;
+        out[n++] = a->text;
+        size_t len = strlen(a->text);
+        if (a->kind == VS_SAVE_IMAGE && n < max && len >= 4 &&
+            !strcasecmp(a->text + len - 4, ".exr")) {
+            snprintf(png[n], 4200, "%.*s.png", (int)(len - 4), a->text);
+            out[n] = png[n];
+            n++;
+        }
+    }
+    return n;
 }
 
 void vs_free(view_script *s)

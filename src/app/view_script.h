@@ -49,8 +49,16 @@ typedef struct view_script {
 
 /* Parses `text`. False with "line N: why" in `why` on the first bad line. */
 bool vs_parse(const char *text, view_script *out, char *why, size_t size);
-/* Reads and parses a file. False with the reason in `why`. */
+/* Reads and parses a file: a regular file (a FIFO, device or directory
+ * fails at once, "NOT_REGULAR: ..."), at most 64 MiB ("TOO_LARGE: ..."), of
+ * text. False with the reason in `why`, led by its id (dirt/input.h) when
+ * the file cannot be read. */
 bool vs_load(const char *path, view_script *out, char *why, size_t size);
+/* The files the script's actions write (screenshot, save-image and the PNG
+ * beside an .exr, report), at most `max` into `out` (pointers into `s`'s
+ * actions, or into `png`, `max` buffers of 4200 bytes for the PNGs);
+ * returns how many. */
+size_t vs_outputs(const view_script *s, const char **out, char (*png)[4200], size_t max);
 /* Accepts an empty script. */
 void vs_free(view_script *s);
 

@@ -23,10 +23,15 @@ bool view_run_script(viewer *v)
         v->wait_file[0] = '\0';
     }
     if (v->wait_samples > 0) {
-        int target = v->wait_samples;
-        if (dirt_session_samples(v->s) < target &&
-            (v->o.spp == 0 || dirt_session_samples(v->s) < v->o.spp))
-            return true;
+        /* The image shown: the main session's, and the comparison's too. */
+        dirt_session *both[2] = {v->s, v->cmp};
+        for (int i = 0; i < 2; i++) {
+            if (!both[i])
+                continue;
+            int have = dirt_session_samples(both[i]), target = view_target(v, both[i]);
+            if (have < v->wait_samples && (target == 0 || have < target))
+                return true;
+        }
         v->wait_samples = 0;
     }
     while (v->next_action < v->script.count) {
@@ -78,9 +83,13 @@ bool view_run_script(viewer *v)
             }
             v->cam_dirty = true;
             break;
-        case VS_KEY:
-            v->held[dirt_key_from_name(a->name)] = (int)a->num[0];
+        case VS_KEY: {
+            /* Down in this frame (the toggles act), held for num[0] frames. */
+            enum dirt_key k = dirt_key_from_name(a->name);
+            v->held[k] = (int)a->num[0];
+            v->pressed[k] = true;
             break;
+        }
         case VS_CLICK:
             v->click_pending = true;
             v->click_x = a->num[0];
@@ -146,7 +155,8 @@ bool view_run_script(viewer *v)
 }
 
 /* The script's `set` and `key` actions, tried on a copy of the options and
- * names before the window opens. */
+ * names, and its output paths (screenshot, save-image, report: creatable,
+ * parent folders made), before the window opens. */
 bool view_check_script(const view_script *sc, const app_opts *o)
 {
     static app_opts scratch; /* large: its lists */
@@ -155,6 +165,12 @@ bool view_check_script(const view_script *sc, const app_opts *o)
         const vs_action *a = &sc->actions[i];
         if (a->kind == VS_KEY && dirt_key_from_name(a->name) == DIRT_KEY_NONE) {
             cli_error(PROG, "script line %d: unknown key '%s'", a->line, a->name);
+            return false;
+        }
+        bool output = a->kind == VS_SCREENSHOT || a->kind == VS_SAVE_IMAGE ||
+                      a->kind == VS_REPORT;
+        if (output && !cli_creatable(PROG, a->text)) {
+            cli_error(PROG, "script line %d: '%s' cannot be written", a->line, a->text);
             return false;
         }
         if (a->kind != VS_SET)

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "app/setup.h"
 #include "app/view.h"
 
 /* The session options the viewer's settings ask for, for `engine`. */
@@ -22,6 +23,11 @@ dirt_session_opts view_wanted_opts(const viewer *v, int engine)
     if (!(s.aperture > 0))
         s.focus = 0;
     return s;
+}
+
+int view_target(const viewer *v, const dirt_session *s)
+{
+    return dirt_session_get_opts(s)->engine == DIRT_ENGINE_RASTER ? 1 : v->o.spp;
 }
 
 static float scene_diagonal(const dirt_frame *f)
@@ -97,7 +103,7 @@ static bool sync_env(viewer *v)
         (v->o.env_intensity == v->env_intensity && v->o.env_rotation == v->env_rotation))
         return true;
     char why[512];
-    dirt_env_opts eo = {.intensity = v->o.env_intensity, .rotation = v->o.env_rotation};
+    dirt_env_opts eo = app_env_opts(&v->o);
     dirt_env *e = dirt_env_load(v->o.env_path, &eo, why, sizeof(why));
     if (!e) {
         view_status(v, "environment: %s", why);

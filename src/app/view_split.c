@@ -18,8 +18,8 @@ bool view_sync_compare(viewer *v)
         v->cmp_engine = -1;
         if (want_cmp >= 0) {
             dirt_session_opts co = view_wanted_opts(v, want_cmp);
-            v->cmp = dirt_session_create(want_cmp == DIRT_ENGINE_EMBREE ? NULL : v->gpu,
-                                         v->scene, &co);
+            /* Every engine gets the GPU: Embree's image is uploaded for display. */
+            v->cmp = dirt_session_create(v->gpu, v->scene, &co);
             dirt_eval_opts eval = {.clip = v->o.clip, .loop = v->o.loop};
             if (!v->cmp || !dirt_session_set_time(v->cmp, v->o.time, &eval) ||
                 !view_apply_camera(v, v->cmp)) {
@@ -46,8 +46,8 @@ void view_sample_compare(viewer *v)
 {
     if (!v->cmp)
         return;
-    int hc = dirt_session_samples(v->cmp);
-    if ((v->o.spp == 0 || hc < v->o.spp) && !dirt_session_add_samples(v->cmp, 1, NULL, NULL)) {
+    int hc = dirt_session_samples(v->cmp), target = view_target(v, v->cmp);
+    if ((target == 0 || hc < target) && !dirt_session_add_samples(v->cmp, 1, NULL, NULL)) {
         view_status(v, "the comparison engine failed (see the log); split view off");
         v->o.compare = 0;
     }

@@ -123,6 +123,11 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
  * parts of its split arrays at their units. */
 void ads_bind_all(dirt_ads *a);
 
+/* The barrier bits of shaders' accesses of the structure's arrays after
+ * the build's shaders wrote them (gl_split_barrier of each): what a
+ * hand-written barrier before a trace, Fetch or visibility draw issues. */
+GLbitfield ads_split_barriers(dirt_ads *a);
+
 /* Binds the parts of the split arrays that are split (a pass body's part
  * of the binding: the frame graph binds the storage blocks). */
 void ads_bind_split(dirt_ads *a);

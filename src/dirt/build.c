@@ -445,6 +445,16 @@ void ads_bind_split(dirt_ads *a)
     }
 }
 
+GLbitfield ads_split_barriers(dirt_ads *a)
+{
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    GLbitfield bits = 0;
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++)
+        bits |= gl_split_barrier(arr[i]);
+    return bits;
+}
+
 void ads_bind_all(dirt_ads *a)
 {
     gl_split *arr[ADS_NUM_ARRAYS];
@@ -724,6 +734,11 @@ static bool make_graphs(dirt_ads *a)
         use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
     }
     add_read_counters(a, g);
+    /* The three graphs share the structure's buffers: each one's first
+     * access of a buffer gets the barrier the others' writes need. */
+    fg_set_shared_imports(a->graph, true);
+    fg_set_shared_imports(a->fill, true);
+    fg_set_shared_imports(a->bound, true);
     if (!fg_compile(a->graph) || !fg_compile(a->fill) || !fg_compile(a->bound))
         return false;
     a->graph_atlas_w = a->set.atlas_width;
@@ -745,11 +760,10 @@ static void update_imports(dirt_ads *a)
     }
 }
 
-/* Runs one graph, adds its pass times; shader writes of the graph before
- * are made visible first (graphs do not track each other). */
+/* Runs one graph, adds its pass times (the graphs share the structure's
+ * buffers: fg_set_shared_imports fences what the others wrote). */
 static bool run_graph(fg_graph *g, double *ms, enum dirt_clock *clock)
 {
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
     fg_exec_opts eo = {.validate = true};
     if (!fg_execute(g, &eo))
         return false;
@@ -858,8 +872,8 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     if (!run_graph(a->fill, ms, &clock))
         goto done;
     st->fill_runs = 1;
-    /* The trace and the next build see the lists. */
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    /* (Its readers fence: the trace, Fetch and visibility at their entry,
+     * dirt_ads_read before its readback.) */
     struct dirt_gpu_ads_counters counters = a->counters_cpu;
     st->primitives = a->num_primitives;
     st->tiles = (uint64_t)a->set.num_tiles;
@@ -927,6 +941,7 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
         dirt_ads_data_free(out);
         return false;
     }
+    /* The fill pass wrote the lists after the build's last counter readback. */
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!gl_split_read(&a->depth, 0, (size_t)out->pyramid_size, out->depth) ||
         !gl_split_read(&a->heads, 0, heads, out->heads) ||

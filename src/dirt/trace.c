@@ -15,6 +15,12 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                 "dirt hit heads"))
         return false;
     gl_group_push("dirt trace");
+    /* Rays may come from a shader (the integrator's ray generation); the
+     * clears below overwrite what earlier traces wrote with shaders; the
+     * structure's arrays come from the build's shaders (image loads once
+     * split: ads_split_barriers). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    ads_split_barriers(a));
     static const uint32_t zero = 0, end = DIRT_LIST_END;
     if (stats) /* per-call abort count; else it accumulates until reset */
         glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
@@ -24,7 +30,9 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     ads_bind_all(a);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
+    /* Only a linking trace touches the hit lists (the barrier checker takes a
+     * bound writable block as written). */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, link ? a->hit_heads : 0);
     /* Alpha-tested traversal and the large primitives: each its own build
      * of the shader (opaque scenes, and structures without large
      * primitives, keep the trace without). */
@@ -56,8 +64,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
     }
-    /* Rays may come from a shader (the integrator's ray generation). */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* Timed here only when called on its own (stats requested); inside a
      * frame graph the graph times the pass (GL timer queries don't nest). */
     if (stats)
@@ -66,7 +72,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     if (stats)
         gl_timer_end(&a->trace_timer);
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     if (stats) {
         *stats = (dirt_trace_stats){.rays = count, .ms = a->trace_timer.ms,
@@ -98,6 +103,9 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
     glUseProgram(raster ? a->prog_fetch_miss.id : a->prog_fetch.id);
     gl_dispatch_rays(batch, count, 0);
     if (raster) {
+        /* The misses' shading points, then the hits': the barrier checker
+         * tracks whole buffers, and two commands writing one need it. */
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         if (a->fetch_fbo_w != a->set.atlas_width || a->fetch_fbo_h != a->set.atlas_height) {
             glNamedFramebufferParameteri(a->fetch_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
                                          a->set.atlas_width);
@@ -119,7 +127,6 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     return gl_check("dirt fetch");
 }
@@ -147,10 +154,10 @@ bool dirt_ads_trace(dirt_ads *a, const dirt_ray *rays, size_t count, dirt_hit *h
     *stats = (dirt_trace_stats){.ms = -1, .clock = DIRT_CLOCK_NONE};
     if (!count)
         return true;
+    /* With stats (always here) ads_trace_gl fenced its writes for readback. */
     if (!upload_rays(a, rays, count) ||
         !ads_trace_gl(a, a->rays, a->hits, (uint32_t)count, opts, false, stats))
         return false;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return gl_buffer_read(a->hits, 0, count * sizeof(dirt_hit), hits);
 }
 
@@ -193,7 +200,6 @@ void ads_reset_ray_count(dirt_ads *a)
 bool ads_read_counts(dirt_ads *a, uint64_t *rays, uint64_t *aborted)
 {
     struct dirt_gpu_ads_counters c;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!gl_buffer_read(a->counters, 0, sizeof(c), &c))
         return false;
     *rays = c.fill.w;
@@ -242,6 +248,11 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
                 "dirt hit heads"))
         return false;
     gl_group_push("dirt direct visibility");
+    /* The clear and the resolve's writes of the hit lists follow earlier
+     * traces' and Fetches' accesses; the draw reads the structure (image
+     * loads once split: ads_split_barriers). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    ads_split_barriers(a));
     static const uint32_t end = DIRT_LIST_END, zero4[4] = {0, 0, 0, 0};
     static const float one = 1.0f;
     glClearNamedBufferData(a->hit_heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
@@ -261,7 +272,8 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    /* (The resolve fetches what the draw wrote through the framebuffer:
+     * ordered by GL, no barrier.) */
     glUseProgram(a->prog_vis_resolve.id);
     glUniform1i(DIRT_LOC_VIS_RESOLVE_VIEW, a->set.camera_view);
     glBindTextureUnit(DIRT_UNIT_VISIBILITY, a->vis_color);
@@ -270,7 +282,6 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     gl_dispatch_rows((size_t)v->width * v->height);
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl_group_pop();
     return gl_check("dirt direct visibility");
 }

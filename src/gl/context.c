@@ -315,6 +315,22 @@ static void probe_caps(dirt_gpu *gpu)
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &c->max_ssbo_bindings);
 }
 
+/* The GPU current on this thread (gl_current). */
+static _Thread_local dirt_gpu *current_gpu;
+
+dirt_gpu *gl_current(void)
+{
+    return current_gpu;
+}
+
+/* True when environment variable `name` is set to something other than
+ * "" or "0". */
+static bool env_flag(const char *name)
+{
+    const char *v = getenv(name);
+    return v && *v && strcmp(v, "0") != 0;
+}
+
 dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
 {
     dirt_gpu *gpu = calloc(1, sizeof(*gpu));
@@ -324,6 +340,14 @@ dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
     }
     if (opts)
         gpu->opts = *opts;
+    /* Mesa's zink (22.3) specializes shaders on the values of uniforms
+     * that steer branches ("inlined uniforms") and, when the program
+     * changes and the new one's values equal the previous program's,
+     * keeps the new one's variant made for its old values: MMRT's trace
+     * read a stale u_ray_batch in chunked renders (test gl_uniforms). Off
+     * before the driver reads it, unless the environment says otherwise;
+     * no other driver reads the variable. */
+    setenv("ZINK_INLINE_UNIFORMS", "0", 0);
     if (!(gpu->opts.window ? glfw_create(gpu) : egl_create(gpu)))
         goto error;
     probe_caps(gpu);
@@ -332,8 +356,18 @@ dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts)
                    gpu->caps.gl_minor, gpu->caps.renderer);
         goto error;
     }
+    const char *want = getenv("DIRT_EXPECT_RENDERER");
+    if (want && *want && !contains_ci(gpu->caps.renderer, want)) {
+        DIRT_ERROR("DIRT_EXPECT_RENDERER=%s, but the context's renderer is '%s' (did the "
+                   "driver fall back?)", want, gpu->caps.renderer);
+        goto error;
+    }
     if (!gpu->opts.no_debug)
         gl_debug_install(gpu);
+    gpu->poison = gpu->opts.poison || env_flag("DIRT_POISON");
+    current_gpu = gpu;
+    if (!gl_check_init(gpu))
+        goto error;
     char desc[512];
     dirt_gpu_describe(gpu, desc, sizeof(desc));
     DIRT_DEBUG("%s", desc);
@@ -353,6 +387,9 @@ void dirt_gpu_destroy(dirt_gpu *gpu)
         gl_ui_release(gpu);
     }
     gl_present_release(gpu);
+    if (current_gpu == gpu)
+        current_gpu = NULL;
+    gl_check_release(gpu);
     if (gpu->egl_display) {
         eglMakeCurrent(gpu->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (gpu->egl_context)
@@ -423,6 +460,11 @@ void dirt_gpu_window_size(dirt_gpu *gpu, int *width, int *height)
     *width = *height = 0;
     if (gpu->window)
         glfwGetFramebufferSize(gpu->window, width, height);
+}
+
+bool dirt_gpu_poisons(const dirt_gpu *gpu)
+{
+    return gpu->poison;
 }
 
 uint64_t dirt_gpu_error_count(const dirt_gpu *gpu)

@@ -79,11 +79,13 @@ void gl_label(GLenum type, GLuint id, const char *fmt, ...)
 void gl_group_push(const char *name)
 {
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
+    gl_check_group(name);
 }
 
 void gl_group_pop(void)
 {
     glPopDebugGroup();
+    gl_check_group(NULL);
 }
 
 static const char *gl_error_name(GLenum e)

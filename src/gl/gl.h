@@ -35,6 +35,8 @@ struct dirt_gpu {
     uint64_t error_count;
     bool in_finish_timer;
     dirt_gpu_query_counts queries; /* timer.c: the time queries' counts */
+    bool poison;                   /* poison.c: fill new memory (dirt_gpu_poisons) */
+    struct gl_checker *check;      /* check.c: the barrier checker, NULL when off */
 };
 
 /* ---- capabilities (context.c) ---- */
@@ -44,6 +46,11 @@ struct dirt_gpu {
  * driver's again for 0 or anything not below it. Objects made before keep
  * what they were made with until they grow or are remade. */
 void gl_gpu_set_block_bytes(dirt_gpu *gpu, int64_t bytes);
+
+/* The GPU whose context is current on this thread: the one made last by
+ * dirt_gpu_create here (NULL after it was destroyed). The helpers that take
+ * no dirt_gpu (textures, the poisoning) act for it. */
+dirt_gpu *gl_current(void);
 
 /* ---- the window's input (window.c) ---- */
 
@@ -117,6 +124,122 @@ void gl_texture_destroy(GLuint *tex);
 bool gl_texture_upload_rgba32f(GLuint tex, int width, int height, const float *rgba);
 /* Reads level 0 of an RGBA32F 2D texture (blocking; row 0 first). */
 bool gl_texture_read_rgba32f(GLuint tex, int width, int height, float *rgba);
+
+/* ---- poisoned memory (poison.c) ---- */
+
+/* When the current GPU poisons (dirt_gpu_opts.poison), fill buffer `buf`
+ * (`size` bytes) with DIRT_GPU_POISON_WORD, or every level of texture `tex`
+ * with the poison of its format (see DIRT_GPU_POISON_WORD). `after_shaders`:
+ * earlier shader writes may still be in flight (a reused frame-graph
+ * allocation): the GL_BUFFER_UPDATE / GL_TEXTURE_UPDATE barrier the clear
+ * needs comes first. Nothing when the GPU does not poison. */
+void gl_poison_buffer(GLuint buf, size_t size, bool after_shaders);
+void gl_poison_texture(GLuint tex, bool after_shaders);
+
+/* ---- the barrier checker (check.c) ---- */
+
+/* Starts the checker on `gpu` (its context current) when the options or
+ * DIRT_CHECK_BARRIERS ask; DIRT_DROP_BARRIER=FILE:LINE makes that
+ * glMemoryBarrier call issue nothing (gl_check_drop_barrier). False after
+ * logging when it could not start. */
+bool gl_check_init(dirt_gpu *gpu);
+void gl_check_release(dirt_gpu *gpu);
+/* Records what program `prog` (linked) reads and writes: its storage
+ * blocks, uniform blocks, atomic counter buffers, images and samplers from
+ * GL's introspection, whether each block and image is read, written or
+ * both from the `n` stage sources (gl/glsl_iface.h). Nothing when the
+ * checker is off. */
+void gl_check_program(GLuint prog, const char *label, char *const *sources, int n);
+/* The debug group stack (gl_group_push/pop), for the checker's messages. */
+void gl_check_group(const char *push_name);
+/* Test hooks. A glMemoryBarrier call site ("src/dirt/trace.c:62", the
+ * file from src/ or test/ on) whose call issues nothing from now on (NULL:
+ * none); how often it was skipped. */
+void gl_check_drop_barrier(dirt_gpu *gpu, const char *site);
+uint64_t gl_check_dropped(const dirt_gpu *gpu);
+/* The glMemoryBarrier call sites seen since the GPU was made (file:line as
+ * above, calls). Returns how many; fills at most `max`. */
+typedef struct gl_barrier_site {
+    char site[128];
+    uint64_t calls;
+} gl_barrier_site;
+int gl_check_barrier_sites(const dirt_gpu *gpu, gl_barrier_site *out, int max);
+
+/* The checked forms of the GL calls that access memory (check.c); every
+ * file that includes this header calls them through the macros below, so
+ * the checker sees the engine's GL work (ImGui's own calls and poison.c's,
+ * which define DIRT_GL_RAW, it does not). Each calls GL and, when the
+ * current GPU checks, checks and records the call. */
+void gl_chk_MemoryBarrier(GLbitfield bits, const char *file, int line);
+void gl_chk_DispatchCompute(GLuint x, GLuint y, GLuint z, const char *file, int line);
+void gl_chk_DispatchComputeIndirect(GLintptr offset, const char *file, int line);
+void gl_chk_DrawArrays(GLenum mode, GLint first, GLsizei count, const char *file, int line);
+void gl_chk_ClearNamedBufferData(GLuint buf, GLenum ifmt, GLenum fmt, GLenum type,
+                                 const void *data, const char *file, int line);
+void gl_chk_ClearNamedBufferSubData(GLuint buf, GLenum ifmt, GLintptr off, GLsizeiptr size,
+                                    GLenum fmt, GLenum type, const void *data, const char *file,
+                                    int line);
+void gl_chk_NamedBufferSubData(GLuint buf, GLintptr off, GLsizeiptr size, const void *data,
+                               const char *file, int line);
+void gl_chk_GetNamedBufferSubData(GLuint buf, GLintptr off, GLsizeiptr size, void *data,
+                                  const char *file, int line);
+void gl_chk_ClearTexImage(GLuint tex, GLint level, GLenum fmt, GLenum type, const void *data,
+                          const char *file, int line);
+void gl_chk_TextureSubImage2D(GLuint tex, GLint level, GLint x, GLint y, GLsizei w, GLsizei h,
+                              GLenum fmt, GLenum type, const void *data, const char *file,
+                              int line);
+void gl_chk_GetTextureImage(GLuint tex, GLint level, GLenum fmt, GLenum type, GLsizei size,
+                            void *data, const char *file, int line);
+void gl_chk_GenerateTextureMipmap(GLuint tex, const char *file, int line);
+void gl_chk_Clear(GLbitfield mask, const char *file, int line);
+void gl_chk_ClearBufferfv(GLenum buffer, GLint drawbuffer, const GLfloat *value,
+                          const char *file, int line);
+void gl_chk_ClearNamedFramebufferfv(GLuint fb, GLenum buffer, GLint drawbuffer,
+                                    const GLfloat *value, const char *file, int line);
+void gl_chk_ClearNamedFramebufferuiv(GLuint fb, GLenum buffer, GLint drawbuffer,
+                                     const GLuint *value, const char *file, int line);
+void gl_chk_ReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum fmt, GLenum type,
+                       void *data, const char *file, int line);
+void gl_chk_CreateBuffers(GLsizei n, GLuint *names);
+void gl_chk_DeleteBuffers(GLsizei n, const GLuint *names);
+void gl_chk_CreateTextures(GLenum target, GLsizei n, GLuint *names);
+void gl_chk_DeleteTextures(GLsizei n, const GLuint *names);
+void gl_chk_DeleteProgram(GLuint prog);
+
+#ifndef DIRT_GL_RAW
+#define glMemoryBarrier(b) gl_chk_MemoryBarrier((b), __FILE__, __LINE__)
+#define glDispatchCompute(x, y, z) gl_chk_DispatchCompute((x), (y), (z), __FILE__, __LINE__)
+#define glDispatchComputeIndirect(o) gl_chk_DispatchComputeIndirect((o), __FILE__, __LINE__)
+#define glDrawArrays(m, f, c) gl_chk_DrawArrays((m), (f), (c), __FILE__, __LINE__)
+#define glClearNamedBufferData(b, i, f, t, d) \
+    gl_chk_ClearNamedBufferData((b), (i), (f), (t), (d), __FILE__, __LINE__)
+#define glClearNamedBufferSubData(b, i, o, s, f, t, d) \
+    gl_chk_ClearNamedBufferSubData((b), (i), (o), (s), (f), (t), (d), __FILE__, __LINE__)
+#define glNamedBufferSubData(b, o, s, d) \
+    gl_chk_NamedBufferSubData((b), (o), (s), (d), __FILE__, __LINE__)
+#define glGetNamedBufferSubData(b, o, s, d) \
+    gl_chk_GetNamedBufferSubData((b), (o), (s), (d), __FILE__, __LINE__)
+#define glClearTexImage(t, l, f, ty, d) \
+    gl_chk_ClearTexImage((t), (l), (f), (ty), (d), __FILE__, __LINE__)
+#define glTextureSubImage2D(t, l, x, y, w, h, f, ty, d) \
+    gl_chk_TextureSubImage2D((t), (l), (x), (y), (w), (h), (f), (ty), (d), __FILE__, __LINE__)
+#define glGetTextureImage(t, l, f, ty, s, d) \
+    gl_chk_GetTextureImage((t), (l), (f), (ty), (s), (d), __FILE__, __LINE__)
+#define glGenerateTextureMipmap(t) gl_chk_GenerateTextureMipmap((t), __FILE__, __LINE__)
+#define glClear(m) gl_chk_Clear((m), __FILE__, __LINE__)
+#define glClearBufferfv(b, d, v) gl_chk_ClearBufferfv((b), (d), (v), __FILE__, __LINE__)
+#define glClearNamedFramebufferfv(fb, b, d, v) \
+    gl_chk_ClearNamedFramebufferfv((fb), (b), (d), (v), __FILE__, __LINE__)
+#define glClearNamedFramebufferuiv(fb, b, d, v) \
+    gl_chk_ClearNamedFramebufferuiv((fb), (b), (d), (v), __FILE__, __LINE__)
+#define glReadPixels(x, y, w, h, f, t, d) \
+    gl_chk_ReadPixels((x), (y), (w), (h), (f), (t), (d), __FILE__, __LINE__)
+#define glCreateBuffers(n, b) gl_chk_CreateBuffers((n), (b))
+#define glDeleteBuffers(n, b) gl_chk_DeleteBuffers((n), (b))
+#define glCreateTextures(t, n, b) gl_chk_CreateTextures((t), (n), (b))
+#define glDeleteTextures(n, b) gl_chk_DeleteTextures((n), (b))
+#define glDeleteProgram(p) gl_chk_DeleteProgram((p))
+#endif
 
 /* ---- timers (timer.c) ---- */
 

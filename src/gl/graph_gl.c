@@ -330,6 +330,15 @@ static void gl_release(void *self)
     free(b);
 }
 
+static void gl_poison(void *self, const fg_binding *bd)
+{
+    (void)self;
+    if (bd->texture)
+        gl_poison_texture(bd->name, true);
+    else
+        gl_poison_buffer(bd->name, bd->bytes, true);
+}
+
 static const fg_backend_ops gl_ops = {
     .create = gl_create,
     .destroy = gl_destroy,
@@ -338,6 +347,7 @@ static const fg_backend_ops gl_ops = {
     .end_pass = gl_end_pass,
     .release = gl_release,
     .drain = gl_drain,
+    .poison = gl_poison,
 };
 
 bool fg_gl_backend(dirt_gpu *gpu, fg_backend *out)

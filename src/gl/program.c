@@ -26,7 +26,10 @@ static void log_file_table(const glsl_files *files)
         DIRT_ERROR("  source %d = glsl/%s", i, files->path[i]);
 }
 
-static GLuint compile_stage(const char *path, const glsl_define *defines, size_t num_defines)
+/* Compiles one stage; *source_out (when not NULL) gets its assembled
+ * source, which the caller frees. */
+static GLuint compile_stage(const char *path, const glsl_define *defines, size_t num_defines,
+                            char **source_out)
 {
     GLenum type = stage_enum(glsl_stage_of(path));
     if (!type) {
@@ -42,7 +45,10 @@ static GLuint compile_stage(const char *path, const glsl_define *defines, size_t
     const GLchar *text = src;
     glShaderSource(sh, 1, &text, NULL);
     glCompileShader(sh);
-    free(src);
+    if (source_out)
+        *source_out = src;
+    else
+        free(src);
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -61,6 +67,7 @@ GLuint gl_program_create(const char *label, const char *const *paths,
                          const glsl_define *defines, size_t num_defines)
 {
     GLuint shaders[6] = {0};
+    char *sources[6] = {0};
     size_t n = 0;
     GLuint prog = glCreateProgram();
     for (; paths[n]; n++) {
@@ -68,7 +75,7 @@ GLuint gl_program_create(const char *label, const char *const *paths,
             DIRT_ERROR("program %s: too many stages", label);
             goto error;
         }
-        shaders[n] = compile_stage(paths[n], defines, num_defines);
+        shaders[n] = compile_stage(paths[n], defines, num_defines, &sources[n]);
         if (!shaders[n])
             goto error;
         glAttachShader(prog, shaders[n]);
@@ -87,11 +94,15 @@ GLuint gl_program_create(const char *label, const char *const *paths,
         glDeleteShader(shaders[i]);
     }
     gl_label(GL_PROGRAM, prog, "%s", label);
+    gl_check_program(prog, label, sources, (int)n);
+    for (size_t i = 0; i < 6; i++)
+        free(sources[i]);
     return prog;
 error:
     for (size_t i = 0; i < 6; i++) {
         if (shaders[i])
             glDeleteShader(shaders[i]);
+        free(sources[i]);
     }
     glDeleteProgram(prog);
     return 0;
@@ -109,7 +120,6 @@ void gl_dispatch_rays(GLuint batch, uint32_t count, uint32_t min_groups)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAY_BATCH, batch);
         glUniform1i(DIRT_LOC_RAY_BATCH, 1);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, batch);
-        glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         return;

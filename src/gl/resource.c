@@ -25,6 +25,8 @@ GLuint gl_buffer_create(dirt_gpu *gpu, size_t size, const void *data, bool readb
     }
     if (label)
         gl_label(GL_BUFFER, buf, "%s", label);
+    if (!data)
+        gl_poison_buffer(buf, size, false);
     return buf;
 }
 
@@ -67,6 +69,7 @@ GLuint gl_texture_2d(GLenum internal_format, int width, int height, int levels,
     }
     if (label)
         gl_label(GL_TEXTURE, tex, "%s", label);
+    gl_poison_texture(tex, false);
     return tex;
 }
 
@@ -86,6 +89,7 @@ GLuint gl_texture_2d_array(GLenum internal_format, int width, int height, int la
     }
     if (label)
         gl_label(GL_TEXTURE, tex, "%s", label);
+    gl_poison_texture(tex, false);
     return tex;
 }
 

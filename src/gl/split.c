@@ -300,6 +300,13 @@ void gl_split_use(fg_pass *p, const gl_split *s, const fg_res *r, fg_access acce
         fg_use(p, r[k], a, NULL);
 }
 
+GLbitfield gl_split_barrier(const gl_split *s)
+{
+    if (!s->desc || s->layout.parts == 0)
+        return GL_SHADER_STORAGE_BARRIER_BIT;
+    return s->desc->image ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT : GL_TEXTURE_FETCH_BARRIER_BIT;
+}
+
 bool gl_split_program_ensure(gl_split_program *p, const char *label, const char *const *paths,
                       const glsl_define *defines, size_t num_defines,
                       const gl_split_desc *const *descs, const dirt_split_layout *layouts,

@@ -139,4 +139,11 @@ void gl_split_set_imports(fg_graph *g, const gl_split *s, const fg_res *r);
  * readbacks): on every part, unbound. */
 void gl_split_use(fg_pass *p, const gl_split *s, const fg_res *r, fg_access access);
 
+/* The glMemoryBarrier bit a hand-written barrier issues for shaders'
+ * accesses of the array after other shaders wrote it (the bit of the
+ * accesses gl_split_use declares): GL_SHADER_STORAGE_BARRIER_BIT while it
+ * is one block (or empty), GL_SHADER_IMAGE_ACCESS_BARRIER_BIT for split
+ * image parts, GL_TEXTURE_FETCH_BARRIER_BIT for split sampled parts. */
+GLbitfield gl_split_barrier(const gl_split *s);
+
 #endif

@@ -154,8 +154,15 @@ static void on_cursor(GLFWwindow *win, double x, double y)
     struct gl_window_state *st = state_of(win);
     if (!st)
         return;
-    st->in.mouse_x = x * st->scale_x;
-    st->in.mouse_y = y * st->scale_y;
+    double nx = x * st->scale_x, ny = y * st->scale_y;
+    for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++) {
+        if (st->in.button[b]) {
+            st->in.drag_dx[b] += nx - st->in.mouse_x;
+            st->in.drag_dy[b] += ny - st->in.mouse_y;
+        }
+    }
+    st->in.mouse_x = nx;
+    st->in.mouse_y = ny;
 }
 
 static void on_button(GLFWwindow *win, int button, int action, int mods)
@@ -296,6 +303,8 @@ void gl_window_poll_begin(dirt_gpu *gpu)
     memset(st->in.button_pressed, 0, sizeof(st->in.button_pressed));
     memset(st->in.button_released, 0, sizeof(st->in.button_released));
     memset(st->in.key_pressed, 0, sizeof(st->in.key_pressed));
+    memset(st->in.drag_dx, 0, sizeof(st->in.drag_dx));
+    memset(st->in.drag_dy, 0, sizeof(st->in.drag_dy));
     st->in.double_clicks = 0;
     st->in.scroll = 0;
     st->in.resized = false;

@@ -51,6 +51,8 @@ typedef struct dirt_window_input {
     bool resized;                      /* the size changed in this poll */
     double mouse_x, mouse_y;           /* cursor in window pixels */
     double mouse_dx, mouse_dy;         /* cursor motion in this poll */
+    double drag_dx[DIRT_MOUSE_BUTTONS]; /* cursor motion in this poll while that button was */
+    double drag_dy[DIRT_MOUSE_BUTTONS]; /*   down: a whole drag, however short, between polls */
     bool button[DIRT_MOUSE_BUTTONS];   /* held */
     bool button_pressed[DIRT_MOUSE_BUTTONS];
     bool button_released[DIRT_MOUSE_BUTTONS];

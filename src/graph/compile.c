@@ -678,7 +678,8 @@ static bool assign_physical(fg_graph *g)
  * objects (physical allocations and imports), tracking per object which bits
  * still have an unflushed shader write / unordered access behind them. The
  * second round starts from the end state of the first, so hazards carried
- * from one execute into the next (loop-carried) are covered. */
+ * from one execute into the next (loop-carried) are covered; with shared
+ * imports every import starts it as written and accessed outside. */
 static bool derive_barriers(fg_graph *g, const int *plink, const int *plink_start)
 {
     int nobj = g->num_phys + g->num_res;
@@ -691,6 +692,12 @@ static bool derive_barriers(fg_graph *g, const int *plink, const int *plink_star
         return false;
     }
     for (int round = 0; round < 2; round++) {
+        for (int r = 0; round == 1 && g->shared_imports && r < g->num_res; r++) {
+            if (g->res[r].imported) {
+                sw_pend[g->num_phys + r] = ALL_BITS;
+                acc_pend[g->num_phys + r] = ALL_BITS;
+            }
+        }
         for (int pos = 0; pos < g->num_order; pos++) {
             fg_pass *p = g->passes[g->order[pos]];
             uint32_t need = 0;

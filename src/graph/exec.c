@@ -234,6 +234,22 @@ static int build_bindings(fg_graph *g, const fg_pass *p)
     return n;
 }
 
+/* Hands every transient whose first access in the execute order is at
+ * `pos` to the backend's poison (once each). */
+static void poison_transients(fg_graph *g, int pos, const fg_binding *b, int nb)
+{
+    for (int i = 0; i < nb; i++) {
+        const fg_resource *r = &g->res[b[i].res.id - 1];
+        if (r->imported || r->first != pos || !b[i].name)
+            continue;
+        bool seen = false;
+        for (int j = 0; j < i && !seen; j++)
+            seen = b[j].res.id == b[i].res.id;
+        if (!seen)
+            g->backend.ops->poison(g->backend.self, &b[i]);
+    }
+}
+
 bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
 {
     if (!g)
@@ -274,6 +290,8 @@ bool fg_execute(fg_graph *g, const fg_exec_opts *opts)
             ok = false;
             break;
         }
+        if (g->backend.ops->poison)
+            poison_transients(g, pos, g->scratch, nb);
         uint32_t bits = p->barrier;
         if (bits && o.debug_drop_barrier && strcmp(o.debug_drop_barrier, p->name) == 0) {
             char s[256];

@@ -455,6 +455,14 @@ void fg_set_aliasing(fg_graph *g, bool enabled)
     fg_invalidate(g);
 }
 
+void fg_set_shared_imports(fg_graph *g, bool shared)
+{
+    if (!g)
+        return;
+    g->shared_imports = shared;
+    fg_invalidate(g);
+}
+
 /* ---- passes -------------------------------------------------------------- */
 
 fg_pass *fg_add_pass(fg_graph *g, const char *name, fg_pass_kind kind, fg_execute_fn fn,

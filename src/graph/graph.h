@@ -197,6 +197,13 @@ void fg_output(fg_graph *g, fg_res r);
 void fg_set_resolution(fg_graph *g, int width, int height);
 /* Aliasing of transients is on by default. Needs fg_compile. */
 void fg_set_aliasing(fg_graph *g, bool enabled);
+/* Shared imports (default off): the imports are also read and written by
+ * shaders outside this graph between its executes (another graph, a
+ * technique's own passes). The barrier derivation then takes every import
+ * as written and accessed before each execute, so the first access of each
+ * import in the execute gets its barrier bit, instead of a hand-written
+ * glMemoryBarrier before the execute. Needs fg_compile. */
+void fg_set_shared_imports(fg_graph *g, bool shared);
 
 /* ---- passes -------------------------------------------------------------- */
 
@@ -456,6 +463,13 @@ typedef struct fg_backend_ops {
      * asynchronous end_pass (p->async) reports in *ms the pass's earlier
      * times that have arrived (0 when none, with the clock). */
     void (*drain)(void *self, int index, bool discard, double *ms, enum dirt_clock *clock);
+    /* Optional (NULL: nothing). Called before the barrier of the pass that
+     * makes a transient's first access in an execute, once per transient:
+     * the backend may overwrite the object with garbage (its content is
+     * undefined there: a new allocation, the last execute's, or another
+     * transient's sharing the memory), so that reading what no pass of
+     * this execute wrote shows (the GL backend: dirt_gpu_opts.poison). */
+    void (*poison)(void *self, const fg_binding *b);
 } fg_backend_ops;
 
 typedef struct fg_backend {

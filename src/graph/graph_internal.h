@@ -111,6 +111,7 @@ struct fg_graph {
     bool has_backend;
     int out_width, out_height;
     bool no_alias;
+    bool shared_imports;    /* fg_set_shared_imports */
 
     fg_resource *res;
     int num_res, cap_res;

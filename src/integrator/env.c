@@ -31,7 +31,10 @@ void dirt_env_destroy(dirt_env *env)
     free(env);
 }
 
-dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_env_opts *opts)
+/* dirt_env_create of texels `stride` floats apart (3: packed RGB; 4: a
+ * dirt_image's RGBA). */
+static dirt_env *env_create(const float *rgb, size_t stride, int width, int height,
+                            const dirt_env_opts *opts)
 {
     dirt_env_opts o = opts ? *opts : (dirt_env_opts){0};
     float intensity = o.intensity != 0.0f ? o.intensity : 1.0f;
@@ -44,11 +47,14 @@ dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_en
         return NULL;
     }
     size_t n = (size_t)width * (size_t)height;
-    for (size_t k = 0; k < 3 * n; k++) {
-        if (!(rgb[k] >= 0.0f) || !isfinite(rgb[k])) {
-            DIRT_ERROR("environment: texel %zu (row %zu) is negative or not finite (%g)", k / 3,
-                       k / 3 / (size_t)width, (double)rgb[k]);
-            return NULL;
+    for (size_t k = 0; k < n; k++) {
+        for (size_t c = 0; c < 3; c++) {
+            float x = rgb[k * stride + c];
+            if (!(x >= 0.0f) || !isfinite(x)) {
+                DIRT_ERROR("environment: texel %zu (row %zu) is negative or not finite (%g)", k,
+                           k / (size_t)width, (double)x);
+                return NULL;
+            }
         }
     }
     dirt_env *env = calloc(1, sizeof(*env));
@@ -68,8 +74,10 @@ dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_en
         env->col_cos[i] = (float)cos(phi);
         env->col_sin[i] = (float)sin(phi);
     }
-    for (size_t k = 0; k < 3 * n; k++)
-        env->rgb[k] = rgb[k] * intensity;
+    for (size_t k = 0; k < n; k++) {
+        for (size_t c = 0; c < 3; c++)
+            env->rgb[3 * k + c] = rgb[k * stride + c] * intensity;
+    }
     for (int j = 0; j <= height; j++)
         env->row_cos[j] = (float)cos(PI_D * (double)j / (double)height);
     env->row_cos[0] = 1.0f;
@@ -93,6 +101,11 @@ oom:
     DIRT_ERROR("environment: out of memory for %dx%d texels", width, height);
     dirt_env_destroy(env);
     return NULL;
+}
+
+dirt_env *dirt_env_create(const float *rgb, int width, int height, const dirt_env_opts *opts)
+{
+    return env_create(rgb, 3, width, height, opts);
 }
 
 dirt_env *dirt_env_constant(const float rgb[3])
@@ -174,35 +187,28 @@ dirt_env *dirt_env_load(const char *path, const dirt_env_opts *opts, char *why, 
             snprintf(why, size, "cannot make the built-in sky");
         return env;
     }
-    dirt_image *img = NULL;
-    if (ends_with(path, ".exr")) {
-        img = dirt_image_read_exr(path);
-    } else if (ends_with(path, ".hdr")) {
-        img = dirt_image_read_hdr(path);
-    } else {
-        snprintf(why, size, "'%s': an environment map must be .exr or .hdr (or 'sky')", path);
+    if (!ends_with(path, ".exr") && !ends_with(path, ".hdr")) {
+        snprintf(why, size, "INVALID: '%s': an environment map must be .exr or .hdr (or 'sky')",
+                 path);
         return NULL;
     }
+    /* The image read and the map's tables (rgb and cdf, 16 bytes a texel)
+     * within the budget. */
+    dirt_image_read_opts ro = {.max_bytes = opts && opts->max_bytes ? opts->max_bytes
+                                                                     : DIRT_ENV_DEFAULT_MAX_BYTES,
+                               .extra_per_pixel = 16,
+                               .need_colour = true};
+    enum dirt_input_error err = DIRT_INPUT_ERR_OK;
+    dirt_image *img = dirt_image_read(path, &ro, &err);
     if (!img) {
-        snprintf(why, size, "cannot read the environment map '%s'", path);
+        snprintf(why, size, "%s: cannot read the environment map '%s': %s (see above)",
+                 dirt_input_error_name(err), path, dirt_input_error_str(err));
         return NULL;
     }
-    size_t n = (size_t)img->width * (size_t)img->height;
-    float *rgb = malloc(3 * n * sizeof(float));
-    dirt_env *env = NULL;
-    if (!rgb) {
-        snprintf(why, size, "out of memory for the environment map '%s'", path);
-        goto done;
-    }
-    for (size_t k = 0; k < n; k++)
-        for (int c = 0; c < 3; c++)
-            rgb[3 * k + c] = img->rgba[4 * k + (size_t)c];
-    env = dirt_env_create(rgb, img->width, img->height, opts);
+    dirt_env *env = env_create(img->rgba, 4, img->width, img->height, opts);
     if (!env)
-        snprintf(why, size, "'%s': not a usable environment map (%dx%d; texels must be finite "
-                 "and >= 0)", path, img->width, img->height);
-done:
-    free(rgb);
+        snprintf(why, size, "INVALID: '%s': not a usable environment map (%dx%d; texels must be "
+                 "finite and >= 0)", path, img->width, img->height);
     dirt_image_destroy(img);
     return env;
 }

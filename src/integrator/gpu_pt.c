@@ -37,7 +37,8 @@ const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
 typedef struct pass_ctx {
     struct dirt_pt *pt;
     enum dirt_pt_pass kind;
-    int k; /* path event */
+    int k;       /* path event */
+    bool finish; /* compaction's second pass (the next batch's dispatch) */
 } pass_ctx;
 
 #define MAX_PASSES 512
@@ -469,23 +470,26 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         dispatch_batch(pt, c->k);
         break;
     case DIRT_PT_PASS_COMPACT: {
-        /* The rays of event k + 1 (written over event k's by Shade) whose
-         * paths go on, into the next batch; then its dispatch and count. */
         GLuint next = event_batch(pt, c->k + 1);
+        bind(DIRT_BIND_NEXT_BATCH, next);
+        if (c->finish) {
+            /* The next batch's dispatch from its count; the paths of k + 1. */
+            glUseProgram(pt->prog_finish);
+            glUniform1ui(DIRT_LOC_COMPACT_EVENT, (GLuint)c->k);
+            bind(DIRT_BIND_PT_EVENTS, pt->events);
+            glDispatchCompute(1, 1, 1);
+            break;
+        }
+        /* The rays of event k + 1 (written over event k's by Shade) whose
+         * paths go on, into the next batch. */
         static const uint32_t zero[4] = {0, 0, 0, 0};
         glClearNamedBufferSubData(next, GL_RGBA32UI, 0, sizeof(struct dirt_gpu_ray_batch),
                                   GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero);
         glUseProgram(pt->prog_compact);
         glUniform1ui(DIRT_LOC_COMPACT_PIXELS, (GLuint)pt->cur_count);
-        bind(DIRT_BIND_NEXT_BATCH, next);
         bind(DIRT_BIND_RAYS, event_rays(pt, c->k));
         bind(DIRT_BIND_SHADOW_RAYS, event_shadow_rays(pt, c->k));
         dispatch_batch(pt, c->k);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glUseProgram(pt->prog_finish);
-        glUniform1ui(DIRT_LOC_COMPACT_EVENT, (GLuint)c->k);
-        bind(DIRT_BIND_PT_EVENTS, pt->events);
-        glDispatchCompute(1, 1, 1);
         break;
     }
     case DIRT_PT_PASS_ACCUMULATE:
@@ -545,7 +549,7 @@ static bool make_graph(dirt_pt *pt, int events)
                                     chunk_pixels(pt, 0) * sizeof(struct dirt_gpu_accum));
     pt->num_ctx = 0;
 #define ADD(kind_, k_)                                                                   \
-    (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_)},                                \
+    (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_), false},                         \
      fg_add_pass(g, name, FG_COMPUTE, exec_pass, &pt->ctx[pt->num_ctx++]))
     char name[64];
     snprintf(name, sizeof(name), "raygen");
@@ -554,7 +558,7 @@ static bool make_graph(dirt_pt *pt, int events)
     fg_write(p, batch[0], FG_SSBO_WRITE);
     fg_write(p, paths, FG_SSBO_WRITE);
     for (int k = 1; k <= events; k++) {
-        if (pt->num_ctx + 8 >= MAX_PASSES) {
+        if (pt->num_ctx + 9 >= MAX_PASSES) {
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
@@ -601,11 +605,19 @@ static bool make_graph(dirt_pt *pt, int events)
         fg_write(p, paths, FG_SSBO_WRITE);
         if (k == events)
             break;
+        /* Compaction in two passes (the graph orders the second after the
+         * first's atomics): the live rays into the next batch, then its
+         * dispatch and the paths per event. */
         snprintf(name, sizeof(name), "compact %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         fg_read(p, rays, FG_SSBO_READ);
         read_batch(p, b);
         fg_write(p, srays, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
+        snprintf(name, sizeof(name), "compact finish %d", k);
+        p = ADD(DIRT_PT_PASS_COMPACT, k);
+        pt->ctx[pt->num_ctx - 1].finish = true;
         fg_use(p, bnext, FG_SSBO_READ, NULL);
         fg_write(p, bnext, FG_SSBO_WRITE);
         fg_use(p, evs, FG_SSBO_READ, NULL);
@@ -897,6 +909,9 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
         if (opts.progress)
             opts.progress(opts.progress_user, s + 1, count);
     }
+    /* The tracer's counters, the paths per event and (dirt_pt_read) the
+     * accumulation are read back next. */
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!tech->read_counts(tech->self, &st->rays, &st->aborted))
         goto done;
     uint32_t per_event[DIRT_PT_MAX_EVENTS];
@@ -930,7 +945,8 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
         return false;
     }
     size_t pixels = pt->pixels;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* (dirt_pt_add_samples, the accumulation's only writer, ended with the
+     * GL_BUFFER_UPDATE_BARRIER_BIT this readback needs.) */
     struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
     bool got = sums != NULL;
     for (size_t c = 0; got && c < pt->num_chunks; c++)
@@ -996,22 +1012,27 @@ uint32_t dirt_pt_display_texture(dirt_pt *pt)
     if (pt->display_samples == pt->samples)
         return pt->display;
     gl_group_push("dirt path tracer display");
-    /* The accumulation was written by shader stores. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    /* The accumulation was written by shader stores; the texture's readers
+     * (the window's draw of the last frame) finish before the stores. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glUseProgram(pt->prog_display);
     glUniform1i(DIRT_LOC_DISPLAY_WIDTH, pt->width);
     glUniform1f(DIRT_LOC_DISPLAY_INV_SAMPLES, 1.0f / (float)pt->samples);
     glBindImageTexture(DIRT_UNIT_DISPLAY, pt->display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     for (size_t c = 0; c < pt->num_chunks; c++) {
+        /* Each chunk stores its own pixels; the barrier checker tracks the
+         * whole texture, and two commands writing one need it. */
+        if (c > 0)
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)chunk_pixels(pt, c));
         glUniform1ui(DIRT_LOC_DISPLAY_PIXEL_OFFSET, (GLuint)(c * pt->chunk));
         bind(DIRT_BIND_ACCUM, pt->accum[c]);
         glDispatchCompute(groups(chunk_pixels(pt, c)), 1, 1);
     }
     glUseProgram(0);
-    /* Readers sample, fetch or copy it. */
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    /* Readers sample it (the window's draw; a copy, gl_texture_read_rgba32f,
+     * fences itself). */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     gl_group_pop();
     if (!gl_check("dirt_pt_display_texture"))
         return 0;

@@ -4,7 +4,9 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,8 +54,43 @@ void dirt_cleanup_remove(int slot)
         cleanup_used[slot] = 0;
 }
 
+/* The handshake between the thread making a file (dirt_cleanup_hold ...
+ * release) and a handler running on another thread (the main thread's
+ * signals are blocked meanwhile): the handler says it is ending the
+ * process (`dying`), then waits while a file is being made (`holding`);
+ * a thread that would make a file after that waits for the end instead.
+ * Both flags are lock-free atomics (sequentially consistent: each side
+ * writes its flag before it reads the other's), safe in a handler. */
+static atomic_int cleanup_holding, cleanup_dying;
+static sigset_t cleanup_saved_mask;
+
+void dirt_cleanup_hold(void)
+{
+    sigset_t all;
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &cleanup_saved_mask);
+    atomic_store(&cleanup_holding, 1);
+    if (atomic_load(&cleanup_dying)) {
+        /* A handler is removing the listed files: make nothing more. */
+        atomic_store(&cleanup_holding, 0);
+        for (;;)
+            pause();
+    }
+}
+
+void dirt_cleanup_release(void)
+{
+    atomic_store(&cleanup_holding, 0);
+    pthread_sigmask(SIG_SETMASK, &cleanup_saved_mask, NULL);
+}
+
 static void on_signal(int sig)
 {
+    /* Never on a holding thread (its signals are blocked): wait for it to
+     * list the file it is making. */
+    atomic_store(&cleanup_dying, 1);
+    while (atomic_load(&cleanup_holding))
+        ;
     /* unlink, signal and raise are async-signal-safe. */
     for (int i = 0; i < CLEANUP_SLOTS; i++) {
         if (cleanup_used[i])
@@ -79,8 +116,14 @@ bool dirt_cleanup_on_signals(void)
     return true;
 }
 
+/* The longest file name (NAME_MAX of Linux file systems). */
+#define NAME_LIMIT 255
+
 /* "<path>.tmp.<host>.<pid>.XXXXXX": the writer's host and process, so a
- * later run can tell a dead writer's leftovers from a live one's. */
+ * later run can tell a dead writer's leftovers from a live one's. When the
+ * name would pass NAME_LIMIT bytes, the target's name is cut (its start
+ * kept) so that it fits: a legal 255-byte output name still gets its
+ * temporary file. */
 static char *temp_name(const char *path)
 {
     char host[65] = "host";
@@ -91,10 +134,17 @@ static char *temp_name(const char *path)
         if (*c == '/' || *c == '.')
             *c = '-';
     }
-    size_t size = strlen(path) + strlen(host) + 40;
+    char suffix[128];
+    snprintf(suffix, sizeof(suffix), ".tmp.%s.%ld.XXXXXX", host, (long)getpid());
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
+    size_t base = strlen(path) - dir;
+    if (base + strlen(suffix) > NAME_LIMIT)
+        base = NAME_LIMIT - strlen(suffix);
+    size_t size = dir + base + strlen(suffix) + 1;
     char *t = malloc(size);
     if (t)
-        snprintf(t, size, "%s.tmp.%s.%ld.XXXXXX", path, host, (long)getpid());
+        snprintf(t, size, "%.*s%s", (int)(dir + base), path, suffix);
     return t;
 }
 
@@ -116,15 +166,17 @@ static char *dir_of(const char *path)
     return dir;
 }
 
-/* Frees `f` after closing and removing the temp file if still present. */
+/* Frees `f` after closing and removing the temp file if still present
+ * (removed before it leaves the signal cleanup list: a signal in between
+ * finds it listed). */
 static void discard(dirt_atomic_file *f, bool remove_temp)
 {
     if (f->fp)
         fclose(f->fp);
-    dirt_cleanup_remove(f->cleanup);
     if (remove_temp && unlink(f->temp) != 0 && errno != ENOENT)
         DIRT_WARN("cannot remove temporary file '%s': %s", f->temp,
                   strerror(errno));
+    dirt_cleanup_remove(f->cleanup);
     free(f->temp);
     free(f->path);
     free(f);
@@ -165,7 +217,13 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
     if (!f->path || !f->temp)
         goto oom;
 
+    /* No signal between making the file and listing it for removal
+     * (SIGTERM there used to leave an empty temporary file). */
+    dirt_cleanup_hold();
     fd = mkstemp(f->temp);
+    if (fd >= 0)
+        f->cleanup = dirt_cleanup_add(f->temp);
+    dirt_cleanup_release();
     if (fd < 0) {
         int err = errno;
         dir = dir_of(path);
@@ -182,9 +240,9 @@ dirt_atomic_file *dirt_atomic_open(const char *path)
                    strerror(errno));
         close(fd);
         unlink(f->temp);
+        dirt_cleanup_remove(f->cleanup);
         goto error;
     }
-    f->cleanup = dirt_cleanup_add(f->temp);
     return f;
 
 oom:

@@ -14,9 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include "dirt/log.h"
 #include "io/atomic_file.h"
+#include "io/read.h"
 
 /* Routes OpenEXRCore's messages to the engine log. It may be called with
  * the context's lock held (an error inside exr_add_channel, say), so it
@@ -340,19 +342,92 @@ error:
     return false;
 }
 
-dirt_image *dirt_image_read_exr(const char *path)
+/* The file being read: its descriptor (dirt_input_open) and size, and
+ * whether a read ran past its end. */
+typedef struct exr_source {
+    int fd;
+    int64_t size;
+    bool chunks;        /* reading the pixel chunks (after the header) */
+    bool short_read;    /* a read of a chunk ran past the file's end */
+    exr_result_t last;  /* the last error OpenEXRCore reported */
+} exr_source;
+
+static int64_t read_source(exr_const_context_t ctxt, void *user, void *buffer, uint64_t sz,
+                           uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    exr_source *src = user;
+    uint8_t *b = buffer;
+    uint64_t got = 0;
+    while (got < sz) {
+        ssize_t r = pread(src->fd, b + got, (size_t)(sz - got), (off_t)(offset + got));
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0) {
+            error_cb(ctxt, EXR_ERR_READ_IO, "read of %llu bytes at %llu failed: %s",
+                     (unsigned long long)sz, (unsigned long long)offset, strerror(errno));
+            return -1;
+        }
+        if (r == 0)
+            break;
+        got += (uint64_t)r;
+    }
+    if (got < sz && src->chunks)
+        src->short_read = true;
+    return (int64_t)got;
+}
+
+/* log_exr_error for a read: the code is also kept in its exr_source. */
+static void log_exr_read_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    void *user = NULL;
+    if (ctxt && exr_get_user_data(ctxt, &user) == EXR_ERR_SUCCESS && user)
+        ((exr_source *)user)->last = code;
+    log_exr_error(ctxt, code, msg);
+}
+
+static int64_t size_of_source(exr_const_context_t ctxt, void *user)
+{
+    (void)ctxt;
+    return ((exr_source *)user)->size;
+}
+
+/* The planes of a w x h image with `extra` extra channels, the raw
+ * buffers of the channels read (`raw_bytes` per pixel in all) and the
+ * caller's extra_per_pixel: what the read holds at once. Saturates. */
+static size_t read_need(size_t w, size_t h, size_t per_pixel)
+{
+    size_t px = w * h;
+    return per_pixel && px > SIZE_MAX / per_pixel ? SIZE_MAX : px * per_pixel;
+}
+
+dirt_image *io_read_exr(const char *path, const dirt_image_read_opts *o, enum dirt_input_error *err)
 {
     exr_context_t ctx = NULL;
     dirt_image *img = NULL;
     read_plan *plans = NULL;
     int nplans = 0;
+    exr_source src = {.fd = -1};
+    *err = DIRT_INPUT_ERR_INVALID;
 
     if (!path) {
         DIRT_ERROR("EXR read: NULL path");
         return NULL;
     }
+    size_t file_size = 0;
+    src.fd = dirt_input_open(path, 0, &file_size, err);
+    if (src.fd < 0) {
+        DIRT_ERROR("EXR '%s': %s%s%s", path, dirt_input_error_str(*err),
+                   *err == DIRT_INPUT_ERR_IO ? ": " : "",
+                   *err == DIRT_INPUT_ERR_IO ? strerror(errno) : "");
+        return NULL;
+    }
+    *err = DIRT_INPUT_ERR_INVALID;
+    src.size = (int64_t)file_size;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = log_exr_error;
+    init.error_handler_fn = log_exr_read_error;
+    init.user_data = &src;
+    init.read_fn = read_source;
+    init.size_fn = size_of_source;
     EXR_TRY(exr_start_read(&ctx, path, &init), "opening for read");
 
     int parts = 0;
@@ -374,6 +449,8 @@ dirt_image *dirt_image_read_exr(const char *path)
         h64 > DIRT_IMAGE_MAX_DIM) {
         DIRT_ERROR("EXR '%s': unsupported data window %lldx%lld", path,
                    (long long)w64, (long long)h64);
+        if (w64 > DIRT_IMAGE_MAX_DIM || h64 > DIRT_IMAGE_MAX_DIM)
+            *err = DIRT_INPUT_ERR_TOO_LARGE;
         goto error;
     }
     const int w = (int)w64, h = (int)h64;
@@ -381,6 +458,35 @@ dirt_image *dirt_image_read_exr(const char *path)
 
     const exr_attr_chlist_t *chl = NULL;
     EXR_TRY(exr_get_channels(ctx, 0, &chl), "exr_get_channels");
+    bool has_rgb = false, has_alpha = false, has_y = false;
+    /* Per pixel: RGBA floats, a float per extra channel, each channel's
+     * raw buffer. */
+    size_t per_pixel = 16 + o->extra_per_pixel;
+    for (int i = 0; i < chl->num_channels; i++) {
+        const char *n = chl->entries[i].name.str;
+        bool rgba = n[0] && !n[1] && strchr("RGBA", n[0]);
+        if (!strcmp(n, "R") || !strcmp(n, "G") || !strcmp(n, "B"))
+            has_rgb = true;
+        if (!strcmp(n, "A"))
+            has_alpha = true;
+        if (!strcmp(n, "Y"))
+            has_y = true;
+        per_pixel += (rgba ? 0 : 4) + (chl->entries[i].pixel_type == EXR_PIXEL_HALF ? 2 : 4);
+    }
+    if (o->need_colour && !has_rgb && !has_y) {
+        DIRT_ERROR("EXR '%s': no colour channel (R, G, B or Y) among its %d channels", path,
+                   chl->num_channels);
+        *err = DIRT_INPUT_ERR_NO_COLOUR;
+        goto error;
+    }
+    size_t need = read_need((size_t)w, (size_t)h, per_pixel);
+    if (need > o->max_bytes) {
+        DIRT_ERROR("EXR '%s': %d x %d pixels of %d channels need %zu MiB to read, more than the "
+                   "limit of %zu MiB", path, w, h, chl->num_channels, need >> 20,
+                   o->max_bytes >> 20);
+        *err = DIRT_INPUT_ERR_TOO_LARGE;
+        goto error;
+    }
     img = dirt_image_create(w, h);
     if (!img)
         goto error;
@@ -389,15 +495,6 @@ dirt_image *dirt_image_read_exr(const char *path)
     if (!plans) {
         DIRT_ERROR("EXR '%s': out of memory", path);
         goto error;
-    }
-
-    bool has_rgb = false, has_alpha = false;
-    for (int i = 0; i < chl->num_channels; i++) {
-        const char *n = chl->entries[i].name.str;
-        if (!strcmp(n, "R") || !strcmp(n, "G") || !strcmp(n, "B"))
-            has_rgb = true;
-        if (!strcmp(n, "A"))
-            has_alpha = true;
     }
 
     bool grey = false; /* "Y" read into R, G and B */
@@ -446,6 +543,7 @@ dirt_image *dirt_image_read_exr(const char *path)
     bool any = false;
     for (int i = 0; i < nplans; i++)
         any = any || plans[i].raw;
+    src.chunks = true;
     if (any && !decode_chunks(ctx, path, &dw, w, h, plans, nplans))
         goto error;
 
@@ -464,14 +562,34 @@ dirt_image *dirt_image_read_exr(const char *path)
         free(plans[i].raw);
     free(plans);
     exr_finish(&ctx);
+    close(src.fd);
+    *err = DIRT_INPUT_ERR_OK;
     return img;
 
 error:
+    /* A chunk past the file's end (a short read, or a chunk leader or
+     * table that does not fit the file) is a truncated file. */
+    if (*err == DIRT_INPUT_ERR_INVALID && src.chunks &&
+        (src.short_read || src.last == EXR_ERR_BAD_CHUNK_LEADER ||
+         src.last == EXR_ERR_READ_IO)) {
+        *err = DIRT_INPUT_ERR_TRUNCATED;
+        DIRT_ERROR("EXR '%s': the file ends before the data it declares (or a chunk is "
+                   "corrupt)", path);
+    }
     for (int i = 0; i < nplans; i++)
         free(plans[i].raw);
     free(plans);
     dirt_image_destroy(img);
     if (ctx)
         exr_finish(&ctx);
+    if (src.fd >= 0)
+        close(src.fd);
     return NULL;
+}
+
+dirt_image *dirt_image_read_exr(const char *path)
+{
+    dirt_image_read_opts o = io_read_defaults(NULL);
+    enum dirt_input_error err;
+    return io_read_exr(path, &o, &err);
 }

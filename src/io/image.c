@@ -1,6 +1,7 @@
 /* dirt_image: allocation, extra channels and format dispatch.
  * Contracts are documented in dirt/image.h. */
 #include "dirt/image.h"
+#include "io/read.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -118,6 +119,30 @@ static bool has_extension(const char *path, const char *ext)
     const char *base = slash ? slash + 1 : path;
     size_t n = strlen(base), e = strlen(ext);
     return n > e && strcasecmp(base + n - e, ext) == 0;
+}
+
+dirt_image_read_opts io_read_defaults(const dirt_image_read_opts *opts)
+{
+    dirt_image_read_opts o = opts ? *opts : (dirt_image_read_opts){0};
+    if (o.max_bytes == 0)
+        o.max_bytes = DIRT_IMAGE_READ_DEFAULT_MAX_BYTES;
+    return o;
+}
+
+dirt_image *dirt_image_read(const char *path, const dirt_image_read_opts *opts,
+                            enum dirt_input_error *err)
+{
+    enum dirt_input_error dummy;
+    if (!err)
+        err = &dummy;
+    dirt_image_read_opts o = io_read_defaults(opts);
+    if (path && has_extension(path, ".exr"))
+        return io_read_exr(path, &o, err);
+    if (path && has_extension(path, ".hdr"))
+        return io_read_hdr(path, &o, err);
+    *err = DIRT_INPUT_ERR_INVALID;
+    DIRT_ERROR("cannot read '%s': an image to read must be .exr or .hdr", path ? path : "(null)");
+    return NULL;
 }
 
 bool dirt_image_write(const dirt_image *img, const char *path,

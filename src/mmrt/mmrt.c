@@ -56,6 +56,16 @@ void mmrt_arrays(dirt_mmrt *m, gl_split *arr[MMRT_NUM_ARRAYS])
     arr[MMRT_DEPTH] = &m->depth;
 }
 
+GLbitfield mmrt_split_barriers(dirt_mmrt *m)
+{
+    gl_split *arr[MMRT_NUM_ARRAYS];
+    mmrt_arrays(m, arr);
+    GLbitfield bits = 0;
+    for (int i = 0; i < MMRT_NUM_ARRAYS; i++)
+        bits |= gl_split_barrier(arr[i]);
+    return bits;
+}
+
 bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
                   const glsl_define *defs, size_t n, unsigned arrays)
 {
@@ -578,6 +588,11 @@ static bool make_graphs(dirt_mmrt *m)
     p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, m);
     fg_read(p, m->r_counters, FG_TRANSFER_READ);
     fg_keep(p);
+    /* The three graphs share the A-buffer: each one's first access of a
+     * buffer gets the barrier the others' writes need (fg_set_shared_imports). */
+    fg_set_shared_imports(m->g_build, true);
+    fg_set_shared_imports(m->g_restore, true);
+    fg_set_shared_imports(m->g_finish, true);
     if (!fg_compile(m->g_build) || !fg_compile(m->g_restore) || !fg_compile(m->g_finish))
         return false;
     m->graph_atlas_w = m->set.atlas_width;
@@ -656,14 +671,11 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
         if (!mmrt_programs(m) || (!graphs_current(m) && !make_graphs(m)))
             goto done;
         update_imports(m);
-        /* The other graph's shader writes must be visible to this one. */
-        glMemoryBarrier(GL_ALL_BARRIER_BITS);
         if (!fg_execute(m->g_restore, &eo))
             goto done;
         fg_add_pass_times(m->g_restore, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
         runs++;
     }
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
     if (!fg_execute(m->g_finish, &eo))
         goto done;
     fg_add_pass_times(m->g_finish, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
@@ -714,7 +726,8 @@ bool dirt_mmrt_read(dirt_mmrt *m, dirt_mmrt_data *out)
         dirt_mmrt_data_free(out);
         return false;
     }
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* (The build's last pass, the counter readback, was fenced with
+     * GL_BUFFER_UPDATE_BARRIER_BIT after every shader write of the build.) */
     size_t n = out->num_nodes;
     if (!gl_split_read(&m->depth, 0, (size_t)out->pyramid_size, out->depth) ||
         !gl_split_read(&m->heads, 0, heads, out->heads) ||

@@ -81,6 +81,10 @@ typedef struct dirt_mmrt_gl {
 /* The split arrays, by enum mmrt_array. */
 void mmrt_arrays(dirt_mmrt *m, gl_split *arr[MMRT_NUM_ARRAYS]);
 extern const gl_split_desc *const mmrt_array_desc[MMRT_NUM_ARRAYS];
+/* The barrier bits of shaders' accesses of the arrays after the build's
+ * shaders wrote them (gl_split_barrier of each): what a hand-written
+ * barrier before the trace or Fetch issues. */
+GLbitfield mmrt_split_barriers(dirt_mmrt *m);
 
 /* Makes `p` the program of `label` / `paths` / `defs` for the layouts of
  * the arrays in `arrays` (MMRT_ARR(enum mmrt_array) bits). False after

@@ -52,6 +52,11 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
             return false;
     }
     gl_group_push("mmrt trace");
+    /* The clear follows the last trace's atomics; the trace reads the
+     * A-buffer the build's shaders wrote (image loads once split:
+     * mmrt_split_barriers), and rays a shader may have made. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    mmrt_split_barriers(m));
     static const uint32_t zero = 0;
     glClearNamedBufferSubData(m->counters, GL_R32UI, 16, 32, GL_RED_INTEGER, GL_UNSIGNED_INT,
                               &zero);
@@ -77,7 +82,6 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
                      o.alpha.dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, o.alpha.first_pixel);
     }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     /* Timed only when stats are asked for: a caller timing its own pass (a
      * frame graph) may have a time query active, and they do not nest. */
     if (stats)
@@ -86,10 +90,10 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     if (stats)
         gl_timer_end(&m->trace_timer);
     glUseProgram(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     bool ok = true;
     if (stats) {
         struct dirt_mmrt_gpu_counters c;
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* the trace's counters */
         ok = gl_buffer_read(m->counters, 0, sizeof(c), &c);
         if (ok) {
             stats->hits = o.count ? c.trace.x : 0;
@@ -125,6 +129,7 @@ bool dirt_mmrt_trace_cpu(dirt_mmrt *m, const dirt_ray *rays, size_t count, dirt_
         !gl_buffer_ensure(m->gpu, &m->hits, &m->hits_size, bytes, true, "mmrt hits"))
         return false;
     glNamedBufferSubData(m->rays, 0, (GLsizeiptr)bytes, rays);
+    /* With stats (always here) dirt_mmrt_trace fenced its writes for readback. */
     if (!dirt_mmrt_trace(m, m->rays, m->hits, (uint32_t)count, opts, st))
         return false;
     if (!gl_buffer_read(m->hits, 0, bytes, hits))

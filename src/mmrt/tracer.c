@@ -85,6 +85,9 @@ static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t c
     dirt_mmrt_gl g;
     dirt_mmrt_gl_buffers(s->mmrt, &g);
     gl_group_push("mmrt pt ray count");
+    /* The count reads the counters the build or the last trace wrote, and
+     * its atomics follow the last count's. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(s->prog_rays);
     glUniform1ui(DIRT_LOC_MMRT_PT_RAYS_COUNT, count);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
@@ -123,6 +126,9 @@ static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t c
                       MMRT_ARR(MMRT_VERTICES) | MMRT_ARR(MMRT_DATA)))
         return false;
     gl_group_push("mmrt pt data node to shading point");
+    /* The hits come from the trace; the ring's slot was read by Shade; the
+     * data nodes come from the build's shaders (mmrt_split_barriers). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | mmrt_split_barriers(s->mmrt));
     glUseProgram(s->prog_gpoint.id);
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_COUNT, count);
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_SLOT, slot);
@@ -188,7 +194,6 @@ static bool mmrt_tech_read_counts(void *self, uint64_t *rays, uint64_t *aborted)
     dirt_mmrt_gl_buffers(s->mmrt, &g);
     struct dirt_mmrt_pt_counts c;
     struct dirt_mmrt_gpu_counters mc;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!gl_buffer_read(s->counts, 0, sizeof(c), &c) ||
         !gl_buffer_read(g.counters, 0, sizeof(mc), &mc))
         return false;

@@ -9,14 +9,18 @@
 
 #include "dirt/log.h"
 
+#include "dirt/input.h"
+
 #include <tiny_gltf.h>
 #include <stb_image.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
 #include <exception>
 #include <string>
 #include <vector>
@@ -96,7 +100,7 @@ bool extension_check(const tinygltf::Model &m, const char *path, bool warn_used)
     }
     if (warn_used) {
         for (const std::string &e : unsupported(m.extensionsUsed, &m.extensionsRequired))
-            DIRT_WARN("'%s' uses the glTF extension %s, which this loader ignores: the "
+            SCENE_WARN("'%s' uses the glTF extension %s, which this loader ignores: the "
                       "scene may look different from what its author intended",
                       path, e.c_str());
     }
@@ -124,16 +128,13 @@ struct Loader {
     /* Decoded texture per (image, sRGB) pair: -2 = not tried yet. */
     std::vector<int> texture_of;
     uint32_t default_material = 0;
+    bool failed = false; /* a texture failed the load (logged, id set) */
 };
 
-/* The budget of the load in progress on this thread (load_budget):
- * thread-local because the accessor readers see only the model; set by the
- * entry points below. */
-thread_local dirt_scene_cpp::load_budget budget = {0};
-
+/* The budget of the load in progress on this thread (scene_charge). */
 bool charge(size_t count, size_t each, const char *what)
 {
-    return budget.charge(count, each, what);
+    return scene_charge(count, each, what);
 }
 
 /* Deepest nesting of JSON objects and arrays in `n` bytes, counting brackets
@@ -519,14 +520,14 @@ int get_texture(Loader &L, int tex, bool srgb, const char *what)
     if (tex < 0)
         return DIRT_NO_TEXTURE;
     if ((size_t)tex >= m.textures.size()) {
-        DIRT_WARN("%s: %s: texture %d out of range (%zu textures); using the factor",
+        SCENE_WARN("%s: %s: texture %d out of range (%zu textures); using the factor",
                   L.path.c_str(), what, tex, m.textures.size());
         L.s->stats.textures_failed++;
         return DIRT_NO_TEXTURE;
     }
     int img = m.textures[(size_t)tex].source;
     if (img < 0 || (size_t)img >= m.images.size()) {
-        DIRT_WARN("%s: %s: texture %d has no usable image (source %d); using the factor",
+        SCENE_WARN("%s: %s: texture %d has no usable image (source %d); using the factor",
                   L.path.c_str(), what, tex, img);
         L.s->stats.textures_failed++;
         return DIRT_NO_TEXTURE;
@@ -546,7 +547,7 @@ int get_texture(Loader &L, int tex, bool srgb, const char *what)
     if (image.bufferView >= 0) {
         const char *why = buffer_view_problem(m, image.bufferView, &bytes, &size, nullptr);
         if (why) {
-            DIRT_WARN("%s: image '%s': bufferView %d: %s", L.path.c_str(), label.c_str(),
+            SCENE_WARN("%s: image '%s': bufferView %d: %s", L.path.c_str(), label.c_str(),
                       image.bufferView, why);
             bytes = nullptr;
         }
@@ -555,22 +556,32 @@ int get_texture(Loader &L, int tex, bool srgb, const char *what)
         size = image.image.size();
     }
     if (!bytes || size == 0) {
-        DIRT_WARN("%s: %s: image '%s' is missing; using the factor", L.path.c_str(), what,
+        SCENE_WARN("%s: %s: image '%s' is missing; using the factor", L.path.c_str(), what,
                   label.c_str());
         L.s->stats.textures_failed++;
         return slot;
     }
     if (size > (size_t)INT32_MAX) {
-        DIRT_WARN("%s: image '%s' is too large; using the factor", L.path.c_str(),
+        SCENE_WARN("%s: image '%s' is too large; using the factor", L.path.c_str(),
                   label.c_str());
         L.s->stats.textures_failed++;
         return slot;
     }
     int w = 0, h = 0;
     const char *why = "";
-    uint8_t *rgba = decode_rgba8(bytes, size, &w, &h, &why);
+    /* The size the image declares, checked against the budget before a
+     * pixel is decoded (dirt_scene_cpp::texture_fits). */
+    int fits = dirt_scene_cpp::texture_fits(bytes, size, (L.path + ": image '" + label + "'").c_str(),
+                                            &why);
+    if (fits < 0) {
+        L.failed = true;
+        return slot;
+    }
+    uint8_t *rgba = fits ? decode_rgba8(bytes, size, &w, &h, &why) : nullptr;
+    if (fits)
+        dirt_scene_cpp::texture_decoded(bytes, size, rgba ? w : 0, rgba ? h : 0);
     if (!rgba) {
-        DIRT_WARN("%s: %s: cannot decode image '%s' (%s); using the factor",
+        SCENE_WARN("%s: %s: cannot decode image '%s' (%s); using the factor",
                   L.path.c_str(), what, label.c_str(), why);
         L.s->stats.textures_failed++;
         return slot;
@@ -609,7 +620,7 @@ int read_tex_transform(Loader &L, const tinygltf::ExtensionMap &ext, const std::
             out[0] = (float)a.Get(0).GetNumberAsDouble();
             out[1] = (float)a.Get(1).GetNumberAsDouble();
         } else {
-            DIRT_WARN("%s: %s: invalid KHR_texture_transform %s ignored", L.path.c_str(),
+            SCENE_WARN("%s: %s: invalid KHR_texture_transform %s ignored", L.path.c_str(),
                       what.c_str(), key);
         }
     };
@@ -620,7 +631,7 @@ int read_tex_transform(Loader &L, const tinygltf::ExtensionMap &ext, const std::
         if (r.IsNumber() && std::isfinite(r.GetNumberAsDouble()))
             xf->rotation = (float)r.GetNumberAsDouble();
         else
-            DIRT_WARN("%s: %s: invalid KHR_texture_transform rotation ignored",
+            SCENE_WARN("%s: %s: invalid KHR_texture_transform rotation ignored",
                       L.path.c_str(), what.c_str());
     }
     if (v.Has("texCoord") && v.Get("texCoord").IsNumber())
@@ -644,7 +655,7 @@ int texture_slot(Loader &L, int index, int tex_coord, const tinygltf::ExtensionM
             tex_coord = over;
     }
     if (tex_coord != 0)
-        DIRT_WARN("%s: %s uses TEXCOORD_%d; only TEXCOORD_0 is supported", L.path.c_str(),
+        SCENE_WARN("%s: %s uses TEXCOORD_%d; only TEXCOORD_0 is supported", L.path.c_str(),
                   what.c_str(), tex_coord);
     return get_texture(L, index, srgb, what.c_str());
 }
@@ -673,7 +684,7 @@ void ext_number(Loader &L, const tinygltf::Value &ext, const char *key, double l
     if (std::isfinite(x) && x >= lo && x <= hi)
         *out = (float)x;
     else
-        DIRT_WARN("%s: material '%s': invalid %s ignored", L.path.c_str(), mat.c_str(), key);
+        SCENE_WARN("%s: material '%s': invalid %s ignored", L.path.c_str(), mat.c_str(), key);
 }
 
 /* A textureInfo member `key` of an extension object: its texture (or
@@ -686,7 +697,7 @@ int ext_texture(Loader &L, const tinygltf::Value &ext, const char *key, bool srg
         return DIRT_NO_TEXTURE;
     const tinygltf::Value &v = ext.Get(key);
     if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsInt()) {
-        DIRT_WARN("%s: material '%s': invalid %s ignored", L.path.c_str(), mat.c_str(), key);
+        SCENE_WARN("%s: material '%s': invalid %s ignored", L.path.c_str(), mat.c_str(), key);
         return DIRT_NO_TEXTURE;
     }
     tinygltf::TextureInfo ti;
@@ -721,7 +732,7 @@ void convert_material_exts(Loader &L, const tinygltf::Material &src, const std::
         if (ior == 0.0f || ior >= 1.0f)
             d->ior = ior;
         else
-            DIRT_WARN("%s: material '%s': ior %g below 1 ignored", L.path.c_str(), name.c_str(),
+            SCENE_WARN("%s: material '%s': ior %g below 1 ignored", L.path.c_str(), name.c_str(),
                       (double)ior);
     }
     ext = src.extensions.find("KHR_materials_specular");
@@ -742,7 +753,7 @@ void convert_material_exts(Loader &L, const tinygltf::Material &src, const std::
             if (ok)
                 std::memcpy(d->specular_color, col, sizeof(col));
             else
-                DIRT_WARN("%s: material '%s': invalid specularColorFactor ignored",
+                SCENE_WARN("%s: material '%s': invalid specularColorFactor ignored",
                           L.path.c_str(), name.c_str());
         }
         d->specular_color_tex = ext_texture(L, e, "specularColorTexture", true, name,
@@ -788,7 +799,7 @@ void convert_materials(Loader &L, bool need_default)
                 v.GetNumberAsDouble() >= 0.0)
                 d->emissive_strength = (float)v.GetNumberAsDouble();
             else
-                DIRT_WARN("%s: material '%s': invalid emissiveStrength ignored",
+                SCENE_WARN("%s: material '%s': invalid emissiveStrength ignored",
                           L.path.c_str(), name.c_str());
         }
         d->double_sided = src.doubleSided;
@@ -798,13 +809,13 @@ void convert_materials(Loader &L, bool need_default)
         } else if (src.alphaMode == "BLEND") {
             d->alpha_mode = DIRT_ALPHA_BLEND;
         } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
-            DIRT_WARN("%s: material '%s': unknown alphaMode '%s' read as OPAQUE", L.path.c_str(),
+            SCENE_WARN("%s: material '%s': unknown alphaMode '%s' read as OPAQUE", L.path.c_str(),
                       name.c_str(), src.alphaMode.c_str());
         }
         if (std::isfinite(src.alphaCutoff) && src.alphaCutoff >= 0.0)
             d->alpha_cutoff = (float)src.alphaCutoff;
         else
-            DIRT_WARN("%s: material '%s': invalid alphaCutoff ignored (0.5)", L.path.c_str(),
+            SCENE_WARN("%s: material '%s': invalid alphaCutoff ignored (0.5)", L.path.c_str(),
                       name.c_str());
         d->base_color_tex = texture_slot(L, pbr.baseColorTexture, true, "baseColorTexture",
                                          name, &d->xf[DIRT_SLOT_BASE_COLOR]);
@@ -819,7 +830,7 @@ void convert_materials(Loader &L, bool need_default)
         if (d->normal_tex != DIRT_NO_TEXTURE) {
             d->normal_scale = finite_or(nt.scale, 1.0f);
             if (!std::isfinite(nt.scale))
-                DIRT_WARN("%s: material '%s': invalid normalTexture scale read as 1",
+                SCENE_WARN("%s: material '%s': invalid normalTexture scale read as 1",
                           L.path.c_str(), name.c_str());
         }
         convert_material_exts(L, src, name, d);
@@ -842,7 +853,7 @@ void convert_triangles(const std::vector<uint32_t> &idx, int mode, const char *w
     tris->clear();
     if (mode == TINYGLTF_MODE_TRIANGLES) {
         if (n % 3 != 0)
-            DIRT_WARN("%s: %zu indices is not a multiple of 3; the last %zu are ignored",
+            SCENE_WARN("%s: %zu indices is not a multiple of 3; the last %zu are ignored",
                       what, n, n % 3);
         tris->assign(idx.begin(), idx.begin() + (ptrdiff_t)(n - n % 3));
     } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
@@ -869,7 +880,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
     int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        DIRT_WARN("%s: mode %d (points/lines) is not supported; primitive skipped", what,
+        SCENE_WARN("%s: mode %d (points/lines) is not supported; primitive skipped", what,
                   mode);
         *skip = true;
         return true;
@@ -880,7 +891,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
     };
     int a_pos = attr("POSITION");
     if (a_pos < 0) {
-        DIRT_WARN("%s: no POSITION attribute; primitive skipped", what);
+        SCENE_WARN("%s: no POSITION attribute; primitive skipped", what);
         *skip = true;
         return true;
     }
@@ -915,7 +926,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
             return false;
         }
         if (!all_finite(nrm))
-            DIRT_WARN("%s: non-finite normals; using flat normals", what);
+            SCENE_WARN("%s: non-finite normals; using flat normals", what);
         else
             dst->normal = (float(*)[3])dup_array(nrm);
     }
@@ -932,7 +943,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
             return false;
         }
         if (!all_finite(tan)) {
-            DIRT_WARN("%s: non-finite tangents ignored", what);
+            SCENE_WARN("%s: non-finite tangents ignored", what);
         } else {
             for (size_t v = 0; v < nv; v++) /* w: handedness, +1 or -1 */
                 tan[4 * v + 3] = tan[4 * v + 3] < 0.0f ? -1.0f : 1.0f;
@@ -960,10 +971,10 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
 
     int a_j = attr("JOINTS_0"), a_w = attr("WEIGHTS_0");
     if ((a_j >= 0) != (a_w >= 0)) {
-        DIRT_WARN("%s: JOINTS_0 without WEIGHTS_0 (or the reverse); not skinned", what);
+        SCENE_WARN("%s: JOINTS_0 without WEIGHTS_0 (or the reverse); not skinned", what);
     } else if (a_j >= 0) {
         if (attr("JOINTS_1") >= 0)
-            DIRT_WARN("%s: JOINTS_1/WEIGHTS_1 ignored (4 influences per vertex)", what);
+            SCENE_WARN("%s: JOINTS_1/WEIGHTS_1 ignored (4 influences per vertex)", what);
         std::vector<uint32_t> joints;
         std::vector<float> weights;
         ctx = std::string(what) + " JOINTS_0";
@@ -1011,7 +1022,7 @@ bool convert_prim(Loader &L, const tinygltf::Primitive &src, const char *what,
             }
         }
         if (zero_sum)
-            DIRT_WARN("%s: %zu vertices have all skin weights zero; bound to their first "
+            SCENE_WARN("%s: %zu vertices have all skin weights zero; bound to their first "
                       "joint", what, zero_sum);
     }
 
@@ -1137,7 +1148,7 @@ bool convert_meshes(Loader &L)
         dst->num_weights = max_targets;
         dst->weights = alloc_zeroed<float>(max_targets);
         if (!src.weights.empty() && src.weights.size() != max_targets)
-            DIRT_WARN("%s: mesh %zu has %zu default weights for %zu morph targets",
+            SCENE_WARN("%s: mesh %zu has %zu default weights for %zu morph targets",
                       L.path.c_str(), i, src.weights.size(), max_targets);
         for (size_t k = 0; k < max_targets && k < src.weights.size(); k++)
             dst->weights[k] = finite_or(src.weights[k], 0.0f);
@@ -1172,7 +1183,7 @@ bool convert_nodes(Loader &L)
             if (v.empty())
                 return;
             if (v.size() != n) {
-                DIRT_WARN("%s: node %zu: %s has %zu values, expected %zu; ignored",
+                SCENE_WARN("%s: node %zu: %s has %zu values, expected %zu; ignored",
                           L.path.c_str(), i, what, v.size(), n);
                 return;
             }
@@ -1189,7 +1200,7 @@ bool convert_nodes(Loader &L)
                 d->has_matrix = true;
                 take(src.matrix, 16, d->matrix, "matrix");
             } else {
-                DIRT_WARN("%s: node %zu: matrix has %zu values; ignored", L.path.c_str(), i,
+                SCENE_WARN("%s: node %zu: matrix has %zu values; ignored", L.path.c_str(), i,
                           src.matrix.size());
             }
         }
@@ -1200,7 +1211,7 @@ bool convert_nodes(Loader &L)
         float q2 = d->rotation[0] * d->rotation[0] + d->rotation[1] * d->rotation[1] +
                    d->rotation[2] * d->rotation[2] + d->rotation[3] * d->rotation[3];
         if (q2 < 1e-12f) {
-            DIRT_WARN("%s: node %zu has a zero rotation quaternion; identity used",
+            SCENE_WARN("%s: node %zu has a zero rotation quaternion; identity used",
                       L.path.c_str(), i);
             d->rotation[0] = d->rotation[1] = d->rotation[2] = 0.0f;
             d->rotation[3] = 1.0f;
@@ -1286,12 +1297,12 @@ void convert_cameras_lights(Loader &L)
             d->zfar = finite_or(src.orthographic.zfar, 0.0f);
         } else {
             if (src.type != "perspective")
-                DIRT_WARN("%s: camera %zu: unknown type '%s'; perspective assumed",
+                SCENE_WARN("%s: camera %zu: unknown type '%s'; perspective assumed",
                           L.path.c_str(), i, src.type.c_str());
             d->type = DIRT_CAMERA_PERSPECTIVE;
             d->yfov = finite_or(src.perspective.yfov, 0.0f);
             if (!(d->yfov > 0.0f && d->yfov < 3.14159f)) {
-                DIRT_WARN("%s: camera %zu: invalid yfov %g; 45 degrees used", L.path.c_str(),
+                SCENE_WARN("%s: camera %zu: invalid yfov %g; 45 degrees used", L.path.c_str(),
                           i, (double)d->yfov);
                 d->yfov = 0.785398163f;
             }
@@ -1313,7 +1324,7 @@ void convert_cameras_lights(Loader &L)
             d->type = DIRT_LIGHT_SPOT;
         } else {
             if (src.type != "point")
-                DIRT_WARN("%s: light %zu: unknown type '%s'; point assumed", L.path.c_str(),
+                SCENE_WARN("%s: light %zu: unknown type '%s'; point assumed", L.path.c_str(),
                           i, src.type.c_str());
             d->type = DIRT_LIGHT_POINT;
         }
@@ -1338,7 +1349,7 @@ bool convert_sampler(Loader &L, const tinygltf::AnimationSampler &src, size_t wi
         d->interp = SCENE_INTERP_CUBIC;
     } else {
         if (src.interpolation != "LINEAR")
-            DIRT_WARN("%s: unknown interpolation '%s'; LINEAR used", what,
+            SCENE_WARN("%s: unknown interpolation '%s'; LINEAR used", what,
                       src.interpolation.c_str());
         d->interp = SCENE_INTERP_LINEAR;
     }
@@ -1410,7 +1421,7 @@ bool convert_animations(Loader &L)
             snprintf(what, sizeof(what), "%s: animation %zu ('%s') channel %zu",
                      L.path.c_str(), a, name.c_str(), c);
             if (ch.target_node < 0) {
-                DIRT_WARN("%s: no target node; ignored", what);
+                SCENE_WARN("%s: no target node; ignored", what);
                 continue;
             }
             if ((size_t)ch.target_node >= s->num_nodes) {
@@ -1439,17 +1450,17 @@ bool convert_animations(Loader &L)
                 path = SCENE_PATH_WEIGHTS;
                 if (node->mesh < 0 || (size_t)node->mesh >= s->num_meshes ||
                     s->meshes[node->mesh].num_weights == 0) {
-                    DIRT_WARN("%s: weights of node %d, which has no morph targets; ignored",
+                    SCENE_WARN("%s: weights of node %d, which has no morph targets; ignored",
                               what, ch.target_node);
                     continue;
                 }
                 width = s->meshes[node->mesh].num_weights;
             } else {
-                DIRT_WARN("%s: unsupported path '%s'; ignored", what, ch.target_path.c_str());
+                SCENE_WARN("%s: unsupported path '%s'; ignored", what, ch.target_path.c_str());
                 continue;
             }
             if (node->has_matrix && path != SCENE_PATH_WEIGHTS) {
-                DIRT_WARN("%s: node %d is defined by a matrix and cannot be animated; "
+                SCENE_WARN("%s: node %d is defined by a matrix and cannot be animated; "
                           "ignored", what, ch.target_node);
                 continue;
             }
@@ -1472,38 +1483,52 @@ bool convert_animations(Loader &L)
 
 /* ---- file reading ------------------------------------------------------- */
 
-bool read_file(const char *path, std::vector<unsigned char> *out)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        SCENE_FAIL(IO, "cannot open '%s': %s", path, strerror(errno));
-        return false;
-    }
-    unsigned char buf[1 << 16];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof(buf), f)) > 0)
-        out->insert(out->end(), buf, buf + n);
-    bool err = ferror(f) != 0;
-    fclose(f);
-    if (err) {
-        SCENE_FAIL(IO, "cannot read '%s'", path);
-        return false;
-    }
-    return true;
-}
-
 /* Keeps encoded image bytes for decoding on first use (only the images that
  * materials reference get decoded, and a bad image only warns). Images in
- * buffer views are read later, with range checks. */
-bool keep_encoded_image(tinygltf::Image *image, const int, std::string *, std::string *, int,
-                        int, const unsigned char *bytes, int size, void *)
+ * buffer views are read later, with range checks. The copy is charged to
+ * the budget (an external file's own bytes were charged when read). */
+bool keep_encoded_image(tinygltf::Image *image, const int index, std::string *err, std::string *,
+                        int, int, const unsigned char *bytes, int size, void *)
 {
     if (image->bufferView >= 0)
         return true;
-    if (bytes && size > 0)
+    if (bytes && size > 0) {
+        if (!charge((size_t)size, 1, "an image's encoded bytes")) {
+            if (err)
+                *err += "image " + std::to_string(index) + ": load budget exceeded\n";
+            return false;
+        }
         image->image.assign(bytes, bytes + size);
+    }
     image->as_is = true;
     return true;
+}
+
+/* A message of a parser, fit to print: the excerpt of the input some
+ * messages end with ("; last read: '...'", nlohmann's) removed, a data URI
+ * cut after its header, other bytes outside printable ASCII shown as '?',
+ * at most 300 bytes. Messages never echo a file's contents beyond the names
+ * and URIs a scene gives. */
+std::string printable(const std::string &line)
+{
+    std::string t = line;
+    size_t cut = t.find("; last read:");
+    if (cut != std::string::npos)
+        t.erase(cut);
+    size_t data = t.find("data:");
+    if (data != std::string::npos) {
+        size_t comma = t.find(',', data);
+        size_t end = comma == std::string::npos ? t.size() : comma + 1;
+        size_t stop = t.find_first_of(" '\"", end);
+        t.replace(end, (stop == std::string::npos ? t.size() : stop) - end, "...");
+    }
+    for (char &c : t) {
+        if ((unsigned char)c < 32 || (unsigned char)c > 126)
+            c = '?';
+    }
+    if (t.size() > 300)
+        t = t.substr(0, 297) + "...";
+    return t;
 }
 
 void log_lines(bool error, const char *path, const std::string &text)
@@ -1514,11 +1539,11 @@ void log_lines(bool error, const char *path, const std::string &text)
         if (end == std::string::npos)
             end = text.size();
         if (end > start) {
-            std::string line = text.substr(start, end - start);
+            std::string line = printable(text.substr(start, end - start));
             if (error)
                 DIRT_ERROR("%s: %s", path, line.c_str());
             else
-                DIRT_WARN("%s: %s", path, line.c_str());
+                SCENE_WARN("%s: %s", path, line.c_str());
         }
         start = end + 1;
     }
@@ -1568,6 +1593,206 @@ bool no_write_file(std::string *err, const std::string &, const std::vector<unsi
     return false;
 }
 
+/* File-system callbacks for a model read from a file: a URI resolves in the
+ * scene's folder only (tinygltf also tries the working directory: refused
+ * here), must stay in it (scene_read_ref_file: OUTSIDE), be a regular file
+ * within the budget (NOT_REGULAR, TOO_LARGE); what is read is charged and
+ * listed (dirt_scene_file). `user` is the FileFs. */
+struct FileFs {
+    std::string label;   /* the scene file */
+    std::string dir;     /* the scene's folder, as tinygltf joins it */
+    std::string refused; /* the last path refused (said once) */
+};
+
+/* The URI as the file names it: `path` without the folder tinygltf joined. */
+std::string uri_of(const FileFs &fs, const std::string &path)
+{
+    std::string pre = fs.dir.empty() || fs.dir.back() == '/' ? fs.dir : fs.dir + "/";
+    return path.compare(0, pre.size(), pre) == 0 ? path.substr(pre.size()) : path;
+}
+
+bool in_folder_candidate(const FileFs &fs, const std::string &path)
+{
+    std::string pre = fs.dir.empty() || fs.dir.back() == '/' ? fs.dir : fs.dir + "/";
+    return path.compare(0, pre.size(), pre) == 0;
+}
+
+bool file_exists(const std::string &path, void *user)
+{
+    FileFs &fs = *(FileFs *)user;
+    if (!in_folder_candidate(fs, path))
+        return false; /* tinygltf's second try, the working directory */
+    if (!scene_load_opts()->allow_outside && !dirt_input_inside(fs.dir.c_str(), path.c_str())) {
+        if (fs.refused != path) {
+            fs.refused = path;
+            SCENE_FAIL(OUTSIDE, "'%s': the URI '%s' leads outside the scene's folder '%s': "
+                       "refused (--allow-outside-paths, dirt_load_opts.allow_outside, permits "
+                       "it)", fs.label.c_str(), printable(uri_of(fs, path)).c_str(),
+                       fs.dir.c_str());
+        }
+        return false;
+    }
+    return access(path.c_str(), F_OK) == 0;
+}
+
+bool read_file_cb(std::vector<unsigned char> *out, std::string *err, const std::string &path,
+                  void *user)
+{
+    FileFs &fs = *(FileFs *)user;
+    size_t n = 0;
+    bool missing = false;
+    std::string uri = printable(uri_of(fs, path));
+    unsigned char *data = scene_read_ref_file(path.c_str(), uri.c_str(), "URI", 1, &n, &missing);
+    if (!data) {
+        if (err)
+            *err += missing ? "not found\n" : "refused (see above)\n";
+        return false;
+    }
+    try {
+        out->assign(data, data + n);
+    } catch (...) {
+        free(data);
+        throw;
+    }
+    free(data);
+    return true;
+}
+
+/* What a .gltf's JSON costs the parsers, counted on its bytes before they
+ * parse it (json_cost): nlohmann's document holds a node per value (an
+ * value, and one more per object member (nlohmann's and tinygltf's map
+ * nodes), and tinygltf a tinygltf::Value per value of extras and
+ * extensions; tinygltf also makes one struct per element of
+ * the arrays it reads (a material is about 2 KiB), in vectors that hold up
+ * to three times their size while they grow (the old array and the new one
+ * of twice the size). The strings' bytes are charged with
+ * the file (json_string_copies). Measured against the peak of the parse
+ * (doc/scenes.md, "Memory"). */
+const size_t json_value_cost = 256;
+const size_t json_member_cost = 256;
+const size_t json_string_copies = 7;
+
+struct ElementKind {
+    const char *parent; /* nullptr: a top-level array */
+    const char *key;
+    size_t size;
+};
+const ElementKind element_kinds[] = {
+    {nullptr, "accessors", sizeof(tinygltf::Accessor)},
+    {nullptr, "animations", sizeof(tinygltf::Animation)},
+    {nullptr, "buffers", sizeof(tinygltf::Buffer)},
+    {nullptr, "bufferViews", sizeof(tinygltf::BufferView)},
+    {nullptr, "cameras", sizeof(tinygltf::Camera)},
+    {nullptr, "images", sizeof(tinygltf::Image)},
+    {nullptr, "materials", sizeof(tinygltf::Material)},
+    {nullptr, "meshes", sizeof(tinygltf::Mesh)},
+    {nullptr, "nodes", sizeof(tinygltf::Node)},
+    {nullptr, "samplers", sizeof(tinygltf::Sampler)},
+    {nullptr, "scenes", sizeof(tinygltf::Scene)},
+    {nullptr, "skins", sizeof(tinygltf::Skin)},
+    {nullptr, "textures", sizeof(tinygltf::Texture)},
+    {"meshes", "primitives", sizeof(tinygltf::Primitive)},
+    {"animations", "channels", sizeof(tinygltf::AnimationChannel)},
+    {"animations", "samplers", sizeof(tinygltf::AnimationSampler)},
+    {"KHR_lights_punctual", "lights", sizeof(tinygltf::Light)},
+};
+const size_t num_element_kinds = sizeof(element_kinds) / sizeof(element_kinds[0]);
+
+struct JsonFrame {
+    bool object;
+    int kind;        /* element_kinds index of this array's elements, -1 */
+    std::string key; /* objects: the member being read */
+};
+
+/* The element kind of an array opening as the member stack.back().key:
+ * a top-level member (the root object alone on the stack), a member of an
+ * element of a top-level array (its kind the parent), or the lights of
+ * the root's extensions.KHR_lights_punctual. -1 for any other array. */
+int element_kind(const std::vector<JsonFrame> &stack)
+{
+    const std::string &key = stack.back().key;
+    size_t d = stack.size();
+    for (size_t e = 0; e < num_element_kinds; e++) {
+        const ElementKind &ek = element_kinds[e];
+        if (key != ek.key)
+            continue;
+        if (!ek.parent && d == 1)
+            return (int)e;
+        if (ek.parent && d == 3 && !stack[1].object && stack[1].kind >= 0 &&
+            !strcmp(element_kinds[stack[1].kind].key, ek.parent) &&
+            !element_kinds[stack[1].kind].parent)
+            return (int)e;
+        if (ek.parent && d == 3 && stack[1].object && stack[0].key == "extensions" &&
+            stack[1].key == ek.parent)
+            return (int)e;
+    }
+    return -1;
+}
+
+/* Bytes the parsers will hold for `n` bytes of JSON (beyond the bytes
+ * themselves): json_value_cost per value, json_member_cost per object
+ * member, and per element of the arrays of
+ * element_kinds three times its struct's size. Scans like json_depth (strings
+ * skipped, escapes honoured); nesting is already bounded. Saturates at
+ * SIZE_MAX. */
+size_t json_cost(const unsigned char *p, size_t n)
+{
+    std::vector<JsonFrame> stack;
+    size_t cost = 0;
+    auto add = [&cost](size_t c) { cost = c > SIZE_MAX - cost ? SIZE_MAX : cost + c; };
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = p[i];
+        if (c == '"') {
+            size_t j = i + 1;
+            while (j < n && p[j] != '"')
+                j += p[j] == '\\' ? 2 : 1;
+            /* A member name (the next token a colon) is kept for kinds. */
+            size_t k = j + 1;
+            while (k < n && (p[k] == ' ' || p[k] == '\t' || p[k] == '\n' || p[k] == '\r'))
+                k++;
+            bool name = k < n && p[k] == ':';
+            if (name && !stack.empty() && stack.back().object) {
+                size_t len = j > i + 1 ? std::min(j, n) - i - 1 : 0;
+                stack.back().key.assign((const char *)p + i + 1, std::min<size_t>(len, 32));
+                add(json_member_cost);
+            } else {
+                add(json_value_cost);
+            }
+            i = j;
+        } else if (c == '{' || c == '[') {
+            add(json_value_cost);
+            int kind = -1;
+            if (c == '[' && !stack.empty() && stack.back().object)
+                kind = element_kind(stack);
+            if (c == '{' && !stack.empty() && !stack.back().object && stack.back().kind >= 0)
+                add(3 * element_kinds[stack.back().kind].size);
+            stack.push_back(JsonFrame{c == '{', kind, std::string()});
+        } else if (c == '}' || c == ']') {
+            if (!stack.empty())
+                stack.pop_back();
+        } else if ((c >= '0' && c <= '9') || c == '-' || c == 't' || c == 'f' || c == 'n') {
+            /* a number or a literal: one value, its bytes skipped */
+            add(json_value_cost);
+            while (i + 1 < n && p[i + 1] != ',' && p[i + 1] != ']' && p[i + 1] != '}' &&
+                   p[i + 1] != ' ' && p[i + 1] != '\n' && p[i + 1] != '\t' && p[i + 1] != '\r')
+                i++;
+        }
+    }
+    return cost;
+}
+
+/* Charges what parsing `n` bytes of JSON will hold (json_cost and the
+ * strings' copies); false (logged, TOO_LARGE) when it does not fit. */
+bool charge_json(const unsigned char *json, size_t n, const char *path)
+{
+    char what[4200];
+    snprintf(what, sizeof(what), "'%s': the JSON's values and objects", path);
+    if (!charge(json_cost(json, n), 1, what))
+        return false;
+    snprintf(what, sizeof(what), "'%s': the JSON's strings", path);
+    return charge(n, json_string_copies, what);
+}
+
 /* Parses `size` bytes of .gltf JSON or .glb (told apart by the "glTF" magic)
  * into `model`. `label` names the data in messages. External URIs resolve
  * against `base_dir`, or always fail when `base_dir` is NULL. */
@@ -1582,6 +1807,23 @@ bool depth_ok(const unsigned char *json, size_t n, int limit, const char *path)
     SCENE_FAIL(TOO_DEEP,
                "'%s': JSON nested deeper than %d levels (dirt_load_opts.max_depth)", path,
                limit);
+    return false;
+}
+
+/* glTF 2.0 only: asset.version's major number must be 2 and minVersion, if
+ * given, at most 2.0 (glTF 2.0, "Versioning"); VERSION, logged, otherwise. */
+bool version_ok(const tinygltf::Model &m, const char *path)
+{
+    const std::string &v = m.asset.version, &mv = m.asset.minVersion;
+    bool major2 = v.size() >= 2 && v[0] == '2' && v[1] == '.';
+    bool min_ok = mv.empty() || mv == "2.0";
+    if (major2 && min_ok)
+        return true;
+    SCENE_FAIL(VERSION,
+               "'%s': asset.version '%s'%s%s%s: this loader reads glTF 2.0 only (a glTF 1.0 file "
+               "needs converting)",
+               path, printable(v).c_str(), mv.empty() ? "" : ", minVersion '",
+               mv.empty() ? "" : printable(mv).c_str(), mv.empty() ? "" : "'");
     return false;
 }
 
@@ -1600,15 +1842,24 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
 
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(keep_encoded_image, nullptr);
+    FileFs file_fs;
+    tinygltf::FsCallbacks fs = {};
     if (!base_dir) {
-        tinygltf::FsCallbacks fs = {};
         fs.FileExists = any_file_exists;
         fs.ExpandFilePath = no_expand;
         fs.ReadWholeFile = no_read_file;
         fs.WriteWholeFile = no_write_file;
         fs.user_data = nullptr;
-        gltf.SetFsCallbacks(fs);
+    } else {
+        file_fs.label = label;
+        file_fs.dir = base_dir;
+        fs.FileExists = file_exists;
+        fs.ExpandFilePath = no_expand;
+        fs.ReadWholeFile = read_file_cb;
+        fs.WriteWholeFile = no_write_file;
+        fs.user_data = &file_fs;
     }
+    gltf.SetFsCallbacks(fs);
     std::string dir = base_dir ? base_dir : "";
     std::string err, warn;
     bool ok;
@@ -1618,8 +1869,14 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
             SCENE_FAIL(TRUNCATED, "'%s': truncated .glb (%zu bytes, header needs 20)", path, size);
             return false;
         }
+        uint32_t version = le32(&bytes[4]);
         uint32_t length = le32(&bytes[8]);
         uint32_t json_len = le32(&bytes[12]);
+        if (version != 2) {
+            SCENE_FAIL(VERSION, "'%s': a .glb of version %u: this loader reads glTF 2.0 (.glb "
+                       "version 2) only", path, version);
+            return false;
+        }
         if (length > size) {
             SCENE_FAIL(TRUNCATED, "'%s': truncated .glb: header says %u bytes, file has %zu", path,
                        length, size);
@@ -1630,24 +1887,36 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
                        json_len);
             return false;
         }
+        uint32_t bin_len = 0;
         if (length >= (uint64_t)json_len + 28u) {
-            uint32_t bin_len = le32(&bytes[20 + json_len]);
+            bin_len = le32(&bytes[20 + json_len]);
             if ((uint64_t)json_len + 28u + bin_len > length) {
                 SCENE_FAIL(TRUNCATED, "'%s': truncated .glb: BIN chunk of %u bytes exceeds the file",
                            path, bin_len);
                 return false;
             }
         }
-        if (!depth_ok(bytes + 20, json_len, opts->max_depth, path))
+        /* tinygltf copies the BIN chunk into its buffer. */
+        if (!depth_ok(bytes + 20, json_len, opts->max_depth, path) ||
+            !charge_json(bytes + 20, json_len, path) || !charge(bin_len, 1, "the .glb's BIN chunk"))
             return false;
         ok = gltf.LoadBinaryFromMemory(model, &err, &warn, bytes, (unsigned int)size, dir);
     } else {
-        if (!depth_ok(bytes, size, opts->max_depth, path))
+        if (!depth_ok(bytes, size, opts->max_depth, path) || !charge_json(bytes, size, path))
             return false;
         ok = gltf.LoadASCIIFromString(model, &err, &warn, (const char *)bytes,
                                       (unsigned int)size, dir);
     }
     log_lines(false, path, warn);
+    /* A file refused by the callbacks (outside the folder, not a regular
+     * file, over the budget) fails the load, also when tinygltf only warned
+     * (an image). */
+    if (scene_error_get() != DIRT_SCENE_ERR_OK) {
+        if (!ok)
+            log_lines(true, path, err);
+        DIRT_ERROR("cannot load '%s'", path);
+        return false;
+    }
     /* tinygltf reads extensionsRequired before anything that may fail, so
      * an unsupported extension is the reason given even when what it
      * changes (an image format, compressed buffers) broke the parse. */
@@ -1678,20 +1947,69 @@ bool parse_bytes(const unsigned char *bytes, size_t size, const char *label,
         DIRT_ERROR("cannot load '%s'", path);
         return false;
     }
+    if (!version_ok(*model, path)) {
+        DIRT_ERROR("cannot load '%s'", path);
+        return false;
+    }
+    return true;
+}
+
+/* True when `name` ends in `ext` (".gltf"), in any case. */
+bool has_ext(const std::string &name, const char *ext)
+{
+    size_t m = strlen(ext);
+    if (name.size() < m)
+        return false;
+    for (size_t i = 0; i < m; i++) {
+        char c = name[name.size() - m + i];
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+        if (c != ext[i])
+            return false;
+    }
     return true;
 }
 
 bool parse_model(const char *path, const dirt_load_opts *opts, tinygltf::Model *model)
 {
-    std::vector<unsigned char> bytes;
-    if (!read_file(path, &bytes))
+    size_t size = 0;
+    unsigned char *bytes = scene_read_scene_file(path, 1, &size);
+    if (!bytes)
         return false;
     std::string p(path);
+    /* A name that is not .gltf/.glb is read when its bytes are glTF: the
+     * .glb magic, or a JSON object. */
+    if (!has_ext(p, ".gltf") && !has_ext(p, ".glb")) {
+        size_t k = 0;
+        while (k < size && (bytes[k] == ' ' || bytes[k] == '\t' || bytes[k] == '\n' ||
+                            bytes[k] == '\r'))
+            k++;
+        bool gltf = (size >= 4 && memcmp(bytes, "glTF", 4) == 0) || (k < size && bytes[k] == '{');
+        if (!gltf) {
+            size_t slash = p.find_last_of('/'), dot = p.find_last_of('.');
+            std::string ext = dot == std::string::npos || (slash != std::string::npos && dot < slash)
+                                  ? std::string("(none)")
+                                  : printable(p.substr(dot));
+            SCENE_FAIL(FORMAT, "'%s': unsupported format (extension %s; neither glTF nor OBJ): "
+                       "the loader reads glTF 2.0 (.gltf, .glb) and Wavefront OBJ (.obj)",
+                       path, ext.c_str());
+            free(bytes);
+            return false;
+        }
+    }
     size_t slash = p.find_last_of('/');
     std::string base_dir = slash == std::string::npos ? "." : p.substr(0, slash);
     if (base_dir.empty())
         base_dir = "/";
-    return parse_bytes(bytes.data(), bytes.size(), path, base_dir.c_str(), opts, model);
+    bool ok;
+    try {
+        ok = parse_bytes(bytes, size, path, base_dir.c_str(), opts, model);
+    } catch (...) {
+        free(bytes);
+        throw;
+    }
+    free(bytes);
+    return ok;
 }
 
 /* Destroys the scene under construction unless released (also when a
@@ -1733,7 +2051,7 @@ bool convert(Loader &L, const tinygltf::Model &model, const char *path)
     }
 
     convert_materials(L, need_default);
-    if (!convert_meshes(L) || !convert_nodes(L) || !convert_skins(L))
+    if (L.failed || !convert_meshes(L) || !convert_nodes(L) || !convert_skins(L))
         return false;
     convert_cameras_lights(L);
     if (!convert_animations(L))
@@ -1790,7 +2108,6 @@ extern "C" const char *const *dirt_scene_gltf_extensions(void)
 
 extern "C" dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *opts)
 {
-    budget.left = opts->max_bytes;
     try {
         return load(path, opts);
     } catch (const std::bad_alloc &) {
@@ -1806,7 +2123,6 @@ extern "C" dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *o
 extern "C" dirt_scene *scene_load_gltf_memory(const void *data, size_t size, const char *label,
                                               const dirt_load_opts *opts)
 {
-    budget.left = opts->max_bytes;
     try {
         return load_memory(data, size, label, opts);
     } catch (const std::bad_alloc &) {

@@ -12,9 +12,11 @@
 #include "dirt/log.h"
 
 #include <stb_image.h>
+#include <strings.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +24,7 @@
 #include <cstring>
 #include <exception>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <streambuf>
 #include <string>
@@ -30,13 +33,10 @@
 
 namespace {
 
-/* The budget of the load in progress on this thread (load_budget), as in
- * the glTF loader. */
-thread_local dirt_scene_cpp::load_budget budget = {0};
-
+/* The budget of the load in progress on this thread (scene_charge). */
 bool charge(size_t count, size_t each, const char *what)
 {
-    return budget.charge(count, each, what);
+    return scene_charge(count, each, what);
 }
 
 using dirt_scene_cpp::alloc_zeroed;
@@ -52,26 +52,16 @@ struct MemBuf : std::streambuf {
     }
 };
 
-bool read_file(const char *path, std::string *out, bool quiet_missing = false)
+/* A message quoting what a file says, fit to print: bytes outside
+ * printable ASCII shown as '?', at most 200 bytes. */
+std::string printable(const std::string &text)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (!quiet_missing)
-            SCENE_FAIL(IO, "cannot open '%s': %s", path, strerror(errno));
-        return false;
+    std::string t = text.size() > 200 ? text.substr(0, 197) + "..." : text;
+    for (char &c : t) {
+        if ((unsigned char)c < 32 || (unsigned char)c > 126)
+            c = '?';
     }
-    char buf[1 << 16];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof(buf), f)) > 0)
-        out->append(buf, n);
-    bool err = ferror(f) != 0;
-    fclose(f);
-    if (err) {
-        if (!quiet_missing)
-            SCENE_FAIL(IO, "cannot read '%s'", path);
-        return false;
-    }
-    return true;
+    return t;
 }
 
 std::string file_stem(const std::string &path)
@@ -174,6 +164,27 @@ void scan_stated(const std::string &text, std::vector<MtlStated> *out)
     out->push_back(cur);
 }
 
+/* What an MTL library costs while it is parsed: its text twice (the
+ * bytes, the copy LoadMtl reads), and per newmtl statement LoadMtl's
+ * material_t (in a vector that may hold three times its size while it
+ * grows) and what the scene makes of it (measured: about 4.5 KiB). */
+const size_t mtl_copies = 2, mtl_material_cost = 6144;
+
+/* The newmtl statements of MTL text (each makes a material). */
+size_t count_newmtl(const std::string &text)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < text.size(); i++) {
+        if (i != 0 && text[i - 1] != '\n' && text[i - 1] != '\r')
+            continue;
+        size_t j = i;
+        while (j < text.size() && (text[j] == ' ' || text[j] == '\t'))
+            j++;
+        count += text.compare(j, 6, "newmtl") == 0;
+    }
+    return count;
+}
+
 /* Reads the MTL libraries an OBJ names: from files beside it, or the one
  * text a scene loaded from memory comes with. Records, per material, what
  * it states and the directory its texture paths resolve in. */
@@ -201,13 +212,24 @@ public:
             }
             memory_used = true;
             text = *memory_mtl;
+            if (!scene_charge(count_newmtl(text), mtl_material_cost, "the MTL materials"))
+                return false;
         } else {
             std::string path = resolve(dir, name);
-            if (!read_file(path.c_str(), &text, true)) {
-                *warn += "cannot read the material library '" + path + "' (" +
-                         strerror(errno) + ")\n";
+            size_t n = 0;
+            bool missing = false;
+            unsigned char *bytes = scene_read_ref_file(path.c_str(), printable(name).c_str(),
+                                                       "mtllib", mtl_copies, &n, &missing);
+            if (!bytes) {
+                if (missing)
+                    *warn += "cannot read the material library '" + printable(path) +
+                             "' (" + strerror(ENOENT) + ")\n";
                 return false;
             }
+            text.assign((const char *)bytes, n);
+            free(bytes);
+            if (!scene_charge(count_newmtl(text), mtl_material_cost, "the MTL materials"))
+                return false;
             where = dir_of(path);
         }
         size_t before = materials->size();
@@ -247,7 +269,7 @@ struct Notes {
         if (it == notes.end()) {
             order.push_back(what);
             it = notes.emplace(what, Note()).first;
-            it->second.first = who;
+            it->second.first = printable(who);
         }
         it->second.count++;
     }
@@ -256,7 +278,7 @@ struct Notes {
     {
         for (const std::string &k : order) {
             const Note &n = notes.at(k);
-            DIRT_WARN("%s: %s (%zu material%s, first '%s')", label, k.c_str(), n.count,
+            SCENE_WARN("%s: %s (%zu material%s, first '%s')", label, k.c_str(), n.count,
                       n.count == 1 ? "" : "s", n.first.c_str());
         }
     }
@@ -291,15 +313,16 @@ void log_tinyobj(const char *label, const std::string &text, bool error)
         counts[k]++;
     }
     for (size_t k = 0; k < lines.size(); k++) {
+        lines[k] = printable(lines[k]);
         if (error)
             DIRT_ERROR("%s: %s", label, lines[k].c_str());
         else if (counts[k] > 1)
-            DIRT_WARN("%s: %s (%zu times)", label, lines[k].c_str(), counts[k]);
+            SCENE_WARN("%s: %s (%zu times)", label, lines[k].c_str(), counts[k]);
         else
-            DIRT_WARN("%s: %s", label, lines[k].c_str());
+            SCENE_WARN("%s: %s", label, lines[k].c_str());
     }
     if (more && !error)
-        DIRT_WARN("%s: %zu more messages of the OBJ parser", label, more);
+        SCENE_WARN("%s: %zu more messages of the OBJ parser", label, more);
 }
 
 struct Loader {
@@ -349,30 +372,31 @@ int get_texture(Loader &L, size_t m, const std::string &name, bool srgb, const c
         return it->second;
     int &slot_index = L.texture_of[key];
     slot_index = DIRT_NO_TEXTURE;
-    std::string bytes;
-    if (!read_file(path.c_str(), &bytes, true)) {
-        DIRT_WARN("%s: material '%s' %s: cannot read '%s' (%s); using the factor",
-                  L.label.c_str(), mat_name, slot, path.c_str(), strerror(errno));
+    size_t n = 0;
+    bool missing = false;
+    std::string quoted = printable(name);
+    unsigned char *bytes = scene_read_ref_file(path.c_str(), quoted.c_str(), slot, 1, &n, &missing);
+    if (!bytes && !missing)
+        return -2; /* outside the folder, not a regular file, over the budget: logged */
+    if (!bytes) {
+        SCENE_WARN("%s: material '%s' %s: cannot read '%s' (%s); using the factor",
+                  L.label.c_str(), mat_name, slot, printable(path).c_str(), strerror(ENOENT));
         L.s->stats.textures_failed++;
         return slot_index;
     }
-    int w = 0, h = 0, comp = 0;
-    const stbi_uc *b = (const stbi_uc *)bytes.data();
-    if (bytes.size() > (size_t)INT32_MAX ||
-        !stbi_info_from_memory(b, (int)bytes.size(), &w, &h, &comp) || w <= 0 || h <= 0) {
-        DIRT_WARN("%s: material '%s' %s: cannot decode '%s' (%s); using the factor",
-                  L.label.c_str(), mat_name, slot, path.c_str(),
-                  stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
-        L.s->stats.textures_failed++;
-        return slot_index;
-    }
-    if (!charge((size_t)w * (size_t)h, 4, path.c_str()))
-        return -2;
+    std::unique_ptr<unsigned char, void (*)(void *)> keep(bytes, free);
+    int w = 0, h = 0;
     const char *why = "";
-    uint8_t *rgba = decode_rgba8(b, bytes.size(), &w, &h, &why);
+    std::string label = L.label + ": material '" + mat_name + "' " + slot + " '" + quoted + "'";
+    int fits = n > (size_t)INT32_MAX ? 0 : dirt_scene_cpp::texture_fits(bytes, n, label.c_str(), &why);
+    if (fits < 0)
+        return -2;
+    uint8_t *rgba = fits ? decode_rgba8(bytes, n, &w, &h, &why) : nullptr;
+    if (fits)
+        dirt_scene_cpp::texture_decoded(bytes, n, rgba ? w : 0, rgba ? h : 0);
     if (!rgba) {
-        DIRT_WARN("%s: material '%s' %s: cannot decode '%s' (%s); using the factor",
-                  L.label.c_str(), mat_name, slot, path.c_str(), why);
+        SCENE_WARN("%s: material '%s' %s: cannot decode '%s' (%s); using the factor",
+                  L.label.c_str(), mat_name, slot, printable(path).c_str(), why);
         L.s->stats.textures_failed++;
         return slot_index;
     }
@@ -538,8 +562,10 @@ bool convert_material(Loader &L, size_t i, const tinyobj::material_t &src, dirt_
         L.notes.add("map_Pr / map_Pm / map_Ps ignored (their factors are used)", name);
     if (src.sheen != 0 || src.clearcoat_thickness != 0 || src.anisotropy != 0)
         L.notes.add("sheen / clearcoat / anisotropy ignored", name);
-    for (const auto &kv : src.unknown_parameter)
-        L.notes.add("unknown MTL statement '" + kv.first + "' ignored", name);
+    /* Not quoted: an unknown statement may be any line of any file (an
+     * mtllib that names /etc/passwd, allowed outside the folder). */
+    if (!src.unknown_parameter.empty())
+        L.notes.add("unknown MTL statements ignored", name);
     return true;
 }
 
@@ -638,6 +664,9 @@ struct PrimBuild {
     std::unordered_map<Corner, uint32_t, CornerHash> vertex_of;
 };
 
+/* What an entry of PrimBuild::vertex_of holds (a hash node and its bucket). */
+const size_t corner_map_cost = 64;
+
 /* Vertex of corner `c` in `p`, made on first use (position checked
  * finite, normal zero when absent or not finite: flat at evaluation, UV
  * (u, 1 - v) so that OBJ's bottom-left origin matches glTF's top-left).
@@ -654,7 +683,8 @@ uint32_t corner_vertex(Loader &L, PrimBuild &p, const Corner &c, const char *wha
                    c.v + 1);
         return UINT32_MAX;
     }
-    if (!charge(1, sizeof(float[8]), what))
+    /* its position, normal, uv, and its entry in vertex_of */
+    if (!charge(1, sizeof(float[8]) + corner_map_cost, what))
         return UINT32_MAX;
     uint32_t id = (uint32_t)(p.pos.size() / 3);
     p.pos.insert(p.pos.end(), x, x + 3);
@@ -747,18 +777,13 @@ bool convert(Loader &L, const std::vector<tinyobj::shape_t> &shapes,
         points += sh.points.indices.size();
     }
     if (lines || points)
-        DIRT_WARN("%s: %zu line and %zu point elements ignored (triangles only)", label,
+        SCENE_WARN("%s: %zu line and %zu point elements ignored (triangles only)", label,
                   lines, points);
     if (triangles > SCENE_MAX_COUNT) {
         SCENE_FAIL(TOO_LARGE, "%s: too many triangles (%zu)", label, triangles);
         return false;
     }
-    /* The triangles' indices, and one evaluated frame of them (as for glTF:
-     * 3 corners x (position, normal, uv) + material and instance). */
-    const size_t frame_bytes =
-        3 * (sizeof(float[3]) * 2 + sizeof(float[2])) + 2 * sizeof(uint32_t);
-    if (!charge(triangles, 3 * sizeof(uint32_t) + frame_bytes, "the OBJ triangles"))
-        return false;
+    /* (The triangles' indices and frame were charged by the scan.) */
 
     s->materials = alloc_zeroed<dirt_material>(mats.size() + 1);
     s->textures = alloc_zeroed<dirt_texture>(mats.size() * 2);
@@ -891,6 +916,144 @@ struct SceneGuard {
 
 /* Loads OBJ `text` (owned: tag lines are blanked in place) with `reader`
  * for its mtllib statements. */
+/* What a scan of the OBJ text finds before tinyobjloader parses it: the
+ * statements that cost the parser memory, and the coordinates it would
+ * misread (tinyobjloader reads "nan" and "inf" as 0, and an index past
+ * 2^31 wraps to another vertex). */
+struct ObjScan {
+    size_t v = 0, vn = 0, vt = 0, faces = 0, corners = 0, other = 0;
+    size_t triangles = 0; /* of the faces of 3 corners or more: corners - 2 */
+    /* (element, component) of v, vn, vt coordinates written as nan or inf */
+    std::vector<std::pair<size_t, int>> nonfinite[3];
+};
+
+/* What tinyobjloader holds while it parses, per statement (bytes, measured
+ * against its peak: doc/scenes.md, "Memory"): a vertex's coordinates and
+ * colours, a face's record, corner list and its copy into the shape (all in
+ * vectors that may hold twice their size while they grow), a group or any
+ * other statement's shape or name. */
+const size_t obj_cost_v = 64, obj_cost_vn = 32, obj_cost_vt = 24, obj_cost_face = 128,
+             obj_cost_corner = 24, obj_cost_other = 256;
+
+bool space(char c)
+{
+    return c == ' ' || c == '\t';
+}
+
+/* Scans `text` line by line as tinyobjloader splits it (LF, CR LF or CR):
+ * counts statements; records v/vn/vt coordinates written as nan or inf
+ * (any case, signed); fails (logged) on a coordinate that is not a number
+ * (SYNTAX) and on a face, line or point index outside the 32-bit range
+ * tinyobjloader reads (INDEX). */
+bool scan_obj(const std::string &text, const char *label, ObjScan *out)
+{
+    size_t i = 0, n = text.size(), line = 0;
+    const char *t = text.data();
+    while (i < n) {
+        size_t end = i;
+        while (end < n && t[end] != '\n' && t[end] != '\r')
+            end++;
+        line++;
+        size_t p = i;
+        i = end;
+        if (i < n && t[i] == '\r' && i + 1 < n && t[i + 1] == '\n')
+            i++;
+        if (i < n)
+            i++;
+        while (p < end && space(t[p]))
+            p++;
+        if (p >= end || t[p] == '#')
+            continue;
+        int kind = -1; /* 0 v, 1 vn, 2 vt */
+        if (t[p] == 'v' && p + 1 < end && space(t[p + 1]))
+            kind = 0, p += 2;
+        else if (t[p] == 'v' && p + 2 < end && t[p + 1] == 'n' && space(t[p + 2]))
+            kind = 1, p += 3;
+        else if (t[p] == 'v' && p + 2 < end && t[p + 1] == 't' && space(t[p + 2]))
+            kind = 2, p += 3;
+        if (kind >= 0) {
+            size_t &count = kind == 0 ? out->v : kind == 1 ? out->vn : out->vt;
+            int want = kind == 2 ? 2 : 3;
+            for (int c = 0; c < want; c++) {
+                while (p < end && space(t[p]))
+                    p++;
+                size_t q = p;
+                while (q < end && !space(t[q]))
+                    q++;
+                std::string tok(t + p, q - p);
+                p = q;
+                if (tok.empty() && kind == 2 && c == 1)
+                    break; /* "vt u": v reads as 0 */
+                const char *s = tok.c_str();
+                if (*s == '+' || *s == '-')
+                    s++;
+                bool nonfinite = !strncasecmp(s, "nan", 3) || !strncasecmp(s, "inf", 3);
+                char *stop = nullptr;
+                if (!tok.empty())
+                    strtod(tok.c_str(), &stop);
+                if (nonfinite) {
+                    out->nonfinite[kind].push_back({count, c});
+                } else if (tok.empty() || stop == tok.c_str()) {
+                    SCENE_FAIL(SYNTAX, "%s: line %zu: a %s coordinate that is not a number", label,
+                               line, kind == 0 ? "v" : kind == 1 ? "vn" : "vt");
+                    return false;
+                }
+            }
+            count++;
+            continue;
+        }
+        bool face = t[p] == 'f' && p + 1 < end && space(t[p + 1]);
+        bool element = (t[p] == 'l' || t[p] == 'p') && p + 1 < end && space(t[p + 1]);
+        if (!face && !element) {
+            out->other++;
+            continue;
+        }
+        p += 2;
+        if (face)
+            out->faces++;
+        else
+            out->other++;
+        size_t face_corners = 0;
+        while (p < end) {
+            while (p < end && space(t[p]))
+                p++;
+            if (p >= end)
+                break;
+            out->corners += face;
+            face_corners += face;
+            /* v[/vt][/vn]: each number as atoi reads it */
+            while (p < end && !space(t[p])) {
+                size_t q = p;
+                if (q < end && (t[q] == '+' || t[q] == '-'))
+                    q++;
+                size_t digits = q;
+                long long v = 0;
+                bool big = false;
+                while (q < end && t[q] >= '0' && t[q] <= '9') {
+                    v = v * 10 + (t[q] - '0');
+                    big |= v > 2147483647LL;
+                    if (big)
+                        v = 2147483648LL;
+                    q++;
+                }
+                if (big) {
+                    SCENE_FAIL(INDEX, "%s: line %zu: an index of %zu digits, past the largest "
+                               "(2147483647) the OBJ parser reads", label, line, q - digits);
+                    return false;
+                }
+                while (q < end && !space(t[q]) && t[q] != '/')
+                    q++;
+                p = q < end && t[q] == '/' ? q + 1 : q;
+            }
+        }
+        if (face_corners >= 3)
+            out->triangles += face_corners - 2;
+    }
+    return true;
+}
+
+/* Loads OBJ `text` (owned: tag lines are blanked in place) with `reader`
+ * for its mtllib statements. */
 dirt_scene *load_text(std::string &text, MtlReader &reader, const char *label)
 {
     if (text.empty()) {
@@ -909,6 +1072,28 @@ dirt_scene *load_text(std::string &text, MtlReader &reader, const char *label)
                 text[j] = '#';
         }
     }
+    ObjScan scan;
+    if (!scan_obj(text, label, &scan))
+        return nullptr;
+    std::string what = std::string("'") + label + "': the OBJ parser's arrays";
+    /* The triangles' indices, and one evaluated frame of them (as for glTF:
+     * 3 corners x (position, normal, uv) + material and instance), before
+     * anything is parsed. */
+    const size_t frame_bytes =
+        3 * (sizeof(float[3]) * 2 + sizeof(float[2])) + 2 * sizeof(uint32_t);
+    std::string tris = std::string("'") + label + "': the OBJ triangles";
+    if (scan.triangles > SCENE_MAX_COUNT) {
+        SCENE_FAIL(TOO_LARGE, "%s: too many triangles (%zu)", label, scan.triangles);
+        return nullptr;
+    }
+    if (!charge(scan.triangles, 3 * sizeof(uint32_t) + frame_bytes, tris.c_str()))
+        return nullptr;
+    if (!charge(scan.v, obj_cost_v, what.c_str()) || !charge(scan.vn, obj_cost_vn, what.c_str()) ||
+        !charge(scan.vt, obj_cost_vt, what.c_str()) ||
+        !charge(scan.faces, obj_cost_face, what.c_str()) ||
+        !charge(scan.corners, obj_cost_corner, what.c_str()) ||
+        !charge(scan.other, obj_cost_other, what.c_str()))
+        return nullptr;
     reader.label = label;
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -919,6 +1104,12 @@ dirt_scene *load_text(std::string &text, MtlReader &reader, const char *label)
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &mats, &warn, &err, &in, &reader,
                                /*triangulate=*/false, /*default_vcols_fallback=*/false);
     log_tinyobj(label, warn, false);
+    /* An MTL library refused (outside the folder, not a regular file, over
+     * the budget) fails the load. */
+    if (scene_error_get() != DIRT_SCENE_ERR_OK) {
+        DIRT_ERROR("cannot load '%s'", label);
+        return nullptr;
+    }
     if (!ok) {
         scene_set_error(err.find("index") != std::string::npos ? DIRT_SCENE_ERR_INDEX
                                                                : DIRT_SCENE_ERR_SYNTAX);
@@ -931,6 +1122,18 @@ dirt_scene *load_text(std::string &text, MtlReader &reader, const char *label)
         log_tinyobj(label, err, false);
     text.clear();
     text.shrink_to_fit();
+    /* nan and inf, which tinyobjloader read as 0, are what they say: a
+     * face using such a position fails (NOT_FINITE), such a normal or
+     * texture coordinate counts as absent. */
+    std::vector<float> *arrays[3] = {&attrib.vertices, &attrib.normals, &attrib.texcoords};
+    for (int k = 0; k < 3; k++) {
+        size_t width = k == 2 ? 2 : 3;
+        for (const auto &nf : scan.nonfinite[k]) {
+            size_t at = nf.first * width + (size_t)nf.second;
+            if (at < arrays[k]->size())
+                (*arrays[k])[at] = NAN;
+        }
+    }
     SceneGuard guard{scene_new(file_stem(label).c_str())};
     if (!guard.s)
         return nullptr;
@@ -948,9 +1151,18 @@ dirt_scene *load_text(std::string &text, MtlReader &reader, const char *label)
 
 dirt_scene *load(const char *path)
 {
-    std::string text;
-    if (!read_file(path, &text))
+    size_t n = 0;
+    unsigned char *bytes = scene_read_scene_file(path, 1, &n);
+    if (!bytes)
         return nullptr;
+    std::string text;
+    try {
+        text.assign((const char *)bytes, n);
+    } catch (...) {
+        free(bytes);
+        throw;
+    }
+    free(bytes);
     MtlReader reader;
     reader.dir = dir_of(path);
     return load_text(text, reader, path);
@@ -959,6 +1171,8 @@ dirt_scene *load(const char *path)
 dirt_scene *load_memory(const void *obj, size_t obj_size, const void *mtl, size_t mtl_size,
                         const char *label)
 {
+    if (!charge(obj_size, 1, "the OBJ text") || !charge(mtl_size, mtl_copies, "the MTL text"))
+        return nullptr;
     std::string text((const char *)obj, obj_size);
     std::string mtl_text;
     MtlReader reader;
@@ -972,9 +1186,8 @@ dirt_scene *load_memory(const void *obj, size_t obj_size, const void *mtl, size_
 
 /* Runs `f` with the budget set and every exception turned into a logged
  * failure. */
-template <typename F> dirt_scene *guarded(const char *label, const dirt_load_opts *opts, F f)
+template <typename F> dirt_scene *guarded(const char *label, const dirt_load_opts *, F f)
 {
-    budget.left = opts->max_bytes;
     try {
         return f();
     } catch (const std::bad_alloc &) {

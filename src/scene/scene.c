@@ -1,9 +1,12 @@
 /* DIRT engine: scene ownership, validation of the node graph, accessors. */
 #include "scene/scene_internal.h"
 
+#include "dirt/input.h"
 #include "dirt/log.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -281,10 +284,10 @@ static void warn_degenerate(dirt_scene *s)
     }
     s->stats.zero_area = zero;
     if (s->num_triangles == 0)
-        DIRT_WARN("scene '%s' has no triangles to show: every image will be background only",
+        SCENE_WARN("scene '%s' has no triangles to show: every image will be background only",
                   s->name);
     else if (zero == s->num_triangles)
-        DIRT_WARN("scene '%s': all %zu triangles have zero area (in the rest pose): the "
+        SCENE_WARN("scene '%s': all %zu triangles have zero area (in the rest pose): the "
                   "images will be background only",
                   s->name, s->num_triangles);
 }
@@ -343,11 +346,11 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
                 goto error;
             }
             if (s->nodes[r].parent != -1) {
-                DIRT_WARN("scene '%s': root node %d has a parent; ignored", s->name, r);
+                SCENE_WARN("scene '%s': root node %d has a parent; ignored", s->name, r);
                 continue;
             }
             if (seen[r]) {
-                DIRT_WARN("scene '%s': root node %d listed twice; ignored", s->name, r);
+                SCENE_WARN("scene '%s': root node %d listed twice; ignored", s->name, r);
                 continue;
             }
             seen[r] = true;
@@ -364,7 +367,7 @@ bool scene_finalize(dirt_scene *s, const int *roots, size_t num_roots)
             continue;
         size_t nw = s->meshes[node->mesh].num_weights;
         if (node->weights && node->num_weights != nw) {
-            DIRT_WARN("node %zu: %zu morph weights but mesh %d has %zu targets; using the "
+            SCENE_WARN("node %zu: %zu morph weights but mesh %d has %zu targets; using the "
                       "mesh's", i, node->num_weights, node->mesh, nw);
             free(node->weights);
             node->weights = NULL;
@@ -477,6 +480,9 @@ void dirt_scene_destroy(dirt_scene *s)
     free(s->instances);
     free(s->cameras);
     free(s->lights);
+    for (size_t i = 0; i < s->num_files; i++)
+        free(s->files[i]);
+    free(s->files);
     free(s);
 }
 
@@ -525,6 +531,199 @@ const char *dirt_scene_error_name(enum dirt_scene_error e)
     return (unsigned)e < DIRT_SCENE_NUM_ERRORS ? name[e] : "?";
 }
 
+/* ---- the load in progress ---------------------------------------------- */
+
+static _Thread_local struct {
+    dirt_load_opts opts;
+    char *dir;               /* references resolve here; NULL from memory */
+    size_t left;             /* budget */
+    size_t lowest;           /* the least left so far (scene_budget_peak) */
+    size_t warnings;
+    char **files;
+    size_t num_files, cap_files;
+} load;
+
+static void forget_files(void)
+{
+    for (size_t i = 0; i < load.num_files; i++)
+        free(load.files[i]);
+    free(load.files);
+    load.files = NULL;
+    load.num_files = load.cap_files = 0;
+}
+
+void scene_load_begin(const dirt_load_opts *opts, const char *dir)
+{
+    free(load.dir);
+    forget_files();
+    load.opts = *opts;
+    load.dir = dir ? strdup(dir) : NULL;
+    load.left = load.lowest = opts->max_bytes;
+    load.warnings = 0;
+}
+
+const dirt_load_opts *scene_load_opts(void)
+{
+    return &load.opts;
+}
+
+bool scene_charge(size_t count, size_t each, const char *what)
+{
+    if (each != 0 && count > load.left / each) {
+        SCENE_FAIL(TOO_LARGE,
+                   "%s: %zu x %zu bytes exceed what is left of the load budget (%zu bytes of "
+                   "%zu; dirt_load_opts.max_bytes, --max-scene-memory)",
+                   what, count, each, load.left, load.opts.max_bytes);
+        return false;
+    }
+    load.left -= count * each;
+    if (load.left < load.lowest)
+        load.lowest = load.left;
+    return true;
+}
+
+void scene_refund(size_t count, size_t each)
+{
+    size_t n = count * each;
+    load.left = n > load.opts.max_bytes - load.left ? load.opts.max_bytes : load.left + n;
+}
+
+size_t scene_budget_peak(void)
+{
+    return load.opts.max_bytes - load.lowest;
+}
+
+bool scene_budget_fits(size_t count, size_t each)
+{
+    return each == 0 || count <= load.left / each;
+}
+
+size_t scene_budget_left(void)
+{
+    return load.left;
+}
+
+void scene_count_warning(void)
+{
+    load.warnings++;
+}
+
+static bool remember_file(const char *path)
+{
+    if (load.num_files == load.cap_files) {
+        size_t c = load.cap_files ? 2 * load.cap_files : 8;
+        char **grown = realloc(load.files, c * sizeof(char *));
+        if (!grown)
+            return false;
+        load.files = grown;
+        load.cap_files = c;
+    }
+    char *copy = strdup(path);
+    if (!copy)
+        return false;
+    load.files[load.num_files++] = copy;
+    return true;
+}
+
+/* Reads `path` within the budget (`copies` times its size), charges it and
+ * records it. *missing (when given) is set, nothing logged, for a file that
+ * does not exist. */
+static unsigned char *read_charged(const char *path, const char *label, size_t copies,
+                                   size_t *size, bool *missing)
+{
+    enum dirt_input_error e;
+    size_t n = 0;
+    size_t limit = copies ? load.left / copies : load.left;
+    unsigned char *data = dirt_input_read(path, limit ? limit : 1, &n, &e);
+    if (!data) {
+        int err = errno;
+        if (e == DIRT_INPUT_ERR_MISSING && missing) {
+            *missing = true;
+            return NULL;
+        }
+        if (e == DIRT_INPUT_ERR_NOT_REGULAR)
+            SCENE_FAIL(NOT_REGULAR, "%s: not a regular file (a directory, FIFO, socket or "
+                       "device): refused", label);
+        else if (e == DIRT_INPUT_ERR_TOO_LARGE)
+            SCENE_FAIL(TOO_LARGE, "%s: the file (%zu times its size) exceeds what is left of "
+                       "the load budget (%zu bytes of %zu; dirt_load_opts.max_bytes, "
+                       "--max-scene-memory)", label, copies ? copies : 1, load.left,
+                       load.opts.max_bytes);
+        else
+            SCENE_FAIL(IO, "%s: cannot read it: %s", label, strerror(err));
+        return NULL;
+    }
+    if (!scene_charge(n, copies ? copies : 1, label) || !remember_file(path)) {
+        if (scene_error_get() == DIRT_SCENE_ERR_OK)
+            SCENE_FAIL(OUT_OF_MEMORY, "%s: out of memory", label);
+        free(data);
+        return NULL;
+    }
+    *size = n;
+    return data;
+}
+
+unsigned char *scene_read_scene_file(const char *path, size_t copies, size_t *size)
+{
+    char label[4200];
+    snprintf(label, sizeof(label), "'%s'", path);
+    bool missing = false;
+    unsigned char *data = read_charged(path, label, copies, size, &missing);
+    if (missing)
+        SCENE_FAIL(IO, "cannot open '%s': %s", path, strerror(ENOENT));
+    if (data && *size == 0) {
+        SCENE_FAIL(EMPTY, "'%s' is empty", path);
+        free(data);
+        return NULL;
+    }
+    return data;
+}
+
+unsigned char *scene_read_ref_file(const char *path, const char *ref, const char *what,
+                                   size_t copies, size_t *size, bool *missing)
+{
+    *missing = false;
+    const char *scene = load.num_files ? load.files[0] : "scene";
+    if (!load.dir) {
+        SCENE_FAIL(EXTERNAL, "'%s': %s '%s' cannot be read by a scene loaded from memory", scene,
+                   what, ref);
+        return NULL;
+    }
+    if (!load.opts.allow_outside && !dirt_input_inside(load.dir, path)) {
+        SCENE_FAIL(OUTSIDE, "'%s': %s '%s' leads outside the scene's folder '%s': refused "
+                   "(--allow-outside-paths, dirt_load_opts.allow_outside, permits it)",
+                   scene, what, ref, load.dir);
+        return NULL;
+    }
+    char label[4200];
+    snprintf(label, sizeof(label), "'%s': %s '%s'", scene, what, ref);
+    return read_charged(path, label, copies, size, missing);
+}
+
+dirt_scene *scene_load_end(dirt_scene *s)
+{
+    if (s && load.opts.strict && load.warnings > 0) {
+        SCENE_FAIL(STRICT, "'%s': %zu warning%s about the scene (above): refused by strict "
+                   "loading (--strict, dirt_load_opts.strict)", s->name, load.warnings,
+                   load.warnings == 1 ? "" : "s");
+        dirt_scene_destroy(s);
+        s = NULL;
+    }
+    if (!s) {
+        scene_set_error(DIRT_SCENE_ERR_INVALID);
+    } else {
+        scene_error_reset();
+        s->files = load.files;
+        s->num_files = load.num_files;
+        load.files = NULL;
+        load.num_files = load.cap_files = 0;
+    }
+    forget_files();
+    free(load.dir);
+    load.dir = NULL;
+    return s;
+}
+
 /* The options with their defaults filled in. */
 static dirt_load_opts resolve_load_opts(const dirt_load_opts *opts)
 {
@@ -536,25 +735,40 @@ static dirt_load_opts resolve_load_opts(const dirt_load_opts *opts)
     return o;
 }
 
-/* A failed load always has an id: INVALID when no site named one. */
-static dirt_scene *load_done(dirt_scene *s)
+/* True when `name` ends in `ext` (".obj"), in any case. */
+static bool has_ext(const char *name, const char *ext)
 {
-    if (!s)
-        scene_set_error(DIRT_SCENE_ERR_INVALID);
-    else
-        scene_error_reset();
-    return s;
+    size_t n = strlen(name), m = strlen(ext);
+    if (n < m)
+        return false;
+    for (size_t i = 0; i < m; i++) {
+        char c = name[n - m + i];
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+        if (c != ext[i])
+            return false;
+    }
+    return true;
 }
 
-/* True when `name` ends in ".obj", in any case: the OBJ loader's files. */
 static bool is_obj_name(const char *name)
 {
-    size_t n = strlen(name);
-    if (n < 4 || name[n - 4] != '.')
-        return false;
-    const char *e = name + n - 3;
-    return (e[0] == 'o' || e[0] == 'O') && (e[1] == 'b' || e[1] == 'B') &&
-           (e[2] == 'j' || e[2] == 'J');
+    return has_ext(name, ".obj");
+}
+
+/* The folder of `path` ("." when it has none). */
+static char *folder_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return strdup(".");
+    size_t n = slash == path ? 1 : (size_t)(slash - path);
+    char *d = malloc(n + 1);
+    if (d) {
+        memcpy(d, path, n);
+        d[n] = 0;
+    }
+    return d;
 }
 
 dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
@@ -566,9 +780,19 @@ dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts)
         return NULL;
     }
     dirt_load_opts o = resolve_load_opts(opts);
+    char *dir = folder_of(path);
+    if (!dir) {
+        SCENE_FAIL(OUT_OF_MEMORY, "out of memory loading '%s'", path);
+        return NULL;
+    }
+    scene_load_begin(&o, dir);
+    free(dir);
+    dirt_scene *s;
     if (is_obj_name(path))
-        return load_done(scene_load_obj(path, &o));
-    return load_done(scene_load_gltf(path, &o));
+        s = scene_load_obj(path, &o);
+    else
+        s = scene_load_gltf(path, &o);
+    return scene_load_end(s);
 }
 
 dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const void *mtl,
@@ -584,7 +808,9 @@ dirt_scene *dirt_scene_load_obj_memory(const void *obj, size_t obj_size, const v
         return NULL;
     }
     dirt_load_opts o = resolve_load_opts(opts);
-    return load_done(scene_load_obj_memory(obj ? obj : "", obj_size, mtl, mtl_size, name, &o));
+    scene_load_begin(&o, NULL);
+    return scene_load_end(
+        scene_load_obj_memory(obj ? obj : "", obj_size, mtl, mtl_size, name, &o));
 }
 
 dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *name,
@@ -599,9 +825,20 @@ dirt_scene *dirt_scene_load_memory(const void *data, size_t size, const char *na
         return NULL;
     }
     dirt_load_opts o = resolve_load_opts(opts);
+    scene_load_begin(&o, NULL);
     if (is_obj_name(name))
-        return load_done(scene_load_obj_memory(data ? data : "", size, NULL, 0, name, &o));
-    return load_done(scene_load_gltf_memory(data ? data : "", size, name, &o));
+        return scene_load_end(scene_load_obj_memory(data ? data : "", size, NULL, 0, name, &o));
+    return scene_load_end(scene_load_gltf_memory(data ? data : "", size, name, &o));
+}
+
+size_t dirt_scene_num_files(const dirt_scene *s)
+{
+    return s ? s->num_files : 0;
+}
+
+const char *dirt_scene_file(const dirt_scene *s, size_t i)
+{
+    return s && i < s->num_files ? s->files[i] : NULL;
 }
 
 const char *dirt_scene_name(const dirt_scene *s)

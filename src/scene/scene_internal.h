@@ -172,6 +172,9 @@ struct dirt_scene {
     size_t max_prim_vertices;
 
     scene_load_stats stats;
+
+    char **files;                /* dirt_scene_file: read by the load */
+    size_t num_files;
 };
 
 /* A zeroed scene with the given name, NULL (logged) on out-of-memory. */
@@ -209,9 +212,64 @@ void scene_set_error(enum dirt_scene_error e);
 void scene_error_reset(void);
 enum dirt_scene_error scene_error_get(void);
 
+/* ---- the load in progress on this thread (scene.c) ----------------------
+ * dirt_scene_load* begin it (scene_load_begin) and end it
+ * (scene_load_end); the loaders read files, charge the budget and warn
+ * through it. */
+
+/* Starts a load with `opts` (defaults filled in; copied) and `dir`, the
+ * folder its references resolve in and must stay in (NULL for a scene
+ * from memory: no file is read). Sets the budget to opts->max_bytes. */
+void scene_load_begin(const dirt_load_opts *opts, const char *dir);
+/* The options of the load in progress. */
+const dirt_load_opts *scene_load_opts(void);
+
+/* Charges `count` x `each` bytes to the budget (overflow-safe); false
+ * (logged with `what`, TOO_LARGE) when they do not fit. */
+bool scene_charge(size_t count, size_t each, const char *what);
+/* Gives back a part of an earlier charge (a decoder's working memory, once
+ * freed). */
+void scene_refund(size_t count, size_t each);
+/* Whether `count` x `each` bytes fit in what is left (nothing charged). */
+bool scene_budget_fits(size_t count, size_t each);
+size_t scene_budget_left(void);
+/* The most the load in progress (or the last one) had charged at once: a
+ * bound on the memory it held (test scene_memory). */
+size_t scene_budget_peak(void);
+
+/* A warning about the scene: logged and counted (a strict load fails at
+ * its end when any was given). */
+void scene_count_warning(void);
+#define SCENE_WARN(...) (scene_count_warning(), DIRT_WARN(__VA_ARGS__))
+
+/* Reads the scene file `path` itself (dirt/input.h: a regular file, its
+ * size within the budget, charged `copies` times: the bytes and what the
+ * parser copies of them). NULL after logging (IO, EMPTY, NOT_REGULAR,
+ * TOO_LARGE); the data is NUL-terminated, free() it. */
+unsigned char *scene_read_scene_file(const char *path, size_t copies, size_t *size);
+
+/* Reads a file the scene references: `ref` as the scene writes it (quoted
+ * in messages), `path` that reference resolved against the load's folder,
+ * `what` its role ("buffer", "image", "mtllib"). The path must stay in the
+ * folder (unless opts.allow_outside; else OUTSIDE), be a regular file
+ * (NOT_REGULAR) whose size, times `copies`, fits the budget (TOO_LARGE);
+ * it is then charged and recorded (dirt_scene_file). A file that does not
+ * exist returns NULL with *missing set and nothing logged (the caller fails
+ * or warns); other failures are logged with their id. NUL-terminated,
+ * free() it. */
+unsigned char *scene_read_ref_file(const char *path, const char *ref, const char *what,
+                                   size_t copies, size_t *size, bool *missing);
+
+/* Ends the load: a failed load (`s` NULL) gets an id (INVALID when no site
+ * named one); a strict load with warnings fails (STRICT, `s` destroyed);
+ * a successful one takes the list of files read. Returns the scene or
+ * NULL. */
+dirt_scene *scene_load_end(dirt_scene *s);
+
 /* Reads a .gltf or .glb file into a finalized scene, NULL (logged, id
- * recorded by scene_set_error) on error. `opts` is never NULL and has its
- * defaults filled in (max_bytes, max_depth > 0). */
+ * recorded by scene_set_error) on error; inside a load begun by
+ * scene_load_begin. `opts` is never NULL and has its defaults filled in
+ * (max_bytes, max_depth > 0). */
 dirt_scene *scene_load_gltf(const char *path, const dirt_load_opts *opts);
 
 /* The same from `size` bytes in memory (.glb when they start with "glTF",

@@ -26,8 +26,11 @@ extern "C" {
 
 /* A technique's tracer for the structure of its last build. Owned by the
  * technique; valid until its next build, option change or destruction.
- * Buffers are OpenGL buffer names; every function issues the memory
- * barriers it needs before and after its own work. */
+ * Buffers are OpenGL buffer names; every function issues, before its own
+ * work, the memory barriers its reads and writes need (of the technique's
+ * buffers and of those handed in); whoever reads what a function wrote
+ * fences that read (the path tracer's frame graph declares the buffers it
+ * hands in; doc/frame-graph.md, section 11). */
 typedef struct dirt_tracer {
     const char *name;          /* "dirt", "mmrt" */
     void *self;
@@ -51,7 +54,8 @@ typedef struct dirt_tracer {
      * (vertices_split, prim_material_split below). */
     void (*bind_geometry)(void *self);
     /* Resets / reads the active rays traced (tmax >= tmin) and the rays
-     * whose march gave up, since the reset (blocking read). */
+     * whose march gave up, since the reset (blocking read; the integrator
+     * issues the GL_BUFFER_UPDATE_BARRIER_BIT before it). */
     void (*reset_counts)(void *self);
     bool (*read_counts)(void *self, uint64_t *rays, uint64_t *aborted);
     /* A new accumulation begins (sample 0): a technique whose traces are

@@ -23,27 +23,9 @@ fails=0 passes=0
 ok()   { passes=$((passes + 1)); }
 fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
 
-for tool in xvfb-run Xvfb xdotool; do
-  if ! command -v "$tool" >/dev/null 2>&1; then
-    [ "${CI:-}" = true ] && { echo "CI=true: $tool missing is a failure"; exit 1; }
-    echo "$tool missing: skipping"; exit 77
-  fi
-done
-
-# One X server for the whole test (xdotool talks to it too).
-for n in $(seq 90 140); do
-  [ -e /tmp/.X11-unix/X$n ] || [ -e /tmp/.X$n-lock ] && continue
-  # -noreset: the server would otherwise reset whenever its last client
-  # leaves (every dirt-view run here ends so), and a run that connects
-  # during that reset finds no display (seen once in a CI dry run).
-  Xvfb :$n -screen 0 1600x1200x24 -nolisten tcp -noreset >"$tmp/xvfb.log" 2>&1 &
-  xvfb_pid=$!
-  export DISPLAY=:$n
-  for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-  xdotool getmouselocation >/dev/null 2>&1 && break
-  kill "$xvfb_pid" 2>/dev/null; xvfb_pid=
-done
-[ -n "${xvfb_pid:-}" ] || { echo "could not start Xvfb"; exit 1; }
+# One X server for the whole test (view_xvfb.sh).
+# shellcheck source=view_xvfb.sh
+. "$(dirname "$0")/view_xvfb.sh"
 
 # run_view NAME ARGS...: dirt-view with its output in $tmp/NAME.{out,err}.
 run_view() {

@@ -11,8 +11,17 @@
  *       SHOT (the depth buffer shown without panels) is the heat ramp of
  *       IMAGE's "Z" over its finite range (misses black), sRGB-encoded,
  *       within one 8-bit step (exactly at 99% of the pixels or more).
+ *   view_check split SHOT.png A.exr B.exr
+ *       SHOT (a split view without panels, split at 0.5) shows A left of
+ *       the middle column, a white line in it, and B right of it, each as
+ *       its PNG (exposure 0, clamp), within one 8-bit step (exactly at 99%
+ *       of the pixels or more on each side)
+ *   view_check diff SHOT.png A.exr B.exr RANGE
+ *       SHOT is the heat ramp of |luminance(A) - luminance(B)| over
+ *       0..RANGE, sRGB-encoded, within one 8-bit step (exactly at 99%)
  *   view_check pixel IMAGE.exr CHANNEL X Y
- *       prints the value of CHANNEL at pixel (X, Y) (row 0 = top), %.9g
+ *       prints the value of CHANNEL (R, G, B, A: the beauty's) at pixel (X, Y)
+ *       (row 0 = top), %.9g
  * Prints what it found; exit 0 when the condition holds, 1 when it does
  * not, 2 on unreadable input. */
 #include <math.h>
@@ -144,6 +153,125 @@ done:
     return rc;
 }
 
+
+static const float heat_keys[DIRT_HEAT_KEYS][3] = {{DIRT_HEAT_KEY_0}, {DIRT_HEAT_KEY_1},
+                                                   {DIRT_HEAT_KEY_2}, {DIRT_HEAT_KEY_3},
+                                                   {DIRT_HEAT_KEY_4}};
+
+/* The heat ramp at x in 0..1 (clamped). */
+static void ramp(float x, float rgb[3])
+{
+    x = fminf(fmaxf(x, 0), 1) * (DIRT_HEAT_KEYS - 1);
+    int k = (int)x < DIRT_HEAT_KEYS - 1 ? (int)x : DIRT_HEAT_KEYS - 2;
+    float t = x - (float)k;
+    for (int j = 0; j < 3; j++)
+        rgb[j] = heat_keys[k][j] + t * (heat_keys[k + 1][j] - heat_keys[k][j]);
+}
+
+/* Loads SHOT and two EXRs of its size. False (printed) otherwise. */
+static bool load_three(const char *shot_path, const char *a_path, const char *b_path,
+                       unsigned char **shot, dirt_image **a, dirt_image **b, int *w, int *h)
+{
+    int c;
+    *shot = stbi_load(shot_path, w, h, &c, 4);
+    *a = dirt_image_read_exr(a_path);
+    *b = dirt_image_read_exr(b_path);
+    if (!*shot || !*a || !*b) {
+        printf("unreadable input\n");
+        return false;
+    }
+    if ((*a)->width != *w || (*a)->height != *h || (*b)->width != *w || (*b)->height != *h) {
+        printf("window %dx%d, images %dx%d and %dx%d\n", *w, *h, (*a)->width, (*a)->height,
+               (*b)->width, (*b)->height);
+        return false;
+    }
+    return true;
+}
+
+/* The largest difference of a shot pixel's RGB from `want` (8-bit codes). */
+static int off_by(const unsigned char *px, const int want[3])
+{
+    int d = 0;
+    for (int j = 0; j < 3; j++)
+        d = abs(px[j] - want[j]) > d ? abs(px[j] - want[j]) : d;
+    return d;
+}
+
+static int split(const char *shot_path, const char *a_path, const char *b_path)
+{
+    unsigned char *shot = NULL;
+    dirt_image *a = NULL, *b = NULL;
+    int w, h, rc = 2;
+    if (!load_three(shot_path, a_path, b_path, &shot, &a, &b, &w, &h))
+        goto done;
+    /* Pixel centres left of w / 2 show A, the column holding w / 2 is the
+     * line, the rest B. */
+    int line = w / 2;
+    size_t n[2] = {0, 0}, exact[2] = {0, 0}, off[2] = {0, 0}, line_white = 0;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const unsigned char *px = shot + ((size_t)y * w + x) * 4;
+            if (x == line) {
+                line_white += px[0] == 255 && px[1] == 255 && px[2] == 255;
+                continue;
+            }
+            int side = x > line;
+            const float *c = (side ? b : a)->rgba + ((size_t)y * w + x) * 4;
+            int want[3];
+            for (int j = 0; j < 3; j++)
+                want[j] = dirt_linear_to_srgb8(c[j]);
+            int d = off_by(px, want);
+            n[side]++;
+            exact[side] += d == 0;
+            off[side] += d > 1;
+        }
+    }
+    printf("left (A): %zu of %zu exact, %zu off by more than 1; right (B): %zu of %zu exact, "
+           "%zu off by more than 1; line %zu of %d white\n", exact[0], n[0], off[0], exact[1],
+           n[1], off[1], line_white, h);
+    rc = 1;
+    if (off[0] == 0 && off[1] == 0 && exact[0] * 100 >= n[0] * 99 &&
+        exact[1] * 100 >= n[1] * 99 && line_white == (size_t)h)
+        rc = 0;
+done:
+    stbi_image_free(shot);
+    dirt_image_destroy(a);
+    dirt_image_destroy(b);
+    return rc;
+}
+
+static int diff(const char *shot_path, const char *a_path, const char *b_path, float range)
+{
+    unsigned char *shot = NULL;
+    dirt_image *a = NULL, *b = NULL;
+    int w, h, rc = 2;
+    if (!load_three(shot_path, a_path, b_path, &shot, &a, &b, &w, &h) || !(range > 0))
+        goto done;
+    size_t n = (size_t)w * h, exact = 0, off = 0, nonzero = 0;
+    for (size_t i = 0; i < n; i++) {
+        const float *ca = a->rgba + 4 * i, *cb = b->rgba + 4 * i;
+        float la = DIRT_LUMA_R * ca[0] + DIRT_LUMA_G * ca[1] + DIRT_LUMA_B * ca[2];
+        float lb = DIRT_LUMA_R * cb[0] + DIRT_LUMA_G * cb[1] + DIRT_LUMA_B * cb[2];
+        float rgb[3];
+        ramp(fabsf(la - lb) / range, rgb);
+        int want[3];
+        for (int j = 0; j < 3; j++)
+            want[j] = dirt_linear_to_srgb8(rgb[j]);
+        int d = off_by(shot + 4 * i, want);
+        exact += d == 0;
+        off += d > 1;
+        nonzero += la != lb;
+    }
+    printf("%zu of %zu pixels exact, %zu off by more than 1; A and B differ at %zu\n", exact, n,
+           off, nonzero);
+    rc = off == 0 && exact * 100 >= n * 99 && nonzero > 0 ? 0 : 1;
+done:
+    stbi_image_free(shot);
+    dirt_image_destroy(a);
+    dirt_image_destroy(b);
+    return rc;
+}
+
 static int heat(const char *shot_path, const char *exr_path)
 {
     static const float keys[DIRT_HEAT_KEYS][3] = {{DIRT_HEAT_KEY_0}, {DIRT_HEAT_KEY_1},
@@ -200,10 +328,17 @@ static int pixel(const char *path, const char *channel, int x, int y)
 {
     dirt_image *img = dirt_image_read_exr(path);
     const float *c = img ? dirt_image_find_channel(img, channel) : NULL;
+    const char *rgba = strchr("RGBA", channel[0]);
     int rc = 2;
-    if (c && x >= 0 && y >= 0 && x < img->width && y < img->height) {
-        printf("%.9g\n", c[(size_t)y * img->width + x]);
-        rc = 0;
+    if (img && x >= 0 && y >= 0 && x < img->width && y < img->height) {
+        size_t i = (size_t)y * img->width + x;
+        if (c) {
+            printf("%.9g\n", c[i]);
+            rc = 0;
+        } else if (rgba && channel[0] && !channel[1]) { /* the beauty's R, G, B, A */
+            printf("%.9g\n", img->rgba[4 * i + (rgba - "RGBA")]);
+            rc = 0;
+        }
     }
     dirt_image_destroy(img);
     return rc;
@@ -213,6 +348,10 @@ int main(int argc, char **argv)
 {
     if (argc == 6 && !strcmp(argv[1], "pixel"))
         return pixel(argv[2], argv[3], atoi(argv[4]), atoi(argv[5]));
+    if (argc == 5 && !strcmp(argv[1], "split"))
+        return split(argv[2], argv[3], argv[4]);
+    if (argc == 6 && !strcmp(argv[1], "diff"))
+        return diff(argv[2], argv[3], argv[4], strtof(argv[5], NULL));
     if (argc == 4 && !strcmp(argv[1], "heat"))
         return heat(argv[2], argv[3]);
     if (argc == 4 && !strcmp(argv[1], "same"))
@@ -220,6 +359,7 @@ int main(int argc, char **argv)
     if (argc == 5 && !strcmp(argv[1], "window"))
         return window(argv[2], argv[3], argv[4]);
     fprintf(stderr, "usage: view_check same A.exr B.exr | window SHOT.png RENDER.png REPORT.json | "
-            "heat SHOT.png IMAGE.exr\n");
+            "heat SHOT.png IMAGE.exr | split SHOT.png A.exr B.exr | diff SHOT.png A.exr B.exr RANGE | "
+            "pixel IMAGE.exr CHANNEL X Y\n");
     return 2;
 }

@@ -1,7 +1,8 @@
 /* Frame graph on a real GL context (llvmpipe in CI): two chains of
  * compute -> compute -> raster -> readback give the pixels the CPU computes;
  * the second chain reuses the first one's memory (aliasing); the graph's own
- * validation passes, and reports a barrier the test hook drops. A second
+ * validation passes, and reports a barrier the test hook drops, and so does
+ * the barrier checker (src/gl/check.c), which sees the GL calls. A second
  * graph runs attachment-less raster passes doing image atomics at half
  * resolution (the shape of DIRT's build passes). */
 #include <stdlib.h>
@@ -27,6 +28,27 @@ typedef struct chain {
 } chain;
 
 static char log_text[32768];
+
+/* GL errors, the barrier checker's hazards aside (both count in
+ * dirt_gpu_error_count). */
+static uint64_t gl_errors(const dirt_gpu *gpu)
+{
+    return dirt_gpu_error_count(gpu) - dirt_gpu_barrier_counts(gpu).total;
+}
+
+/* Hazards of kind k the checker found so far. */
+static uint64_t hazards(const dirt_gpu *gpu, enum dirt_gpu_hazard k)
+{
+    return dirt_gpu_barrier_counts(gpu).hazards[k];
+}
+
+/* The log holds a barrier check message with both parts (the call sites'
+ * line numbers in between). */
+static bool checker_said(const char *a, const char *b)
+{
+    const char *p = strstr(log_text, a);
+    return p && strstr(p, b) != NULL;
+}
 
 static void capture(void *user, enum dirt_log_level level, const char *file, int line,
                     const char *msg)
@@ -178,10 +200,17 @@ static void test_attachmentless(dirt_gpu *gpu)
                   s1.width * s1.height, out[0]);
     }
     log_text[0] = '\0';
+    uint64_t raw = hazards(gpu, DIRT_GPU_HAZARD_READ_AFTER_WRITE);
     CHECK(!fg_execute(g, &(fg_exec_opts){.validate = true, .debug_drop_barrier = "splat2"}));
     CHECK(strstr(log_text, "pass 'splat2' accesses 'counts' (image atomic) after pass "
                            "'splat1' wrote 'counts' (image atomic) with no "
                            "GL_SHADER_IMAGE_ACCESS_BARRIER_BIT in between") != NULL);
+    CHECK(hazards(gpu, DIRT_GPU_HAZARD_READ_AFTER_WRITE) == raw + 1);
+    CHECK(checker_said("barrier check: draw of 'graph test splat'",
+                       "in 'splat2' reads texture 'counts' (image load) after draw of 'graph test "
+                       "splat' (test/gpu/test_graph_gpu.c:"));
+    CHECK(checker_said("in 'splat1' wrote it (image store or atomic) with no "
+                       "GL_SHADER_IMAGE_ACCESS_BARRIER_BIT in between", ""));
 done:
     fg_destroy(g);
     free(out);
@@ -212,9 +241,11 @@ static int check_pixels(const chain *c)
 
 int main(void)
 {
-    dirt_gpu *gpu = test_gpu();
+    /* The barrier checker counts (the test drops barriers on purpose). */
+    dirt_gpu *gpu = test_gpu_opts(&(dirt_gpu_opts){.sync_debug = true, .check_barriers = true});
     if (!gpu)
         return TEST_SKIP;
+    CHECK(dirt_gpu_barrier_counts(gpu).on);
     dirt_log_set_callback(capture, NULL);
     const char *draw_paths[] = {"graph_test/draw.vert", "graph_test/draw.frag", NULL};
     prog.fill = gl_program_compute("graph_test/fill.comp", NULL, 0);
@@ -262,6 +293,7 @@ int main(void)
         CHECK(check_pixels(&b) == 0);
     }
     CHECK(dirt_gpu_error_count(gpu) == 0);
+    CHECK(dirt_gpu_barrier_counts(gpu).commands > 0 && dirt_gpu_barrier_counts(gpu).total == 0);
 
     fg_stats s;
     CHECK(fg_get_stats(g, &s));
@@ -288,23 +320,43 @@ int main(void)
     fg_print_stats(g, stdout);
 
     /* the test hook drops derived barriers; the graph's validation (not the
-     * pixels, which may come out right by luck) reports them */
+     * pixels, which may come out right by luck) reports them, and so does
+     * the barrier checker from the GL calls */
     log_text[0] = '\0';
+    uint64_t raw = hazards(gpu, DIRT_GPU_HAZARD_READ_AFTER_WRITE);
     CHECK(!fg_execute(g, &(fg_exec_opts){.validate = true,
                                          .debug_drop_barrier = "to_image_a"}));
     CHECK(strstr(log_text, "pass 'to_image_a' accesses 'values_a' (ssbo read) after pass "
                            "'fill_a' wrote 'values_a' (ssbo write) with no "
                            "GL_SHADER_STORAGE_BARRIER_BIT in between") != NULL);
+    CHECK(hazards(gpu, DIRT_GPU_HAZARD_READ_AFTER_WRITE) == raw + 1);
+    CHECK(checker_said("barrier check: dispatch of 'graph_test/to_image.comp'",
+                       "in 'to_image_a' reads buffer 'values_a+values_b' (storage block read) "
+                       "after dispatch of 'graph_test/fill.comp'"));
+    CHECK(checker_said("in 'fill_a' wrote it (storage block write) with no "
+                       "GL_SHADER_STORAGE_BARRIER_BIT in between", ""));
     log_text[0] = '\0';
+    raw = hazards(gpu, DIRT_GPU_HAZARD_READ_AFTER_WRITE);
     CHECK(!fg_execute(g, &(fg_exec_opts){.validate = true, .debug_drop_barrier = "draw_b"}));
     CHECK(strstr(log_text, "pass 'draw_b' accesses 'image_b' (sampled) after pass "
                            "'to_image_b' wrote 'image_b' (image store) with no "
                            "GL_TEXTURE_FETCH_BARRIER_BIT in between") != NULL);
+    CHECK(hazards(gpu, DIRT_GPU_HAZARD_READ_AFTER_WRITE) == raw + 1);
+    CHECK(checker_said("in 'draw_b' reads texture 'image_a+image_b' (texture fetch) after "
+                       "dispatch of 'graph_test/to_image.comp'",
+                       "in 'to_image_b' wrote it (image store or atomic) with no "
+                       "GL_TEXTURE_FETCH_BARRIER_BIT in between"));
     log_text[0] = '\0';
+    uint64_t war = hazards(gpu, DIRT_GPU_HAZARD_WRITE_AFTER_READ);
     CHECK(!fg_execute(g, &(fg_exec_opts){.validate = true, .debug_drop_barrier = "fill_b"}));
     CHECK(strstr(log_text, "pass 'fill_b' writes 'values_b' (ssbo write) after pass "
                            "'to_image_a' accessed 'values_a' (same memory) (ssbo read) with "
                            "no GL_SHADER_STORAGE_BARRIER_BIT in between") != NULL);
+    CHECK(hazards(gpu, DIRT_GPU_HAZARD_WRITE_AFTER_READ) == war + 1);
+    CHECK(checker_said("in 'fill_b' writes buffer 'values_a+values_b' (storage block write) "
+                       "after dispatch of 'graph_test/to_image.comp'",
+                       "in 'to_image_a' accessed it (storage block read) with no "
+                       "GL_SHADER_STORAGE_BARRIER_BIT in between: shader write after an access"));
     CHECK(fg_get_stats(g, &s) && s.validation_errors >= 3);
 
     /* and a normal run afterwards is clean and correct again */
@@ -320,11 +372,13 @@ int main(void)
     CHECK(fg_execute(g, &(fg_exec_opts){.validate = true, .no_timers = true}));
     CHECK(check_pixels(&a) == 0 && check_pixels(&b) == 0);
     CHECK(fg_get_stats(g, &s) && s.clock == DIRT_CLOCK_NONE && s.ms == -1);
-    CHECK(dirt_gpu_error_count(gpu) == 0);
+    CHECK(gl_errors(gpu) == 0);
 
+    uint64_t total = dirt_gpu_barrier_counts(gpu).total;
     if (prog.splat)
         test_attachmentless(gpu);
-    CHECK(dirt_gpu_error_count(gpu) == 0);
+    CHECK(gl_errors(gpu) == 0);
+    CHECK(dirt_gpu_barrier_counts(gpu).total > total); /* the dropped splat2 barrier */
 
 done:
     fg_destroy(g);

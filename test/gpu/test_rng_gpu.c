@@ -30,7 +30,8 @@ int main(void)
         glUniform1ui(DIRT_LOC_TEST_RNG_SEED, seeds[s]);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, buf);
         glDispatchCompute(DIRT_GROUPS(N), 1, 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        /* the readback, and the next seed's dispatch writing the same words */
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         CHECK(gl_buffer_read(buf, 0, N * 8, out));
         uint32_t bad_u = 0, bad_f = 0;
         for (uint32_t i = 0; i < N; i++) {

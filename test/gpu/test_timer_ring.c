@@ -61,6 +61,7 @@ static void run_work(const work *w)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, w->out);
     glUseProgram(w->prog);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); /* the last run wrote the same words */
     glDispatchCompute(64, 1, 1);
     glUseProgram(0);
 }

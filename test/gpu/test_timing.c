@@ -81,6 +81,7 @@ static void work(const spin *s)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_TEST_OUT, s->out);
     glUseProgram(s->prog);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); /* the last spin wrote the same words */
     glDispatchCompute(SPIN_GROUPS, 1, 1);
     glUseProgram(0);
     for (int k = 0; k < 2; k++) {

@@ -3,8 +3,10 @@
 = 4, bit for bit) and the engine's error ids. Runs against whichever `dirt`
 package is on the path: the build tree's (meson test python) or the
 installed one (test install)."""
+import json
 import math
 import os
+import struct
 
 import numpy as np
 import pytest
@@ -110,6 +112,33 @@ def test_bad_scenes_raise_with_the_loaders_id(tmp_path):
     with pytest.raises(dirt.Error) as e:
         dirt.Scene(trunc)
     assert e.value.id == "TRUNCATED"
+
+
+def test_scenes_stay_in_their_folder_and_strict_fails_on_warnings(tmp_path):
+    (tmp_path / "s").mkdir()
+    (tmp_path / "tri.bin").write_bytes(struct.pack("<9f3H2x", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 2))
+    gltf = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+            "buffers": [{"byteLength": 44, "uri": "../tri.bin"}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36},
+                            {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 0]},
+                          {"bufferView": 1, "componentType": 5123, "count": 3,
+                           "type": "SCALAR"}]}
+    up = tmp_path / "s" / "up.gltf"
+    up.write_text(json.dumps(gltf))
+    with pytest.raises(dirt.Error) as e:
+        dirt.Scene(up)
+    assert e.value.id == "OUTSIDE"
+    assert dirt.Scene(up, allow_outside=True).triangles == 1
+    gltf["buffers"][0]["uri"] = "tri.bin"
+    gltf["extensionsUsed"] = ["KHR_materials_clearcoat"]
+    (tmp_path / "ext.gltf").write_text(json.dumps(gltf))
+    assert dirt.Scene(tmp_path / "ext.gltf").triangles == 1
+    with pytest.raises(dirt.Error) as e:
+        dirt.Scene(tmp_path / "ext.gltf", strict=True)
+    assert e.value.id == "STRICT"
 
 
 def test_session_errors_are_ids(scene, tmp_path):

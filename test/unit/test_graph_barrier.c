@@ -245,6 +245,42 @@ static void test_pass_bits(void)
     CHECK(fg_pass_barrier(g, "show") == GL_TEXTURE_FETCH_BARRIER_BIT);
     CHECK(fg_pass_barrier(g, "accumulate") == GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     fg_destroy(g);
+
+    /* shared imports: written outside between executes, so each one's first
+     * access gets its bit (a clear, a transfer, pays for what shaders wrote),
+     * later accesses only what the graph's own writes need */
+    for (int shared = 0; shared < 2; shared++) {
+        g = fg_create(NULL);
+        fg_res in = fg_import_buffer(g, "in", 5, 64);
+        fg_res lists = fg_import_buffer(g, "lists", 6, 64);
+        fg_res tex = fg_import_texture(g, "tex", 7, &(fg_tex_desc){.format = FG_R32F,
+                                                                    .width = 2, .height = 2});
+        fg_pass *clear = fg_add_pass(g, "clear", FG_COMPUTE, NULL, NULL);
+        fg_write(clear, lists, FG_TRANSFER_WRITE);
+        fg_pass *fill = fg_add_pass(g, "fill", FG_COMPUTE, NULL, NULL);
+        fg_read(fill, in, FG_SSBO_READ);
+        fg_read(fill, tex, FG_SAMPLED);
+        fg_use(fill, lists, FG_SSBO_READ, NULL);
+        fg_write(fill, lists, FG_SSBO_WRITE);
+        fg_pass *again = fg_add_pass(g, "again", FG_COMPUTE, NULL, NULL);
+        fg_read(again, in, FG_SSBO_READ);
+        fg_read(again, lists, FG_SSBO_READ);
+        fg_keep(again);
+        fg_set_shared_imports(g, shared);
+        CHECK(fg_compile(g));
+        if (shared) {
+            CHECK(fg_pass_barrier(g, "clear") == GL_BUFFER_UPDATE_BARRIER_BIT);
+            CHECK(fg_pass_barrier(g, "fill") ==
+                  (GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT));
+        } else {
+            /* the graph's own steady state: the last execute's fill wrote
+             * the lists the clear overwrites; nothing wrote `in` or `tex` */
+            CHECK(fg_pass_barrier(g, "clear") == GL_BUFFER_UPDATE_BARRIER_BIT);
+            CHECK(fg_pass_barrier(g, "fill") == GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        CHECK(fg_pass_barrier(g, "again") == GL_SHADER_STORAGE_BARRIER_BIT);
+        fg_destroy(g);
+    }
 }
 
 /* Graph whose second resource reuses the first one's memory. */

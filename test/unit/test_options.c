@@ -12,6 +12,7 @@
 
 #include "app/options.h"
 #include "app/provenance.h"
+#include "app/setup.h"
 #include "check.h"
 #include "dirt/gpu.h"
 
@@ -222,6 +223,25 @@ static void test_values(void)
     CHECK(!app_set(r, "max-scene-memory", "5X", 0, &o));
     CHECK(!app_set(r, "max-scene-memory", "1KB", 0, &o));
     CHECK(!app_set(r, "max-scene-memory", "", 0, &o));
+    /* The loader's and the environment's options: one budget for both. */
+    CHECK(app_set(r, "max-scene-memory", "3m", 0, &o));
+    CHECK(!o.strict && !o.allow_outside_paths);
+    dirt_load_opts lo = app_load_opts(&o);
+    CHECK(lo.max_bytes == 3u << 20 && !lo.strict && !lo.allow_outside);
+    CHECK(app_set(r, "strict", "on", 0, &o) && app_set(r, "allow-outside-paths", "on", 0, &o));
+    lo = app_load_opts(&o);
+    CHECK(lo.strict && lo.allow_outside);
+    CHECK(app_env_opts(&o).max_bytes == 3u << 20);
+    /* In every program; never from a dirt-view script (a load's rules are
+     * the command line's). */
+    for (int i = 0; i < 3; i++) {
+        const app_program *p = i == 0 ? r : i == 1 ? c : &app_view_program;
+        CHECK_MSG(app_find(p, "strict", 0) == APP_OPT_STRICT, "%s --strict", p->name);
+        CHECK_MSG(app_find(p, "allow-outside-paths", 0) == APP_OPT_ALLOW_OUTSIDE_PATHS,
+                  "%s --allow-outside-paths", p->name);
+    }
+    CHECK(app_find(&app_view_program, "strict", APP_USE_RUNTIME) == APP_OPT_NONE);
+    CHECK(app_find(&app_view_program, "allow-outside-paths", APP_USE_RUNTIME) == APP_OPT_NONE);
     /* The session options they set, with the table's mappings. */
     CHECK(app_set(r, "hiz-top", "2", 0, &o) && app_session_opts(&o).hiz_levels == 3);
     CHECK(app_set(r, "large", "0", 0, &o) && app_session_opts(&o).large < 0);

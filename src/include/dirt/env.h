@@ -18,11 +18,19 @@ extern "C" {
 
 typedef struct dirt_env dirt_env;
 
-/* Zero-initialised = intensity 1, no rotation. */
+/* Default of dirt_env_opts.max_bytes: 2 GiB, what loading an 8192 x 4096
+ * map holds with room to spare (32 bytes per texel: the image read and
+ * the map's tables). */
+#define DIRT_ENV_DEFAULT_MAX_BYTES ((size_t)2 << 30)
+
+/* Zero-initialised = intensity 1, no rotation, the default budget. */
 typedef struct dirt_env_opts {
     float intensity;  /* radiance scale; 0 = 1 */
     float rotation;   /* degrees about +Y (the map turns counter-clockwise
                          seen from above) */
+    size_t max_bytes; /* dirt_env_load: what loading a map file may hold (its
+                         decoded image and the map's tables, dirt_image_read's
+                         bound); 0 = DIRT_ENV_DEFAULT_MAX_BYTES */
 } dirt_env_opts;
 
 /* A map of width x height texels from `rgb` (row-major, 3 floats per texel,
@@ -32,9 +40,13 @@ DIRT_API dirt_env *dirt_env_create(const float *rgb, int width, int height, cons
 /* The constant environment `rgb` (1 x 1). */
 DIRT_API dirt_env *dirt_env_constant(const float rgb[3]);
 /* Reads an equirectangular map from an OpenEXR (.exr) or Radiance (.hdr)
- * file; "sky" is the built-in procedural sky (dirt_env_sky). NULL after
- * logging (missing, unreadable or malformed file, negative or non-finite
- * texels); `why` (may be NULL) receives the reason in one line. */
+ * file through dirt_image_read (a regular file only; its declared size
+ * checked against opts->max_bytes before decoding; a file shorter than it
+ * declares, or an EXR without colour channels, refused); "sky" is the
+ * built-in procedural sky (dirt_env_sky). NULL after logging (missing,
+ * unreadable or malformed file, negative or non-finite texels); `why` (may
+ * be NULL) receives the reason in one line that starts with its id of
+ * dirt/input.h ("NOT_REGULAR: ...", "TRUNCATED: ...", "INVALID: ..."). */
 DIRT_API dirt_env *dirt_env_load(const char *path, const dirt_env_opts *opts, char *why, size_t size);
 /* The built-in sky (512 x 256 texels, each the value at its centre): a
  * horizon-to-zenith blue gradient over a dim ground and a sun of radiance

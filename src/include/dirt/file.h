@@ -68,6 +68,13 @@ DIRT_API void dirt_cleanup_remove(int slot);
  * those files, then end the process with the signal's default action.
  * False after logging. */
 DIRT_API bool dirt_cleanup_on_signals(void);
+/* Bracket the making of a file and its dirt_cleanup_add (main thread):
+ * the calling thread's signals are blocked, and a handler running on
+ * another thread waits until dirt_cleanup_release, so no signal can end
+ * the process between the two and leave the file (dirt_atomic_open and
+ * the claims of dirt-render do this). */
+DIRT_API void dirt_cleanup_hold(void);
+DIRT_API void dirt_cleanup_release(void);
 
 /* Convenience: atomically replaces `path` with `size` bytes from `data`.
  * Returns false after logging why; nothing is left behind on failure. */

@@ -60,7 +60,34 @@ typedef struct dirt_gpu_opts {
                                 software renderer (llvmpipe's GL_TIME_ELAPSED works
                                 but does not time rasterization, so its figures are
                                 not the work's); cpu_timing wins (dirt_gpu_clock) */
+    bool poison;             /* test builds: fill every buffer and texture the engine
+                                allocates with DIRT_GPU_POISON_WORD when it is made,
+                                and every frame-graph transient at its first use in
+                                each execute, so a read of memory nobody wrote shows
+                                on any driver. Also on when the environment has
+                                DIRT_POISON=1 (the test suite sets it) */
+    bool check_barriers;     /* test builds: the barrier checker (src/gl/check.c) follows
+                                every draw, dispatch and transfer the engine issues and
+                                the buffers and textures each reads and writes, and
+                                reports an access that follows an incoherent shader
+                                write (or a shader write that follows any access) of
+                                the same object with no glMemoryBarrier of the bit
+                                that access needs in between: logged with both
+                                commands, counted (dirt_gpu_barrier_counts) and in
+                                dirt_gpu_error_count. DIRT_CHECK_BARRIERS=1 in the
+                                environment turns it on too and makes the first
+                                hazard abort the process (the test suite sets it);
+                                with this option the process goes on */
 } dirt_gpu_opts;
+
+/* What poisoned memory holds (dirt_gpu_opts.poison): every 32-bit word of a
+ * buffer, and every texel channel of a float or integer texture (read as a
+ * float: a quiet NaN; as an index: far past any array). 16-bit float
+ * channels hold a NaN, normalized ones DIRT_GPU_POISON_UNORM (as do the
+ * last bytes of a buffer whose size is no multiple of 4), depth textures
+ * 0 (the near plane: nothing passes a GL_LESS test). */
+#define DIRT_GPU_POISON_WORD 0x7FF7DEADu
+#define DIRT_GPU_POISON_UNORM 0xADu
 
 typedef struct dirt_gpu_caps {
     int gl_major, gl_minor;
@@ -104,7 +131,12 @@ typedef struct dirt_split_layout {
 } dirt_split_layout;
 
 /* Makes a GL 4.5 core context. Returns NULL after logging why (no EGL display,
- * no GL 4.5, no window system). */
+ * no GL 4.5, no window system, or a renderer string without the text the
+ * environment variable DIRT_EXPECT_RENDERER names, case-insensitively: the
+ * test runs set it so that a driver falling back to another fails). Before
+ * the driver is loaded it sets ZINK_INLINE_UNIFORMS=0 in the environment
+ * unless that is set (Mesa 22.3's zink keeps stale shader variants with
+ * it: src/gl/context.c). */
 DIRT_API dirt_gpu *dirt_gpu_create(const dirt_gpu_opts *opts);
 DIRT_API void dirt_gpu_destroy(dirt_gpu *gpu);
 
@@ -142,6 +174,36 @@ DIRT_API dirt_gpu_query_counts dirt_gpu_queries(const dirt_gpu *gpu);
 /* dirt_gpu_queries(gpu).waits: 0 over a stretch of work means no query
  * result stalled the CPU there. */
 DIRT_API uint64_t dirt_gpu_query_waits(const dirt_gpu *gpu);
+
+/* What the barrier checker reports (dirt_gpu_opts.check_barriers), one id
+ * per kind of hazard with its message. */
+#define DIRT_GPU_HAZARDS(X)                                                         \
+    X(READ_AFTER_WRITE, "read after an incoherent shader write without its barrier") \
+    X(WRITE_AFTER_WRITE, "write after an incoherent shader write without its barrier") \
+    X(WRITE_AFTER_READ, "shader write after an access without its barrier")
+
+enum dirt_gpu_hazard {
+#define DIRT_GPU_HAZARD_ENUM_(id, msg) DIRT_GPU_HAZARD_##id,
+    DIRT_GPU_HAZARDS(DIRT_GPU_HAZARD_ENUM_)
+#undef DIRT_GPU_HAZARD_ENUM_
+    DIRT_GPU_HAZARD_COUNT
+};
+
+DIRT_API extern const char *const dirt_gpu_hazard_messages[DIRT_GPU_HAZARD_COUNT];
+
+typedef struct dirt_gpu_barrier_check {
+    bool on;                 /* the checker runs on this GPU */
+    uint64_t commands;       /* draws, dispatches and transfers checked */
+    uint64_t barriers;       /* glMemoryBarrier calls seen */
+    uint64_t hazards[DIRT_GPU_HAZARD_COUNT]; /* found, by kind */
+    uint64_t total;          /* their sum */
+} dirt_gpu_barrier_check;
+
+/* The barrier checker's counts since the GPU was made (all zero when off). */
+DIRT_API dirt_gpu_barrier_check dirt_gpu_barrier_counts(const dirt_gpu *gpu);
+
+/* Whether the GPU poisons new memory (dirt_gpu_opts.poison or DIRT_POISON=1). */
+DIRT_API bool dirt_gpu_poisons(const dirt_gpu *gpu);
 
 /* Waits for all GPU work (glFinish). */
 DIRT_API void dirt_gpu_finish(dirt_gpu *gpu);

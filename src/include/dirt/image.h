@@ -17,6 +17,7 @@
 
 #include "dirt/api.h"
 #include "dirt/file.h"
+#include "dirt/input.h"
 #include "dirt/types.h" /* enum dirt_tonemap */
 
 #ifdef __cplusplus
@@ -85,18 +86,54 @@ typedef struct dirt_exr_options {
 DIRT_API bool dirt_image_write_exr(const dirt_image *img, const char *path,
                                    const dirt_exr_options *opts);
 
+/* Default of dirt_image_read_opts.max_bytes: 2 GiB, what reading a
+ * 16384 x 4096 RGB(A) image holds. */
+#define DIRT_IMAGE_READ_DEFAULT_MAX_BYTES ((size_t)2 << 30)
+
+/* Options of dirt_image_read. Zero-initialised = defaults. */
+typedef struct dirt_image_read_opts {
+    /* What the read may hold at once: the file's bytes where they are read
+     * whole (.hdr), the decoder's buffers (a .hdr's float pixels, an EXR's
+     * channels in their own type) and the image's planes, plus
+     * extra_per_pixel bytes per pixel the caller will add while it holds
+     * the image. Checked on the size the file declares, before any pixel is
+     * decoded: more fails with TOO_LARGE. 0 = the default. */
+    size_t max_bytes;
+    size_t extra_per_pixel;
+    /* A file without colour (no R, G, B and no Y channel) fails with
+     * NO_COLOUR instead of reading as black. */
+    bool need_colour;
+} dirt_image_read_opts;
+
+/* Reads an image file by its extension (any case): ".exr" as
+ * dirt_image_read_exr, ".hdr" as dirt_image_read_hdr, with bounds: only a
+ * regular file is read (a FIFO, device or directory fails at once with
+ * NOT_REGULAR, without blocking), the memory its declared size needs is
+ * checked against opts->max_bytes before anything is decoded (TOO_LARGE),
+ * data that ends before what the header declares fails (TRUNCATED), as does
+ * a malformed file (INVALID) or another extension (INVALID). NULL after
+ * logging; the id in *err (may be NULL). `opts` may be NULL. */
+DIRT_API dirt_image *dirt_image_read(const char *path, const dirt_image_read_opts *opts,
+                                     enum dirt_input_error *err);
+
 /* Reads part 0 of a scanline OpenEXR file (any compression; HALF, FLOAT or
  * UINT channels, all converted to float). Channels R, G, B, A go to rgba
  * (missing R/G/B read as 0, missing A as 1; a file with "Y" but no R, G or B
  * is read as grey); every other channel becomes an extra channel of the same
  * name. The image is the data window, its top row first. Subsampled
  * channels are skipped with a warning. NULL after logging on failure (file
- * missing or unreadable, tiled or deep file, too large). */
+ * missing or unreadable, tiled or deep file, too large). The bounds of
+ * dirt_image_read with the default options. */
 DIRT_API dirt_image *dirt_image_read_exr(const char *path);
 
-/* Reads a Radiance RGBE (.hdr) file through stb_image: linear RGB, alpha 1,
- * the first row on top. NULL after logging on failure (missing, unreadable
- * or malformed file, too large). */
+/* Reads a Radiance RGBE (.hdr) file: linear RGB, alpha 1, the first row on
+ * top. Its header is read here ("#?RADIANCE" or "#?RGBE", FORMAT=
+ * 32-bit_rle_rgbe, "-Y H +X W") and its scanlines walked (flat or
+ * run-length encoded) to check that the file holds every one before
+ * stb_image decodes them: a file shorter than it declares fails
+ * (TRUNCATED) instead of reading as black. NULL after logging on failure
+ * (missing, unreadable or malformed file, too large). The bounds of
+ * dirt_image_read with the default options. */
 DIRT_API dirt_image *dirt_image_read_hdr(const char *path);
 
 /* ---- PNG preview -------------------------------------------------------- */

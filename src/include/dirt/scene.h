@@ -144,6 +144,11 @@ typedef struct dirt_light_def {
     X(TOO_LARGE, "the scene needs more memory than the load budget")                  \
     X(OUT_OF_MEMORY, "out of memory")                                                 \
     X(UNSUPPORTED, "the file requires a glTF extension the loader does not support")  \
+    X(VERSION, "not glTF 2.0 (a glTF 1.0 file, or a version this loader does not read)") \
+    X(FORMAT, "not a scene format the loader reads (glTF 2.0 .gltf/.glb, OBJ .obj)")  \
+    X(NOT_REGULAR, "not a regular file (a directory, FIFO, socket or device)")        \
+    X(OUTSIDE, "a referenced file lies outside the scene's folder")                   \
+    X(STRICT, "a warning about the scene, and the load is strict")                    \
     X(INVALID, "other invalid content")
 
 enum dirt_scene_error {
@@ -164,44 +169,65 @@ DIRT_API const char *dirt_scene_error_name(enum dirt_scene_error e);
  * (the log says more). */
 DIRT_API enum dirt_scene_error dirt_scene_last_error(void);
 
-/* Default of dirt_load_opts.max_bytes: 512 MiB of expanded scene data
- * (about 3 million triangles with their vertex arrays; an accessor of 2^27
- * floats with no bufferView is already past it). */
+/* Default of dirt_load_opts.max_bytes: 512 MiB for everything a load
+ * holds (about 2.4 million glTF triangles with their vertex arrays; an
+ * accessor of 2^27 floats with no bufferView is already past it). */
 #define DIRT_LOAD_DEFAULT_MAX_BYTES ((size_t)512 << 20)
 /* Default of dirt_load_opts.max_depth: JSON nesting of objects and arrays. */
 #define DIRT_LOAD_DEFAULT_MAX_DEPTH 128
 
 /* Options for dirt_scene_load. Zero-initialised = defaults. */
 typedef struct dirt_load_opts {
-    /* Budget of the expanded scene: the bytes the loader's arrays would hold
-     * (every accessor read as floats or indices, the triangles made of them).
-     * A file that needs more fails with DIRT_SCENE_ERR_TOO_LARGE before the
-     * memory is allocated. 0 = DIRT_LOAD_DEFAULT_MAX_BYTES. (The file's own
-     * bytes and its decoded buffers are bounded by the file's size; so are
-     * the OBJ parser's arrays, up to about 30 times the size of the file.)
-     * Decoded textures of OBJ materials are charged too. */
+    /* The load's memory budget, one for everything it reads and decodes:
+     * the files (the scene file, its buffers, images and MTL libraries,
+     * each checked against what is left before it is read), the parsers'
+     * structures (the glTF JSON's values and objects, counted on the bytes
+     * before the parser sees them; tinyobjloader's arrays, from a count of
+     * the OBJ's statements), every texture (its declared size checked
+     * before decoding) and the scene's own arrays. Each is charged before
+     * it is allocated, at the measured cost per byte or element
+     * (doc/scenes.md, "Memory"); a load that needs more fails with
+     * DIRT_SCENE_ERR_TOO_LARGE. 0 = DIRT_LOAD_DEFAULT_MAX_BYTES. */
     size_t max_bytes;
     /* Deepest nesting of JSON objects/arrays accepted (checked on the bytes
      * before any parser sees them): deeper fails with
      * DIRT_SCENE_ERR_TOO_DEEP. 0 = DIRT_LOAD_DEFAULT_MAX_DEPTH. (glTF only.) */
     int max_depth;
+    /* Every warning about the scene (a missing or undecodable texture, an
+     * ignored extension or MTL statement, ...) fails the load with
+     * DIRT_SCENE_ERR_STRICT after all of them are logged. */
+    bool strict;
+    /* References (glTF buffer and image URIs, OBJ mtllib, MTL texture maps)
+     * may lead outside the scene's folder: by default one that does (an
+     * absolute path, "..", a symbolic link out) fails the load with
+     * DIRT_SCENE_ERR_OUTSIDE, naming it. */
+    bool allow_outside;
 } dirt_load_opts;
 
 /* Loads a scene file; the loader is picked by the name's extension: ".obj"
  * (any case) is a Wavefront OBJ with its MTL libraries (mtllib, resolved
- * beside the .obj), anything else a .gltf or .glb. Returns NULL on failure
- * (unreadable or malformed file: truncated data, out-of-range indices,
- * non-finite positions, nesting or size past the opts' limits, a glTF
- * extension in extensionsRequired that dirt_scene_gltf_extensions() does not
- * list (DIRT_SCENE_ERR_UNSUPPORTED, the log names it)...) after logging the
- * reason; dirt_scene_last_error() tells the reason's id. Missing or
- * undecodable textures, a missing MTL library, an extension of
- * extensionsUsed that is ignored, or MTL statements without an equivalent
- * only warn (once per load and kind): the material falls back to its factor
- * (a white default texture) or to the default material. An OBJ scene is one
- * node with one static mesh (no cameras, lights or animation); its MTL
- * materials map onto the metallic-roughness model as doc/scenes.md says.
- * `opts` may be NULL. */
+ * beside the .obj), ".gltf" and ".glb" glTF 2.0; any other name is glTF
+ * when its bytes are (the .glb magic, or a JSON object), else it fails
+ * with DIRT_SCENE_ERR_FORMAT. Every file is read only when it is a regular
+ * file (a FIFO, device or directory fails at once with NOT_REGULAR) whose
+ * size fits what is left of the budget (TOO_LARGE), and every file a
+ * scene references must lie in the scene's folder (OUTSIDE; see
+ * dirt_load_opts.allow_outside). Returns NULL on failure (unreadable or
+ * malformed file: truncated data, out-of-range indices, non-finite
+ * positions, nesting or size past the opts' limits, a glTF 1.0 file
+ * (VERSION), a glTF extension in extensionsRequired that
+ * dirt_scene_gltf_extensions() does not list (DIRT_SCENE_ERR_UNSUPPORTED,
+ * the log names it)...) after logging the reason; dirt_scene_last_error()
+ * tells the reason's id. Missing or undecodable textures, a missing MTL
+ * library, an extension of extensionsUsed that is ignored, or MTL
+ * statements without an equivalent only warn (once per load and kind; with
+ * dirt_load_opts.strict they fail the load): the material falls back to its
+ * factor (a white default texture) or to the default material. An OBJ
+ * scene is one node with one static mesh (no cameras, lights or
+ * animation); its MTL materials map onto the metallic-roughness model as
+ * doc/scenes.md says. Messages name files and quote the names a scene
+ * gives (materials, groups, images), never other bytes of a file. `opts`
+ * may be NULL. */
 DIRT_API dirt_scene *dirt_scene_load(const char *path, const dirt_load_opts *opts);
 
 /* The glTF extensions the loader honours, NULL-terminated, in one list that
@@ -270,6 +296,14 @@ DIRT_API const dirt_light_def *dirt_scene_lights(const dirt_scene *scene);
 DIRT_API size_t dirt_scene_num_nodes(const dirt_scene *scene);
 /* Name of node i ("" when unnamed), NULL when out of range. */
 DIRT_API const char *dirt_scene_node_name(const dirt_scene *scene, size_t node);
+
+/* The files the load read, the scene file first, then every buffer,
+ * image and MTL library in the order it was read, as the loader opened
+ * them (joined to the scene's folder); none for a scene from memory or the
+ * default scene. NULL when out of range. Programs keep their outputs apart
+ * from these (dirt/input.h). */
+DIRT_API size_t dirt_scene_num_files(const dirt_scene *scene);
+DIRT_API const char *dirt_scene_file(const dirt_scene *scene, size_t i);
 
 /* Triangles every frame of this scene has. */
 DIRT_API size_t dirt_scene_num_triangles(const dirt_scene *scene);
