@@ -1,14 +1,18 @@
 /* bench-trace: Mrays/s per ray type (the DIRT paper's Table 1 layout) for
  * DIRT (GPU) and Embree (CPU) on the same rays, with their hit agreement.
  *   bench-trace [SCENE|default ...] [-W 1024 -H 512] [--views MODE] [-S 2]
- *               [-B 16] [--face N] [--large N]
+ *               [-B 16] [--face N] [--large N] [--max-scene-memory MIB]
  * (--large: DIRT's large primitives, 0 = none; default 16; the build is
  * the raster one unless DIRT_BUILD=compute)
  * Rays: camera G-buffer at W x H (Embree primary hits), then one event of
  * each type from those points (ref/raytypes.h). DIRT times: the GPU's one
  * clock (dirt_gpu_clock): GPU timer queries, or CPU wall time around
  * glFinish on a software renderer. Embree:
- * wall time of a multithreaded batch. */
+ * wall time of a multithreaded batch. Agreement: the same primitive, or the
+ * same t within 1e-4 (a shared edge or vertex: either triangle is right),
+ * or both missing (visibility: the same verdict); "same primitive": the
+ * same primitive or both missing. --max-scene-memory: the load budget in
+ * MiB (dirt_load_opts.max_bytes; default 512). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +29,7 @@ int main(int argc, char **argv)
 {
     const char *scenes[16];
     int n = 0, W = 1024, H = 512, S = 2, B = 16, face = 0, large = DIRT_ADS_MAX_LARGE;
+    dirt_load_opts load = {0};
     enum dirt_view_mode mode = DIRT_VIEWS_CUBE_CAMERA;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
@@ -34,13 +39,14 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "-B")) B = atoi(v), i++;
         else if (!strcmp(a, "--face")) face = atoi(v), i++;
         else if (!strcmp(a, "--large")) large = atoi(v), i++;
+        else if (!strcmp(a, "--max-scene-memory")) load.max_bytes = (size_t)atoll(v) << 20, i++;
         else if (!strcmp(a, "--views")) {
             mode = !strcmp(v, "single") ? DIRT_VIEWS_SINGLE
                  : !strcmp(v, "cube") ? DIRT_VIEWS_CUBE : DIRT_VIEWS_CUBE_CAMERA;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-trace [SCENE|default ...] [-W N -H N] [--views MODE] [-S N] "
-                   "[-B N] [--face N] [--large N]\n");
+                   "[-B N] [--face N] [--large N] [--max-scene-memory MIB]\n");
             return 0;
         } else if (n < 16) scenes[n++] = a;
     }
@@ -53,9 +59,10 @@ int main(int argc, char **argv)
     char desc[512];
     dirt_gpu_describe(gpu, desc, sizeof(desc));
     printf("GPU: %s\n\n| scene | tris | rays/type | DIRT build ms | type | DIRT Mrays/s | "
-           "Embree Mrays/s | agreement %% |\n|---|---|---|---|---|---|---|---|\n", desc);
+           "Embree Mrays/s | agreement %% | same primitive %% |\n"
+           "|---|---|---|---|---|---|---|---|---|\n", desc);
     for (int si = 0; si < n; si++) {
-        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], NULL)
+        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], &load)
                                                           : dirt_scene_create_default();
         if (!scene)
             return 2;
@@ -96,22 +103,24 @@ int main(int argc, char **argv)
             else
                 dirt_ref_intersect(accel, (const dirt_ref_ray *)rays, ref, cnt, 0);
             double ems = dirt_clock_ms() - e0;
-            size_t same = 0;
+            size_t same = 0, exact = 0;
             for (size_t i = 0; i < cnt; i++) {
                 bool dh = hits[i].prim != DIRT_HIT_NONE;
                 if (vis) {
                     same += dh == (occ[i] != 0);
+                    exact += dh == (occ[i] != 0);
                 } else {
                     bool eh = ref[i].prim != DIRT_REF_MISS;
                     same += (!dh && !eh) ||
                             (dh && eh && (hits[i].prim == ref[i].prim ||
                                           fabsf(hits[i].t - ref[i].t) <= 1e-4f * ref[i].t));
+                    exact += (!dh && !eh) || (dh && eh && hits[i].prim == ref[i].prim);
                 }
             }
-            printf("| %s | %zu | %zu | %.1f | %s | %.3f | %.3f | %.3f%s |\n", name,
+            printf("| %s | %zu | %zu | %.1f | %s | %.3f | %.3f | %.3f%s | %.3f |\n", name,
                    f->num_triangles, cnt, build, dirt_ray_type_names[t], cnt / (dms * 1e3),
                    cnt / (ems * 1e3), 100.0 * same / (cnt ? cnt : 1),
-                   ts.aborted ? " (aborted rays!)" : "");
+                   ts.aborted ? " (aborted rays!)" : "", 100.0 * exact / (cnt ? cnt : 1));
             fflush(stdout);
         }
         printf("| %s: %d large primitives |\n", name, as->num_large);

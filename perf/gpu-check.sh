@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
 # The prepared GPU check: what a lent NVIDIA machine runs in one call of
-# under 5 minutes (doc/gpu-check.md), writing OUT/gpu-check.md (and the
-# dirt-compare tables under OUT/). Built here, carried there:
+# under 9 minutes (doc/gpu-check.md), writing OUT/gpu-check.md (and the
+# dirt-compare tables and the scaling benchmark under OUT/). Built here, carried there:
 #   perf/gpu-pack.sh           collects the runtime libraries into .gpu/
 #   carry: build .gpu .gl      (.gl: the GL loader packages, see doc/gpu-check.md)
 #   perf/gpu-check.sh $OUT     there (also runs here, on llvmpipe, as a dry run)
 # Parts (each under its own time limit, so one hang cannot eat the call):
-#   1. the device: nvidia-smi, the renderer and EGL platform the engine gets;
+#   1. the device: nvidia-smi, the renderer and EGL platform the engine gets,
+#      and the driver facts (gpu-facts: conservative raster extensions,
+#      storage block and texel-buffer limits, timer bits and resolution);
 #   2. the GPU tests, run directly (no meson there), conservative raster
 #      (extension vs emulation: the same lists) included;
 #   3. the build and trace at 1024x512: DIRT build per pass (bench-ads, the
 #      raster build; S = 1, 2), raster against compute build (bench-build),
 #      DIRT vs MMRT (dirt-compare, no quality, with the frame ratio), and
 #      Mrays/s per ray type, DIRT on the GPU vs Embree on the CPU's cores
-#      (bench-trace).
+#      (bench-trace);
+#   4. the scaling benchmark (perf/bench-scale.py: 10^4..10^7 triangles at
+#      1920x1080, 0.1..8 MP at 10^6, both DIRT builds, MMRT, Embree and the
+#      raster preview; the scenes are made there, which needs python3-numpy;
+#      SCALE_ARGS replaces its grid, and on a software renderer it is the
+#      --quick one).
 set -u
 out=${1:?usage: perf/gpu-check.sh OUTDIR [SCENE...]}
 shift
@@ -46,6 +53,9 @@ part() {
 say "# GPU check ($(date -u +%Y-%m-%dT%H:%M:%SZ), commit $(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown))"
 part "device" 30 sh -c "nvidia-smi -L 2>/dev/null || echo 'no nvidia-smi'; \
   '$build/src/app/dirt-render' -o '$out/probe.png' -W 64 --spp 1 2>&1 | head -n 3"
+part "driver facts (gpu-facts)" 30 "$build/perf/gpu-facts"
+software=0
+grep -qiE "llvmpipe|softpipe|lavapipe" "$out/part.log" && software=1
 
 say ""; say "### GPU tests"; say ""
 say "| test | result | seconds |"; say "|---|---|---|"
@@ -77,5 +87,19 @@ part "DIRT vs MMRT, $res (dirt-compare, no quality)" 150 "$build/src/app/dirt-co
 [ -x "$build/perf/bench-trace" ] &&
   part "Mrays/s per ray type, $res: DIRT (GPU) vs Embree ($(nproc) CPU threads)" 90 \
     "$build/perf/bench-trace" "${scenes[@]}" -W "$W" -H "$H"
+# The scaling benchmark: on a GPU its own grid; a software renderer's dry
+# run takes the --quick one.
+if [ -n "${SCALE_ARGS:-}" ]; then
+  read -r -a scale_args <<<"$SCALE_ARGS"
+elif [ $software = 1 ]; then
+  scale_args=(--quick)
+else
+  scale_args=(--triangles 1e4,1e5,1e6,1e7 --fixed-res 1920x1080 --fixed-triangles 1e6
+              --res 368x276,1280x720,1920x1080,3840x2160 --frames 2
+              --engines dirt-raster,dirt-compute,mmrt,embree,raster --timeout 60)
+fi
+part "scaling (bench-scale)" 200 "${PYTHON:-python3}" "$root/perf/bench-scale.py" "$out/scale" \
+  --render "$build/src/app/dirt-render" "${scale_args[@]}"
+[ -f "$out/scale/table.md" ] && { say ""; cat "$out/scale/table.md" >>"$report"; }
 say ""; say "total: $(( $(date +%s) - start )) s"
 rm -f "$out/part.log"

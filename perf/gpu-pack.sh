@@ -11,7 +11,7 @@ mkdir -p "$root/.gpu/lib"
 grep -qx '/.gpu/' "$root/.git/info/exclude" 2>/dev/null || echo /.gpu/ >>"$root/.git/info/exclude"
 skip='^(libc|libm|libdl|libpthread|librt|ld-linux|libGL|libEGL|libGLX|libGLdispatch|libOpenGL|libgcc_s|libstdc\+\+|linux-vdso)'
 for exe in "$build"/src/app/dirt-render "$build"/src/app/dirt-compare "$build"/test/gpu/test_* \
-           "$build"/perf/bench-*; do
+           "$build"/perf/bench-* "$build"/perf/gpu-facts; do
   [ -x "$exe" ] && [ -f "$exe" ] || continue
   ldd "$exe" | awk '/=> \//{print $1" "$3}' | while read -r name path; do
     [[ $name =~ $skip ]] && continue

@@ -254,6 +254,76 @@
 #define DIRT_UNIT_PRESENT_A 0
 #define DIRT_UNIT_PRESENT_B 1
 
+/* ---- Split arrays (src/gl/split.h; doc/architecture.md, "Arrays past one
+ * storage block") ----
+ *
+ * An array of records that may pass one storage block is stored as one
+ * buffer read as a shader storage block while it fits (the shaders see the
+ * DIRT_BIND_* block), else as up to DIRT_SPLIT_MAX_PARTS parts, each a
+ * texel buffer: bound from DIRT_UNIT_SPLIT_<ARRAY> + part on (texture units,
+ * arrays the CPU writes, read with texelFetch) or DIRT_IMAGE_SPLIT_<ARRAY> +
+ * part (image units, arrays shaders write). Each array owns
+ * DIRT_SPLIT_MAX_PARTS consecutive units; the ranges start above the fixed
+ * units of this section and do not overlap. */
+#define DIRT_SPLIT_MAX_PARTS 8
+#define DIRT_UNIT_SPLIT_FIRST 4
+#define DIRT_UNIT_SPLIT_VERTICES 4       /* dirt_gpu_vertex[3] per primitive: RGBA32F */
+#define DIRT_UNIT_SPLIT_PRIM_MATERIAL 12 /* uint per primitive: R32UI */
+#define DIRT_UNIT_SPLIT_TANGENTS 20      /* dirt_gpu_model_tangent[3] per primitive: RGBA32F */
+#define DIRT_UNIT_SPLIT_TEXELS 28        /* the model's texel words: R32UI */
+#define DIRT_UNIT_SPLIT_LAST 35
+#define DIRT_IMAGE_SPLIT_FIRST 1
+#define DIRT_IMAGE_SPLIT_CANDIDATES 1    /* DIRT build candidates: RGBA32UI */
+#define DIRT_IMAGE_SPLIT_NODES 9         /* DIRT id nodes: RG32UI */
+#define DIRT_IMAGE_SPLIT_HEADS 17        /* DIRT list heads: R32UI */
+#define DIRT_IMAGE_SPLIT_MMRT_HEADS 25   /* MMRT bucket heads: R32UI */
+#define DIRT_IMAGE_SPLIT_MMRT_TAILS 33   /* MMRT bucket tails: R32UI */
+#define DIRT_IMAGE_SPLIT_MMRT_IDS 41     /* MMRT id nodes (3 uints each): R32UI */
+#define DIRT_IMAGE_SPLIT_MMRT_DATA 49    /* MMRT data nodes (2 texels each): RGBA32UI */
+#define DIRT_IMAGE_SPLIT_DEPTH 57        /* depth bounds + pyramid (2 texels each): R32UI */
+#define DIRT_IMAGE_SPLIT_LAST 64
+/* The shaders' declarations and accessors of an array's parts (in the
+ * array's include: common/vertices.glsl, dirt/structure.glsl, ...) are
+ * written out with DIRT_SPLIT_EACH(n, M, a): M(0, a) M(1, a) ... M(n - 1, a)
+ * for n (a number, or a macro that is one) in 1 .. DIRT_SPLIT_MAX_PARTS.
+ * (Here rather than in a GLSL include: an include inside an #ifdef would
+ * leave these undefined for the shaders that include it again outside.) */
+#define DIRT_SPLIT_CAT_(a, b) a##b
+#define DIRT_SPLIT_CAT(a, b) DIRT_SPLIT_CAT_(a, b)
+#define DIRT_SPLIT_EACH_1(M, a) M(0, a)
+#define DIRT_SPLIT_EACH_2(M, a) DIRT_SPLIT_EACH_1(M, a) M(1, a)
+#define DIRT_SPLIT_EACH_3(M, a) DIRT_SPLIT_EACH_2(M, a) M(2, a)
+#define DIRT_SPLIT_EACH_4(M, a) DIRT_SPLIT_EACH_3(M, a) M(3, a)
+#define DIRT_SPLIT_EACH_5(M, a) DIRT_SPLIT_EACH_4(M, a) M(4, a)
+#define DIRT_SPLIT_EACH_6(M, a) DIRT_SPLIT_EACH_5(M, a) M(5, a)
+#define DIRT_SPLIT_EACH_7(M, a) DIRT_SPLIT_EACH_6(M, a) M(6, a)
+#define DIRT_SPLIT_EACH_8(M, a) DIRT_SPLIT_EACH_7(M, a) M(7, a)
+#define DIRT_SPLIT_EACH(n, M, a) DIRT_SPLIT_CAT(DIRT_SPLIT_EACH_, n)(M, a)
+#if DIRT_SPLIT_MAX_PARTS != 8
+#error "common/constants.h: DIRT_SPLIT_EACH_n is written out for 8 parts"
+#endif
+#if DIRT_UNIT_SPLIT_FIRST <= DIRT_UNIT_PRESENT_B || \
+    DIRT_UNIT_SPLIT_FIRST <= DIRT_UNIT_PREVIEW_EMISSIVE || \
+    DIRT_UNIT_SPLIT_PRIM_MATERIAL != DIRT_UNIT_SPLIT_VERTICES + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_UNIT_SPLIT_TANGENTS != DIRT_UNIT_SPLIT_PRIM_MATERIAL + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_UNIT_SPLIT_TEXELS != DIRT_UNIT_SPLIT_TANGENTS + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_UNIT_SPLIT_LAST != DIRT_UNIT_SPLIT_TEXELS + DIRT_SPLIT_MAX_PARTS - 1 || \
+    DIRT_UNIT_SPLIT_VERTICES != DIRT_UNIT_SPLIT_FIRST
+#error "common/constants.h: the split arrays' texture unit ranges overlap"
+#endif
+#if DIRT_IMAGE_SPLIT_FIRST <= DIRT_UNIT_DISPLAY || \
+    DIRT_IMAGE_SPLIT_CANDIDATES != DIRT_IMAGE_SPLIT_FIRST || \
+    DIRT_IMAGE_SPLIT_NODES != DIRT_IMAGE_SPLIT_CANDIDATES + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_HEADS != DIRT_IMAGE_SPLIT_NODES + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_MMRT_HEADS != DIRT_IMAGE_SPLIT_HEADS + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_MMRT_TAILS != DIRT_IMAGE_SPLIT_MMRT_HEADS + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_MMRT_IDS != DIRT_IMAGE_SPLIT_MMRT_TAILS + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_MMRT_DATA != DIRT_IMAGE_SPLIT_MMRT_IDS + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_DEPTH != DIRT_IMAGE_SPLIT_MMRT_DATA + DIRT_SPLIT_MAX_PARTS || \
+    DIRT_IMAGE_SPLIT_LAST != DIRT_IMAGE_SPLIT_DEPTH + DIRT_SPLIT_MAX_PARTS - 1
+#error "common/constants.h: the split arrays' image unit ranges overlap"
+#endif
+
 /* ---- Uniform locations ----
  *
  * layout(location = DIRT_LOC_*) in the shader, glUniform*(DIRT_LOC_*, ...)

@@ -26,12 +26,7 @@ layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
 #ifdef DIRT_PASS_FETCH
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
-layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
-    uint prim_material[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_HITS) readonly buffer Hits {
     dirt_gpu_hit hits[];
 };
@@ -47,15 +42,12 @@ layout(std430, binding = DIRT_BIND_HIT_HEADS) readonly buffer HitHeads {
 #include "dirt/fetch_common.glsl"
 #endif
 #ifdef DIRT_PASS_DEPTH
-layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
-    uvec2 depth[];
-};
+#include "common/depth.glsl"
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
-layout(std430, binding = DIRT_BIND_CANDIDATES) writeonly buffer Candidates {
-    uvec4 candidates[];
-};
+#define DIRT_CANDIDATES_WRITEONLY
+#include "dirt/structure.glsl"
 #endif
 
 layout(location = 0) flat in vec4 g_p0;
@@ -92,11 +84,11 @@ void main()
         return;
 #endif
     uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
-    atomicMin(depth[t].x, floatBitsToUint(zmin));
-    atomicMax(depth[t].y, floatBitsToUint(zmax));
+    dirt_depth_min(t, floatBitsToUint(zmin));
+    dirt_depth_max(t, floatBitsToUint(zmax));
     uint i = atomicAdd(counters.fill.y, 1u);
     if (i < params.cand.x)
-        candidates[i] = uvec4(g_prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax));
+        dirt_candidate_store(i, uvec4(g_prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax)));
 #endif
 #endif
 }

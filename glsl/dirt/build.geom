@@ -24,9 +24,7 @@
 layout(triangles, invocations = DIRT_NUM_VIEWS) in;
 layout(triangle_strip, max_vertices = 4) out;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
@@ -83,7 +81,7 @@ void main()
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     vec4 c[3];
     for (int i = 0; i < 3; i++)
-        c[i] = vp * vec4(vertices[3u * prim + uint(i)].position.xyz, 1.0);
+        c[i] = vp * vec4(dirt_vertex_pos_at(3u * prim + uint(i)), 1.0);
 
     // The conservative footprint (dirt/footprint.glsl: shared with the
     // compute build, so both examine the same tiles).

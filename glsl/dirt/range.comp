@@ -18,25 +18,19 @@
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
 layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
-layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
-    uvec2 depth[];
-};
+#include "common/depth.glsl"
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
 // Candidates [0, params.cand.x), then the work records.
-layout(std430, binding = DIRT_BIND_CANDIDATES) buffer Candidates {
-    uvec4 candidates[];
-};
+#include "dirt/structure.glsl"
 
 void main()
 {
@@ -46,7 +40,7 @@ void main()
     uint lane = gl_LocalInvocationID.x % uint(DIRT_BUILD_CHUNK);
     if (rec >= min(counters.build.y, params.cand.y))
         return;
-    uvec4 w = candidates[params.cand.x + rec];
+    uvec4 w = dirt_candidate(params.cand.x + rec);
     uint prim = w.x;
     int view = int(w.y & 7u);
     uint k = w.y >> 3;
@@ -58,7 +52,7 @@ void main()
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     vec4 c[3];
     for (int i = 0; i < 3; i++)
-        c[i] = vp * vec4(vertices[3u * prim + uint(i)].position.xyz, 1.0);
+        c[i] = vp * vec4(dirt_vertex_pos_at(3u * prim + uint(i)), 1.0);
     vec4 poly[5];
     int poly_n;
 #ifdef DIRT_CLIP_SH
@@ -83,10 +77,10 @@ void main()
             continue;
 #endif
         uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
-        atomicMin(depth[t].x, floatBitsToUint(zmin));
-        atomicMax(depth[t].y, floatBitsToUint(zmax));
+        dirt_depth_min(t, floatBitsToUint(zmin));
+        dirt_depth_max(t, floatBitsToUint(zmax));
         uint i = atomicAdd(counters.fill.y, 1u);
         if (i < params.cand.x)
-            candidates[i] = uvec4(prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax));
+            dirt_candidate_store(i, uvec4(prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax)));
     }
 }

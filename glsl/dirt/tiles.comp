@@ -17,9 +17,7 @@
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
@@ -30,9 +28,8 @@ layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
 #include "dirt/large.glsl"
-layout(std430, binding = DIRT_BIND_CANDIDATES) writeonly buffer Candidates {
-    uvec4 candidates[];
-};
+#define DIRT_CANDIDATES_WRITEONLY
+#include "dirt/structure.glsl"
 
 void main()
 {
@@ -49,7 +46,7 @@ void main()
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     vec4 c[3];
     for (int k = 0; k < 3; k++)
-        c[k] = vp * vec4(vertices[3u * prim + uint(k)].position.xyz, 1.0);
+        c[k] = vp * vec4(dirt_vertex_pos_at(3u * prim + uint(k)), 1.0);
     vec2 lo, hi;
     bool crosses_near;
     if (!dirt_footprint(v, params.config.y, c, lo, hi, crosses_near))
@@ -75,9 +72,9 @@ void main()
     uint r0 = atomicAdd(counters.build.y, R);
     uint cap = params.cand.y, base = params.cand.x;
     for (uint k = 0u; k < R && r0 + k < cap; k++)
-        candidates[base + r0 + k] = uvec4(prim, uint(view) | (k << 3),
-                                          uint(r.x) | (uint(r.y) << 16),
-                                          uint(r.z) | (uint(r.w) << 16));
+        dirt_candidate_store(base + r0 + k, uvec4(prim, uint(view) | (k << 3),
+                                                  uint(r.x) | (uint(r.y) << 16),
+                                                  uint(r.z) | (uint(r.w) << 16)));
     // The range pass's groups: DIRT_GROUP_SIZE / DIRT_BUILD_CHUNK records
     // each, in rows of DIRT_GROUPS_ROW; enough for the last record written.
     uint last = min(r0 + R, cap);

@@ -36,24 +36,19 @@
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
 layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
     dirt_gpu_ads_params params;
 };
-layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
-    uvec2 depth[];
-};
-layout(std430, binding = DIRT_BIND_HEADS) readonly buffer Heads {
-    uint heads[];
-};
-layout(std430, binding = DIRT_BIND_NODES) readonly buffer Nodes {
-    uvec2 nodes[];
-};
+#define DIRT_DEPTH_READONLY
+#include "common/depth.glsl"
+#define DIRT_HEADS_READONLY
+#define DIRT_NODES_READONLY
+#define DIRT_CANDIDATES_READONLY
+#include "dirt/structure.glsl"
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
@@ -74,11 +69,6 @@ uvec4 g_work = uvec4(0u);
 #define COUNT_WORK(c) g_work.c++
 #else
 #define COUNT_WORK(c)
-#endif
-#ifdef DIRT_TRACE_ALPHA
-layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
-    uint prim_material[]; // read only with u_alpha
-};
 #endif
 
 layout(location = DIRT_LOC_TRACE_COUNT) uniform uint u_count;
@@ -117,12 +107,14 @@ bool alpha_accept(uint p, float u, float w)
 #else
     if (u_alpha == 0)
         return true;
-    uint m = prim_material[p];
+    uint m = dirt_prim_material(p);
     if (!dirt_material_alpha_tested_g(m))
         return true;
-    vec2 t0 = vec2(vertices[3u * p].position.w, vertices[3u * p].normal.w);
-    vec2 t1 = vec2(vertices[3u * p + 1u].position.w, vertices[3u * p + 1u].normal.w);
-    vec2 t2 = vec2(vertices[3u * p + 2u].position.w, vertices[3u * p + 2u].normal.w);
+    dirt_gpu_vertex a = dirt_vertex_at(3u * p), b = dirt_vertex_at(3u * p + 1u),
+                    c = dirt_vertex_at(3u * p + 2u);
+    vec2 t0 = vec2(a.position.w, a.normal.w);
+    vec2 t1 = vec2(b.position.w, b.normal.w);
+    vec2 t2 = vec2(c.position.w, c.normal.w);
     return dirt_alpha_accept_g(m, dirt_alpha_uv_g(t0, t1, t2, u, w), g_alpha_key, p);
 #endif
 }
@@ -266,7 +258,7 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     int B = params.config.z;
     uint T = uint(params.config.w);
     int S = params.config.y;
-    uvec2 e = depth[gt];
+    uvec2 e = dirt_depth(gt);
     float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
     float range = zhi - zlo;
     int ba = 0, bb = 0;
@@ -282,9 +274,9 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     vec2 rlo = -1.0 + 2.0 * vec2(lo) / sz - e2, rhi = -1.0 + 2.0 * vec2(hi) / sz + e2;
     bool found = false;
     for (int b = ba;; b += step) {
-        uint node = heads[uint(b) * T + gt];
+        uint node = dirt_head(uint(b) * T + gt);
         while (node != DIRT_LIST_END) {
-            uvec2 n = nodes[node];
+            uvec2 n = dirt_node(node);
             COUNT_WORK(z);
             node = n.y;
             uint p = n.x;
@@ -296,8 +288,8 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             if (any(equal(g_never, uvec4(p))))
                 continue;
             COUNT_WORK(w);
-            if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
-                           vertices[3u * p + 2u].position.xyz, tmin, tmax, t, u, w)) {
+            if (!intersect(rs, dirt_vertex_pos_at(3u * p), dirt_vertex_pos_at(3u * p + 1u),
+                           dirt_vertex_pos_at(3u * p + 2u), tmin, tmax, t, u, w)) {
                 g_never = uvec4(p, g_never.xyz);
                 continue;
             }
@@ -396,7 +388,7 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
         float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y);
         float texit = tail ? t1 : max(min(min(tx, ty), t1), t);
         float wa = co.w + t * cd.w, wb = co.w + texit * cd.w;
-        uvec2 e = depth[level_base(v, d) + cell.y * size.x + cell.x];
+        uvec2 e = dirt_depth(level_base(v, d) + cell.y * size.x + cell.x);
         float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
         bool skip = max(wa, wb) < zlo || min(wa, wb) > zhi;
         if (!skip && d > 0) {
@@ -482,8 +474,8 @@ void main()
                          ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
         float th, u, w;
         COUNT_WORK(w);
-        if (!intersect(rs, vertices[3u * p].position.xyz, vertices[3u * p + 1u].position.xyz,
-                       vertices[3u * p + 2u].position.xyz, tmin, tmax, th, u, w))
+        if (!intersect(rs, dirt_vertex_pos_at(3u * p), dirt_vertex_pos_at(3u * p + 1u),
+                       dirt_vertex_pos_at(3u * p + 2u), tmin, tmax, th, u, w))
             continue;
         int hv = -1;
         for (int j = 0; j < m && hv < 0; j++) {

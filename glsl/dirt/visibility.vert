@@ -4,9 +4,7 @@
 // correct) so the fragment knows where on its triangle the pixel centre is.
 #include "common/layout.h"
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
@@ -21,5 +19,5 @@ void main()
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     int k = gl_VertexID % 3;
     v_bary = vec2(k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
-    gl_Position = vp * vec4(vertices[gl_VertexID].position.xyz, 1.0);
+    gl_Position = vp * vec4(dirt_vertex_pos_at(uint(gl_VertexID)), 1.0);
 }

@@ -5,12 +5,11 @@
 // Fetch builds G_1. Image row 0 is the top; GL's row 0 the bottom. Hits are
 // also linked into their tile's hit list (for the raster Fetch).
 #include "common/layout.h"
+#include "common/rows.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
@@ -33,7 +32,7 @@ layout(location = DIRT_LOC_VIS_RESOLVE_VIEW) uniform int u_view;
 void main()
 {
     dirt_gpu_view v = views[u_view];
-    uint p = gl_GlobalInvocationID.x;
+    uint p = dirt_row_invocation();
     ivec2 size = v.size.xy;
     if (p >= uint(size.x * size.y))
         return;
@@ -57,8 +56,8 @@ void main()
     }
     uint prim = t.x;
     float u = uintBitsToFloat(t.y), w = uintBitsToFloat(t.z);
-    vec3 pos = (1.0 - u - w) * vertices[3u * prim].position.xyz +
-               u * vertices[3u * prim + 1u].position.xyz + w * vertices[3u * prim + 2u].position.xyz;
+    vec3 pos = (1.0 - u - w) * dirt_vertex_pos_at(3u * prim) +
+               u * dirt_vertex_pos_at(3u * prim + 1u) + w * dirt_vertex_pos_at(3u * prim + 2u);
     vec3 d = pos - eye;
     float dist = length(d);
     rays[p].origin_tmin = vec4(eye, 0.0);

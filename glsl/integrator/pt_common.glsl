@@ -6,12 +6,7 @@
 
 #include "common/geometry.glsl"
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
-layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer PrimMaterial {
-    uint prim_material[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_PATHS) buffer Paths {
     dirt_gpu_path paths[];
 };
@@ -44,7 +39,7 @@ float ray_epsilon(vec3 p)
 
 vec3 tri_vertex(uint prim, uint k)
 {
-    return vertices[3u * prim + k].position.xyz;
+    return dirt_vertex_pos_at(3u * prim + k);
 }
 
 vec3 tri_point(uint prim, float b1, float b2)
@@ -57,9 +52,11 @@ vec3 tri_point(uint prim, float b1, float b2)
 vec2 tri_uv(uint prim, float b1, float b2)
 {
     float b0 = 1.0 - b1 - b2;
-    vec2 t0 = vec2(vertices[3u * prim].position.w, vertices[3u * prim].normal.w);
-    vec2 t1 = vec2(vertices[3u * prim + 1u].position.w, vertices[3u * prim + 1u].normal.w);
-    vec2 t2 = vec2(vertices[3u * prim + 2u].position.w, vertices[3u * prim + 2u].normal.w);
+    dirt_gpu_vertex a = dirt_vertex_at(3u * prim), b = dirt_vertex_at(3u * prim + 1u),
+                    c = dirt_vertex_at(3u * prim + 2u);
+    vec2 t0 = vec2(a.position.w, a.normal.w);
+    vec2 t1 = vec2(b.position.w, b.normal.w);
+    vec2 t2 = vec2(c.position.w, c.normal.w);
     return b0 * t0 + b1 * t1 + b2 * t2;
 }
 

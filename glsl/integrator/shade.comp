@@ -83,7 +83,7 @@ bool sample_light(pt_vertex v, uint key, out vec3 contrib, out vec3 org_out, out
             return false;
         org_out = below ? v.origin_below : v.origin;
         float cos_l = -dot(tri_normal_ng(prim), wi);
-        uint m = prim_material[prim];
+        uint m = dirt_prim_material(prim);
         bool two = (dirt_model_materials[m].textures.w & DIRT_MODEL_MAT_DOUBLE_SIDED) != 0;
         if (cos_l < 0.0 && !two)
             return false;

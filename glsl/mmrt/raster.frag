@@ -18,26 +18,19 @@
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
-#ifdef MMRT_PASS_DEPTH
-layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
-    uvec2 depth[];
-};
-#else
-layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
-    uvec2 depth[];
-};
+// (one include: a second would be dropped, whichever branch it is in)
+#ifndef MMRT_PASS_DEPTH
+#define DIRT_DEPTH_READONLY
+#endif
+#include "common/depth.glsl"
+#ifndef MMRT_PASS_DEPTH
 layout(std430, binding = DIRT_BIND_MMRT_PARAMS) readonly buffer Params {
     dirt_mmrt_gpu_params params;
 };
-layout(std430, binding = DIRT_BIND_MMRT_HEADS) buffer Heads {
-    uint heads[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_IDS) writeonly buffer Ids {
-    uint ids[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_DATA) writeonly buffer Data {
-    dirt_mmrt_gpu_data data[];
-};
+#define MMRT_IDS_WRITEONLY
+#define MMRT_DATA_WRITEONLY
+#define MMRT_TAILS_WRITEONLY
+#include "mmrt/arrays.glsl"
 layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
     dirt_mmrt_gpu_counters counters;
 };
@@ -62,24 +55,23 @@ void main()
     uint g = uint(v.placement.x + px.y * v.size.x + px.x);
     float z = g_depth;
 #ifdef MMRT_PASS_DEPTH
-    atomicMin(depth[g].x, floatBitsToUint(z));
-    atomicMax(depth[g].y, floatBitsToUint(z));
+    dirt_depth_min(g, floatBitsToUint(z));
+    dirt_depth_max(g, floatBitsToUint(z));
 #else
-    float zmin = uintBitsToFloat(depth[g].x);
-    float zmax = uintBitsToFloat(depth[g].y);
+    float zmin = uintBitsToFloat(dirt_depth(g).x);
+    float zmax = uintBitsToFloat(dirt_depth(g).y);
     int B = params.config.y;
     int b = mmrt_bucket(z, zmin, zmax - zmin, B);
     uint node = atomicAdd(counters.build.x, 1u);
     if (node >= params.pool.x)
         return;
     uint pixels = uint(params.config.z);
-    uint base = node * uint(DIRT_MMRT_ID_UINTS);
-    ids[base + uint(DIRT_MMRT_ID_Z)] = floatBitsToUint(z);
-    ids[base + uint(DIRT_MMRT_ID_PREV)] = DIRT_LIST_END;
-    ids[base + uint(DIRT_MMRT_ID_NEXT)] = atomicExchange(heads[uint(b) * pixels + g], node);
+    mmrt_id_store(node, uint(DIRT_MMRT_ID_Z), floatBitsToUint(z));
+    mmrt_id_store(node, uint(DIRT_MMRT_ID_PREV), DIRT_LIST_END);
+    mmrt_id_store(node, uint(DIRT_MMRT_ID_NEXT), mmrt_head_exchange(uint(b) * pixels + g, node));
     dirt_mmrt_gpu_data d;
     d.ids = uvec4(g_prim, g_material, mmrt_pack_normal(g_normal), g);
     d.attr = vec4(g_bary, g_uv);
-    data[node] = d;
+    mmrt_data_store(node, d);
 #endif
 }

@@ -16,17 +16,10 @@
 layout(triangles, invocations = MMRT_NUM_VIEWS) in;
 layout(triangle_strip, max_vertices = 3) out;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
-#ifdef MMRT_PASS_STORE
-layout(std430, binding = DIRT_BIND_PRIM_MATERIAL) readonly buffer Materials {
-    uint materials[];
-};
-#endif
 
 layout(location = 0) out float g_depth;     // eye-space depth (clip w)
 layout(location = 1) flat out int g_view;
@@ -46,7 +39,7 @@ void main()
     mat4 vp = mat4(v.view_proj[0], v.view_proj[1], v.view_proj[2], v.view_proj[3]);
     vec4 c[3];
     for (int i = 0; i < 3; i++)
-        c[i] = vp * vec4(vertices[3u * prim + uint(i)].position.xyz, 1.0);
+        c[i] = vp * vec4(dirt_vertex_pos_at(3u * prim + uint(i)), 1.0);
     // Trivial reject: all three vertices outside one frustum plane.
     for (int k = 0; k < 3; k++) {
         if ((c[0][k] > c[0].w && c[1][k] > c[1].w && c[2][k] > c[2].w) ||
@@ -54,7 +47,7 @@ void main()
             return;
     }
 #ifdef MMRT_PASS_STORE
-    uint material = materials[prim];
+    uint material = dirt_prim_material(prim);
 #endif
     for (int i = 0; i < 3; i++) {
         gl_Position = c[i];
@@ -62,7 +55,7 @@ void main()
         g_depth = c[i].w;
         g_view = view;
 #ifdef MMRT_PASS_STORE
-        dirt_gpu_vertex vx = vertices[3u * prim + uint(i)];
+        dirt_gpu_vertex vx = dirt_vertex_at(3u * prim + uint(i));
         g_bary = vec2(i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
         g_normal = vx.normal.xyz;
         g_uv = vec2(vx.position.w, vx.normal.w);

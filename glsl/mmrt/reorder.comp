@@ -1,5 +1,6 @@
 #version 450 core
-// MMRT reorder pass: one invocation per pixel (all views). Sorts each of the
+// MMRT reorder pass: one invocation per pixel (all views; launched in rows,
+// common/rows.glsl). Sorts each of the
 // pixel's B bucket lists by depth, nearest first, ties broken by primitive
 // id (a total order: a primitive has at most one fragment per pixel), then
 // sets the next/prev pointers, the head (nearest) and tail (farthest) of
@@ -15,24 +16,16 @@
 // Both keep every node and give the same order.
 #include "common/layout.h"
 #include "common/mmrt_layout.h"
+#include "common/rows.glsl"
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 layout(std430, binding = DIRT_BIND_MMRT_PARAMS) readonly buffer Params {
     dirt_mmrt_gpu_params params;
 };
-layout(std430, binding = DIRT_BIND_MMRT_HEADS) buffer Heads {
-    uint heads[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_TAILS) writeonly buffer Tails {
-    uint tails[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_IDS) buffer Ids {
-    uint ids[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_DATA) readonly buffer Data {
-    dirt_mmrt_gpu_data data[];
-};
+#define MMRT_TAILS_WRITEONLY
+#define MMRT_DATA_READONLY
+#include "mmrt/arrays.glsl"
 layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
     dirt_mmrt_gpu_counters counters;
 };
@@ -47,22 +40,22 @@ layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
 
 float node_z(uint n)
 {
-    return uintBitsToFloat(ids[n * uint(DIRT_MMRT_ID_UINTS) + uint(DIRT_MMRT_ID_Z)]);
+    return uintBitsToFloat(mmrt_id(n, uint(DIRT_MMRT_ID_Z)));
 }
 
 uint node_next(uint n)
 {
-    return ids[n * uint(DIRT_MMRT_ID_UINTS) + uint(DIRT_MMRT_ID_NEXT)];
+    return mmrt_id(n, uint(DIRT_MMRT_ID_NEXT));
 }
 
 void set_next(uint n, uint next)
 {
-    ids[n * uint(DIRT_MMRT_ID_UINTS) + uint(DIRT_MMRT_ID_NEXT)] = next;
+    mmrt_id_store(n, uint(DIRT_MMRT_ID_NEXT), next);
 }
 
 void set_prev(uint n, uint prev)
 {
-    ids[n * uint(DIRT_MMRT_ID_UINTS) + uint(DIRT_MMRT_ID_PREV)] = prev;
+    mmrt_id_store(n, uint(DIRT_MMRT_ID_PREV), prev);
 }
 
 // Strict order of fragments (a, za) < (b, zb): depth, then primitive id,
@@ -73,7 +66,7 @@ bool before(uint a, float za, uint b, float zb)
         return za < zb;
     if (a == DIRT_LIST_END || b == DIRT_LIST_END)
         return a < b;
-    uint pa = data[a].ids.x, pb = data[b].ids.x;
+    uint pa = mmrt_data_prim(a), pb = mmrt_data_prim(b);
     return pa != pb ? pa < pb : a < b;
 }
 
@@ -104,7 +97,7 @@ bool before(uint a, float za, uint b, float zb)
 // head, tail, next and prev pointers; returns its length.
 uint sort_bucket(uint slot)
 {
-    uint rest = heads[slot];     // nodes not sorted yet (original order)
+    uint rest = mmrt_head(slot);     // nodes not sorted yet (original order)
     uint second = node_next(rest);
     if (second == DIRT_LIST_END || node_next(second) == DIRT_LIST_END) {
         // One or two nodes (the common case): no sort needed beyond a swap.
@@ -119,8 +112,8 @@ uint sort_bucket(uint slot)
             set_prev(c, a);
             set_next(c, DIRT_LIST_END);
         }
-        heads[slot] = a;
-        tails[slot] = c != DIRT_LIST_END ? c : a;
+        mmrt_head_store(slot, a);
+        mmrt_tail_store(slot, c != DIRT_LIST_END ? c : a);
         return c != DIRT_LIST_END ? 2u : 1u;
     }
     uint sorted = DIRT_LIST_END; // sorted list built so far
@@ -202,8 +195,8 @@ uint sort_bucket(uint slot)
         set_prev(n, prev);
         prev = n;
     }
-    heads[slot] = sorted;
-    tails[slot] = prev;
+    mmrt_head_store(slot, sorted);
+    mmrt_tail_store(slot, prev);
     if (chunks > 1u)
         atomicAdd(counters.build.z, 1u);
     return count;
@@ -211,7 +204,7 @@ uint sort_bucket(uint slot)
 
 void main()
 {
-    uint g = gl_GlobalInvocationID.x;
+    uint g = dirt_row_invocation();
     uint pixels = uint(params.config.z);
     if (g >= pixels)
         return;
@@ -225,7 +218,7 @@ void main()
         uint mask = 0u;
         int nb = min(32, B - base);
         for (int k = 0; k < nb; k++) {
-            if (heads[uint(base + k) * pixels + g] != DIRT_LIST_END)
+            if (mmrt_head(uint(base + k) * pixels + g) != DIRT_LIST_END)
                 mask |= 1u << uint(k);
         }
         while (mask != 0u) {

@@ -26,9 +26,7 @@
 
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[];
-};
+#include "common/vertices.glsl"
 layout(std430, binding = DIRT_BIND_RAYS) readonly buffer Rays {
     dirt_gpu_ray rays[];
 };
@@ -41,9 +39,11 @@ layout(std430, binding = DIRT_BIND_HITS) buffer Hits {
 layout(std430, binding = DIRT_BIND_GPOINTS) writeonly buffer Gpoints {
     dirt_gpu_gpoint gpoints[];
 };
-layout(std430, binding = DIRT_BIND_MMRT_DATA) readonly buffer Data {
-    dirt_mmrt_gpu_data data[];
-};
+#define MMRT_HEADS_READONLY
+#define MMRT_TAILS_READONLY
+#define MMRT_IDS_READONLY
+#define MMRT_DATA_READONLY
+#include "mmrt/arrays.glsl"
 
 layout(location = DIRT_LOC_MMRT_TO_GPOINT_COUNT) uniform uint u_count;
 layout(location = DIRT_LOC_MMRT_TO_GPOINT_SLOT) uniform uint u_slot;
@@ -106,9 +106,9 @@ void main()
         gpoints[slot] = g;
         return;
     }
-    dirt_mmrt_gpu_data d = data[h.ids.w];
-    vec3 a = vertices[3u * p].position.xyz, b = vertices[3u * p + 1u].position.xyz,
-         c = vertices[3u * p + 2u].position.xyz;
+    dirt_mmrt_gpu_data d = mmrt_data(h.ids.w);
+    vec3 a = dirt_vertex_pos_at(3u * p), b = dirt_vertex_pos_at(3u * p + 1u),
+         c = dirt_vertex_pos_at(3u * p + 2u);
     vec3 ns = mmrt_unpack_normal(d.ids.z);
     if (any(isnan(ns)))
         ns = dirt_geometric_normal(a, b, c);

@@ -43,31 +43,21 @@
 layout(local_size_x = DIRT_GROUP_SIZE) in;
 
 #ifdef DIRT_TRACE_ALPHA
-layout(std430, binding = DIRT_BIND_VERTICES) readonly buffer Vertices {
-    dirt_gpu_vertex vertices[]; // read only with u_alpha
-};
+#include "common/vertices.glsl"
 #endif
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
-layout(std430, binding = DIRT_BIND_DEPTH) readonly buffer Depth {
-    uvec2 depth[];
-};
+#define DIRT_DEPTH_READONLY
+#include "common/depth.glsl"
 layout(std430, binding = DIRT_BIND_MMRT_PARAMS) readonly buffer Params {
     dirt_mmrt_gpu_params params;
 };
-layout(std430, binding = DIRT_BIND_MMRT_HEADS) readonly buffer Heads {
-    uint heads[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_TAILS) readonly buffer Tails {
-    uint tails[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_IDS) readonly buffer Ids {
-    uint ids[];
-};
-layout(std430, binding = DIRT_BIND_MMRT_DATA) readonly buffer Data {
-    dirt_mmrt_gpu_data data[];
-};
+#define MMRT_HEADS_READONLY
+#define MMRT_TAILS_READONLY
+#define MMRT_IDS_READONLY
+#define MMRT_DATA_READONLY
+#include "mmrt/arrays.glsl"
 layout(std430, binding = DIRT_BIND_MMRT_COUNTERS) buffer Counters {
     dirt_mmrt_gpu_counters counters;
 };
@@ -115,12 +105,12 @@ bool alpha_accept(uint n)
 #else
     if (u_alpha == 0)
         return true;
-    dirt_mmrt_gpu_data d = data[n];
+    dirt_mmrt_gpu_data d = mmrt_data(n);
     if (!dirt_material_alpha_tested_g(d.ids.y))
         return true;
     uint p = d.ids.x;
-    dirt_gpu_vertex v0 = vertices[3u * p], v1 = vertices[3u * p + 1u],
-                    v2 = vertices[3u * p + 2u];
+    dirt_gpu_vertex v0 = dirt_vertex_at(3u * p), v1 = dirt_vertex_at(3u * p + 1u),
+                    v2 = dirt_vertex_at(3u * p + 2u);
     vec3 e1 = v1.position.xyz - v0.position.xyz, e2 = v2.position.xyz - v0.position.xyz;
     vec3 pv = cross(g_dir, e2);
     float det = dot(e1, pv);
@@ -143,7 +133,7 @@ uint g_nodes_visited = 0u;
 bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hit_state h)
 {
     g_pixels_tested++;
-    uvec2 bb = depth[g];
+    uvec2 bb = dirt_depth(g);
     float zmin = uintBitsToFloat(bb.x), zmax = uintBitsToFloat(bb.y);
     float za = co.w + ta * cd.w, zb = co.w + tb * cd.w;
     float lo = min(za, zb) - u_thickness, hi = max(za, zb) + u_thickness;
@@ -161,11 +151,10 @@ bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hi
     for (int k = 0; k <= b1 - b0; k++) {
         int b = forward ? b0 + k : b1 - k;
         uint slot = uint(b) * pixels + g;
-        uint n = forward ? heads[slot] : tails[slot];
+        uint n = forward ? mmrt_head(slot) : mmrt_tail(slot);
         while (n != DIRT_LIST_END) {
             g_nodes_visited++;
-            uint base = n * uint(DIRT_MMRT_ID_UINTS);
-            float z = uintBitsToFloat(ids[base + uint(DIRT_MMRT_ID_Z)]);
+            float z = uintBitsToFloat(mmrt_id(n, uint(DIRT_MMRT_ID_Z)));
             if (forward ? z > hi : z < lo)
                 return false; // sorted: nothing further along can match
             if ((forward ? z >= lo : z <= hi) && alpha_accept(n)) {
@@ -180,7 +169,7 @@ bool test_pixel(uint g, float ta, float tb, vec4 co, vec4 cd, int view, inout hi
                 h.z = z;
                 return true;
             }
-            n = ids[base + uint(forward ? DIRT_MMRT_ID_NEXT : DIRT_MMRT_ID_PREV)];
+            n = mmrt_id(n, uint(forward ? DIRT_MMRT_ID_NEXT : DIRT_MMRT_ID_PREV));
         }
     }
     return false;
@@ -231,7 +220,7 @@ bool march_hiz(int vi, dirt_gpu_view v, vec4 co, vec4 cd, float t0, float t1, in
         if (!(te > t))
             te = min(t1, t + min_step);
         int lb = v.level_base[L >> 2][L & 3];
-        uvec2 bb = depth[uint(lb + cell.y * lsize.x + cell.x)];
+        uvec2 bb = dirt_depth(uint(lb + cell.y * lsize.x + cell.x));
         float zmin = uintBitsToFloat(bb.x), zmax = uintBitsToFloat(bb.y);
         float za = co.w + t * cd.w, zb = co.w + te * cd.w;
         float lo = min(za, zb) - u_thickness, hi = max(za, zb) + u_thickness;
@@ -394,7 +383,7 @@ void main()
     }
     dirt_gpu_hit o;
     if (h.node != DIRT_LIST_END) {
-        dirt_mmrt_gpu_data d = data[h.node];
+        dirt_mmrt_gpu_data d = mmrt_data(h.node);
         o.ids = uvec4(d.ids.x, uint(h.view), owner, h.node);
         o.bary_t = vec4(d.attr.xy, h.t, h.z);
     } else {

@@ -9,9 +9,7 @@ layout(local_size_x = DIRT_GROUP_SIZE_2D, local_size_y = DIRT_GROUP_SIZE_2D) in;
 layout(std430, binding = DIRT_BIND_VIEWS) readonly buffer Views {
     dirt_gpu_view views[];
 };
-layout(std430, binding = DIRT_BIND_DEPTH) buffer Depth {
-    uvec2 depth[];
-};
+#include "common/depth.glsl"
 
 layout(location = DIRT_LOC_MIP_LEVEL) uniform int u_level;
 
@@ -40,11 +38,11 @@ void main()
         for (int i = 0; i < 2; i++) {
             ivec2 c = 2 * p + ivec2(i, j);
             if (c.x < child.x && c.y < child.y) {
-                uvec2 e = depth[cb + c.y * child.x + c.x];
+                uvec2 e = dirt_depth(cb + c.y * child.x + c.x);
                 lo = min(lo, e.x);
                 hi = max(hi, e.y);
             }
         }
     }
-    depth[level_base(v, d) + p.y * size.x + p.x] = uvec2(lo, hi);
+    dirt_depth_store(uint(level_base(v, d) + p.y * size.x + p.x), uvec2(lo, hi));
 }

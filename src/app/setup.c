@@ -29,7 +29,9 @@ dirt_scene *app_load_scene(const char *prog, const char *path, const app_opts *o
         return scene;
     if (!def && dirt_scene_last_error() == DIRT_SCENE_ERR_TOO_LARGE)
         cli_error(prog, "cannot load scene '%s': TOO_LARGE (it needs more memory than "
-                  "--max-scene-memory allows, %zu bytes; see the error above)", path,
+                  "--max-scene-memory allows, %zu bytes; see the error above): raise the "
+                  "budget with --max-scene-memory (such as 4G; a mesh takes about 230 bytes "
+                  "a triangle)", path,
                   o->max_scene_bytes);
     else
         cli_scene_error(prog, def ? NULL : path);

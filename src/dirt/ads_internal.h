@@ -7,26 +7,50 @@
 #include "dirt/ads.h"
 #include "gl/gl.h"
 #include "gl/graph_gl.h"
+#include "gl/split.h"
+
+/* The structure's arrays that may pass one storage block (gl/split.h). */
+enum ads_array {
+    ADS_VERTICES,       /* dirt_gpu_vertex[3] per primitive */
+    ADS_PRIM_MATERIAL,  /* uint per primitive */
+    ADS_CANDIDATES,     /* uvec4 per candidate, then the compute build's work records */
+    ADS_NODES,          /* uvec2 id node */
+    ADS_HEADS,          /* uint per bucket and tile */
+    ADS_DEPTH,          /* uvec2 depth bounds per tile, then their pyramid */
+    ADS_NUM_ARRAYS
+};
+extern const gl_split_desc *const ads_array_desc[ADS_NUM_ARRAYS];
 
 struct dirt_ads {
     dirt_gpu *gpu;
     dirt_ads_opts opts;
     int num_views;
     bool use_nv;
-    GLuint prog_depth, prog_bound, prog_mip, prog_count, prog_fill;
-    GLuint prog_tiles, prog_range; /* the compute build's (0 for the raster build) */
+    /* programs, each built for the layouts of the split arrays it reads
+     * (ads_programs) */
+    gl_split_program prog_depth, prog_bound, prog_count, prog_fill;
+    gl_split_program prog_tiles, prog_range; /* the compute build's (unmade for the raster build) */
+    gl_split_program prog_mip;
+    /* the defines of the raster build's passes (DIRT_NUM_VIEWS, pass, ...) */
+    char nviews[8];
     /* frame graphs: build (clear, depth bounds, mip, count nodes, read
      * counters), fill (fill primitives) once the node pool is sized, and
      * bound (clear counters, candidate bound, read counters) when the
      * candidate buffer's size is unknown; the compute build has candidate
      * tiles before depth bounds in build, and candidate tiles as bound */
     fg_graph *graph, *fill, *bound;
-    fg_res r_vertices, r_views, r_params, r_depth, r_heads, r_nodes, r_counters, r_cands;
+    fg_res r_vertices[DIRT_SPLIT_MAX_PARTS], r_heads[DIRT_SPLIT_MAX_PARTS],
+        r_nodes[DIRT_SPLIT_MAX_PARTS], r_cands[DIRT_SPLIT_MAX_PARTS];
+    fg_res r_depth[DIRT_SPLIT_MAX_PARTS];
+    fg_res r_views, r_params, r_counters;
     int graph_atlas_w, graph_atlas_h;
+    int graph_parts[ADS_NUM_ARRAYS]; /* the split arrays' parts the graphs import */
     struct dirt_gpu_ads_counters counters_cpu; /* read back by the graph */
     /* buffers and their capacities in bytes */
-    GLuint vertices, views, params, depth, heads, nodes, counters, cands;
-    size_t vertices_size, depth_size, heads_size;
+    gl_split vertices;        /* ADS_VERTICES: per primitive */
+    gl_split heads, nodes, cands; /* ADS_HEADS, ADS_NODES, ADS_CANDIDATES */
+    gl_split depth;           /* ADS_DEPTH */
+    GLuint views, params, counters;
     size_t node_capacity;     /* nodes */
     size_t cand_capacity;     /* candidates (0: unknown, the bound pass sizes it) */
     size_t rec_capacity;      /* compute build: work records, after the candidates in
@@ -43,23 +67,23 @@ struct dirt_ads {
      * (alpha tests), DIRT_TRACE_LARGE (large primitives; llvmpipe runs a
      * loop's body once even when no invocation enters it, so the build
      * without them is kept for structures that have none), DIRT_TRACE_COUNT
-     * (work counters). [0] made at creation, the others on first use. */
-    GLuint prog_trace[8];
+     * (work counters). [0] made at creation (and for each build's layouts),
+     * the others on first use. */
+    gl_split_program prog_trace[8];
     GLuint rays, hits, work;
     size_t rays_size, hits_size, work_size;
     gl_timer trace_timer;
     /* fetch */
-    GLuint prim_material;     /* uint per primitive */
-    size_t prim_material_size;
+    gl_split prim_material;   /* ADS_PRIM_MATERIAL: uint per primitive */
     GLuint hit_heads;         /* uint per tile */
     size_t hit_heads_size;
     GLuint fetch_params;
-    GLuint prog_fetch, prog_fetch_miss, prog_fetch_raster;
+    gl_split_program prog_fetch, prog_fetch_miss, prog_fetch_raster;
     GLuint fetch_vao, fetch_fbo;
     int fetch_fbo_w, fetch_fbo_h;
     uint32_t *material_staging;
     /* direct visibility */
-    GLuint prog_vis, prog_vis_resolve;
+    gl_split_program prog_vis, prog_vis_resolve;
     GLuint vis_fbo, vis_color, vis_depth, vis_vao;
     int vis_w, vis_h;
     /* the integrator's view of it (tracer.c) */
@@ -96,7 +120,30 @@ void ads_bind_geometry(dirt_ads *a);
 bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t count,
                   GLuint gpoints, uint32_t slot, GLuint batch);
 
-/* Binds every buffer of the structure at its DIRT_BIND_* point. */
+/* Binds every buffer of the structure at its DIRT_BIND_* point, and the
+ * parts of its split arrays at their units. */
 void ads_bind_all(dirt_ads *a);
+
+/* The barrier bits of shaders' accesses of the structure's arrays after
+ * the build's shaders wrote them (gl_split_barrier of each): what a
+ * hand-written barrier before a trace, Fetch or visibility draw issues. */
+GLbitfield ads_split_barriers(dirt_ads *a);
+
+/* Binds the parts of the split arrays that are split (a pass body's part
+ * of the binding: the frame graph binds the storage blocks). */
+void ads_bind_split(dirt_ads *a);
+
+/* Makes every program of the structure the one for the split arrays'
+ * current layouts (the trace's: ads_trace_program). False after logging. */
+bool ads_programs(dirt_ads *a);
+
+/* Makes `p` the program of `label` / `paths` / `defs` for the layouts of
+ * the arrays in `arrays` (ADS_ARR(enum ads_array) bits). */
+bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char *const *paths,
+                 const glsl_define *defs, size_t n, unsigned arrays);
+#define ADS_ARR(x) (1u << (x))
+/* The trace's arrays. */
+#define ADS_TRACE_ARRAYS (ADS_ARR(ADS_VERTICES) | ADS_ARR(ADS_PRIM_MATERIAL) | \
+                          ADS_ARR(ADS_NODES) | ADS_ARR(ADS_HEADS) | ADS_ARR(ADS_DEPTH))
 
 #endif

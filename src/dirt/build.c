@@ -73,6 +73,108 @@ int dirt_ads_select_large(const dirt_frame *f, int max, double area_fraction,
     return n;
 }
 
+const gl_split_desc *const ads_array_desc[ADS_NUM_ARRAYS] = {
+    [ADS_VERTICES] = &gl_split_vertices,
+    [ADS_PRIM_MATERIAL] = &gl_split_prim_material,
+    [ADS_CANDIDATES] = &(const gl_split_desc){
+        .label = "DIRT build's candidates", .define = "DIRT_SPLIT_CANDIDATES",
+        .record_bytes = DIRT_CANDIDATE_BYTES, .format = GL_RGBA32UI, .image = true,
+        .binding = DIRT_BIND_CANDIDATES, .unit = DIRT_IMAGE_SPLIT_CANDIDATES,
+        .advice = "use larger tiles (-S), smaller views or a scene of fewer triangles"},
+    [ADS_NODES] = &(const gl_split_desc){
+        .label = "DIRT id nodes", .define = "DIRT_SPLIT_NODES", .record_bytes = DIRT_NODE_BYTES,
+        .format = GL_RG32UI, .image = true, .binding = DIRT_BIND_NODES,
+        .unit = DIRT_IMAGE_SPLIT_NODES, .readback = true,
+        .advice = "use larger tiles (-S), fewer buckets (-B), smaller views or a scene of "
+                  "fewer triangles"},
+    [ADS_HEADS] = &(const gl_split_desc){
+        .label = "DIRT list heads", .define = "DIRT_SPLIT_HEADS", .record_bytes = DIRT_HEAD_BYTES,
+        .format = GL_R32UI, .image = true, .binding = DIRT_BIND_HEADS,
+        .unit = DIRT_IMAGE_SPLIT_HEADS, .readback = true,
+        .advice = "use larger tiles (-S), fewer buckets (-B) or smaller views"},
+    [ADS_DEPTH] = &gl_split_depth,
+};
+
+/* The structure's split arrays, by enum ads_array. */
+static void ads_arrays(dirt_ads *a, gl_split *arr[ADS_NUM_ARRAYS])
+{
+    arr[ADS_VERTICES] = &a->vertices;
+    arr[ADS_PRIM_MATERIAL] = &a->prim_material;
+    arr[ADS_CANDIDATES] = &a->cands;
+    arr[ADS_NODES] = &a->nodes;
+    arr[ADS_HEADS] = &a->heads;
+    arr[ADS_DEPTH] = &a->depth;
+}
+
+bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char *const *paths,
+                 const glsl_define *defs, size_t n, unsigned arrays)
+{
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    const gl_split_desc *d[ADS_NUM_ARRAYS];
+    dirt_split_layout l[ADS_NUM_ARRAYS];
+    size_t k = 0;
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++) {
+        if (arrays & ADS_ARR(i)) {
+            d[k] = ads_array_desc[i];
+            l[k] = arr[i]->layout;
+            k++;
+        }
+    }
+    return gl_split_program_ensure(p, label, paths, defs, n, d, l, k);
+}
+
+bool ads_programs(dirt_ads *a)
+{
+    const unsigned V = ADS_ARR(ADS_VERTICES), M = ADS_ARR(ADS_PRIM_MATERIAL);
+    const unsigned C = ADS_ARR(ADS_CANDIDATES), N = ADS_ARR(ADS_NODES), H = ADS_ARR(ADS_HEADS);
+    const unsigned D = ADS_ARR(ADS_DEPTH);
+    if (!views_hiz_program(&a->prog_mip, a->depth.layout))
+        return false;
+    glsl_define defs[4] = {{"DIRT_NUM_VIEWS", a->nviews}, {"DIRT_PASS_DEPTH", "1"}};
+    size_t ndefs = 2;
+    if (a->use_nv)
+        defs[ndefs++] = (glsl_define){"DIRT_CONSERVATIVE_NV", "1"};
+    if (a->opts.reference_clip)
+        defs[ndefs++] = (glsl_define){"DIRT_CLIP_SH", "1"};
+    const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
+#define COMP(name) (const char *const[]){name, NULL}
+    if (a->opts.build == DIRT_BUILD_COMPUTE) {
+        /* the compute build's passes take DIRT_CLIP_SH only */
+        glsl_define sh = {"DIRT_CLIP_SH", "1"};
+        size_t nsh = a->opts.reference_clip ? 1 : 0;
+        if (!ads_program(a, &a->prog_tiles, "dirt/tiles.comp", COMP("dirt/tiles.comp"), &sh,
+                         nsh, V | C) ||
+            !ads_program(a, &a->prog_range, "dirt/range.comp", COMP("dirt/range.comp"), &sh,
+                         nsh, V | C | D))
+            return false;
+    } else {
+        if (!ads_program(a, &a->prog_depth, "dirt depth bounds", paths, defs, ndefs, V | C | D))
+            return false;
+        defs[1].name = "DIRT_PASS_BOUND";
+        if (!ads_program(a, &a->prog_bound, "dirt candidate bound", paths, defs, ndefs, V))
+            return false;
+    }
+    defs[1].name = "DIRT_PASS_FETCH";
+    const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
+    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"), NULL, 0,
+                       C | D) &&
+           ads_program(a, &a->prog_fill, "dirt/fill.comp", COMP("dirt/fill.comp"), NULL, 0,
+                       C | N | H) &&
+           ads_program(a, &a->prog_trace[0], "dirt/trace.comp", COMP("dirt/trace.comp"), NULL, 0,
+                       ADS_TRACE_ARRAYS) &&
+           ads_program(a, &a->prog_fetch, "dirt/fetch.comp", COMP("dirt/fetch.comp"), NULL, 0,
+                       V | M) &&
+           ads_program(a, &a->prog_fetch_miss, "dirt/fetch_miss.comp",
+                       COMP("dirt/fetch_miss.comp"), NULL, 0, V | M) &&
+           ads_program(a, &a->prog_fetch_raster, "dirt fetch (raster)", paths, defs, ndefs,
+                       V | M) &&
+           ads_program(a, &a->prog_vis, "dirt direct visibility", vis, NULL, 0, V) &&
+           ads_program(a, &a->prog_vis_resolve, "dirt/visibility_resolve.comp",
+                       COMP("dirt/visibility_resolve.comp"), NULL, 0, V);
+#undef COMP
+}
+
 static int views_in_mode(enum dirt_view_mode m)
 {
     return m == DIRT_VIEWS_SINGLE ? 1 : m == DIRT_VIEWS_CUBE ? 6 : 7;
@@ -115,49 +217,15 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         goto error;
     }
     bool compute = a->opts.build == DIRT_BUILD_COMPUTE;
+    (void)compute;
     a->num_views = views_in_mode(a->opts.views.mode);
     /* (also the raster Fetch's, whichever build) */
     a->use_nv = dirt_gpu_get_caps(gpu)->nv_conservative_raster && !a->opts.force_emulation;
 
-    char nviews[8];
-    snprintf(nviews, sizeof(nviews), "%d", a->num_views);
-    glsl_define defs[4] = {{"DIRT_NUM_VIEWS", nviews}, {"DIRT_PASS_DEPTH", "1"}};
-    size_t ndefs = 2;
-    if (a->use_nv)
-        defs[ndefs++] = (glsl_define){"DIRT_CONSERVATIVE_NV", "1"};
-    if (a->opts.reference_clip)
-        defs[ndefs++] = (glsl_define){"DIRT_CLIP_SH", "1"};
-    const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
-    if (compute) {
-        /* the compute build's passes take DIRT_CLIP_SH only */
-        glsl_define sh = {"DIRT_CLIP_SH", "1"};
-        size_t nsh = a->opts.reference_clip ? 1 : 0;
-        a->prog_tiles = gl_program_compute("dirt/tiles.comp", &sh, nsh);
-        a->prog_range = gl_program_compute("dirt/range.comp", &sh, nsh);
-        if (!a->prog_tiles || !a->prog_range)
-            goto error;
-    } else {
-        a->prog_depth = gl_program_create("dirt depth bounds", paths, defs, ndefs);
-        defs[1].name = "DIRT_PASS_BOUND";
-        a->prog_bound = gl_program_create("dirt candidate bound", paths, defs, ndefs);
-        if (!a->prog_depth || !a->prog_bound)
-            goto error;
-    }
-    a->prog_count = gl_program_compute("dirt/count.comp", NULL, 0);
-    a->prog_fill = gl_program_compute("dirt/fill.comp", NULL, 0);
-    a->prog_mip = views_hiz_program();
-    a->prog_trace[0] = gl_program_compute("dirt/trace.comp", NULL, 0);
-    a->prog_fetch = gl_program_compute("dirt/fetch.comp", NULL, 0);
-    a->prog_fetch_miss = gl_program_compute("dirt/fetch_miss.comp", NULL, 0);
-    defs[1].name = "DIRT_PASS_FETCH";
-    a->prog_fetch_raster = gl_program_create("dirt fetch (raster)", paths, defs, ndefs);
-    if (!a->prog_count || !a->prog_fill || !a->prog_mip ||
-        !a->prog_trace[0] || !a->prog_fetch || !a->prog_fetch_miss || !a->prog_fetch_raster)
-        goto error;
-    const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
-    a->prog_vis = gl_program_create("dirt direct visibility", vis, NULL, 0);
-    a->prog_vis_resolve = gl_program_compute("dirt/visibility_resolve.comp", NULL, 0);
-    if (!a->prog_vis || !a->prog_vis_resolve)
+    snprintf(a->nviews, sizeof(a->nviews), "%d", a->num_views);
+    /* every program, for arrays in one storage block until a build says
+     * otherwise */
+    if (!ads_programs(a))
         goto error;
     glCreateVertexArrays(1, &a->vis_vao);
     glCreateVertexArrays(1, &a->fetch_vao);
@@ -192,20 +260,15 @@ void dirt_ads_destroy(dirt_ads *a)
 {
     if (!a)
         return;
-    gl_program_destroy(&a->prog_depth);
-    gl_program_destroy(&a->prog_bound);
-    gl_program_destroy(&a->prog_tiles);
-    gl_program_destroy(&a->prog_range);
-    gl_program_destroy(&a->prog_count);
-    gl_program_destroy(&a->prog_fill);
-    gl_program_destroy(&a->prog_mip);
+    gl_split_program *progs[] = {&a->prog_depth, &a->prog_bound, &a->prog_tiles, &a->prog_range,
+                                 &a->prog_count, &a->prog_fill, &a->prog_fetch,
+                                 &a->prog_fetch_miss, &a->prog_fetch_raster, &a->prog_vis,
+                                 &a->prog_vis_resolve};
+    for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
+        gl_split_program_destroy(progs[i]);
     for (int k = 0; k < 8; k++)
-        gl_program_destroy(&a->prog_trace[k]);
-    gl_program_destroy(&a->prog_fetch);
-    gl_program_destroy(&a->prog_fetch_miss);
-    gl_program_destroy(&a->prog_fetch_raster);
-    gl_program_destroy(&a->prog_vis);
-    gl_program_destroy(&a->prog_vis_resolve);
+        gl_split_program_destroy(&a->prog_trace[k]);
+    gl_split_program_destroy(&a->prog_mip);
     if (a->vis_vao)
         glDeleteVertexArrays(1, &a->vis_vao);
     if (a->vis_fbo)
@@ -216,7 +279,10 @@ void dirt_ads_destroy(dirt_ads *a)
         glDeleteVertexArrays(1, &a->fetch_vao);
     if (a->fetch_fbo)
         glDeleteFramebuffers(1, &a->fetch_fbo);
-    gl_buffer_destroy(&a->prim_material);
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++)
+        gl_split_release(arr[i]);
     gl_buffer_destroy(&a->hit_heads);
     gl_buffer_destroy(&a->fetch_params);
     free(a->material_staging);
@@ -227,8 +293,7 @@ void dirt_ads_destroy(dirt_ads *a)
     fg_destroy(a->graph);
     fg_destroy(a->fill);
     fg_destroy(a->bound);
-    GLuint *bufs[] = {&a->vertices, &a->views, &a->params, &a->depth,
-                      &a->heads, &a->nodes, &a->counters, &a->cands};
+    GLuint *bufs[] = {&a->views, &a->params, &a->counters};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         gl_buffer_destroy(bufs[i]);
     free(a->staging);
@@ -260,18 +325,14 @@ static bool upload_frame(dirt_ads *a, const dirt_frame *f)
     }
     a->material_staging = ms;
     memcpy(ms, f->material, f->num_triangles * sizeof(uint32_t));
-    if (!gl_buffer_ensure(a->gpu, &a->prim_material, &a->prim_material_size,
-                       (f->num_triangles + 1) * sizeof(uint32_t), false, "dirt prim materials"))
+    /* (one record more than the primitives: never an empty buffer) */
+    size_t n = f->num_triangles;
+    if (!gl_split_ensure(a->gpu, &a->prim_material, ads_array_desc[ADS_PRIM_MATERIAL], n + 1) ||
+        !gl_split_ensure(a->gpu, &a->vertices, ads_array_desc[ADS_VERTICES], n) ||
+        (n && (!gl_split_write(&a->prim_material, 0, n, ms) ||
+               !gl_split_write(&a->vertices, 0, n, a->staging))))
         return false;
-    glNamedBufferSubData(a->prim_material, 0, (GLsizeiptr)(f->num_triangles * sizeof(uint32_t)),
-                         ms);
-    size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
-    if (!gl_buffer_ensure(a->gpu, &a->vertices, &a->vertices_size, bytes ? bytes : 16, false,
-                       "dirt vertices"))
-        return false;
-    if (bytes)
-        glNamedBufferSubData(a->vertices, 0, (GLsizeiptr)bytes, a->staging);
-    a->num_primitives = f->num_triangles;
+    a->num_primitives = n;
     return true;
 }
 
@@ -301,49 +362,35 @@ static void upload_params(dirt_ads *a)
 
 static bool ensure_nodes(dirt_ads *a, size_t nodes)
 {
-    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)(nodes * DIRT_NODE_BYTES) > max) {
-        DIRT_ERROR("the primitive lists need %zu nodes (%.1f MB), more than this GPU's "
-                   "largest storage buffer (%.1f MB): use larger tiles, fewer buckets or "
-                   "smaller views", nodes, nodes * DIRT_NODE_BYTES / 1e6, max / 1e6);
+    if (!gl_split_ensure(a->gpu, &a->nodes, ads_array_desc[ADS_NODES], nodes)) {
+        a->node_capacity = 0;
         return false;
     }
-    if (a->nodes && a->node_capacity >= nodes)
-        return true;
-    gl_buffer_destroy(&a->nodes);
-    a->nodes = gl_buffer_create(a->gpu, nodes * DIRT_NODE_BYTES, NULL, true, "dirt id nodes");
-    a->node_capacity = a->nodes ? nodes : 0;
-    return a->nodes != 0;
+    a->node_capacity = a->nodes.capacity;
+    return true;
 }
 
 /* Candidate buffer of at least `cands` candidates (at least one, so the
  * buffer always exists) followed by `recs` work records (the compute
- * build's; 0 for the raster build); false (logged) past the GPU's limit.
- * Growing either keeps the other capacity at least what it was. */
+ * build's; 0 for the raster build); false (logged) past what the GPU can
+ * hold. Growing either keeps the other capacity at least what it was. */
 static bool ensure_cands(dirt_ads *a, size_t cands, size_t recs)
 {
     if (cands < 1)
         cands = 1;
-    if (a->cands && cands < a->cand_capacity)
+    if (a->cands.buf[0] && cands < a->cand_capacity)
         cands = a->cand_capacity;
-    if (a->cands && recs < a->rec_capacity)
+    if (a->cands.buf[0] && recs < a->rec_capacity)
         recs = a->rec_capacity;
-    size_t total = cands + recs;
-    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)(total * DIRT_CANDIDATE_BYTES) > max) {
-        DIRT_ERROR("the build needs %zu candidates and %zu work records (%.1f MB), more than "
-                   "this GPU's largest storage buffer (%.1f MB): use larger tiles or smaller "
-                   "views", cands, recs, total * DIRT_CANDIDATE_BYTES / 1e6, max / 1e6);
-        return false;
-    }
-    if (a->cands && a->cand_capacity == cands && a->rec_capacity == recs)
+    if (a->cands.buf[0] && a->cand_capacity == cands && a->rec_capacity == recs)
         return true;
-    gl_buffer_destroy(&a->cands);
-    a->cands = gl_buffer_create(a->gpu, total * DIRT_CANDIDATE_BYTES, NULL, false,
-                                "dirt candidates");
-    a->cand_capacity = a->cands ? cands : 0;
-    a->rec_capacity = a->cands ? recs : 0;
-    return a->cands != 0;
+    gl_split_release(&a->cands);
+    a->cand_capacity = a->rec_capacity = 0;
+    if (!gl_split_ensure(a->gpu, &a->cands, ads_array_desc[ADS_CANDIDATES], cands + recs))
+        return false;
+    a->cand_capacity = cands;
+    a->rec_capacity = recs;
+    return true;
 }
 
 static size_t cands_bytes(const dirt_ads *a)
@@ -351,29 +398,36 @@ static size_t cands_bytes(const dirt_ads *a)
     return (a->cand_capacity + a->rec_capacity) * DIRT_CANDIDATE_BYTES;
 }
 
-/* Grows a pool to `need` (plus a quarter, within the GPU's limit). */
+/* Grows a pool to `need` plus a quarter; not past one storage block when
+ * `need` fits one (an array stays one block while it can). */
 static size_t grown(const dirt_ads *a, size_t need, size_t bytes_each)
 {
     size_t g = need + need / 4;
     int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)(g * bytes_each) > max)
-        g = need;
+    if (max > 0 && (int64_t)(need * bytes_each) <= max && (int64_t)(g * bytes_each) > max)
+        g = (size_t)max / bytes_each;
     return g;
+}
+
+/* The size checks that need no pass: the scene's arrays and the views'
+ * (before any upload or pass; the candidates and the nodes are sized by
+ * the passes that count them). False after logging what to change. */
+static bool check_sizes(dirt_ads *a, const dirt_frame *f)
+{
+    dirt_split_layout l;
+    size_t heads = (size_t)a->opts.buckets * (size_t)a->set.num_tiles;
+    return gl_split_plan(a->gpu, ads_array_desc[ADS_VERTICES], f->num_triangles, &l) &&
+           gl_split_plan(a->gpu, ads_array_desc[ADS_PRIM_MATERIAL], f->num_triangles + 1, &l) &&
+           gl_split_plan(a->gpu, ads_array_desc[ADS_DEPTH], (size_t)a->set.pyramid_size, &l) &&
+           gl_split_plan(a->gpu, ads_array_desc[ADS_HEADS], heads, &l);
 }
 
 static bool ensure_targets(dirt_ads *a)
 {
     const dirt_view_set *s = &a->set;
-    size_t heads = (size_t)a->opts.buckets * (size_t)s->num_tiles * DIRT_HEAD_BYTES;
-    int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)heads > max) {
-        DIRT_ERROR("the list heads need %.1f MB, more than this GPU's largest storage "
-                   "buffer (%.1f MB): use larger tiles or fewer buckets", heads / 1e6, max / 1e6);
-        return false;
-    }
-    if (!gl_buffer_ensure(a->gpu, &a->depth, &a->depth_size, (size_t)s->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, true,
-                       "dirt depth bounds") ||
-        !gl_buffer_ensure(a->gpu, &a->heads, &a->heads_size, heads, true, "dirt list heads"))
+    size_t heads = (size_t)a->opts.buckets * (size_t)s->num_tiles;
+    if (!gl_split_ensure(a->gpu, &a->depth, ads_array_desc[ADS_DEPTH], s->pyramid_size) ||
+        !gl_split_ensure(a->gpu, &a->heads, ads_array_desc[ADS_HEADS], heads))
         return false;
     if (!a->node_capacity)
         a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
@@ -383,16 +437,35 @@ static bool ensure_targets(dirt_ads *a)
     return true;
 }
 
+void ads_bind_split(dirt_ads *a)
+{
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++) {
+        if (arr[i]->layout.parts)
+            gl_split_bind(arr[i]);
+    }
+}
+
+GLbitfield ads_split_barriers(dirt_ads *a)
+{
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    GLbitfield bits = 0;
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++)
+        bits |= gl_split_barrier(arr[i]);
+    return bits;
+}
+
 void ads_bind_all(dirt_ads *a)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++)
+        gl_split_bind(arr[i]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, a->views);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PARAMS, a->params);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_DEPTH, a->depth);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HEADS, a->heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_NODES, a->nodes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_COUNTERS, a->counters);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_CANDIDATES, a->cands);
 }
 
 /* ---- passes (bodies run by the frame graph) ---- */
@@ -402,10 +475,12 @@ static bool exec_clear(fg_ctx *ctx, void *user)
     dirt_ads *a = user;
     static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
     static const uint32_t end = DIRT_LIST_END, zero = 0;
-    glClearNamedBufferData(fg_name(ctx, a->r_depth), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT,
-                           depth_clear);
-    glClearNamedBufferData(fg_name(ctx, a->r_heads), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                           &end);
+    for (int k = 0; k < DIRT_SPLIT_MAX_PARTS && a->r_depth[k].id; k++)
+        glClearNamedBufferData(fg_name(ctx, a->r_depth[k]), GL_RG32UI, GL_RG_INTEGER,
+                               GL_UNSIGNED_INT, depth_clear);
+    for (int k = 0; k < DIRT_SPLIT_MAX_PARTS && a->r_heads[k].id; k++)
+        glClearNamedBufferData(fg_name(ctx, a->r_heads[k]), GL_R32UI, GL_RED_INTEGER,
+                               GL_UNSIGNED_INT, &end);
     glClearNamedBufferData(fg_name(ctx, a->r_counters), GL_R32UI, GL_RED_INTEGER,
                            GL_UNSIGNED_INT, &zero);
     return true;
@@ -424,6 +499,7 @@ static bool exec_clear_counters(fg_ctx *ctx, void *user)
  * atlas framebuffer, its viewport and an empty vertex array). */
 static void draw_views(dirt_ads *a, GLuint program)
 {
+    ads_bind_split(a);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
@@ -441,20 +517,8 @@ static void draw_views(dirt_ads *a, GLuint program)
 static bool exec_depth(fg_ctx *ctx, void *user)
 {
     (void)ctx;
-    draw_views(user, ((dirt_ads *)user)->prog_depth);
+    draw_views(user, ((dirt_ads *)user)->prog_depth.id);
     return true;
-}
-
-/* A long one-dimensional launch of `groups` groups, in rows of
- * DIRT_GROUPS_ROW (the shaders number group (x, y) as y * ROW + x and
- * bound-check). */
-static void dispatch_rows(size_t groups)
-{
-    if (!groups)
-        return;
-    size_t rows = (groups + DIRT_GROUPS_ROW - 1) / DIRT_GROUPS_ROW;
-    glDispatchCompute((GLuint)(groups < DIRT_GROUPS_ROW ? groups : DIRT_GROUPS_ROW),
-                      (GLuint)rows, 1);
 }
 
 /* Compute build: the candidate tiles of every (primitive, view). */
@@ -462,8 +526,9 @@ static bool exec_tiles(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     dirt_ads *a = user;
-    glUseProgram(a->prog_tiles);
-    dispatch_rows(DIRT_GROUPS(a->num_primitives * (size_t)a->num_views));
+    ads_bind_split(a);
+    glUseProgram(a->prog_tiles.id);
+    gl_dispatch_rows(a->num_primitives * (size_t)a->num_views);
     glUseProgram(0);
     return true;
 }
@@ -474,7 +539,8 @@ static bool exec_range(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     dirt_ads *a = user;
-    glUseProgram(a->prog_range);
+    ads_bind_split(a);
+    glUseProgram(a->prog_range.id);
     glDispatchComputeIndirect((GLintptr)DIRT_ADS_DISPATCH_OFFSET);
     glUseProgram(0);
     return true;
@@ -484,7 +550,7 @@ static bool exec_bound(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     glEnable(GL_RASTERIZER_DISCARD);
-    draw_views(user, ((dirt_ads *)user)->prog_bound);
+    draw_views(user, ((dirt_ads *)user)->prog_bound.id);
     glDisable(GL_RASTERIZER_DISCARD);
     return true;
 }
@@ -496,8 +562,9 @@ static bool exec_count(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     dirt_ads *a = user;
-    glUseProgram(a->prog_count);
-    glDispatchCompute((GLuint)DIRT_GROUPS(a->cand_capacity), 1, 1);
+    ads_bind_split(a);
+    glUseProgram(a->prog_count.id);
+    gl_dispatch_rows(a->cand_capacity);
     glUseProgram(0);
     return true;
 }
@@ -509,8 +576,9 @@ static bool exec_fill(fg_ctx *ctx, void *user)
     size_t n = a->counters_cpu.fill.y < a->cand_capacity ? a->counters_cpu.fill.y
                                                           : a->cand_capacity;
     if (n) {
-        glUseProgram(a->prog_fill);
-        glDispatchCompute((GLuint)DIRT_GROUPS(n), 1, 1);
+        ads_bind_split(a);
+        glUseProgram(a->prog_fill.id);
+        gl_dispatch_rows(n);
         glUseProgram(0);
     }
     return true;
@@ -520,7 +588,8 @@ static bool exec_mip(fg_ctx *ctx, void *user)
 {
     (void)ctx;
     dirt_ads *a = user;
-    views_hiz_dispatch(a->prog_mip, &a->set);
+    ads_bind_split(a);
+    views_hiz_dispatch(a->prog_mip.id, &a->set);
     return true;
 }
 
@@ -555,12 +624,31 @@ static void raster_size(dirt_ads *a, fg_pass *p)
 static void add_tiles(dirt_ads *a, fg_graph *g, int pass)
 {
     fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[pass], FG_COMPUTE, exec_tiles, a);
-    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+    gl_split_use(p, &a->vertices, a->r_vertices, FG_SSBO_READ);
     use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
     use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
-    use(p, a->r_cands, FG_SSBO_WRITE, DIRT_BIND_CANDIDATES);
+    gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
+}
+
+/* The parts of the split arrays (what the graphs import). */
+static void graph_parts(dirt_ads *a, int parts[ADS_NUM_ARRAYS])
+{
+    gl_split *arr[ADS_NUM_ARRAYS];
+    ads_arrays(a, arr);
+    for (int i = 0; i < ADS_NUM_ARRAYS; i++)
+        parts[i] = arr[i]->layout.parts;
+}
+
+/* Whether the graphs import what the arrays now hold. */
+static bool graphs_current(dirt_ads *a)
+{
+    int parts[ADS_NUM_ARRAYS];
+    graph_parts(a, parts);
+    return a->graph && a->graph_atlas_w == a->set.atlas_width &&
+           a->graph_atlas_h == a->set.atlas_height &&
+           !memcmp(parts, a->graph_parts, sizeof(parts));
 }
 
 /* Builds the three graphs over the structure's (imported) buffers. */
@@ -577,61 +665,61 @@ static bool make_graphs(dirt_ads *a)
     fg_graph *graphs[3] = {a->graph, a->fill, a->bound};
     for (int i = 0; i < 3; i++) {
         fg_graph *g = graphs[i];
-        a->r_vertices = fg_import_buffer(g, "vertices", a->vertices, a->vertices_size);
+        gl_split_import(g, "vertices", &a->vertices, a->r_vertices);
         a->r_views = fg_import_buffer(g, "views", a->views, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view));
         a->r_params = fg_import_buffer(g, "params", a->params, sizeof(struct dirt_gpu_ads_params));
-        a->r_depth = fg_import_buffer(g, "depth bounds", a->depth, a->depth_size);
-        a->r_heads = fg_import_buffer(g, "list heads", a->heads, a->heads_size);
-        a->r_nodes = fg_import_buffer(g, "id nodes", a->nodes, a->node_capacity * DIRT_NODE_BYTES);
+        gl_split_import(g, "depth bounds", &a->depth, a->r_depth);
+        gl_split_import(g, "list heads", &a->heads, a->r_heads);
+        gl_split_import(g, "id nodes", &a->nodes, a->r_nodes);
         a->r_counters = fg_import_buffer(g, "counters", a->counters,
                                          sizeof(struct dirt_gpu_ads_counters));
-        a->r_cands = fg_import_buffer(g, "candidates", a->cands, cands_bytes(a));
+        gl_split_import(g, "candidates", &a->cands, a->r_cands);
     }
     /* build: clear, depth bounds, mip, count nodes, read counters */
     fg_graph *g = a->graph;
     fg_pass *p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear, a);
-    fg_write(p, a->r_depth, FG_TRANSFER_WRITE);
-    fg_write(p, a->r_heads, FG_TRANSFER_WRITE);
+    gl_split_use(p, &a->depth, a->r_depth, FG_TRANSFER_WRITE);
+    gl_split_use(p, &a->heads, a->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, a->r_counters, FG_TRANSFER_WRITE);
     bool compute = a->opts.build == DIRT_BUILD_COMPUTE;
     if (compute) {
         add_tiles(a, g, DIRT_ADS_PASS_TILES);
         p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_COMPUTE, exec_range, a);
         use(p, a->r_counters, FG_INDIRECT, 0);
-        use(p, a->r_cands, FG_SSBO_READ, DIRT_BIND_CANDIDATES);
+        gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
     } else {
         p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_RASTER, exec_depth, a);
         raster_size(a, p);
     }
-    use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+    gl_split_use(p, &a->vertices, a->r_vertices, FG_SSBO_READ);
     use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
-    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
-    use(p, a->r_depth, FG_SSBO_WRITE, DIRT_BIND_DEPTH);
+    gl_split_use(p, &a->depth, a->r_depth, FG_SSBO_READ);
+    gl_split_use(p, &a->depth, a->r_depth, FG_SSBO_WRITE);
     use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
-    use(p, a->r_cands, FG_SSBO_WRITE, DIRT_BIND_CANDIDATES);
+    gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_MIP], FG_COMPUTE, exec_mip, a);
     use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
-    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
-    use(p, a->r_depth, FG_SSBO_WRITE, DIRT_BIND_DEPTH);
+    gl_split_use(p, &a->depth, a->r_depth, FG_SSBO_READ);
+    gl_split_use(p, &a->depth, a->r_depth, FG_SSBO_WRITE);
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_COUNT], FG_COMPUTE, exec_count, a);
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
-    use(p, a->r_depth, FG_SSBO_READ, DIRT_BIND_DEPTH);
+    gl_split_use(p, &a->depth, a->r_depth, FG_SSBO_READ);
     use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
-    use(p, a->r_cands, FG_SSBO_READ, DIRT_BIND_CANDIDATES);
-    use(p, a->r_cands, FG_SSBO_WRITE, DIRT_BIND_CANDIDATES);
+    gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
+    gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
     add_read_counters(a, g);
     /* fill: the lists, from the counted candidates */
     g = a->fill;
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_FILL], FG_COMPUTE, exec_fill, a);
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
     use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
-    use(p, a->r_cands, FG_SSBO_READ, DIRT_BIND_CANDIDATES);
-    use(p, a->r_heads, FG_SSBO_READ, DIRT_BIND_HEADS);
-    use(p, a->r_heads, FG_SSBO_WRITE, DIRT_BIND_HEADS);
-    use(p, a->r_nodes, FG_SSBO_WRITE, DIRT_BIND_NODES);
+    gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
+    gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_READ);
+    gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_WRITE);
+    gl_split_use(p, &a->nodes, a->r_nodes, FG_SSBO_WRITE);
     /* bound: an upper bound of the candidates */
     g = a->bound;
     p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_CLEAR], FG_COMPUTE, exec_clear_counters, a);
@@ -641,7 +729,7 @@ static bool make_graphs(dirt_ads *a)
     } else {
         p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_BOUND], FG_RASTER, exec_bound, a);
         raster_size(a, p);
-        use(p, a->r_vertices, FG_SSBO_READ, DIRT_BIND_VERTICES);
+        gl_split_use(p, &a->vertices, a->r_vertices, FG_SSBO_READ);
         use(p, a->r_views, FG_SSBO_READ, DIRT_BIND_VIEWS);
         use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
         use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
@@ -657,6 +745,7 @@ static bool make_graphs(dirt_ads *a)
         return false;
     a->graph_atlas_w = a->set.atlas_width;
     a->graph_atlas_h = a->set.atlas_height;
+    graph_parts(a, a->graph_parts);
     return true;
 }
 
@@ -665,11 +754,11 @@ static void update_imports(dirt_ads *a)
 {
     fg_graph *graphs[3] = {a->graph, a->fill, a->bound};
     for (int i = 0; i < 3; i++) {
-        fg_set_import(graphs[i], a->r_vertices, a->vertices, a->vertices_size);
-        fg_set_import(graphs[i], a->r_depth, a->depth, a->depth_size);
-        fg_set_import(graphs[i], a->r_heads, a->heads, a->heads_size);
-        fg_set_import(graphs[i], a->r_nodes, a->nodes, a->node_capacity * DIRT_NODE_BYTES);
-        fg_set_import(graphs[i], a->r_cands, a->cands, cands_bytes(a));
+        gl_split_set_imports(graphs[i], &a->vertices, a->r_vertices);
+        gl_split_set_imports(graphs[i], &a->depth, a->r_depth);
+        gl_split_set_imports(graphs[i], &a->heads, a->r_heads);
+        gl_split_set_imports(graphs[i], &a->nodes, a->r_nodes);
+        gl_split_set_imports(graphs[i], &a->cands, a->r_cands);
     }
 }
 
@@ -681,6 +770,17 @@ static bool run_graph(fg_graph *g, double *ms, enum dirt_clock *clock)
     if (!fg_execute(g, &eo))
         return false;
     fg_add_pass_times(g, dirt_ads_pass_names, DIRT_ADS_NUM_PASSES, ms, clock);
+    return true;
+}
+
+/* After the arrays changed: the programs for their layouts, the graphs over
+ * their parts, the parameters of their capacities. */
+static bool refresh(dirt_ads *a)
+{
+    if (!ads_programs(a) || (!graphs_current(a) && !make_graphs(a)))
+        return false;
+    upload_params(a);
+    update_imports(a);
     return true;
 }
 
@@ -702,19 +802,15 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     a->built = false;
     gl_group_push("dirt build");
     bool ok = false;
-    if (!upload_frame(a, f) || !ensure_targets(a))
+    if (!check_sizes(a, f) || !upload_frame(a, f) || !ensure_targets(a))
         goto done;
     memset(st->large, 0, sizeof(st->large));
     st->num_large = a->opts.large < 0 ? 0
                   : dirt_ads_select_large(f, a->opts.large ? a->opts.large : DIRT_ADS_MAX_LARGE,
                                           a->opts.large_area, st->large);
     upload_views(a);
-    upload_params(a);
-    if (!a->graph || a->graph_atlas_w != a->set.atlas_width ||
-        a->graph_atlas_h != a->set.atlas_height) {
-        if (!make_graphs(a))
-            goto done;
-    }
+    if (!refresh(a))
+        goto done;
     /* The candidate buffer: from the bound pass when its size is unknown
      * (first build, other views or primitives), so the depth pass of a
      * first build never overflows it. */
@@ -723,23 +819,22 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     bool unknown = a->cand_tiles == 0 ? !a->opts.initial_candidates /* the caller's choice */
                                       : a->cand_tiles != a->set.num_tiles ||
                                             a->cand_prims != a->num_primitives;
-    update_imports(a);
     if (unknown) {
         if (!run_graph(a->bound, ms, &clock))
             goto done;
         st->bound_pass = true;
-        /* Past the GPU's limit the real count may still fit: the depth pass
-         * tells (and ensure_cands fails clearly if it does not). */
+        /* A bound past one storage block may be far above the real count:
+         * the candidates get what is left of one block beside the work
+         * records, and the depth pass grows them (split) when it counts
+         * more. */
         size_t bound = a->counters_cpu.build.x;
         size_t recs = compute ? a->counters_cpu.build.y : 0;
         int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
         if (max > 0 && (int64_t)((bound + recs) * DIRT_CANDIDATE_BYTES) > max)
             bound = (size_t)max / DIRT_CANDIDATE_BYTES > recs
                         ? (size_t)max / DIRT_CANDIDATE_BYTES - recs : 1;
-        if (!ensure_cands(a, bound, recs))
+        if (!ensure_cands(a, bound, recs) || !refresh(a))
             goto done;
-        upload_params(a);
-        update_imports(a);
     }
     a->cand_tiles = a->set.num_tiles;
     a->cand_prims = a->num_primitives;
@@ -765,20 +860,16 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         DIRT_INFO("candidate buffer grew from %zu + %zu to %zu + %zu records (%.1f MB); depth "
                   "pass rerun", a->cand_capacity, a->rec_capacity, g, gr,
                   (g + gr) * DIRT_CANDIDATE_BYTES / 1e6);
-        if (!ensure_cands(a, g, gr))
+        if (!ensure_cands(a, g, gr) || !refresh(a))
             goto done;
-        upload_params(a);
-        update_imports(a);
     }
     /* The node pool from the count, then the one fill pass. */
     if (a->counters_cpu.fill.x > a->node_capacity) {
         size_t g = grown(a, a->counters_cpu.fill.x, DIRT_NODE_BYTES);
         DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB)", a->node_capacity, g,
                   g * DIRT_NODE_BYTES / 1e6);
-        if (!ensure_nodes(a, g))
+        if (!ensure_nodes(a, g) || !refresh(a))
             goto done;
-        upload_params(a);
-        update_imports(a);
     }
     if (!run_graph(a->fill, ms, &clock))
         goto done;
@@ -854,9 +945,9 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
     }
     /* The fill pass wrote the lists after the build's last counter readback. */
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    if (!gl_buffer_read(a->depth, 0, (size_t)out->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, out->depth) ||
-        !gl_buffer_read(a->heads, 0, heads * DIRT_HEAD_BYTES, out->heads) ||
-        (out->num_nodes && !gl_buffer_read(a->nodes, 0, (size_t)out->num_nodes * DIRT_NODE_BYTES, out->nodes))) {
+    if (!gl_split_read(&a->depth, 0, (size_t)out->pyramid_size, out->depth) ||
+        !gl_split_read(&a->heads, 0, heads, out->heads) ||
+        (out->num_nodes && !gl_split_read(&a->nodes, 0, out->num_nodes, out->nodes))) {
         dirt_ads_data_free(out);
         return false;
     }

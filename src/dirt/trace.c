@@ -16,8 +16,11 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         return false;
     gl_group_push("dirt trace");
     /* Rays may come from a shader (the integrator's ray generation); the
-     * clears below overwrite what earlier traces wrote with shaders. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+     * clears below overwrite what earlier traces wrote with shaders; the
+     * structure's arrays come from the build's shaders (image loads once
+     * split: ads_split_barriers). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    ads_split_barriers(a));
     static const uint32_t zero = 0, end = DIRT_LIST_END;
     if (stats) /* per-call abort count; else it accumulates until reset */
         glClearNamedBufferSubData(a->counters, GL_R32UI, 8, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
@@ -37,23 +40,23 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
      * primitives, keep the trace without). */
     const dirt_trace_alpha *al = &opts.alpha;
     bool large = a->stats.num_large > 0;
-    GLuint *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) | (opts.work ? 4 : 0)];
-    if (!*prog) {
-        glsl_define defs[3];
-        int n = 0;
-        if (al->materials)
-            defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
-        if (large)
-            defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
-        if (opts.work)
-            defs[n++] = (glsl_define){"DIRT_TRACE_COUNT", "1"};
-        *prog = gl_program_compute("dirt/trace.comp", defs, n);
-        if (!*prog) {
-            gl_group_pop();
-            return false;
-        }
+    gl_split_program *prog =
+        &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) | (opts.work ? 4 : 0)];
+    glsl_define defs[3];
+    int n = 0;
+    if (al->materials)
+        defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
+    if (large)
+        defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
+    if (opts.work)
+        defs[n++] = (glsl_define){"DIRT_TRACE_COUNT", "1"};
+    const char *paths[] = {"dirt/trace.comp", NULL};
+    if (!ads_program(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
+                     ADS_TRACE_ARRAYS)) {
+        gl_group_pop();
+        return false;
     }
-    glUseProgram(*prog);
+    glUseProgram(prog->id);
     glUniform1ui(DIRT_LOC_TRACE_COUNT, count);
     glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
@@ -63,7 +66,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, al->materials);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, al->texels);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
         glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
     }
@@ -99,12 +101,11 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
     ads_bind_all(a);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_FETCH_PARAMS, a->fetch_params);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(raster ? a->prog_fetch_miss : a->prog_fetch);
+    glUseProgram(raster ? a->prog_fetch_miss.id : a->prog_fetch.id);
     gl_dispatch_rays(batch, count, 0);
     if (raster) {
         /* The misses' shading points, then the hits': the barrier checker
@@ -123,7 +124,7 @@ bool ads_fetch_gl(dirt_ads *a, bool raster, GLuint rays, GLuint hits, uint32_t c
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
         glDisable(GL_SCISSOR_TEST);
-        glUseProgram(a->prog_fetch_raster);
+        glUseProgram(a->prog_fetch_raster.id);
         glBindVertexArray(a->fetch_vao);
         if (a->num_primitives)
             glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(a->num_primitives * 3));
@@ -230,8 +231,8 @@ bool ads_read_counts(dirt_ads *a, uint64_t *rays, uint64_t *aborted)
 
 void ads_bind_geometry(dirt_ads *a)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, a->vertices);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, a->prim_material);
+    gl_split_bind(&a->vertices);
+    gl_split_bind(&a->prim_material);
 }
 
 bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
@@ -270,8 +271,10 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
         return false;
     gl_group_push("dirt direct visibility");
     /* The clear and the resolve's writes of the hit lists follow earlier
-     * traces' and Fetches' accesses; the draw reads the structure. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+     * traces' and Fetches' accesses; the draw reads the structure (image
+     * loads once split: ads_split_barriers). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    ads_split_barriers(a));
     static const uint32_t end = DIRT_LIST_END, zero4[4] = {0, 0, 0, 0};
     static const float one = 1.0f;
     glClearNamedBufferData(a->hit_heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
@@ -283,7 +286,7 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
-    glUseProgram(a->prog_vis);
+    glUseProgram(a->prog_vis.id);
     glUniform1i(DIRT_LOC_VISIBILITY_VIEW, a->set.camera_view);
     glBindVertexArray(a->vis_vao);
     if (a->num_primitives)
@@ -293,13 +296,13 @@ bool ads_visibility_gl(dirt_ads *a, GLuint rays, GLuint hits)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     /* (The resolve fetches what the draw wrote through the framebuffer:
      * ordered by GL, no barrier.) */
-    glUseProgram(a->prog_vis_resolve);
+    glUseProgram(a->prog_vis_resolve.id);
     glUniform1i(DIRT_LOC_VIS_RESOLVE_VIEW, a->set.camera_view);
     glBindTextureUnit(DIRT_UNIT_VISIBILITY, a->vis_color);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, a->hit_heads);
-    glDispatchCompute((GLuint)DIRT_GROUPS((size_t)v->width * v->height), 1, 1);
+    gl_dispatch_rows((size_t)v->width * v->height);
     glUseProgram(0);
     gl_group_pop();
     return gl_check("dirt direct visibility");

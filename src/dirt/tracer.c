@@ -71,6 +71,8 @@ const dirt_tracer *dirt_ads_tracer(dirt_ads *a, const dirt_ads_tracer_opts *opts
         .set_alpha = tr_set_alpha,
         .set_batch = tr_set_batch,
         .views = &a->set,
+        .vertices_split = a->vertices.layout,
+        .prim_material_split = a->prim_material.layout,
     };
     return &a->tracer;
 }

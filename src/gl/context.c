@@ -5,6 +5,7 @@
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <errno.h>
 #include <GLFW/glfw3.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -228,6 +229,46 @@ static bool contains_ci(const char *s, const char *needle)
     return false;
 }
 
+/* The test hook DIRT_MAX_BLOCK_BYTES (bytes, or with a K, M or G suffix of
+ * 1024^1..3): the storage block size to use when it is below the driver's
+ * `driver` (at least 4096 bytes: one record of every split array and one
+ * path of the path tracer fit). 0 when unset, not smaller, or malformed
+ * (warned). */
+static int64_t block_override(int64_t driver)
+{
+    const char *e = getenv("DIRT_MAX_BLOCK_BYTES");
+    if (!e || !*e)
+        return 0;
+    char *end = NULL;
+    errno = 0;
+    unsigned long long v = strtoull(e, &end, 10);
+    unsigned long long unit = 1;
+    if (end && (*end == 'K' || *end == 'k'))
+        unit = 1ull << 10;
+    else if (end && (*end == 'M' || *end == 'm'))
+        unit = 1ull << 20;
+    else if (end && (*end == 'G' || *end == 'g'))
+        unit = 1ull << 30;
+    if (unit > 1)
+        end++;
+    if (errno || end == e || *end || e[0] == '-' || v > (1ull << 40) / unit ||
+        v * unit < 4096) {
+        DIRT_WARN("DIRT_MAX_BLOCK_BYTES=%s is not a size of at least 4096 bytes "
+                  "(such as 65536 or 64K); ignored", e);
+        return 0;
+    }
+    v *= unit;
+    return driver > 0 && (int64_t)v >= driver ? 0 : (int64_t)v;
+}
+
+void gl_gpu_set_block_bytes(dirt_gpu *gpu, int64_t bytes)
+{
+    dirt_gpu_caps *c = &gpu->caps;
+    bool lower = bytes > 0 && (c->driver_ssbo_size <= 0 || bytes < c->driver_ssbo_size);
+    c->block_override = lower ? bytes : 0;
+    c->max_ssbo_size = lower ? bytes : c->driver_ssbo_size;
+}
+
 static void probe_caps(dirt_gpu *gpu)
 {
     dirt_gpu_caps *c = &gpu->caps;
@@ -249,13 +290,28 @@ static void probe_caps(dirt_gpu *gpu)
     GLint bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
     c->timer_query = bits > 0;
+    c->timer_bits = bits;
+    bits = 0;
+    glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &bits);
+    c->timestamp_bits = bits;
     GLint64 v64 = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &v64);
-    c->max_ssbo_size = v64;
+    c->driver_ssbo_size = c->max_ssbo_size = v64;
+    int64_t lowered = block_override(v64);
+    if (lowered > 0) {
+        c->block_override = lowered;
+        c->max_ssbo_size = lowered;
+        DIRT_INFO("DIRT_MAX_BLOCK_BYTES: storage blocks of %lld bytes (the driver's: %lld)",
+                  (long long)lowered, (long long)v64);
+    }
+    v64 = 0;
+    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &v64);
+    c->max_texel_buffer = v64;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &c->max_texture_size);
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &c->max_array_layers);
     glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &c->max_compute_group_invocations);
     glGetIntegerv(GL_MAX_IMAGE_UNITS, &c->max_image_units);
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &c->max_texture_units);
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &c->max_ssbo_bindings);
 }
 

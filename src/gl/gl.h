@@ -39,6 +39,14 @@ struct dirt_gpu {
     struct gl_checker *check;      /* check.c: the barrier checker, NULL when off */
 };
 
+/* ---- capabilities (context.c) ---- */
+
+/* Test hook (the in-process form of DIRT_MAX_BLOCK_BYTES): storage blocks of
+ * `bytes` from now on (caps.max_ssbo_size and block_override), or the
+ * driver's again for 0 or anything not below it. Objects made before keep
+ * what they were made with until they grow or are remade. */
+void gl_gpu_set_block_bytes(dirt_gpu *gpu, int64_t bytes);
+
 /* The GPU whose context is current on this thread: the one made last by
  * dirt_gpu_create here (NULL after it was destroyed). The helpers that take
  * no dirt_gpu (textures, the poisoning) act for it. */

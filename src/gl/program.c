@@ -129,6 +129,16 @@ void gl_dispatch_rays(GLuint batch, uint32_t count, uint32_t min_groups)
     glDispatchCompute(groups > min_groups ? groups : min_groups, 1, 1);
 }
 
+void gl_dispatch_rows(size_t invocations)
+{
+    size_t groups = DIRT_GROUPS(invocations);
+    if (!groups)
+        return;
+    size_t rows = (groups + DIRT_GROUPS_ROW - 1) / DIRT_GROUPS_ROW;
+    glDispatchCompute((GLuint)(groups < DIRT_GROUPS_ROW ? groups : DIRT_GROUPS_ROW),
+                      (GLuint)rows, 1);
+}
+
 void gl_program_destroy(GLuint *program)
 {
     if (*program)

@@ -25,4 +25,11 @@ void gl_program_destroy(GLuint *program);
  * invocations, at least `min_groups` groups. */
 void gl_dispatch_rays(GLuint batch, uint32_t count, uint32_t min_groups);
 
+/* Dispatches the current compute program over `invocations` invocations of
+ * DIRT_GROUP_SIZE-wide groups in rows of DIRT_GROUPS_ROW groups (GL promises
+ * only 65535 groups per dimension); the shader numbers its invocations with
+ * dirt_row_invocation() (glsl/common/rows.glsl) and bound-checks. Nothing
+ * for 0. */
+void gl_dispatch_rows(size_t invocations);
+
 #endif

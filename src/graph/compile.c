@@ -173,8 +173,12 @@ static bool check_use(fg_graph *g, const fg_use_rec *u)
     bool tex_ok = u->access == FG_SAMPLED || is_image_access(u->access) ||
                   u->access == FG_COLOR || u->access == FG_DEPTH ||
                   u->access == FG_TRANSFER_READ || u->access == FG_TRANSFER_WRITE;
-    bool buf_ok = !(u->access == FG_SAMPLED || is_image_access(u->access) ||
-                    u->access == FG_COLOR || u->access == FG_DEPTH);
+    /* A buffer read through a texel buffer (sampled, or as an image) is
+     * bound by the pass itself: the graph has no texture of it. */
+    bool texel_buffer = (u->access == FG_SAMPLED || is_image_access(u->access)) &&
+                        !u->opts.bind;
+    bool buf_ok = texel_buffer || !(u->access == FG_SAMPLED || is_image_access(u->access) ||
+                                    u->access == FG_COLOR || u->access == FG_DEPTH);
     if (r->texture ? !tex_ok : !buf_ok) {
         FG_FAIL(g, "pass '%s': access '%s' needs a %s, but '%s' is a %s", p->name, an,
                 r->texture ? "buffer" : "texture", r->name, r->texture ? "texture" : "buffer");

@@ -14,6 +14,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gl/graph_gl.h"
+#include "gl/split.h"
 #include "integrator/depth.h"
 #include "integrator/rng.h"
 
@@ -54,7 +55,10 @@ typedef struct pass_ctx {
 struct dirt_pt {
     dirt_gpu *gpu;
     const dirt_scene *scene;
-    GLuint prog_raygen, prog_shade, prog_ao, prog_resolve, prog_accum, prog_display;
+    GLuint prog_raygen, prog_resolve, prog_accum, prog_display;
+    /* Shade (and its AO build), built for the layouts of the tracer's
+     * geometry (dirt_tracer.vertices_split, .prim_material_split) */
+    gl_split_program prog_shade, prog_ao;
     GLuint prog_compact, prog_finish;
     /* per-pixel buffers of one chunk. Event k's rays are ray_buf[(k - 1) & 1]
      * (shade writes the rays of k + 1 over them), its shadow rays the other
@@ -113,6 +117,24 @@ struct dirt_pt {
     bool alpha;               /* the scene has alpha-tested materials */
 };
 
+/* Makes Shade and its AO build the ones for the geometry of `tech` (NULL:
+ * one storage block each). False after logging. */
+static bool shade_programs(dirt_pt *pt, const dirt_tracer *tech)
+{
+    const gl_split_desc *d[2] = {&gl_split_vertices, &gl_split_prim_material};
+    dirt_split_layout l[2] = {{0, 0}, {0, 0}};
+    if (tech) {
+        l[0] = tech->vertices_split;
+        l[1] = tech->prim_material_split;
+    }
+    const char *paths[] = {"integrator/shade.comp", NULL};
+    glsl_define ao = {"DIRT_AO", "1"};
+    return gl_split_program_ensure(&pt->prog_shade, "integrator/shade.comp", paths, NULL, 0, d,
+                                   l, 2) &&
+           gl_split_program_ensure(&pt->prog_ao, "integrator/shade.comp (AO)", paths, &ao, 1, d,
+                                   l, 2);
+}
+
 dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
 {
     dirt_pt *pt = calloc(1, sizeof(*pt));
@@ -126,18 +148,15 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
     const char *hook = getenv("DIRT_PT_CHUNK_PIXELS");
     if (hook && *hook)
         dirt_pt_set_chunk_limit(pt, (size_t)strtoull(hook, NULL, 10));
-    glsl_define ao = {"DIRT_AO", "1"};
     pt->prog_raygen = gl_program_compute("integrator/raygen.comp", NULL, 0);
-    pt->prog_shade = gl_program_compute("integrator/shade.comp", NULL, 0);
-    pt->prog_ao = gl_program_compute("integrator/shade.comp", &ao, 1);
     pt->prog_resolve = gl_program_compute("integrator/resolve.comp", NULL, 0);
     pt->prog_accum = gl_program_compute("integrator/accumulate.comp", NULL, 0);
     pt->prog_display = gl_program_compute("integrator/display.comp", NULL, 0);
     glsl_define finish = {"DIRT_COMPACT_FINISH", "1"};
     pt->prog_compact = gl_program_compute("integrator/compact.comp", NULL, 0);
     pt->prog_finish = gl_program_compute("integrator/compact.comp", &finish, 1);
-    if (!pt->prog_raygen || !pt->prog_shade || !pt->prog_ao || !pt->prog_resolve ||
-        !pt->prog_accum || !pt->prog_display || !pt->prog_compact || !pt->prog_finish) {
+    if (!pt->prog_raygen || !pt->prog_resolve || !pt->prog_accum || !pt->prog_display ||
+        !pt->prog_compact || !pt->prog_finish || !shade_programs(pt, NULL)) {
         dirt_pt_destroy(pt);
         return NULL;
     }
@@ -205,6 +224,10 @@ size_t dirt_pt_chunk_pixels(const dirt_gpu *gpu, size_t pixels, size_t limit)
     size_t c = max > 0 ? (size_t)max / largest_per_pixel() : pixels;
     if (limit > 0 && limit < c)
         c = limit;
+    /* The passes over a chunk launch one group per DIRT_GROUP_SIZE pixels
+     * in one dimension, of which GL promises 65535. */
+    if (c > (size_t)65535 * DIRT_GROUP_SIZE)
+        c = (size_t)65535 * DIRT_GROUP_SIZE;
     /* Whole work groups per chunk (except the image's last). */
     if (c > DIRT_GROUP_SIZE)
         c -= c % DIRT_GROUP_SIZE;
@@ -217,10 +240,12 @@ void dirt_pt_destroy(dirt_pt *pt)
 {
     if (!pt)
         return;
-    GLuint *p[] = {&pt->prog_raygen, &pt->prog_shade, &pt->prog_ao, &pt->prog_resolve,
-                   &pt->prog_accum, &pt->prog_display, &pt->prog_compact, &pt->prog_finish};
+    GLuint *p[] = {&pt->prog_raygen, &pt->prog_resolve, &pt->prog_accum, &pt->prog_display,
+                   &pt->prog_compact, &pt->prog_finish};
     for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++)
         gl_program_destroy(p[i]);
+    gl_split_program_destroy(&pt->prog_shade);
+    gl_split_program_destroy(&pt->prog_ao);
     release_buffers(pt);
     dirt_gpu_model_tables_destroy(&pt->tables);
     gl_buffer_destroy(&pt->env_buf);
@@ -422,7 +447,7 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         set_batch(pt, 0);
         return ok;
     case DIRT_PT_PASS_SHADE:
-        set_common(pt, pt->g_mode == DIRT_PT_AO ? pt->prog_ao : pt->prog_shade, c->k);
+        set_common(pt, pt->g_mode == DIRT_PT_AO ? pt->prog_ao.id : pt->prog_shade.id, c->k);
         bind(DIRT_BIND_PATHS, pt->paths);
         bind(DIRT_BIND_GPOINTS, pt->gpoints);
         bind(DIRT_BIND_HITS, pt->hits);
@@ -788,7 +813,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     if (!dirt_area_lights_build(&area, frame, dirt_scene_materials(pt->scene),
                                 dirt_scene_num_materials(pt->scene)))
         goto done;
-    if (!ensure_env(pt, &opts))
+    if (!ensure_env(pt, &opts) || !shade_programs(pt, tech))
         goto done;
     /* Materials and textures are the scene's: uploaded once; lights and the
      * camera change per frame. */

@@ -276,7 +276,8 @@ bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, uns
     if (caps && caps->max_ssbo_size > 0 && (uint64_t)b->size > (uint64_t)caps->max_ssbo_size) {
         DIRT_ERROR("gpu tables: the scene's %zu textures need %zu bytes of texels (%zu texels), "
                    "more than this GPU's maximum storage block size "
-                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes)", b->num_textures, b->size,
+                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes; the texels are not split): "
+                   "make the textures smaller or fewer", b->num_textures, b->size,
                    b->num_texels, (long long)caps->max_ssbo_size);
         return false;
     }
@@ -297,8 +298,11 @@ static bool upload_tangents(dirt_gpu *gpu, dirt_gpu_model_tables *t, const dirt_
     if (caps && caps->max_ssbo_size > 0 && (uint64_t)bytes > (uint64_t)caps->max_ssbo_size) {
         DIRT_ERROR("gpu tables: the frame's tangents need %zu bytes (%zu triangles), more "
                    "than this GPU's maximum storage block size "
-                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes)", bytes,
-                   frame->num_triangles, (long long)caps->max_ssbo_size);
+                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes; tangents are not split): "
+                   "use a scene of at most %lld triangles, or one without normal maps", bytes,
+                   frame->num_triangles, (long long)caps->max_ssbo_size,
+                   (long long)(caps->max_ssbo_size /
+                               (3 * (int64_t)sizeof(struct dirt_gpu_model_tangent))));
         return false;
     }
     /* dirt_frame.tangent is float[4] per vertex: the record's layout. */

@@ -126,8 +126,9 @@ bool dirt_pt_reset(dirt_pt *pt, int width, int height);
 
 /* Pixels per chunk for an image of `pixels` on `gpu`: as many as one storage
  * block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) holds of the largest per-pixel
- * record (the 3-slot shading ring), at most `limit` when limit > 0, whole
- * work groups, at most `pixels`. */
+ * record (the 3-slot shading ring), at most 65535 work groups (GL's least
+ * count per dimension), at most `limit` when limit > 0, whole work groups,
+ * at most `pixels`. */
 size_t dirt_pt_chunk_pixels(const dirt_gpu *gpu, size_t pixels, size_t limit);
 
 /* Test hook: chunks of at most `pixels` (0 = the GPU's limits only; the

@@ -16,6 +16,103 @@ const char *const dirt_mmrt_pass_names[DIRT_MMRT_NUM_PASSES] = {
     "mmrt clear", "mmrt depth bounds", "mmrt mip", "mmrt store", "mmrt reorder",
 };
 
+#define MMRT_ADVICE "use smaller views (-W/-H, --face-size), fewer views (--views) or fewer " \
+                    "buckets (-B)"
+
+const gl_split_desc *const mmrt_array_desc[MMRT_NUM_ARRAYS] = {
+    [MMRT_VERTICES] = &gl_split_vertices,
+    [MMRT_PRIM_MATERIAL] = &gl_split_prim_material,
+    [MMRT_HEADS] = &(const gl_split_desc){
+        .label = "MMRT bucket heads", .define = "DIRT_SPLIT_MMRT_HEADS",
+        .record_bytes = DIRT_HEAD_BYTES, .format = GL_R32UI, .image = true,
+        .binding = DIRT_BIND_MMRT_HEADS, .unit = DIRT_IMAGE_SPLIT_MMRT_HEADS, .readback = true,
+        .advice = MMRT_ADVICE},
+    [MMRT_TAILS] = &(const gl_split_desc){
+        .label = "MMRT bucket tails", .define = "DIRT_SPLIT_MMRT_TAILS",
+        .record_bytes = DIRT_HEAD_BYTES, .format = GL_R32UI, .image = true,
+        .binding = DIRT_BIND_MMRT_TAILS, .unit = DIRT_IMAGE_SPLIT_MMRT_TAILS, .readback = true,
+        .advice = MMRT_ADVICE},
+    [MMRT_IDS] = &(const gl_split_desc){
+        .label = "MMRT id nodes", .define = "DIRT_SPLIT_MMRT_IDS",
+        .record_bytes = DIRT_MMRT_ID_NODE_BYTES, .format = GL_R32UI, .image = true,
+        .binding = DIRT_BIND_MMRT_IDS, .unit = DIRT_IMAGE_SPLIT_MMRT_IDS, .readback = true,
+        .advice = MMRT_ADVICE},
+    [MMRT_DATA] = &(const gl_split_desc){
+        .label = "MMRT data nodes", .define = "DIRT_SPLIT_MMRT_DATA",
+        .record_bytes = DIRT_MMRT_DATA_NODE_BYTES, .format = GL_RGBA32UI, .image = true,
+        .binding = DIRT_BIND_MMRT_DATA, .unit = DIRT_IMAGE_SPLIT_MMRT_DATA, .readback = true,
+        .advice = MMRT_ADVICE},
+    [MMRT_DEPTH] = &gl_split_depth,
+};
+
+void mmrt_arrays(dirt_mmrt *m, gl_split *arr[MMRT_NUM_ARRAYS])
+{
+    arr[MMRT_VERTICES] = &m->vertices;
+    arr[MMRT_PRIM_MATERIAL] = &m->materials;
+    arr[MMRT_HEADS] = &m->heads;
+    arr[MMRT_TAILS] = &m->tails;
+    arr[MMRT_IDS] = &m->ids;
+    arr[MMRT_DATA] = &m->data;
+    arr[MMRT_DEPTH] = &m->depth;
+}
+
+GLbitfield mmrt_split_barriers(dirt_mmrt *m)
+{
+    gl_split *arr[MMRT_NUM_ARRAYS];
+    mmrt_arrays(m, arr);
+    GLbitfield bits = 0;
+    for (int i = 0; i < MMRT_NUM_ARRAYS; i++)
+        bits |= gl_split_barrier(arr[i]);
+    return bits;
+}
+
+bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
+                  const glsl_define *defs, size_t n, unsigned arrays)
+{
+    gl_split *arr[MMRT_NUM_ARRAYS];
+    mmrt_arrays(m, arr);
+    const gl_split_desc *d[MMRT_NUM_ARRAYS];
+    dirt_split_layout l[MMRT_NUM_ARRAYS];
+    size_t k = 0;
+    for (int i = 0; i < MMRT_NUM_ARRAYS; i++) {
+        if (arrays & MMRT_ARR(i)) {
+            d[k] = mmrt_array_desc[i];
+            l[k] = arr[i]->layout;
+            k++;
+        }
+    }
+    return gl_split_program_ensure(p, label, paths, defs, n, d, l, k);
+}
+
+/* Every program (but the alpha trace's) for the arrays' current layouts. */
+static bool mmrt_programs(dirt_mmrt *m)
+{
+    const unsigned V = MMRT_ARR(MMRT_VERTICES), M = MMRT_ARR(MMRT_PRIM_MATERIAL);
+    const unsigned D = MMRT_ARR(MMRT_DEPTH);
+    if (!views_hiz_program(&m->prog_mip, m->depth.layout))
+        return false;
+    glsl_define defs[2] = {{"MMRT_NUM_VIEWS", m->nviews}, {"MMRT_PASS_DEPTH", "1"}};
+    const char *paths[] = {"mmrt/raster.vert", "mmrt/raster.geom", "mmrt/raster.frag", NULL};
+    if (!mmrt_program(m, &m->prog_depth, "mmrt depth bounds", paths, defs, 2, V | D))
+        return false;
+    defs[1].name = "MMRT_PASS_STORE";
+    const char *trace[] = {"mmrt/trace.comp", NULL};
+    const char *reorder[] = {"mmrt/reorder.comp", NULL};
+    glsl_define sort_def = {"MMRT_SORT_LIST", "1"};
+    return mmrt_program(m, &m->prog_store, "mmrt store", paths, defs, 2,
+                        V | M | D | MMRT_ABUFFER) &&
+           mmrt_program(m, &m->prog_reorder, "mmrt/reorder.comp", reorder, &sort_def,
+                        m->opts.sort == DIRT_MMRT_SORT_LIST ? 1 : 0, MMRT_ABUFFER) &&
+           mmrt_program(m, &m->prog_trace, "mmrt/trace.comp", trace, NULL, 0,
+                        V | D | MMRT_ABUFFER);
+}
+
+void mmrt_bind_geometry(dirt_mmrt *m)
+{
+    gl_split_bind(&m->vertices);
+    gl_split_bind(&m->materials);
+}
+
 static int views_in_mode(enum dirt_view_mode m)
 {
     return m == DIRT_VIEWS_SINGLE ? 1 : m == DIRT_VIEWS_CUBE ? 6 : 7;
@@ -46,15 +143,8 @@ dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
                    "viewports", m->num_views, max_viewports);
         goto error;
     }
-    char nviews[8];
-    snprintf(nviews, sizeof(nviews), "%d", m->num_views);
-    glsl_define defs[2] = {{"MMRT_NUM_VIEWS", nviews}, {"MMRT_PASS_DEPTH", "1"}};
-    const char *paths[] = {"mmrt/raster.vert", "mmrt/raster.geom", "mmrt/raster.frag", NULL};
-    m->prog_depth = gl_program_create("mmrt depth bounds", paths, defs, 2);
-    defs[1].name = "MMRT_PASS_STORE";
-    m->prog_store = gl_program_create("mmrt store", paths, defs, 2);
+    snprintf(m->nviews, sizeof(m->nviews), "%d", m->num_views);
     /* The min/max pyramid is DIRT's, on a tile size of 1. */
-    m->prog_mip = views_hiz_program();
     if (m->opts.sort == DIRT_MMRT_SORT_AUTO)
         m->opts.sort = dirt_gpu_get_caps(gpu)->software ? DIRT_MMRT_SORT_LIST
                                                         : DIRT_MMRT_SORT_REGISTERS;
@@ -62,11 +152,7 @@ dirt_mmrt *dirt_mmrt_create(dirt_gpu *gpu, const dirt_mmrt_opts *opts)
         DIRT_ERROR("unknown sort %d", (int)m->opts.sort);
         goto error;
     }
-    glsl_define sort_def = {"MMRT_SORT_LIST", "1"};
-    m->prog_reorder = gl_program_compute("mmrt/reorder.comp", &sort_def,
-                                         m->opts.sort == DIRT_MMRT_SORT_LIST ? 1 : 0);
-    m->prog_trace = gl_program_compute("mmrt/trace.comp", NULL, 0);
-    if (!m->prog_depth || !m->prog_store || !m->prog_mip || !m->prog_reorder || !m->prog_trace)
+    if (!mmrt_programs(m))
         goto error;
     glCreateVertexArrays(1, &m->vao);
     gl_label(GL_VERTEX_ARRAY, m->vao, "mmrt vao");
@@ -96,18 +182,21 @@ void dirt_mmrt_destroy(dirt_mmrt *m)
     if (!m)
         return;
     mmrt_tracer_release(m);
-    gl_program_destroy(&m->prog_depth);
-    gl_program_destroy(&m->prog_store);
-    gl_program_destroy(&m->prog_mip);
-    gl_program_destroy(&m->prog_reorder);
-    gl_program_destroy(&m->prog_trace);
-    gl_program_destroy(&m->prog_trace_alpha);
+    gl_split_program_destroy(&m->prog_depth);
+    gl_split_program_destroy(&m->prog_reorder);
+    gl_split_program_destroy(&m->prog_store);
+    gl_split_program_destroy(&m->prog_trace);
+    gl_split_program_destroy(&m->prog_trace_alpha);
+    gl_split_program_destroy(&m->prog_mip);
     if (m->vao)
         glDeleteVertexArrays(1, &m->vao);
     if (m->fbo)
         glDeleteFramebuffers(1, &m->fbo);
-    GLuint *bufs[] = {&m->vertices, &m->materials, &m->views, &m->params, &m->depth,
-                      &m->heads, &m->tails, &m->ids, &m->data, &m->counters,
+    gl_split *arr[MMRT_NUM_ARRAYS];
+    mmrt_arrays(m, arr);
+    for (int i = 0; i < MMRT_NUM_ARRAYS; i++)
+        gl_split_release(arr[i]);
+    GLuint *bufs[] = {&m->views, &m->params, &m->counters,
                       &m->rays, &m->hits};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         gl_buffer_destroy(bufs[i]);
@@ -141,17 +230,12 @@ static bool upload_frame(dirt_mmrt *m, const dirt_frame *f)
         m->staging[i].normal = (dirt_f4){f->normal[i][0], f->normal[i][1], f->normal[i][2],
                                          f->uv[i][1]};
     }
-    size_t bytes = nv * sizeof(struct dirt_gpu_vertex);
-    size_t mbytes = f->num_triangles * sizeof(uint32_t);
-    if (!gl_buffer_ensure(m->gpu, &m->vertices, &m->vertices_size, bytes ? bytes : 16, false,
-                       "mmrt vertices") ||
-        !gl_buffer_ensure(m->gpu, &m->materials, &m->materials_size, mbytes ? mbytes : 16, false,
-                       "mmrt materials"))
+    size_t n = f->num_triangles;
+    if (!gl_split_ensure(m->gpu, &m->vertices, mmrt_array_desc[MMRT_VERTICES], n) ||
+        !gl_split_ensure(m->gpu, &m->materials, mmrt_array_desc[MMRT_PRIM_MATERIAL], n) ||
+        (n && (!gl_split_write(&m->vertices, 0, n, m->staging) ||
+               !gl_split_write(&m->materials, 0, n, f->material))))
         return false;
-    if (bytes) {
-        glNamedBufferSubData(m->vertices, 0, (GLsizeiptr)bytes, m->staging);
-        glNamedBufferSubData(m->materials, 0, (GLsizeiptr)mbytes, f->material);
-    }
     m->num_primitives = f->num_triangles;
     return true;
 }
@@ -173,56 +257,63 @@ static void upload_params(dirt_mmrt *m)
     glNamedBufferSubData(m->params, 0, sizeof(p), &p);
 }
 
-/* Most nodes the pools may hold: the data pool (32 B per node) is the larger
- * buffer and must fit one storage block. */
-static size_t max_nodes(const dirt_mmrt *m)
+/* Most nodes the pools hold in one storage block: the data pool (32 B per
+ * node) is the larger array. Past it they split (gl/split.h). */
+static size_t block_nodes(const dirt_mmrt *m)
 {
     int64_t max = dirt_gpu_get_caps(m->gpu)->max_ssbo_size;
     size_t lim = max > 0 ? (size_t)(max / DIRT_MMRT_DATA_NODE_BYTES) : (size_t)UINT32_MAX;
     return lim < (size_t)UINT32_MAX - 1 ? lim : (size_t)UINT32_MAX - 1;
 }
 
+/* Most nodes at all: the shaders index id node words with 32-bit uints. */
+#define MMRT_MAX_NODES ((size_t)(UINT32_MAX / DIRT_MMRT_ID_UINTS) - 1)
+
 static bool ensure_nodes(dirt_mmrt *m, size_t nodes)
 {
-    if (nodes > max_nodes(m)) {
-        DIRT_ERROR("the A-buffer needs %zu fragment nodes (%.1f MB of data nodes), more than "
-                   "this GPU's largest storage buffer allows (%zu nodes): use smaller views "
-                   "or fewer views", nodes, nodes * (double)DIRT_MMRT_DATA_NODE_BYTES / 1e6,
-                   max_nodes(m));
+    if (nodes > MMRT_MAX_NODES) {
+        DIRT_ERROR("the A-buffer needs %zu fragment nodes, more than the %zu a 32-bit index "
+                   "reaches: use smaller views or fewer views", nodes, MMRT_MAX_NODES);
         return false;
     }
-    if (m->ids && m->data && m->node_capacity >= nodes)
+    if (m->ids.buf[0] && m->data.buf[0] && m->node_capacity >= nodes)
         return true;
-    gl_buffer_destroy(&m->ids);
-    gl_buffer_destroy(&m->data);
-    m->ids = gl_buffer_create(m->gpu, nodes * DIRT_MMRT_ID_NODE_BYTES, NULL, true,
-                              "mmrt id nodes");
-    m->data = m->ids ? gl_buffer_create(m->gpu, nodes * DIRT_MMRT_DATA_NODE_BYTES, NULL, true,
-                                        "mmrt data nodes")
-                     : 0;
-    m->node_capacity = m->ids && m->data ? nodes : 0;
-    return m->node_capacity != 0;
+    gl_split_release(&m->ids);
+    gl_split_release(&m->data);
+    m->node_capacity = 0;
+    if (!gl_split_ensure(m->gpu, &m->ids, mmrt_array_desc[MMRT_IDS], nodes) ||
+        !gl_split_ensure(m->gpu, &m->data, mmrt_array_desc[MMRT_DATA], nodes))
+        return false;
+    m->node_capacity = nodes;
+    return true;
+}
+
+/* The size checks that need no pass: the scene's arrays and the views'
+ * (before any upload or pass; the nodes are sized by the store pass's
+ * count). False after logging what to change. */
+static bool check_sizes(dirt_mmrt *m, const dirt_frame *f)
+{
+    dirt_split_layout l;
+    size_t heads = (size_t)m->opts.buckets * (size_t)m->set.num_tiles;
+    return gl_split_plan(m->gpu, mmrt_array_desc[MMRT_VERTICES], f->num_triangles, &l) &&
+           gl_split_plan(m->gpu, mmrt_array_desc[MMRT_PRIM_MATERIAL], f->num_triangles, &l) &&
+           gl_split_plan(m->gpu, mmrt_array_desc[MMRT_DEPTH], (size_t)m->set.pyramid_size, &l) &&
+           gl_split_plan(m->gpu, mmrt_array_desc[MMRT_HEADS], heads, &l) &&
+           gl_split_plan(m->gpu, mmrt_array_desc[MMRT_TAILS], heads, &l);
 }
 
 static bool ensure_targets(dirt_mmrt *m)
 {
     const dirt_view_set *s = &m->set;
-    size_t heads = (size_t)m->opts.buckets * (size_t)s->num_tiles * DIRT_HEAD_BYTES;
-    int64_t max = dirt_gpu_get_caps(m->gpu)->max_ssbo_size;
-    if (max > 0 && (int64_t)heads > max) {
-        DIRT_ERROR("the bucket heads need %.1f MB, more than this GPU's largest storage "
-                   "buffer (%.1f MB): use fewer buckets or smaller views", heads / 1e6,
-                   max / 1e6);
+    size_t heads = (size_t)m->opts.buckets * (size_t)s->num_tiles;
+    if (!gl_split_ensure(m->gpu, &m->depth, mmrt_array_desc[MMRT_DEPTH], s->pyramid_size))
         return false;
-    }
-    if (!gl_buffer_ensure(m->gpu, &m->depth, &m->depth_size, (size_t)s->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, true,
-                       "mmrt depth bounds") ||
-        !gl_buffer_ensure(m->gpu, &m->heads, &m->heads_size, heads, true, "mmrt bucket heads") ||
-        !gl_buffer_ensure(m->gpu, &m->tails, &m->tails_size, heads, true, "mmrt bucket tails"))
+    if (!gl_split_ensure(m->gpu, &m->heads, mmrt_array_desc[MMRT_HEADS], heads) ||
+        !gl_split_ensure(m->gpu, &m->tails, mmrt_array_desc[MMRT_TAILS], heads))
         return false;
     if (!m->node_capacity) {
         size_t automatic = (size_t)s->num_tiles * 2 + 1024;
-        m->node_capacity = automatic < max_nodes(m) ? automatic : max_nodes(m);
+        m->node_capacity = automatic < block_nodes(m) ? automatic : block_nodes(m);
     }
     if (!ensure_nodes(m, m->node_capacity))
         return false;
@@ -235,30 +326,28 @@ static bool ensure_targets(dirt_mmrt *m)
     return true;
 }
 
-void dirt_mmrt_bind(const dirt_mmrt *m)
+void dirt_mmrt_bind(dirt_mmrt *m)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, m->vertices);
+    mmrt_bind_geometry(m);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, m->views);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_DEPTH, m->depth);
+    gl_split_bind(&m->depth);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_PARAMS, m->params);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_HEADS, m->heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_TAILS, m->tails);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_IDS, m->ids);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_DATA, m->data);
+    gl_split_bind(&m->heads);
+    gl_split_bind(&m->tails);
+    gl_split_bind(&m->ids);
+    gl_split_bind(&m->data);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_COUNTERS, m->counters);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, m->materials);
 }
 
 void dirt_mmrt_gl_buffers(const dirt_mmrt *m, dirt_mmrt_gl *out)
 {
-    *out = (dirt_mmrt_gl){m->vertices, m->materials, m->views, m->params, m->depth,
-                          m->heads, m->tails, m->ids, m->data, m->counters};
+    *out = (dirt_mmrt_gl){m->views, m->params, m->counters};
 }
 
 static void clear_lists(dirt_mmrt *m)
 {
     static const uint32_t end = DIRT_LIST_END, zero = 0;
-    glClearNamedBufferData(m->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    gl_split_clear(&m->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     glClearNamedBufferSubData(m->counters, GL_R32UI, 0, 16, GL_RED_INTEGER, GL_UNSIGNED_INT,
                               &zero);
 }
@@ -328,8 +417,8 @@ static bool exec_clear(fg_ctx *ctx, void *user)
     dirt_mmrt *m = user;
     static const uint32_t depth_clear[2] = {DIRT_DEPTH_CLEAR_MIN, DIRT_DEPTH_CLEAR_MAX};
     static const uint32_t end = DIRT_LIST_END;
-    glClearNamedBufferData(m->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
-    glClearNamedBufferData(m->tails, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+    gl_split_clear(&m->depth, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, depth_clear);
+    gl_split_clear(&m->tails, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     clear_lists(m);
     return true;
 }
@@ -346,7 +435,7 @@ static bool exec_depth(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
-    raster_views(m, m->prog_depth);
+    raster_views(m, m->prog_depth.id);
     return true;
 }
 
@@ -355,7 +444,7 @@ static bool exec_mip(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
-    views_hiz_dispatch(m->prog_mip, &m->set);
+    views_hiz_dispatch(m->prog_mip.id, &m->set);
     return true;
 }
 
@@ -364,7 +453,7 @@ static bool exec_store(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
-    raster_views(m, m->prog_store);
+    raster_views(m, m->prog_store.id);
     return true;
 }
 
@@ -373,8 +462,8 @@ static bool exec_reorder(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_mmrt *m = user;
     dirt_mmrt_bind(m);
-    glUseProgram(m->prog_reorder);
-    glDispatchCompute((GLuint)DIRT_GROUPS(m->set.num_tiles), 1, 1);
+    glUseProgram(m->prog_reorder.id);
+    gl_dispatch_rows((size_t)m->set.num_tiles);
     glUseProgram(0);
     return true;
 }
@@ -387,16 +476,15 @@ static bool exec_read_counters(fg_ctx *ctx, void *user)
 
 static void import_all(dirt_mmrt *m, fg_graph *g)
 {
-    m->r_vertices = fg_import_buffer(g, "vertices", m->vertices, m->vertices_size);
-    m->r_materials = fg_import_buffer(g, "materials", m->materials, m->materials_size);
+    gl_split_import(g, "vertices", &m->vertices, m->r_vertices);
+    gl_split_import(g, "materials", &m->materials, m->r_materials);
     m->r_views = fg_import_buffer(g, "views", m->views, DIRT_MAX_VIEWS * sizeof(struct dirt_gpu_view));
     m->r_params = fg_import_buffer(g, "params", m->params, sizeof(struct dirt_mmrt_gpu_params));
-    m->r_depth = fg_import_buffer(g, "depth bounds", m->depth, m->depth_size);
-    m->r_heads = fg_import_buffer(g, "heads", m->heads, m->heads_size);
-    m->r_tails = fg_import_buffer(g, "tails", m->tails, m->tails_size);
-    m->r_ids = fg_import_buffer(g, "id nodes", m->ids, m->node_capacity * DIRT_MMRT_ID_NODE_BYTES);
-    m->r_data = fg_import_buffer(g, "data nodes", m->data,
-                                 m->node_capacity * DIRT_MMRT_DATA_NODE_BYTES);
+    gl_split_import(g, "depth bounds", &m->depth, m->r_depth);
+    gl_split_import(g, "heads", &m->heads, m->r_heads);
+    gl_split_import(g, "tails", &m->tails, m->r_tails);
+    gl_split_import(g, "id nodes", &m->ids, m->r_ids);
+    gl_split_import(g, "data nodes", &m->data, m->r_data);
     m->r_counters = fg_import_buffer(g, "counters", m->counters,
                                      sizeof(struct dirt_mmrt_gpu_counters));
 }
@@ -413,20 +501,39 @@ static fg_pass *raster_pass(dirt_mmrt *m, fg_graph *g, int which, fg_execute_fn 
 static void add_store(dirt_mmrt *m, fg_graph *g)
 {
     fg_pass *p = raster_pass(m, g, DIRT_MMRT_PASS_STORE, exec_store);
-    fg_read(p, m->r_vertices, FG_SSBO_READ);
-    fg_read(p, m->r_materials, FG_SSBO_READ);
+    gl_split_use(p, &m->vertices, m->r_vertices, FG_SSBO_READ);
+    gl_split_use(p, &m->materials, m->r_materials, FG_SSBO_READ);
     fg_read(p, m->r_views, FG_SSBO_READ);
     fg_read(p, m->r_params, FG_SSBO_READ);
-    fg_read(p, m->r_depth, FG_SSBO_READ);
-    fg_use(p, m->r_heads, FG_SSBO_READ, NULL);
-    fg_write(p, m->r_heads, FG_SSBO_WRITE);
-    fg_write(p, m->r_ids, FG_SSBO_WRITE);
-    fg_write(p, m->r_data, FG_SSBO_WRITE);
+    gl_split_use(p, &m->depth, m->r_depth, FG_SSBO_READ);
+    gl_split_use(p, &m->heads, m->r_heads, FG_SSBO_READ);
+    gl_split_use(p, &m->heads, m->r_heads, FG_SSBO_WRITE);
+    gl_split_use(p, &m->ids, m->r_ids, FG_SSBO_WRITE);
+    gl_split_use(p, &m->data, m->r_data, FG_SSBO_WRITE);
     fg_use(p, m->r_counters, FG_SSBO_READ, NULL);
     fg_write(p, m->r_counters, FG_SSBO_WRITE);
     p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, m);
     fg_read(p, m->r_counters, FG_TRANSFER_READ);
     fg_keep(p);
+}
+
+/* The parts of the split arrays (what the graphs import). */
+static void graph_parts(dirt_mmrt *m, int parts[MMRT_NUM_ARRAYS])
+{
+    gl_split *arr[MMRT_NUM_ARRAYS];
+    mmrt_arrays(m, arr);
+    for (int i = 0; i < MMRT_NUM_ARRAYS; i++)
+        parts[i] = arr[i]->layout.parts;
+}
+
+/* Whether the graphs import what the arrays now hold. */
+static bool graphs_current(dirt_mmrt *m)
+{
+    int parts[MMRT_NUM_ARRAYS];
+    graph_parts(m, parts);
+    return m->g_build && m->graph_atlas_w == m->set.atlas_width &&
+           m->graph_atlas_h == m->set.atlas_height &&
+           !memcmp(parts, m->graph_parts, sizeof(parts));
 }
 
 static bool make_graphs(dirt_mmrt *m)
@@ -443,26 +550,26 @@ static bool make_graphs(dirt_mmrt *m)
     import_all(m, g);
     fg_pass *p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_CLEAR], FG_COMPUTE,
                              exec_clear, m);
-    fg_write(p, m->r_depth, FG_TRANSFER_WRITE);
-    fg_write(p, m->r_tails, FG_TRANSFER_WRITE);
-    fg_write(p, m->r_heads, FG_TRANSFER_WRITE);
+    gl_split_use(p, &m->depth, m->r_depth, FG_TRANSFER_WRITE);
+    gl_split_use(p, &m->tails, m->r_tails, FG_TRANSFER_WRITE);
+    gl_split_use(p, &m->heads, m->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, m->r_counters, FG_TRANSFER_WRITE);
     p = raster_pass(m, g, DIRT_MMRT_PASS_DEPTH, exec_depth);
-    fg_read(p, m->r_vertices, FG_SSBO_READ);
+    gl_split_use(p, &m->vertices, m->r_vertices, FG_SSBO_READ);
     fg_read(p, m->r_views, FG_SSBO_READ);
     fg_read(p, m->r_params, FG_SSBO_READ);
-    fg_use(p, m->r_depth, FG_SSBO_READ, NULL);
-    fg_write(p, m->r_depth, FG_SSBO_WRITE);
+    gl_split_use(p, &m->depth, m->r_depth, FG_SSBO_READ);
+    gl_split_use(p, &m->depth, m->r_depth, FG_SSBO_WRITE);
     p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_MIP], FG_COMPUTE, exec_mip, m);
     fg_read(p, m->r_views, FG_SSBO_READ);
-    fg_use(p, m->r_depth, FG_SSBO_READ, NULL);
-    fg_write(p, m->r_depth, FG_SSBO_WRITE);
+    gl_split_use(p, &m->depth, m->r_depth, FG_SSBO_READ);
+    gl_split_use(p, &m->depth, m->r_depth, FG_SSBO_WRITE);
     add_store(m, g);
 
     g = m->g_restore;
     import_all(m, g);
     p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_CLEAR], FG_COMPUTE, exec_clear_lists, m);
-    fg_write(p, m->r_heads, FG_TRANSFER_WRITE);
+    gl_split_use(p, &m->heads, m->r_heads, FG_TRANSFER_WRITE);
     fg_write(p, m->r_counters, FG_TRANSFER_WRITE);
     add_store(m, g);
 
@@ -470,12 +577,12 @@ static bool make_graphs(dirt_mmrt *m)
     import_all(m, g);
     p = fg_add_pass(g, dirt_mmrt_pass_names[DIRT_MMRT_PASS_REORDER], FG_COMPUTE, exec_reorder, m);
     fg_read(p, m->r_params, FG_SSBO_READ);
-    fg_use(p, m->r_heads, FG_SSBO_READ, NULL);
-    fg_write(p, m->r_heads, FG_SSBO_WRITE);
-    fg_use(p, m->r_ids, FG_SSBO_READ, NULL);
-    fg_write(p, m->r_ids, FG_SSBO_WRITE);
-    fg_read(p, m->r_data, FG_SSBO_READ);
-    fg_write(p, m->r_tails, FG_SSBO_WRITE);
+    gl_split_use(p, &m->heads, m->r_heads, FG_SSBO_READ);
+    gl_split_use(p, &m->heads, m->r_heads, FG_SSBO_WRITE);
+    gl_split_use(p, &m->ids, m->r_ids, FG_SSBO_READ);
+    gl_split_use(p, &m->ids, m->r_ids, FG_SSBO_WRITE);
+    gl_split_use(p, &m->data, m->r_data, FG_SSBO_READ);
+    gl_split_use(p, &m->tails, m->r_tails, FG_SSBO_WRITE);
     fg_use(p, m->r_counters, FG_SSBO_READ, NULL);
     fg_write(p, m->r_counters, FG_SSBO_WRITE);
     p = fg_add_pass(g, "read counters", FG_COMPUTE, exec_read_counters, m);
@@ -490,6 +597,7 @@ static bool make_graphs(dirt_mmrt *m)
         return false;
     m->graph_atlas_w = m->set.atlas_width;
     m->graph_atlas_h = m->set.atlas_height;
+    graph_parts(m, m->graph_parts);
     return true;
 }
 
@@ -498,13 +606,13 @@ static void update_imports(dirt_mmrt *m)
 {
     fg_graph *gs[3] = {m->g_build, m->g_restore, m->g_finish};
     for (int i = 0; i < 3; i++) {
-        fg_set_import(gs[i], m->r_vertices, m->vertices, m->vertices_size);
-        fg_set_import(gs[i], m->r_materials, m->materials, m->materials_size);
-        fg_set_import(gs[i], m->r_depth, m->depth, m->depth_size);
-        fg_set_import(gs[i], m->r_heads, m->heads, m->heads_size);
-        fg_set_import(gs[i], m->r_tails, m->tails, m->tails_size);
-        fg_set_import(gs[i], m->r_ids, m->ids, m->node_capacity * DIRT_MMRT_ID_NODE_BYTES);
-        fg_set_import(gs[i], m->r_data, m->data, m->node_capacity * DIRT_MMRT_DATA_NODE_BYTES);
+        gl_split_set_imports(gs[i], &m->vertices, m->r_vertices);
+        gl_split_set_imports(gs[i], &m->materials, m->r_materials);
+        gl_split_set_imports(gs[i], &m->depth, m->r_depth);
+        gl_split_set_imports(gs[i], &m->heads, m->r_heads);
+        gl_split_set_imports(gs[i], &m->tails, m->r_tails);
+        gl_split_set_imports(gs[i], &m->ids, m->r_ids);
+        gl_split_set_imports(gs[i], &m->data, m->r_data);
     }
 }
 
@@ -535,15 +643,12 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
 
     gl_group_push("mmrt build");
     bool ok = false;
-    if (!upload_frame(m, f) || !ensure_targets(m))
+    if (!check_sizes(m, f) || !upload_frame(m, f) || !ensure_targets(m))
         goto done;
     upload_views(m);
     upload_params(m);
-    if (!m->g_build || m->graph_atlas_w != m->set.atlas_width ||
-        m->graph_atlas_h != m->set.atlas_height) {
-        if (!make_graphs(m))
-            goto done;
-    }
+    if (!mmrt_programs(m) || (!graphs_current(m) && !make_graphs(m)))
+        goto done;
     update_imports(m);
     fg_exec_opts eo = {.validate = true};
     if (!fg_execute(m->g_build, &eo))
@@ -551,10 +656,11 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
     fg_add_pass_times(m->g_build, dirt_mmrt_pass_names, DIRT_MMRT_NUM_PASSES, ms, &clock);
     int runs = 1;
     while (m->counters_cpu.build.x > m->node_capacity) {
+        /* Plus a quarter; within one storage block while the need fits one. */
         size_t need = m->counters_cpu.build.x;
         size_t grown = need + need / 4;
-        if (grown > max_nodes(m))
-            grown = need;
+        if (need <= block_nodes(m) && grown > block_nodes(m))
+            grown = block_nodes(m);
         size_t before = m->node_capacity;
         if (!ensure_nodes(m, grown))
             goto done;
@@ -562,6 +668,8 @@ bool dirt_mmrt_build(dirt_mmrt *m, const dirt_frame *f, const dirt_camera *cam)
                   before, grown,
                   grown * (double)(DIRT_MMRT_ID_NODE_BYTES + DIRT_MMRT_DATA_NODE_BYTES) / 1e6);
         upload_params(m);
+        if (!mmrt_programs(m) || (!graphs_current(m) && !make_graphs(m)))
+            goto done;
         update_imports(m);
         if (!fg_execute(m->g_restore, &eo))
             goto done;
@@ -621,11 +729,11 @@ bool dirt_mmrt_read(dirt_mmrt *m, dirt_mmrt_data *out)
     /* (The build's last pass, the counter readback, was fenced with
      * GL_BUFFER_UPDATE_BARRIER_BIT after every shader write of the build.) */
     size_t n = out->num_nodes;
-    if (!gl_buffer_read(m->depth, 0, (size_t)out->pyramid_size * DIRT_DEPTH_ENTRY_BYTES, out->depth) ||
-        !gl_buffer_read(m->heads, 0, heads * DIRT_HEAD_BYTES, out->heads) ||
-        !gl_buffer_read(m->tails, 0, heads * DIRT_HEAD_BYTES, out->tails) ||
-        (n && !gl_buffer_read(m->ids, 0, n * DIRT_MMRT_ID_NODE_BYTES, out->ids)) ||
-        (n && !gl_buffer_read(m->data, 0, n * DIRT_MMRT_DATA_NODE_BYTES, out->data))) {
+    if (!gl_split_read(&m->depth, 0, (size_t)out->pyramid_size, out->depth) ||
+        !gl_split_read(&m->heads, 0, heads, out->heads) ||
+        !gl_split_read(&m->tails, 0, heads, out->tails) ||
+        (n && !gl_split_read(&m->ids, 0, n, out->ids)) ||
+        (n && !gl_split_read(&m->data, 0, n, out->data))) {
         dirt_mmrt_data_free(out);
         return false;
     }

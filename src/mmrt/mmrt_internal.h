@@ -9,18 +9,40 @@
 #include "mmrt/mmrt.h"
 #include "gl/gl.h"
 #include "gl/graph_gl.h"
+#include "gl/split.h"
+
+/* The A-buffer's arrays that may pass one storage block (gl/split.h). */
+enum mmrt_array {
+    MMRT_VERTICES,       /* dirt_gpu_vertex[3] per primitive */
+    MMRT_PRIM_MATERIAL,  /* uint per primitive */
+    MMRT_HEADS,          /* uint per bucket and pixel */
+    MMRT_TAILS,          /* uint per bucket and pixel */
+    MMRT_IDS,            /* DIRT_MMRT_ID_UINTS uints per node */
+    MMRT_DATA,           /* dirt_mmrt_gpu_data per node */
+    MMRT_DEPTH,          /* uvec2 depth bounds per pixel, then their pyramid */
+    MMRT_NUM_ARRAYS
+};
+#define MMRT_ARR(x) (1u << (x))
+/* The A-buffer's own arrays (heads, tails, id and data nodes). */
+#define MMRT_ABUFFER (MMRT_ARR(MMRT_HEADS) | MMRT_ARR(MMRT_TAILS) | MMRT_ARR(MMRT_IDS) | \
+                      MMRT_ARR(MMRT_DATA))
 
 struct dirt_mmrt {
     dirt_gpu *gpu;
     dirt_mmrt_opts opts;
     int num_views;
-    GLuint prog_depth, prog_store, prog_mip, prog_reorder, prog_trace;
-    GLuint prog_trace_alpha; /* DIRT_TRACE_ALPHA: made on first use */
+    /* programs built for the layouts of the split arrays they read
+     * (mmrt_programs; the alpha trace on first use) */
+    gl_split_program prog_depth, prog_store, prog_reorder, prog_trace, prog_trace_alpha;
+    gl_split_program prog_mip;
+    char nviews[8];
     GLuint vao, fbo;
     int fbo_width, fbo_height;
     /* buffers and their capacities in bytes */
-    GLuint vertices, materials, views, params, depth, heads, tails, ids, data, counters;
-    size_t vertices_size, materials_size, depth_size, heads_size, tails_size;
+    gl_split vertices, materials;  /* MMRT_VERTICES, MMRT_PRIM_MATERIAL */
+    gl_split heads, tails, ids, data; /* MMRT_HEADS, _TAILS, _IDS, _DATA */
+    gl_split depth;                  /* MMRT_DEPTH */
+    GLuint views, params, counters;
     size_t node_capacity;     /* nodes (id and data pools alike) */
     GLuint rays, hits;        /* trace_cpu staging */
     size_t rays_size, hits_size;
@@ -29,9 +51,13 @@ struct dirt_mmrt {
      * restore (clear lists, store, read counters) after pool growth, and
      * finish (reorder, read counters) */
     fg_graph *g_build, *g_restore, *g_finish;
-    fg_res r_vertices, r_materials, r_views, r_params, r_depth, r_heads, r_tails, r_ids,
-        r_data, r_counters;
+    fg_res r_vertices[DIRT_SPLIT_MAX_PARTS], r_materials[DIRT_SPLIT_MAX_PARTS];
+    fg_res r_heads[DIRT_SPLIT_MAX_PARTS], r_tails[DIRT_SPLIT_MAX_PARTS];
+    fg_res r_ids[DIRT_SPLIT_MAX_PARTS], r_data[DIRT_SPLIT_MAX_PARTS];
+    fg_res r_depth[DIRT_SPLIT_MAX_PARTS];
+    fg_res r_views, r_params, r_counters;
     int graph_atlas_w, graph_atlas_h;
+    int graph_parts[MMRT_NUM_ARRAYS]; /* the split arrays' parts the graphs import */
     struct dirt_mmrt_gpu_counters counters_cpu; /* read back by the graphs */
     dirt_view_set set;
     size_t num_primitives;
@@ -47,16 +73,34 @@ struct dirt_mmrt {
 void mmrt_tracer_release(dirt_mmrt *mmrt);
 
 /* GL names of the structure's buffers (valid until the next build or
- * destroy). */
+ * destroy); the split arrays: mmrt_arrays. */
 typedef struct dirt_mmrt_gl {
-    GLuint vertices, materials, views, params, depth, heads, tails, ids, data, counters;
+    GLuint views, params, counters;
 } dirt_mmrt_gl;
+
+/* The split arrays, by enum mmrt_array. */
+void mmrt_arrays(dirt_mmrt *m, gl_split *arr[MMRT_NUM_ARRAYS]);
+extern const gl_split_desc *const mmrt_array_desc[MMRT_NUM_ARRAYS];
+/* The barrier bits of shaders' accesses of the arrays after the build's
+ * shaders wrote them (gl_split_barrier of each): what a hand-written
+ * barrier before the trace or Fetch issues. */
+GLbitfield mmrt_split_barriers(dirt_mmrt *m);
+
+/* Makes `p` the program of `label` / `paths` / `defs` for the layouts of
+ * the arrays in `arrays` (MMRT_ARR(enum mmrt_array) bits). False after
+ * logging. */
+bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
+                  const glsl_define *defs, size_t n, unsigned arrays);
+
+/* Binds the vertices and the per-primitive materials (storage blocks or
+ * texel buffers) for the shaders that read them. */
+void mmrt_bind_geometry(dirt_mmrt *m);
 
 void dirt_mmrt_gl_buffers(const dirt_mmrt *mmrt, dirt_mmrt_gl *out);
 
 /* Binds every buffer of the structure at its DIRT_BIND_* / DIRT_BIND_MMRT_*
  * point. */
-void dirt_mmrt_bind(const dirt_mmrt *mmrt);
+void dirt_mmrt_bind(dirt_mmrt *mmrt);
 
 /* The thickness a trace with `opts` uses (resolves the default from the
  * scene of the last build). */

@@ -44,23 +44,26 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     int top = o.hiz_levels > 0 ? o.hiz_levels - 1 : DIRT_MAX_MIP_LEVELS;
 
     /* Alpha-tested traversal: its own build of the shader. */
-    if (o.alpha.materials && !m->prog_trace_alpha) {
+    if (o.alpha.materials) {
         glsl_define def = {"DIRT_TRACE_ALPHA", "1"};
-        m->prog_trace_alpha = gl_program_compute("mmrt/trace.comp", &def, 1);
-        if (!m->prog_trace_alpha)
+        const char *paths[] = {"mmrt/trace.comp", NULL};
+        if (!mmrt_program(m, &m->prog_trace_alpha, "mmrt/trace.comp (alpha)", paths, &def, 1,
+                          MMRT_ARR(MMRT_VERTICES) | MMRT_ABUFFER))
             return false;
     }
     gl_group_push("mmrt trace");
     /* The clear follows the last trace's atomics; the trace reads the
-     * A-buffer the build's shaders wrote, and rays a shader may have made. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+     * A-buffer the build's shaders wrote (image loads once split:
+     * mmrt_split_barriers), and rays a shader may have made. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    mmrt_split_barriers(m));
     static const uint32_t zero = 0;
     glClearNamedBufferSubData(m->counters, GL_R32UI, 16, 32, GL_RED_INTEGER, GL_UNSIGNED_INT,
                               &zero);
     dirt_mmrt_bind(m);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
-    glUseProgram(o.alpha.materials ? m->prog_trace_alpha : m->prog_trace);
+    glUseProgram(o.alpha.materials ? m->prog_trace_alpha.id : m->prog_trace.id);
     glUniform1ui(DIRT_LOC_MMRT_TRACE_COUNT, count);
     glUniform1i(DIRT_LOC_MMRT_TRACE_MARCH, o.march == DIRT_MMRT_MARCH_HIZ ? 0 : 1);
     glUniform1i(DIRT_LOC_MMRT_TRACE_SAMPLES, samples);

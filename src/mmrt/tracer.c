@@ -29,7 +29,8 @@
 
 struct mmrt_tracer {
     dirt_gpu *gpu;
-    GLuint prog_rays, prog_gpoint;
+    GLuint prog_rays;
+    gl_split_program prog_gpoint;  /* for the layout of the vertices */
     GLuint counts;            /* dirt_mmrt_pt_counts */
     dirt_mmrt *mmrt;
     dirt_mmrt_trace_opts opts;
@@ -47,7 +48,7 @@ void mmrt_tracer_release(dirt_mmrt *mmrt)
     if (!s)
         return;
     gl_program_destroy(&s->prog_rays);
-    gl_program_destroy(&s->prog_gpoint);
+    gl_split_program_destroy(&s->prog_gpoint);
     gl_buffer_destroy(&s->counts);
     free(s);
     mmrt->tracer = NULL;
@@ -67,10 +68,9 @@ static pt_mmrt *get_state(dirt_mmrt *mmrt)
     s->gpu = mmrt->gpu;
     s->mmrt = mmrt;
     s->prog_rays = gl_program_compute("mmrt/pt_rays.comp", NULL, 0);
-    s->prog_gpoint = gl_program_compute("mmrt/to_gpoint.comp", NULL, 0);
     s->counts = gl_buffer_create(s->gpu, sizeof(struct dirt_mmrt_pt_counts), NULL, true,
                                  "mmrt pt counts");
-    if (!s->prog_rays || !s->prog_gpoint || !s->counts) {
+    if (!s->prog_rays || !s->counts) {
         mmrt_tracer_release(mmrt);
         return NULL;
     }
@@ -121,33 +121,35 @@ static bool mmrt_tech_fetch(void *self, uint32_t rays, uint32_t hits, uint32_t c
     pt_mmrt *s = self;
     dirt_mmrt_gl g;
     dirt_mmrt_gl_buffers(s->mmrt, &g);
+    const char *paths[] = {"mmrt/to_gpoint.comp", NULL};
+    if (!mmrt_program(s->mmrt, &s->prog_gpoint, "mmrt/to_gpoint.comp", paths, NULL, 0,
+                      MMRT_ARR(MMRT_VERTICES) | MMRT_ARR(MMRT_DATA)))
+        return false;
     gl_group_push("mmrt pt data node to shading point");
-    /* The hits come from the trace; the ring's slot was read by Shade. */
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(s->prog_gpoint);
+    /* The hits come from the trace; the ring's slot was read by Shade; the
+     * data nodes come from the build's shaders (mmrt_split_barriers). */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | mmrt_split_barriers(s->mmrt));
+    glUseProgram(s->prog_gpoint.id);
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_COUNT, count);
     glUniform1ui(DIRT_LOC_MMRT_TO_GPOINT_SLOT, slot);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, g.vertices);
+    mmrt_bind_geometry(s->mmrt);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, g.views);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_RAYS, rays);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HITS, hits);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_GPOINTS, gpoints);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MMRT_DATA, g.data);
+    gl_split_bind(&s->mmrt->data);
     gl_dispatch_rays(s->opts.batch, count, 0);
     glUseProgram(0);
     gl_group_pop();
     return true;
 }
 
-/* Only the two buffers Shade reads (dirt_mmrt_bind binds the whole
+/* Only the two arrays Shade reads (dirt_mmrt_bind binds the whole
  * structure). */
 static void mmrt_tech_bind_geometry(void *self)
 {
     pt_mmrt *s = self;
-    dirt_mmrt_gl g;
-    dirt_mmrt_gl_buffers(s->mmrt, &g);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VERTICES, g.vertices);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PRIM_MATERIAL, g.materials);
+    mmrt_bind_geometry(s->mmrt);
 }
 
 static void mmrt_tech_reset_counts(void *self)
@@ -226,6 +228,8 @@ const dirt_tracer *dirt_mmrt_tracer(dirt_mmrt *mmrt, const dirt_mmrt_trace_opts 
         .set_alpha = mmrt_tech_set_alpha,
         .set_batch = mmrt_tech_set_batch,
         .views = &mmrt->set,
+        .vertices_split = mmrt->vertices.layout,
+        .prim_material_split = mmrt->materials.layout,
         .bytes_extra = sizeof(struct dirt_mmrt_pt_counts),
         .surface_offset = s->offset,
     };

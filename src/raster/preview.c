@@ -16,7 +16,10 @@
  * fg_execute, outside the graph: GL orders API updates before later draws, so
  * they need no barrier. The graph is declared once at create, recompiled when
  * the image size changes, and its imports are repointed (fg_set_import) when
- * the vertex or light buffer grows. */
+ * the vertex or light buffer grows. The vertices are a split array (gl/split.h:
+ * one buffer while they fit one storage block, else parts of whole
+ * triangles, each drawn on its own) and the graph is declared again when
+ * their parts change. */
 #include "raster/raster.h"
 
 #include <math.h>
@@ -28,6 +31,7 @@
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gl/graph_gl.h"
+#include "gl/split.h"
 #include "core/vec3.h"
 
 /* Record sizes and offsets are checked in test/common/layout_check.c. */
@@ -42,6 +46,14 @@ typedef struct preview_vertex {
     float uv[2];
 } preview_vertex;
 
+/* The vertex buffer, a split array of triangles (read as vertex attributes,
+ * never as a storage block or texels: only its parts' sizes matter). */
+static const gl_split_desc vbo_desc = {
+    .label = "raster preview's vertices", .define = "DIRT_SPLIT_PREVIEW",
+    .record_bytes = 3 * sizeof(preview_vertex), .format = GL_RGBA32F,
+    .unit = DIRT_UNIT_SPLIT_VERTICES, .advice = "render a scene of fewer triangles",
+};
+
 /* Triangles of one material, contiguous in the vertex buffer. */
 typedef struct material_range {
     uint32_t material;
@@ -53,8 +65,7 @@ struct dirt_raster {
     const dirt_scene *scene;
     GLuint program;
     GLuint vao;
-    GLuint vbo;
-    size_t vbo_capacity;  /* vertices */
+    gl_split vbo;         /* preview_vertex[3] per triangle */
     GLuint materials;
     size_t materials_bytes;
     GLuint lights;
@@ -65,8 +76,10 @@ struct dirt_raster {
     /* frame graph: declared at create, compiled for graph_width x graph_height
      * (0 x 0 = not compiled yet, or the last compile failed) */
     fg_graph *graph;
-    fg_res res_vertices, res_materials, res_lights, res_color, res_aov, res_depth;
+    fg_res res_vertices[DIRT_SPLIT_MAX_PARTS];
+    fg_res res_materials, res_lights, res_color, res_aov, res_depth;
     int graph_width, graph_height;
+    int graph_parts;      /* the vertex buffer's parts the graph imports */
     /* what the pass bodies of the current render need */
     struct {
         float view_proj[16];
@@ -147,6 +160,30 @@ static bool upload_materials(dirt_raster *r)
     return r->materials != 0;
 }
 
+/* Draws the vertices [lo, hi) of every material range with its textures;
+ * vertex lo is the bound vertex buffer's first. */
+static void draw_ranges(const dirt_raster *r, size_t lo, size_t hi)
+{
+    const dirt_material *mat = dirt_scene_materials(r->scene);
+    for (size_t i = 0; i < r->num_ranges; i++) {
+        const material_range *mr = &r->ranges[i];
+        size_t first = mr->first_vertex > lo ? mr->first_vertex : lo;
+        size_t last = mr->first_vertex + mr->num_vertices < hi
+                          ? mr->first_vertex + mr->num_vertices : hi;
+        if (first >= last)
+            continue;
+        const dirt_material *m = &mat[mr->material];
+        GLuint base = m->base_color_tex >= 0 && (size_t)m->base_color_tex < r->num_textures
+                          ? r->textures[m->base_color_tex] : 0;
+        GLuint emis = m->emissive_tex >= 0 && (size_t)m->emissive_tex < r->num_textures
+                          ? r->textures[m->emissive_tex] : 0;
+        glBindTextureUnit(DIRT_UNIT_PREVIEW_BASE_COLOR, base ? base : r->white);
+        glBindTextureUnit(DIRT_UNIT_PREVIEW_EMISSIVE, emis ? emis : r->white);
+        glUniform1i(DIRT_LOC_PREVIEW_MATERIAL, (GLint)mr->material);
+        glDrawArrays(GL_TRIANGLES, (GLint)(first - lo), (GLsizei)(last - first));
+    }
+}
+
 /* Pass body of "preview draw": the graph has bound the framebuffer of the
  * colour/depth targets (viewport = image size), the material and light SSBOs
  * and an empty VAO; this clears the targets and draws each material range
@@ -154,10 +191,6 @@ static bool upload_materials(dirt_raster *r)
 static bool exec_draw(fg_ctx *ctx, void *user)
 {
     dirt_raster *r = user;
-    GLuint vbo = fg_name(ctx, r->res_vertices);
-    if (!vbo)
-        return false;
-    glVertexArrayVertexBuffer(r->vao, 0, vbo, 0, sizeof(preview_vertex));
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
@@ -174,18 +207,15 @@ static bool exec_draw(fg_ctx *ctx, void *user)
     glUniform1i(DIRT_LOC_PREVIEW_NUM_LIGHTS, r->frame.num_lights);
     glUniform1f(DIRT_LOC_PREVIEW_AMBIENT, r->frame.ambient);
     glBindVertexArray(r->vao);
-    const dirt_material *mat = dirt_scene_materials(r->scene);
-    for (size_t i = 0; i < r->num_ranges; i++) {
-        const material_range *mr = &r->ranges[i];
-        const dirt_material *m = &mat[mr->material];
-        GLuint base = m->base_color_tex >= 0 && (size_t)m->base_color_tex < r->num_textures
-                          ? r->textures[m->base_color_tex] : 0;
-        GLuint emis = m->emissive_tex >= 0 && (size_t)m->emissive_tex < r->num_textures
-                          ? r->textures[m->emissive_tex] : 0;
-        glBindTextureUnit(DIRT_UNIT_PREVIEW_BASE_COLOR, base ? base : r->white);
-        glBindTextureUnit(DIRT_UNIT_PREVIEW_EMISSIVE, emis ? emis : r->white);
-        glUniform1i(DIRT_LOC_PREVIEW_MATERIAL, (GLint)mr->material);
-        glDrawArrays(GL_TRIANGLES, (GLint)mr->first_vertex, (GLsizei)mr->num_vertices);
+    /* Each part of the vertex buffer on its own (one while it is one
+     * storage block). */
+    size_t per = 3 * gl_split_part_records(&r->vbo);
+    for (int k = 0; k < (r->vbo.layout.parts ? r->vbo.layout.parts : 1); k++) {
+        GLuint vbo = fg_name(ctx, r->res_vertices[k]);
+        if (!vbo)
+            return false;
+        glVertexArrayVertexBuffer(r->vao, 0, vbo, 0, sizeof(preview_vertex));
+        draw_ranges(r, (size_t)k * per, (size_t)(k + 1) * per);
     }
     glBindVertexArray(0);
     glUseProgram(0);
@@ -282,8 +312,8 @@ static bool build_graph(dirt_raster *r)
     if (!r->graph)
         return false;
     fg_graph *g = r->graph;
-    r->res_vertices = fg_import_buffer(g, "preview vertices", r->vbo,
-                                       r->vbo_capacity * sizeof(preview_vertex));
+    gl_split_import(g, "preview vertices", &r->vbo, r->res_vertices);
+    r->graph_parts = r->vbo.layout.parts;
     r->res_materials = fg_import_buffer(g, "preview materials", r->materials,
                                         r->materials_bytes);
     r->res_lights = fg_import_buffer(g, "preview lights", r->lights,
@@ -294,10 +324,11 @@ static bool build_graph(dirt_raster *r)
 
     fg_pass *draw = fg_add_pass(g, PASS_DRAW, FG_RASTER, exec_draw, r);
     fg_pass *rb = fg_add_pass(g, PASS_READBACK, FG_COMPUTE, exec_readback, r);
-    if (!r->res_vertices.id || !r->res_materials.id || !r->res_lights.id ||
+    if (!r->res_vertices[0].id || !r->res_materials.id || !r->res_lights.id ||
         !r->res_color.id || !r->res_aov.id || !r->res_depth.id || !draw || !rb)
         return false;
-    fg_read(draw, r->res_vertices, FG_VERTEX);
+    for (int k = 0; k < DIRT_SPLIT_MAX_PARTS && r->res_vertices[k].id; k++)
+        fg_read(draw, r->res_vertices[k], FG_VERTEX);
     fg_use(draw, r->res_materials, FG_SSBO_READ,
            &(fg_use_opts){.bind = true, .binding = DIRT_BIND_PREVIEW_MATERIALS});
     fg_use(draw, r->res_lights, FG_SSBO_READ,
@@ -362,13 +393,10 @@ dirt_raster *dirt_raster_create(dirt_gpu *gpu, const dirt_scene *scene)
         goto error;
     /* Minimal vertex and light buffers, so the graph has something to import;
      * dirt_raster_render grows them. */
-    r->vbo_capacity = 3;
-    r->vbo = gl_buffer_create(r->gpu, r->vbo_capacity * sizeof(preview_vertex), NULL, false,
-                              "preview vertices");
     r->lights_capacity = 1;
     r->lights = gl_buffer_create(r->gpu, r->lights_capacity * sizeof(struct dirt_gpu_light),
                                  NULL, false, "preview lights");
-    if (!r->vbo || !r->lights)
+    if (!gl_split_ensure(r->gpu, &r->vbo, &vbo_desc, 1) || !r->lights)
         goto error;
     if (!build_graph(r)) {
         DIRT_ERROR("raster preview: could not declare the frame graph");
@@ -388,7 +416,7 @@ void dirt_raster_destroy(dirt_raster *r)
     gl_program_destroy(&r->program);
     if (r->vao)
         glDeleteVertexArrays(1, &r->vao);
-    gl_buffer_destroy(&r->vbo);
+    gl_split_release(&r->vbo);
     gl_buffer_destroy(&r->materials);
     gl_buffer_destroy(&r->lights);
     for (size_t i = 0; r->textures && i < r->num_textures; i++)
@@ -635,13 +663,21 @@ bool dirt_raster_render(dirt_raster *r, const dirt_frame *f, const dirt_camera *
     if (!ensure_graph(r, width, height) || !stage_vertices(r, f))
         goto done;
 
-    /* Uploads, outside the graph (API updates: no barrier needed). */
-    size_t nv = f->num_triangles * 3;
-    if (!ensure_import(r, &r->vbo, &r->vbo_capacity, nv, sizeof(preview_vertex),
-                       r->res_vertices, "preview vertices"))
+    /* Uploads, outside the graph (API updates: no barrier needed); the
+     * graph again when the vertex buffer's parts change. */
+    if (!gl_split_ensure(r->gpu, &r->vbo, &vbo_desc, f->num_triangles) ||
+        (f->num_triangles && !gl_split_write(&r->vbo, 0, f->num_triangles, r->staging)))
         goto done;
-    if (nv)
-        glNamedBufferSubData(r->vbo, 0, (GLsizeiptr)(nv * sizeof(preview_vertex)), r->staging);
+    if (r->vbo.layout.parts != r->graph_parts) {
+        fg_destroy(r->graph);
+        r->graph = NULL;
+        r->graph_width = r->graph_height = 0;
+        if (!build_graph(r) || !ensure_graph(r, width, height)) {
+            DIRT_ERROR("raster preview: could not declare the frame graph");
+            goto done;
+        }
+    }
+    gl_split_set_imports(r->graph, &r->vbo, r->res_vertices);
 
     int num_lights = gather_lights(r, f, &lights);
     if (num_lights < 0) {

@@ -3,9 +3,11 @@
 #include "common/layout.h"
 #include "gl/program.h"
 
-GLuint views_hiz_program(void)
+bool views_hiz_program(gl_split_program *p, dirt_split_layout layout)
 {
-    return gl_program_compute("views/hiz.comp", NULL, 0);
+    const char *paths[] = {"views/hiz.comp", NULL};
+    const gl_split_desc *d = &gl_split_depth;
+    return gl_split_program_ensure(p, "views/hiz.comp", paths, NULL, 0, &d, &layout, 1);
 }
 
 void views_hiz_dispatch(GLuint program, const dirt_view_set *set)
@@ -19,9 +21,10 @@ void views_hiz_dispatch(GLuint program, const dirt_view_set *set)
             w = lw > w ? lw : w;
             h = lh > h ? lh : h;
         }
-        /* Level d reads level d - 1 written by the previous dispatch. */
+        /* Level d reads level d - 1 written by the previous dispatch (a
+         * storage block, or images when the pyramid is split). */
         if (d > 1)
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUniform1i(DIRT_LOC_MIP_LEVEL, d);
         glDispatchCompute((GLuint)DIRT_GROUPS_2D(w), (GLuint)DIRT_GROUPS_2D(h), (GLuint)set->count);
     }

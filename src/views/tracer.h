@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "core/ray.h"
+#include "dirt/gpu.h"
 #include "views/views.h"
 
 #ifdef __cplusplus
@@ -47,8 +48,10 @@ typedef struct dirt_tracer {
      * chose (MMRT: where the ray meets the hit primitive). */
     bool (*fetch)(void *self, uint32_t rays, uint32_t hits, uint32_t count, uint32_t gpoints,
                   uint32_t slot);
-    /* Binds the dirt_gpu_vertex buffer at DIRT_BIND_VERTICES and the
-     * per-primitive materials at DIRT_BIND_PRIM_MATERIAL (Shade reads them). */
+    /* Binds the vertices (dirt_gpu_vertex) and the per-primitive materials
+     * for Shade: at DIRT_BIND_VERTICES and DIRT_BIND_PRIM_MATERIAL while
+     * each fits one storage block, else their texel buffers
+     * (vertices_split, prim_material_split below). */
     void (*bind_geometry)(void *self);
     /* Resets / reads the active rays traced (tmax >= tmin) and the rays
      * whose march gave up, since the reset (blocking read; the integrator
@@ -81,6 +84,10 @@ typedef struct dirt_tracer {
      * paths only after event 1, and refuses a tracer without it. */
     void (*set_batch)(void *self, uint32_t batch);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
+    /* How the arrays bind_geometry binds are stored (dirt/gpu.h; their
+     * texel buffers' units: common/constants.h): Shade is built for them
+     * (common/vertices.glsl). */
+    dirt_split_layout vertices_split, prim_material_split;
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
     /* World distance by which rays leaving a surface start off it along its
      * geometric normal (on the side they leave, beyond the integrator's own

@@ -32,6 +32,16 @@ static uint64_t gl_size(GLuint buf)
     return n < 0 ? 0 : (uint64_t)n;
 }
 
+/* What GL holds of a split array (every part), which its stats must say. */
+static uint64_t split_size(const gl_split *s)
+{
+    uint64_t n = 0;
+    for (int k = 0; k < DIRT_SPLIT_MAX_PARTS && s->buf[k]; k++)
+        n += gl_size(s->buf[k]);
+    CHECK(n == gl_split_bytes(s));
+    return n;
+}
+
 static int cmp_u32(const void *a, const void *b)
 {
     uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
@@ -88,11 +98,11 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK_NEAR(st->bytes_table3, table3, 1e-6 * table3);
     CHECK_NEAR(table3 - ads_bytes, 8.0 * (1.33 * (double)tiles - (double)pyramid), 1.0);
     /* What GL holds. */
-    CHECK(gl_size(ads->heads) == st->bytes_heads);
-    CHECK(gl_size(ads->depth) == st->bytes_depth);
-    CHECK(gl_size(ads->nodes) == st->bytes_nodes_allocated);
-    CHECK(gl_size(ads->cands) == st->bytes_candidates_allocated);
-    CHECK(gl_size(ads->vertices) >= st->bytes_vertices);
+    CHECK(split_size(&ads->heads) == st->bytes_heads);
+    CHECK(split_size(&ads->depth) == st->bytes_depth);
+    CHECK(split_size(&ads->nodes) == st->bytes_nodes_allocated);
+    CHECK(split_size(&ads->cands) == st->bytes_candidates_allocated);
+    CHECK(split_size(&ads->vertices) >= st->bytes_vertices);
     fprintf(stderr, "DIRT: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
                     "(walked): used %llu B = formula; Table 3 %.0f B vs structure %.0f B\n",
             (unsigned long long)st->primitives, (unsigned long long)tiles,
@@ -125,10 +135,11 @@ static void check_mmrt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     double paper = (double)P * (8.0 + 8.0 * B) + (double)st->fragments * (12 + 32);
     CHECK_NEAR(st->bytes_paper, paper, 0.5);
     CHECK(st->fragments > 0 && st->fragments <= 64 * P);
-    CHECK(gl_size(m->heads) == st->bytes_heads / 2 && gl_size(m->tails) == st->bytes_heads / 2);
-    CHECK(gl_size(m->ids) == st->bytes_id_nodes_allocated);
-    CHECK(gl_size(m->data) == st->bytes_data_nodes_allocated);
-    CHECK(gl_size(m->depth) == st->bytes_depth);
+    CHECK(split_size(&m->heads) == st->bytes_heads / 2 &&
+          split_size(&m->tails) == st->bytes_heads / 2);
+    CHECK(split_size(&m->ids) == st->bytes_id_nodes_allocated);
+    CHECK(split_size(&m->data) == st->bytes_data_nodes_allocated);
+    CHECK(split_size(&m->depth) == st->bytes_depth);
     fprintf(stderr, "MMRT: %llu pixels, %llu fragments: used %llu B = formula; paper %.0f B\n",
             (unsigned long long)P, (unsigned long long)st->fragments,
             (unsigned long long)st->bytes_total_used, paper);

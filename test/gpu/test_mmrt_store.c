@@ -14,8 +14,9 @@
  *    equal to the CPU min/max pyramid;
  *  - overflow: a start from capacity 1 gives the same lists as an ample run;
  *  - both reorder sorts (registers, in-list) give the same lists;
- *  - beyond the GPU's storage block limit the build fails with a clear
- *    error and the object stays usable.
+ *  - past the GPU's storage block limit (12.3 M fragments, 393 MB of data
+ *    nodes) the pools split (gl/split.h): the build keeps every fragment,
+ *    and the object still builds a small frame afterwards.
  * Scenes: layered axis-aligned quads (sizes not multiples of anything, a
  * 37-deep stack that forces the chunked sort) in single and cube+camera
  * views, B in {1, 3, 8}; the default scene in cube+camera views. */
@@ -412,15 +413,16 @@ static void count_limit_errors(void *user, enum dirt_log_level level, const char
                                const char *msg)
 {
     (void)user, (void)file, (void)line;
-    if (level == DIRT_LOG_ERROR && strstr(msg, "largest storage buffer"))
+    if (level == DIRT_LOG_ERROR)
         limit_errors++;
     fprintf(stderr, "[log] %s\n", msg);
 }
 
-/* Beyond the GPU's limits: 40 full-view layers at 640x480 need 12.3 M
- * fragments; when 32 B per fragment pass the largest storage block the
- * build fails with a clear error (and the object still builds a small
- * frame afterwards), else it succeeds with every fragment. */
+/* Past one storage block: 40 full-view layers at 640x480 need 12.3 M
+ * fragments (393 MB of data nodes, more than llvmpipe's 128 MiB block): the
+ * build succeeds with every fragment and no error (the pools split), and
+ * the object still builds a small frame afterwards. (Past what even the
+ * split holds: test_split.) */
 static void test_limits(dirt_gpu *gpu, const dirt_camera *cam, dirt_frame *small)
 {
     dirt_frame *f = mt_frame_new(80);
@@ -442,14 +444,10 @@ static void test_limits(dirt_gpu *gpu, const dirt_camera *cam, dirt_frame *small
         fprintf(stderr, "limits: %llu fragments, max storage block %lld B: build %s, %d "
                 "limit error(s) logged\n", (unsigned long long)frags, (long long)max,
                 ok ? "succeeded" : "failed", limit_errors);
-        if (over) {
-            CHECK(!ok);
-            CHECK(limit_errors == 1);
-            dirt_mmrt_data d;
-            CHECK(!dirt_mmrt_read(m, &d));
-        } else {
-            CHECK(ok && dirt_mmrt_get_stats(m)->fragments == frags);
-        }
+        CHECK(ok && limit_errors == 0 && dirt_mmrt_get_stats(m)->fragments == frags);
+        if (over)
+            fprintf(stderr, "  (past one storage block of %lld B: the pools split)\n",
+                    (long long)max);
         /* Still usable for a frame that fits. */
         CHECK(dirt_mmrt_build(m, small, cam));
         CHECK(dirt_mmrt_get_stats(m)->fragments > 0);

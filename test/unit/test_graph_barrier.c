@@ -188,6 +188,13 @@ static void test_pass_bits(void)
         /* write after read */
         {FG_SAMPLED, FG_IMAGE_STORE, true, FG_COMPUTE, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT},
         {FG_SSBO_READ, FG_SSBO_WRITE, false, FG_COMPUTE, GL_SHADER_STORAGE_BARRIER_BIT},
+        /* a buffer read as a texel buffer (split arrays, gl/split.h): the
+         * texture accesses' bits, a buffer's for transfers */
+        {FG_IMAGE_STORE, FG_IMAGE_LOAD, false, FG_COMPUTE, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT},
+        {FG_IMAGE_STORE, FG_SAMPLED, false, FG_RASTER, GL_TEXTURE_FETCH_BARRIER_BIT},
+        {FG_IMAGE_STORE, FG_TRANSFER_READ, false, FG_COMPUTE, GL_BUFFER_UPDATE_BARRIER_BIT},
+        {FG_IMAGE_ATOMIC, FG_SSBO_READ, false, FG_COMPUTE, GL_SHADER_STORAGE_BARRIER_BIT},
+        {FG_TRANSFER_WRITE, FG_SAMPLED, false, FG_COMPUTE, 0},
     };
     for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
         uint32_t got = pair_bits(&cases[i]);

@@ -319,11 +319,12 @@ static void test_errors(void)
                     "image atomic)");
     fg_destroy(g);
 
-    /* access/resource mismatches */
+    /* access/resource mismatches: an image the graph is asked to bind must
+     * be a texture (a buffer read as a texel buffer is bound by its pass) */
     g = fg_create(NULL);
     a = fg_buffer(g, "buf", &buf1k);
     p = fg_add_pass(g, "p", FG_COMPUTE, NULL, NULL);
-    fg_write(p, a, FG_IMAGE_STORE);
+    fg_use(p, a, FG_IMAGE_STORE, &(fg_use_opts){.bind = true, .binding = 1});
     fg_keep(p);
     EXPECT_ERROR(g, "pass 'p': access 'image store' needs a texture, but 'buf' is a buffer");
     fg_destroy(g);

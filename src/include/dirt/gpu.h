@@ -98,13 +98,37 @@ typedef struct dirt_gpu_caps {
     bool nv_conservative_raster; /* GL_NV_conservative_raster usable */
     bool software;               /* llvmpipe/softpipe: timestamps don't time raster work */
     bool timer_query;
-    int64_t max_ssbo_size;       /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
+    int timer_bits;              /* GL_QUERY_COUNTER_BITS of GL_TIME_ELAPSED (0: none) */
+    int timestamp_bits;          /* GL_QUERY_COUNTER_BITS of GL_TIMESTAMP */
+    /* The storage block size every size check and split uses:
+     * GL_MAX_SHADER_STORAGE_BLOCK_SIZE (driver_ssbo_size), or the value of
+     * the environment variable DIRT_MAX_BLOCK_BYTES when that is set and
+     * smaller (a test hook: arrays then split, and the path tracer chunks,
+     * as they would past the driver's own limit; see block_override). */
+    int64_t max_ssbo_size;
+    int64_t driver_ssbo_size;    /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE as the driver says */
+    int64_t block_override;      /* DIRT_MAX_BLOCK_BYTES in effect (0: none) */
+    int64_t max_texel_buffer;    /* GL_MAX_TEXTURE_BUFFER_SIZE (texels) */
     int max_texture_size;
     int max_array_layers;
     int max_compute_group_invocations;
     int max_image_units;
+    int max_texture_units;       /* GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS */
     int max_ssbo_bindings;
 } dirt_gpu_caps;
+
+/* How an array that may pass one storage block is stored (arrays of
+ * records: vertices, list nodes, ...; doc/architecture.md, "Arrays past one
+ * storage block"). parts = 0: one buffer read as one shader storage block
+ * (the array fits dirt_gpu_caps.max_ssbo_size). parts >= 1: `parts`
+ * buffers of 2^shift records each (the last may hold fewer; at most
+ * DIRT_SPLIT_MAX_PARTS of glsl/common/constants.h), read through texel
+ * buffers (samplers for arrays the CPU writes, images for arrays
+ * shaders write). Every shader that reads the array is built for it. */
+typedef struct dirt_split_layout {
+    int parts;
+    int shift;
+} dirt_split_layout;
 
 /* Makes a GL 4.5 core context. Returns NULL after logging why (no EGL display,
  * no GL 4.5, no window system, or a renderer string without the text the
