@@ -19,7 +19,7 @@ PACKAGES=(
   gcc g++ pkg-config cmake meson ninja-build
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   libglfw3-dev libimgui-dev libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev
-  libopenexr-dev libembree-dev glslang-tools libcjson-dev python3 python3-numpy gnuplot-nox
+  libopenexr-dev libembree-dev glslang-tools libcjson-dev python3 gnuplot-nox
   xvfb xauth xdotool
   slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
