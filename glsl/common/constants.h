@@ -269,8 +269,8 @@
 #define DIRT_UNIT_SPLIT_FIRST 4
 #define DIRT_UNIT_SPLIT_VERTICES 4       /* dirt_gpu_vertex[3] per primitive: RGBA32F */
 #define DIRT_UNIT_SPLIT_PRIM_MATERIAL 12 /* uint per primitive: R32UI */
-#define DIRT_UNIT_SPLIT_TANGENTS 20      /* dirt_gpu_model_tangent[3] per primitive: RGBA32F */
-#define DIRT_UNIT_SPLIT_TEXELS 28        /* the model's texel words: R32UI */
+#define DIRT_UNIT_SPLIT_TANGENTS 20      /* dirt_gpu_model_tangent per frame vertex: RGBA32F */
+#define DIRT_UNIT_SPLIT_TEXELS 28        /* the model's texel table, a word each: R32UI */
 #define DIRT_UNIT_SPLIT_LAST 35
 #define DIRT_IMAGE_SPLIT_FIRST 1
 #define DIRT_IMAGE_SPLIT_CANDIDATES 1    /* DIRT build candidates: RGBA32UI */
@@ -282,25 +282,13 @@
 #define DIRT_IMAGE_SPLIT_MMRT_DATA 49    /* MMRT data nodes (2 texels each): RGBA32UI */
 #define DIRT_IMAGE_SPLIT_DEPTH 57        /* depth bounds + pyramid (2 texels each): R32UI */
 #define DIRT_IMAGE_SPLIT_LAST 64
-/* The shaders' declarations and accessors of an array's parts (in the
- * array's include: common/vertices.glsl, dirt/structure.glsl, ...) are
- * written out with DIRT_SPLIT_EACH(n, M, a): M(0, a) M(1, a) ... M(n - 1, a)
- * for n (a number, or a macro that is one) in 1 .. DIRT_SPLIT_MAX_PARTS.
- * (Here rather than in a GLSL include: an include inside an #ifdef would
- * leave these undefined for the shaders that include it again outside.) */
-#define DIRT_SPLIT_CAT_(a, b) a##b
-#define DIRT_SPLIT_CAT(a, b) DIRT_SPLIT_CAT_(a, b)
-#define DIRT_SPLIT_EACH_1(M, a) M(0, a)
-#define DIRT_SPLIT_EACH_2(M, a) DIRT_SPLIT_EACH_1(M, a) M(1, a)
-#define DIRT_SPLIT_EACH_3(M, a) DIRT_SPLIT_EACH_2(M, a) M(2, a)
-#define DIRT_SPLIT_EACH_4(M, a) DIRT_SPLIT_EACH_3(M, a) M(3, a)
-#define DIRT_SPLIT_EACH_5(M, a) DIRT_SPLIT_EACH_4(M, a) M(4, a)
-#define DIRT_SPLIT_EACH_6(M, a) DIRT_SPLIT_EACH_5(M, a) M(5, a)
-#define DIRT_SPLIT_EACH_7(M, a) DIRT_SPLIT_EACH_6(M, a) M(6, a)
-#define DIRT_SPLIT_EACH_8(M, a) DIRT_SPLIT_EACH_7(M, a) M(7, a)
-#define DIRT_SPLIT_EACH(n, M, a) DIRT_SPLIT_CAT(DIRT_SPLIT_EACH_, n)(M, a)
-#if DIRT_SPLIT_MAX_PARTS != 8
-#error "common/constants.h: DIRT_SPLIT_EACH_n is written out for 8 parts"
+/* The shaders' declarations and accessors of an array's parts are built
+ * from glsl/common/split.glsl (DIRT_SPLIT_EACH and its helpers), included
+ * here for the shaders only (GL_core_profile: every shader is #version 450
+ * core) so that every shader has it whatever #if its arrays' includes sit
+ * in (the shader assembler includes a file once). */
+#ifdef GL_core_profile
+#include "common/split.glsl"
 #endif
 #if DIRT_UNIT_SPLIT_FIRST <= DIRT_UNIT_PRESENT_B || \
     DIRT_UNIT_SPLIT_FIRST <= DIRT_UNIT_PREVIEW_EMISSIVE || \

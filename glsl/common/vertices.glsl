@@ -5,8 +5,9 @@
 // with DIRT_SPLIT_VERTICES / DIRT_SPLIT_PRIM_MATERIAL parts of
 // 2^..._SHIFT primitives: RGBA32F texel buffers of six texels per
 // primitive (position, normal of each vertex) at DIRT_UNIT_SPLIT_VERTICES
-// + part, R32UI ones at DIRT_UNIT_SPLIT_PRIM_MATERIAL + part. Needs
-// common/layout.h.
+// + part, R32UI ones at DIRT_UNIT_SPLIT_PRIM_MATERIAL + part
+// (common/split.glsl). Needs common/layout.h.
+
 
 #ifndef DIRT_SPLIT_VERTICES
 #define DIRT_SPLIT_VERTICES 0
@@ -33,23 +34,15 @@ vec3 dirt_vertex_pos_at(uint v)
     return vertices[v].position.xyz;
 }
 #else
-#define DIRT_VERTICES_PART(k, a) \
-    layout(binding = DIRT_UNIT_SPLIT_VERTICES + k) uniform samplerBuffer dirt_vertices_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_VERTICES, DIRT_VERTICES_PART, 0)
-#define DIRT_VERTICES_FETCH(k, a) \
-    if (part == uint(k)) r = texelFetch(dirt_vertices_part##k, t);
+DIRT_SPLIT_SAMPLERS(DIRT_SPLIT_VERTICES, DIRT_UNIT_SPLIT_VERTICES, samplerBuffer, dirt_vertices)
 
 // Texel j (0: position, 1: normal) of vertex v.
 vec4 dirt_vertex_texel(uint v, uint j)
 {
-    uint part = (v / 3u) >> uint(DIRT_SPLIT_VERTICES_SHIFT);
-    int t = int(2u * (v - 3u * (part << uint(DIRT_SPLIT_VERTICES_SHIFT))) + j);
+    DIRT_SPLIT_AT(v / 3u, DIRT_SPLIT_VERTICES_SHIFT, 6u)
+    t += int(2u * (v % 3u) + j);
     vec4 r = vec4(0.0);
-#if DIRT_SPLIT_VERTICES == 1
-    r = texelFetch(dirt_vertices_part0, t);
-#else
-    DIRT_SPLIT_EACH(DIRT_SPLIT_VERTICES, DIRT_VERTICES_FETCH, 0)
-#endif
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_VERTICES, r, texelFetch, dirt_vertices, .xyzw)
     return r;
 }
 
@@ -77,23 +70,14 @@ uint dirt_prim_material(uint p)
     return prim_material[p];
 }
 #else
-#define DIRT_PRIM_MATERIAL_PART(k, a) \
-    layout(binding = DIRT_UNIT_SPLIT_PRIM_MATERIAL + k) uniform usamplerBuffer \
-        dirt_prim_material_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_PRIM_MATERIAL, DIRT_PRIM_MATERIAL_PART, 0)
-#define DIRT_PRIM_MATERIAL_FETCH(k, a) \
-    if (part == uint(k)) r = texelFetch(dirt_prim_material_part##k, t).x;
+DIRT_SPLIT_SAMPLERS(DIRT_SPLIT_PRIM_MATERIAL, DIRT_UNIT_SPLIT_PRIM_MATERIAL, usamplerBuffer,
+                    dirt_prim_material)
 
 uint dirt_prim_material(uint p)
 {
-    uint part = p >> uint(DIRT_SPLIT_PRIM_MATERIAL_SHIFT);
-    int t = int(p - (part << uint(DIRT_SPLIT_PRIM_MATERIAL_SHIFT)));
+    DIRT_SPLIT_AT(p, DIRT_SPLIT_PRIM_MATERIAL_SHIFT, 1u)
     uint r = 0u;
-#if DIRT_SPLIT_PRIM_MATERIAL == 1
-    r = texelFetch(dirt_prim_material_part0, t).x;
-#else
-    DIRT_SPLIT_EACH(DIRT_SPLIT_PRIM_MATERIAL, DIRT_PRIM_MATERIAL_FETCH, 0)
-#endif
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_PRIM_MATERIAL, r, texelFetch, dirt_prim_material, .x)
     return r;
 }
 #endif

@@ -2,7 +2,7 @@
 // build's candidates (uvec4, common/layout.h), the id nodes (uvec2
 // (primitive, next)) and the list heads (uint per bucket and tile). Each is
 // one storage block while it fits (DIRT_BIND_CANDIDATES, _NODES, _HEADS),
-// else a split array (src/gl/split.h; DIRT_SPLIT_EACH) of DIRT_SPLIT_<ARRAY> parts of
+// else a split array (src/gl/split.h; common/split.glsl) of DIRT_SPLIT_<ARRAY> parts of
 // 2^DIRT_SPLIT_<ARRAY>_SHIFT records: images at DIRT_IMAGE_SPLIT_<ARRAY> +
 // part (RGBA32UI, RG32UI, R32UI). A shader that only reads or only writes an
 // array defines DIRT_<ARRAY>_READONLY or _WRITEONLY first (the storage
@@ -11,6 +11,7 @@
 // dirt_candidate_store(i, c), dirt_candidate_store_zw(i, zw); dirt_node(i),
 // dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v) (atomic).
 // Needs common/layout.h.
+
 
 #ifndef DIRT_SPLIT_CANDIDATES
 #define DIRT_SPLIT_CANDIDATES 0
@@ -70,30 +71,22 @@ void dirt_candidate_store_zw(uint i, uvec2 zw)
 }
 #endif
 #else
-#define DIRT_CANDIDATES_PART(k, a) \
-    layout(rgba32ui, binding = DIRT_IMAGE_SPLIT_CANDIDATES + k) uniform DIRT_CANDIDATES_QUAL \
-        uimageBuffer dirt_candidates_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_CANDIDATES, DIRT_CANDIDATES_PART, 0)
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_CANDIDATES, DIRT_IMAGE_SPLIT_CANDIDATES, rgba32ui,
+                  DIRT_CANDIDATES_QUAL uimageBuffer, dirt_candidates)
 #ifndef DIRT_CANDIDATES_WRITEONLY
-#define DIRT_CANDIDATES_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(dirt_candidates_part##k, t);
 uvec4 dirt_candidate(uint i)
 {
-    uint part = i >> uint(DIRT_SPLIT_CANDIDATES_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_CANDIDATES_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_CANDIDATES_SHIFT, 1u)
     uvec4 r = uvec4(0u);
-    DIRT_SPLIT_EACH(DIRT_SPLIT_CANDIDATES, DIRT_CANDIDATES_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_CANDIDATES, r, imageLoad, dirt_candidates, .xyzw)
     return r;
 }
 #endif
 #ifndef DIRT_CANDIDATES_READONLY
-#define DIRT_CANDIDATES_STORE(k, a) \
-    if (part == uint(k)) imageStore(dirt_candidates_part##k, t, c);
 void dirt_candidate_store(uint i, uvec4 c)
 {
-    uint part = i >> uint(DIRT_SPLIT_CANDIDATES_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_CANDIDATES_SHIFT)));
-    DIRT_SPLIT_EACH(DIRT_SPLIT_CANDIDATES, DIRT_CANDIDATES_STORE, 0)
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_CANDIDATES_SHIFT, 1u)
+    DIRT_SPLIT_STORE(DIRT_SPLIT_CANDIDATES, imageStore, dirt_candidates, c)
 }
 #endif
 #if !defined(DIRT_CANDIDATES_READONLY) && !defined(DIRT_CANDIDATES_WRITEONLY)
@@ -122,30 +115,22 @@ void dirt_node_store(uint i, uvec2 n)
 }
 #endif
 #else
-#define DIRT_NODES_PART(k, a) \
-    layout(rg32ui, binding = DIRT_IMAGE_SPLIT_NODES + k) uniform DIRT_NODES_QUAL uimageBuffer \
-        dirt_nodes_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_NODES, DIRT_NODES_PART, 0)
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_NODES, DIRT_IMAGE_SPLIT_NODES, rg32ui,
+                  DIRT_NODES_QUAL uimageBuffer, dirt_nodes)
 #ifndef DIRT_NODES_WRITEONLY
-#define DIRT_NODES_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(dirt_nodes_part##k, t).xy;
 uvec2 dirt_node(uint i)
 {
-    uint part = i >> uint(DIRT_SPLIT_NODES_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_NODES_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_NODES_SHIFT, 1u)
     uvec2 r = uvec2(0u);
-    DIRT_SPLIT_EACH(DIRT_SPLIT_NODES, DIRT_NODES_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_NODES, r, imageLoad, dirt_nodes, .xy)
     return r;
 }
 #endif
 #ifndef DIRT_NODES_READONLY
-#define DIRT_NODES_STORE(k, a) \
-    if (part == uint(k)) imageStore(dirt_nodes_part##k, t, uvec4(n, 0u, 0u));
 void dirt_node_store(uint i, uvec2 n)
 {
-    uint part = i >> uint(DIRT_SPLIT_NODES_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_NODES_SHIFT)));
-    DIRT_SPLIT_EACH(DIRT_SPLIT_NODES, DIRT_NODES_STORE, 0)
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_NODES_SHIFT, 1u)
+    DIRT_SPLIT_STORE(DIRT_SPLIT_NODES, imageStore, dirt_nodes, uvec4(n, 0u, 0u))
 }
 #endif
 #endif
@@ -168,31 +153,23 @@ uint dirt_head_exchange(uint i, uint v)
 }
 #endif
 #else
-#define DIRT_HEADS_PART(k, a) \
-    layout(r32ui, binding = DIRT_IMAGE_SPLIT_HEADS + k) uniform DIRT_HEADS_QUAL uimageBuffer \
-        dirt_heads_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_HEADS, DIRT_HEADS_PART, 0)
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_HEADS, DIRT_IMAGE_SPLIT_HEADS, r32ui,
+                  DIRT_HEADS_QUAL uimageBuffer, dirt_heads)
 #ifndef DIRT_HEADS_WRITEONLY
-#define DIRT_HEADS_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(dirt_heads_part##k, t).x;
 uint dirt_head(uint i)
 {
-    uint part = i >> uint(DIRT_SPLIT_HEADS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_HEADS_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_HEADS_SHIFT, 1u)
     uint r = 0u;
-    DIRT_SPLIT_EACH(DIRT_SPLIT_HEADS, DIRT_HEADS_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_HEADS, r, imageLoad, dirt_heads, .x)
     return r;
 }
 #endif
 #if !defined(DIRT_HEADS_READONLY) && !defined(DIRT_HEADS_WRITEONLY)
-#define DIRT_HEADS_EXCHANGE(k, a) \
-    if (part == uint(k)) r = imageAtomicExchange(dirt_heads_part##k, t, v);
 uint dirt_head_exchange(uint i, uint v)
 {
-    uint part = i >> uint(DIRT_SPLIT_HEADS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_HEADS_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_HEADS_SHIFT, 1u)
     uint r = 0u;
-    DIRT_SPLIT_EACH(DIRT_SPLIT_HEADS, DIRT_HEADS_EXCHANGE, 0)
+    DIRT_SPLIT_ATOMIC(DIRT_SPLIT_HEADS, r, imageAtomicExchange, dirt_heads, v)
     return r;
 }
 #endif

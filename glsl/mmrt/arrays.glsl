@@ -3,7 +3,7 @@
 // (DIRT_MMRT_ID_UINTS uints per node: common/mmrt_layout.h) and the data
 // nodes (dirt_mmrt_gpu_data). Each is one storage block while it fits
 // (DIRT_BIND_MMRT_HEADS, _TAILS, _IDS, _DATA), else a split array
-// (src/gl/split.h; DIRT_SPLIT_EACH) of DIRT_SPLIT_MMRT_<ARRAY> parts of
+// (src/gl/split.h; common/split.glsl) of DIRT_SPLIT_MMRT_<ARRAY> parts of
 // 2^..._SHIFT records: images at DIRT_IMAGE_SPLIT_MMRT_<ARRAY> + part (R32UI;
 // R32UI, three texels a node; RGBA32UI, two texels a node). A shader that
 // only reads or only writes an array defines MMRT_<ARRAY>_READONLY or
@@ -12,6 +12,7 @@
 // mmrt_head_store(i, v), mmrt_head_exchange(i, v) (atomic); mmrt_tail(i),
 // mmrt_tail_store(i, v); mmrt_id(n, field), mmrt_id_store(n, field, v);
 // mmrt_data(n), mmrt_data_store(n, d). Needs common/mmrt_layout.h.
+
 
 #ifndef DIRT_SPLIT_MMRT_HEADS
 #define DIRT_SPLIT_MMRT_HEADS 0
@@ -78,38 +79,27 @@ uint mmrt_head_exchange(uint i, uint v)
 }
 #endif
 #else
-#define MMRT_HEADS_PART(k, a) \
-    layout(r32ui, binding = DIRT_IMAGE_SPLIT_MMRT_HEADS + k) uniform MMRT_HEADS_QUAL \
-        uimageBuffer mmrt_heads_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_HEADS, MMRT_HEADS_PART, 0)
-#define MMRT_HEADS_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(mmrt_heads_part##k, t).x;
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_MMRT_HEADS, DIRT_IMAGE_SPLIT_MMRT_HEADS, r32ui,
+                  MMRT_HEADS_QUAL uimageBuffer, mmrt_heads)
 uint mmrt_head(uint i)
 {
-    uint part = i >> uint(DIRT_SPLIT_MMRT_HEADS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_MMRT_HEADS_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_MMRT_HEADS_SHIFT, 1u)
     uint r = 0u;
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_HEADS, MMRT_HEADS_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_MMRT_HEADS, r, imageLoad, mmrt_heads, .x)
     return r;
 }
 #ifndef MMRT_HEADS_READONLY
-#define MMRT_HEADS_STORE(k, a) \
-    if (part == uint(k)) imageStore(mmrt_heads_part##k, t, uvec4(v));
 void mmrt_head_store(uint i, uint v)
 {
-    uint part = i >> uint(DIRT_SPLIT_MMRT_HEADS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_MMRT_HEADS_SHIFT)));
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_HEADS, MMRT_HEADS_STORE, 0)
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_MMRT_HEADS_SHIFT, 1u)
+    DIRT_SPLIT_STORE(DIRT_SPLIT_MMRT_HEADS, imageStore, mmrt_heads, uvec4(v))
 }
 
-#define MMRT_HEADS_EXCHANGE(k, a) \
-    if (part == uint(k)) r = imageAtomicExchange(mmrt_heads_part##k, t, v);
 uint mmrt_head_exchange(uint i, uint v)
 {
-    uint part = i >> uint(DIRT_SPLIT_MMRT_HEADS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_MMRT_HEADS_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_MMRT_HEADS_SHIFT, 1u)
     uint r = 0u;
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_HEADS, MMRT_HEADS_EXCHANGE, 0)
+    DIRT_SPLIT_ATOMIC(DIRT_SPLIT_MMRT_HEADS, r, imageAtomicExchange, mmrt_heads, v)
     return r;
 }
 #endif
@@ -133,30 +123,22 @@ void mmrt_tail_store(uint i, uint v)
 }
 #endif
 #else
-#define MMRT_TAILS_PART(k, a) \
-    layout(r32ui, binding = DIRT_IMAGE_SPLIT_MMRT_TAILS + k) uniform MMRT_TAILS_QUAL \
-        uimageBuffer mmrt_tails_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_TAILS, MMRT_TAILS_PART, 0)
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_MMRT_TAILS, DIRT_IMAGE_SPLIT_MMRT_TAILS, r32ui,
+                  MMRT_TAILS_QUAL uimageBuffer, mmrt_tails)
 #ifndef MMRT_TAILS_WRITEONLY
-#define MMRT_TAILS_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(mmrt_tails_part##k, t).x;
 uint mmrt_tail(uint i)
 {
-    uint part = i >> uint(DIRT_SPLIT_MMRT_TAILS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_MMRT_TAILS_SHIFT)));
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_MMRT_TAILS_SHIFT, 1u)
     uint r = 0u;
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_TAILS, MMRT_TAILS_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_MMRT_TAILS, r, imageLoad, mmrt_tails, .x)
     return r;
 }
 #endif
 #ifndef MMRT_TAILS_READONLY
-#define MMRT_TAILS_STORE(k, a) \
-    if (part == uint(k)) imageStore(mmrt_tails_part##k, t, uvec4(v));
 void mmrt_tail_store(uint i, uint v)
 {
-    uint part = i >> uint(DIRT_SPLIT_MMRT_TAILS_SHIFT);
-    int t = int(i - (part << uint(DIRT_SPLIT_MMRT_TAILS_SHIFT)));
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_TAILS, MMRT_TAILS_STORE, 0)
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_MMRT_TAILS_SHIFT, 1u)
+    DIRT_SPLIT_STORE(DIRT_SPLIT_MMRT_TAILS, imageStore, mmrt_tails, uvec4(v))
 }
 #endif
 #endif
@@ -179,30 +161,24 @@ void mmrt_id_store(uint n, uint f, uint v)
 }
 #endif
 #else
-#define MMRT_IDS_PART(k, a) \
-    layout(r32ui, binding = DIRT_IMAGE_SPLIT_MMRT_IDS + k) uniform MMRT_IDS_QUAL \
-        uimageBuffer mmrt_ids_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_IDS, MMRT_IDS_PART, 0)
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_MMRT_IDS, DIRT_IMAGE_SPLIT_MMRT_IDS, r32ui,
+                  MMRT_IDS_QUAL uimageBuffer, mmrt_ids)
 #ifndef MMRT_IDS_WRITEONLY
-#define MMRT_IDS_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(mmrt_ids_part##k, t).x;
 uint mmrt_id(uint n, uint f)
 {
-    uint part = n >> uint(DIRT_SPLIT_MMRT_IDS_SHIFT);
-    int t = int((n - (part << uint(DIRT_SPLIT_MMRT_IDS_SHIFT))) * uint(DIRT_MMRT_ID_UINTS) + f);
+    DIRT_SPLIT_AT(n, DIRT_SPLIT_MMRT_IDS_SHIFT, DIRT_MMRT_ID_UINTS)
+    t += int(f);
     uint r = 0u;
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_IDS, MMRT_IDS_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_MMRT_IDS, r, imageLoad, mmrt_ids, .x)
     return r;
 }
 #endif
 #ifndef MMRT_IDS_READONLY
-#define MMRT_IDS_STORE(k, a) \
-    if (part == uint(k)) imageStore(mmrt_ids_part##k, t, uvec4(v));
 void mmrt_id_store(uint n, uint f, uint v)
 {
-    uint part = n >> uint(DIRT_SPLIT_MMRT_IDS_SHIFT);
-    int t = int((n - (part << uint(DIRT_SPLIT_MMRT_IDS_SHIFT))) * uint(DIRT_MMRT_ID_UINTS) + f);
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_IDS, MMRT_IDS_STORE, 0)
+    DIRT_SPLIT_AT(n, DIRT_SPLIT_MMRT_IDS_SHIFT, DIRT_MMRT_ID_UINTS)
+    t += int(f);
+    DIRT_SPLIT_STORE(DIRT_SPLIT_MMRT_IDS, imageStore, mmrt_ids, uvec4(v))
 }
 #endif
 #endif
@@ -231,20 +207,16 @@ void mmrt_data_store(uint n, dirt_mmrt_gpu_data d)
 }
 #endif
 #else
-#define MMRT_DATA_PART(k, a) \
-    layout(rgba32ui, binding = DIRT_IMAGE_SPLIT_MMRT_DATA + k) uniform MMRT_DATA_QUAL \
-        uimageBuffer mmrt_data_part##k;
-DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_DATA, MMRT_DATA_PART, 0)
+DIRT_SPLIT_IMAGES(DIRT_SPLIT_MMRT_DATA, DIRT_IMAGE_SPLIT_MMRT_DATA, rgba32ui,
+                  MMRT_DATA_QUAL uimageBuffer, mmrt_data)
 #ifndef MMRT_DATA_WRITEONLY
-#define MMRT_DATA_LOAD(k, a) \
-    if (part == uint(k)) r = imageLoad(mmrt_data_part##k, t);
 // Texel j (0: ids, 1: attr bits) of data node n.
 uvec4 mmrt_data_texel(uint n, uint j)
 {
-    uint part = n >> uint(DIRT_SPLIT_MMRT_DATA_SHIFT);
-    int t = int(2u * (n - (part << uint(DIRT_SPLIT_MMRT_DATA_SHIFT))) + j);
+    DIRT_SPLIT_AT(n, DIRT_SPLIT_MMRT_DATA_SHIFT, 2u)
+    t += int(j);
     uvec4 r = uvec4(0u);
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_DATA, MMRT_DATA_LOAD, 0)
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_MMRT_DATA, r, imageLoad, mmrt_data, .xyzw)
     return r;
 }
 
@@ -262,16 +234,12 @@ uint mmrt_data_prim(uint n)
 }
 #endif
 #ifndef MMRT_DATA_READONLY
-#define MMRT_DATA_STORE(k, a) \
-    if (part == uint(k)) { \
-        imageStore(mmrt_data_part##k, t, d.ids); \
-        imageStore(mmrt_data_part##k, t + 1, floatBitsToUint(d.attr)); \
-    }
 void mmrt_data_store(uint n, dirt_mmrt_gpu_data d)
 {
-    uint part = n >> uint(DIRT_SPLIT_MMRT_DATA_SHIFT);
-    int t = int(2u * (n - (part << uint(DIRT_SPLIT_MMRT_DATA_SHIFT))));
-    DIRT_SPLIT_EACH(DIRT_SPLIT_MMRT_DATA, MMRT_DATA_STORE, 0)
+    DIRT_SPLIT_AT(n, DIRT_SPLIT_MMRT_DATA_SHIFT, 2u)
+    DIRT_SPLIT_STORE(DIRT_SPLIT_MMRT_DATA, imageStore, mmrt_data, d.ids)
+    t++;
+    DIRT_SPLIT_STORE(DIRT_SPLIT_MMRT_DATA, imageStore, mmrt_data, floatBitsToUint(d.attr))
 }
 #endif
 #endif
