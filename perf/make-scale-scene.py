@@ -15,7 +15,16 @@ scene is). The file holds positions, normals and 32-bit indices, about
 16 bytes per triangle, so 10 M triangles make a file of about 160 MB: keep
 such files out of the repository (write them under /tmp or build/).
 
+With --normal-map every mesh also gets texture coordinates (no TANGENT:
+the loader generates the tangents) and every material but the light a
+tangent-space normal map of bumps and a checker base colour texture, both
+SIZE x SIZE (--texture-size, default 256) PNGs inside the file: a
+normal-mapped, textured scene for the large-scene checks of the tangents
+and texels (about 8 more bytes per triangle in the file; 4 * SIZE^2 bytes
+of texels per texture on the GPU).
+
     perf/make-scale-scene.py OUT.glb TRIANGLES [--objects N] [--seed S]
+                             [--normal-map [--texture-size SIZE]]
 
 Prints the file written and its triangle count. Needs python3-numpy.
 """
@@ -24,6 +33,7 @@ import json
 import math
 import struct
 import sys
+import zlib
 
 try:
     import numpy as np
@@ -132,7 +142,9 @@ def rotation(rng):
 
 def quad(p0, p1, p2, p3, n):
     pos = np.array([p0, p1, p2, p3], dtype=np.float64)
-    return pos, np.array([n] * 4, dtype=np.float64), np.array([[0, 1, 2], [0, 2, 3]], np.uint32)
+    uv = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], dtype=np.float64)
+    return (pos, np.array([n] * 4, dtype=np.float64), np.array([[0, 1, 2], [0, 2, 3]], np.uint32),
+            uv)
 
 
 def room():
@@ -190,13 +202,51 @@ def objects(total, count, rng):
                            rng.uniform(-4.7 + s, -1.8 - s)])
         if nrm is None:
             nrm = vertex_normals(pos, idx)
+        uv = object_uv(pos)
         pos = pos @ rot.T * s + centre
         nrm = nrm @ rot.T
-        out.append((f"object{k}", (pos, nrm, idx), 4 + int(rng.integers(0, 4))))
+        out.append((f"object{k}", (pos, nrm, idx, uv), 4 + int(rng.integers(0, 4))))
     return out
 
 
-def write_glb(path, meshes):
+def object_uv(pos):
+    """Texture coordinates of an object's vertices (unit-size, centred at
+    the origin before placement): longitude and height, twice around."""
+    u = (np.arctan2(pos[:, 2], pos[:, 0]) / (2 * math.pi) + 0.5) * 2
+    v = pos[:, 1] + 0.5
+    return np.stack([u, v], -1)
+
+
+def png(rgb):
+    """An 8-bit RGB PNG of an H x W x 3 uint8 array."""
+    h, w, _ = rgb.shape
+    raw = b"".join(b"\0" + rgb[y].tobytes() for y in range(h))
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
+
+
+def textures(size):
+    """The normal map (bumps: 8 x 8 cells of h = sin(2 pi 8 u) sin(2 pi 8 v))
+    and the checker base colour, as PNG bytes."""
+    t = (np.arange(size) + 0.5) / size
+    u, v = np.meshgrid(t, t)
+    k = 2 * math.pi * 8
+    amp = 0.05
+    du = amp * k * np.cos(k * u) * np.sin(k * v)
+    dv = amp * k * np.sin(k * u) * np.cos(k * v)
+    n = np.stack([-du, -dv, np.ones_like(u)], -1)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    normal = np.clip(np.round((n * 0.5 + 0.5) * 255), 0, 255).astype(np.uint8)
+    cells = ((np.floor(u * 8) + np.floor(v * 8)) % 2)[..., None]
+    checker = np.where(cells > 0, 230, 140) * np.ones(3)
+    return png(normal), png(checker.astype(np.uint8))
+
+
+def write_glb(path, meshes, texture_size=0):
     bin_ = bytearray()
     views, accessors, gl_meshes, nodes = [], [], [], []
     tris = 0
@@ -216,16 +266,33 @@ def write_glb(path, meshes):
         accessors.append(acc)
         return len(accessors) - 1
 
-    for name, (pos, nrm, idx), mat in meshes:
+    for name, (pos, nrm, idx, uv), mat in meshes:
         tris += idx.shape[0]
         p = add(np.ascontiguousarray(pos, np.float32), 34962, 5126, "VEC3", True)
         n = add(np.ascontiguousarray(nrm, np.float32), 34962, 5126, "VEC3")
         i = add(np.ascontiguousarray(idx.reshape(-1), np.uint32), 34963, 5125, "SCALAR")
+        attributes = {"POSITION": p, "NORMAL": n}
+        if texture_size:
+            attributes["TEXCOORD_0"] = add(np.ascontiguousarray(uv, np.float32), 34962, 5126,
+                                           "VEC2")
         gl_meshes.append({"name": name, "primitives": [
-            {"attributes": {"POSITION": p, "NORMAL": n}, "indices": i, "material": mat,
-             "mode": 4}]})
+            {"attributes": attributes, "indices": i, "material": mat, "mode": 4}]})
         nodes.append({"name": name, "mesh": len(gl_meshes) - 1})
     nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 1.5, -0.3]})
+    materials = MATERIALS
+    images = []
+    if texture_size:
+        for data in textures(texture_size):
+            while len(bin_) % 4:
+                bin_.append(0)
+            views.append({"buffer": 0, "byteOffset": len(bin_), "byteLength": len(data)})
+            bin_.extend(data)
+            images.append({"bufferView": len(views) - 1, "mimeType": "image/png"})
+        materials = json.loads(json.dumps(MATERIALS))
+        for m in materials:
+            if "emissiveFactor" not in m:
+                m["normalTexture"] = {"index": 0}
+                m["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 1}
     gltf = {
         "asset": {"version": "2.0", "generator": "DIRT perf/make-scale-scene.py"},
         "extensionsUsed": ["KHR_materials_emissive_strength"],
@@ -233,13 +300,16 @@ def write_glb(path, meshes):
         "scenes": [{"nodes": list(range(len(nodes)))}],
         "nodes": nodes,
         "meshes": gl_meshes,
-        "materials": MATERIALS,
+        "materials": materials,
         "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.05,
                                                             "aspectRatio": 4.0 / 3.0}}],
         "accessors": accessors,
         "bufferViews": views,
         "buffers": [{"byteLength": len(bin_)}],
     }
+    if images:
+        gltf["images"] = images
+        gltf["textures"] = [{"source": 0}, {"source": 1}]
     js = json.dumps(gltf, separators=(",", ":")).encode()
     js += b" " * (-len(js) % 4)
     while len(bin_) % 4:
@@ -260,6 +330,10 @@ def main():
     ap.add_argument("--objects", type=int, default=0,
                     help="how many objects (default: about sqrt(TRIANGLES) / 3, at least 8)")
     ap.add_argument("--seed", type=int, default=1, help="placement seed (default 1)")
+    ap.add_argument("--normal-map", action="store_true",
+                    help="texture coordinates, a normal map and a base colour texture")
+    ap.add_argument("--texture-size", type=int, default=256,
+                    help="the textures' width and height with --normal-map (default 256)")
     a = ap.parse_args()
     if not a.out.lower().endswith(".glb"):
         sys.exit("make-scale-scene.py: the output must end in .glb")
@@ -268,10 +342,13 @@ def main():
     count = a.objects or max(8, int(round(math.sqrt(a.triangles) / 3)))
     if count < 1 or count * 24 > a.triangles:
         sys.exit("make-scale-scene.py: --objects must be at least 1 and at most TRIANGLES / 24")
+    if a.normal_map and not 1 <= a.texture_size <= 16384:
+        sys.exit("make-scale-scene.py: --texture-size must be 1 .. 16384")
     rng = np.random.default_rng(a.seed)
     meshes = room() + objects(a.triangles - 14, count, rng)
-    tris = write_glb(a.out, meshes)
-    print(f"{a.out}: {tris} triangles ({count} objects)")
+    tris = write_glb(a.out, meshes, a.texture_size if a.normal_map else 0)
+    extra = f", normal-mapped, {a.texture_size}^2 textures" if a.normal_map else ""
+    print(f"{a.out}: {tris} triangles ({count} objects{extra})")
 
 
 if __name__ == "__main__":
