@@ -33,11 +33,11 @@ static void drop(void *user, enum dirt_log_level level, const char *file, int li
 /* The most records of `d` one array holds on `gpu` (gl_split_plan, whose
  * refusals are silenced here), and the layout at that count. */
 static uint64_t most_records(const dirt_gpu *gpu, const gl_split_desc *d,
-                             dirt_split_layout *at)
+                             gl_split_layout *at)
 {
     dirt_log_set_callback(drop, NULL);
     uint64_t lo = 1, hi = (uint64_t)1 << 40;
-    dirt_split_layout l = {0};
+    gl_split_layout l = {0};
     *at = l;
     if (!gl_split_plan(gpu, d, (size_t)lo, at))
         lo = 0;
@@ -94,7 +94,7 @@ int main(int argc, char **argv)
            "%d texture units, %d image units\n", (long long)c->max_texel_buffer,
            (double)c->max_texel_buffer * 16 / 1048576.0, c->max_texture_units,
            c->max_image_units);
-    dirt_split_layout l;
+    gl_split_layout l;
     uint64_t tris = most_records(gpu, &gl_split_vertices, &l);
     uint64_t one = c->max_ssbo_size > 0 ? (uint64_t)c->max_ssbo_size / gl_split_vertices.record_bytes
                                         : 0;

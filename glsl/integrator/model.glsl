@@ -18,7 +18,7 @@
 // camera; bindings in common/integrator_layout.h) and the functions that read
 // them: dirt_material_surface_g, dirt_texture_sample_g,
 // dirt_material_normal_ts_g, dirt_area_lights_select_g (and the tangents,
-// dirt_model_tangents).
+// dirt_model_tangent_g).
 #ifndef DIRT_MODEL_GLSL
 #define DIRT_MODEL_GLSL
 
@@ -625,24 +625,97 @@ layout(std430, binding = DIRT_BIND_MODEL_CAMERA) readonly buffer DirtModelCamera
 #endif // DIRT_MODEL_SURFACE_ONLY
 // The scene's textures at their own sizes (common/integrator_layout.h):
 // the header, then dirt_gpu_model_texture records (4 words each), then the
-// RGBA8 texels, one word each.
+// RGBA8 texels, one word each; and the frame's tangents
+// (dirt_gpu_model_tangent, entry 3 prim + vertex). Each is one storage
+// block while it fits (DIRT_BIND_MODEL_TEXELS, _TANGENTS), else a split
+// array (src/gl/split.h, integrator/gpu_tables.h; common/split.glsl) of
+// DIRT_SPLIT_TEXELS parts of 2^DIRT_SPLIT_TEXELS_SHIFT words (R32UI texel
+// buffers at DIRT_UNIT_SPLIT_TEXELS + part) and DIRT_SPLIT_TANGENTS parts
+// of 2^..._SHIFT tangents (RGBA32F at DIRT_UNIT_SPLIT_TANGENTS + part).
+// Accessors: dirt_model_texel_word_g(k) (word k of the table, header
+// included), dirt_model_tangent_g(v), dirt_model_tangent_count_g().
+#ifndef DIRT_SPLIT_TEXELS
+#define DIRT_SPLIT_TEXELS 0
+#define DIRT_SPLIT_TEXELS_SHIFT 0
+#endif
+#ifndef DIRT_SPLIT_TANGENTS
+#define DIRT_SPLIT_TANGENTS 0
+#define DIRT_SPLIT_TANGENTS_SHIFT 0
+#endif
+#if DIRT_SPLIT_TEXELS == 0
 layout(std430, binding = DIRT_BIND_MODEL_TEXELS) readonly buffer DirtModelTexels {
-    dirt_gpu_model_texels dirt_model_texels;
-    uint dirt_model_texel_words[];
+    uint dirt_model_texel_table[];
 };
-// The frame's tangents (dirt_gpu_model_tangent, entry 3 prim + vertex).
+
+uint dirt_model_texel_word_g(uint k)
+{
+    return dirt_model_texel_table[k];
+}
+#else
+DIRT_SPLIT_SAMPLERS(DIRT_SPLIT_TEXELS, DIRT_UNIT_SPLIT_TEXELS, usamplerBuffer, dirt_model_texels)
+
+uint dirt_model_texel_word_g(uint k)
+{
+    DIRT_SPLIT_AT(k, DIRT_SPLIT_TEXELS_SHIFT, 1u)
+    uint r = 0u;
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_TEXELS, r, texelFetch, dirt_model_texels, .x)
+    return r;
+}
+#endif
+// Words of the header (dirt_gpu_model_texels) before word 0 of the records.
+#define DIRT_MODEL_TEXELS_HEADER_WORDS 4u
+
+#ifndef DIRT_MODEL_SURFACE_ONLY
+#if DIRT_SPLIT_TANGENTS == 0
 layout(std430, binding = DIRT_BIND_MODEL_TANGENTS) readonly buffer DirtModelTangents {
     dirt_gpu_model_tangent dirt_model_tangents[];
 };
 
+vec4 dirt_model_tangent_g(uint v)
+{
+    return dirt_model_tangents[v].tangent;
+}
+
+uint dirt_model_tangent_count_g()
+{
+    return uint(dirt_model_tangents.length());
+}
+#else
+DIRT_SPLIT_SAMPLERS(DIRT_SPLIT_TANGENTS, DIRT_UNIT_SPLIT_TANGENTS, samplerBuffer,
+                    dirt_model_tangents)
+
+vec4 dirt_model_tangent_g(uint v)
+{
+    DIRT_SPLIT_AT(v, DIRT_SPLIT_TANGENTS_SHIFT, 1u)
+    vec4 r = vec4(0.0);
+    DIRT_SPLIT_LOAD(DIRT_SPLIT_TANGENTS, r, texelFetch, dirt_model_tangents, .xyzw)
+    return r;
+}
+
+#define DIRT_MODEL_TANGENTS_SIZE_(k, a, b, c, d) n += uint(textureSize(dirt_model_tangents_part##k));
+uint dirt_model_tangent_count_g()
+{
+    uint n = 0u;
+    DIRT_SPLIT_EACH(DIRT_SPLIT_TANGENTS, DIRT_MODEL_TANGENTS_SIZE_, 0, 0, 0, 0)
+    return n;
+}
+#endif
+#endif // DIRT_MODEL_SURFACE_ONLY
+
 // Record of texture `tex` (0 <= tex < counts.x).
 dirt_gpu_model_texture dirt_model_texture_g(uint tex)
 {
-    uint k = 4u * tex;
+    uint k = DIRT_MODEL_TEXELS_HEADER_WORDS + 4u * tex;
     dirt_gpu_model_texture t;
-    t.extent = uvec4(dirt_model_texel_words[k], dirt_model_texel_words[k + 1u],
-                     dirt_model_texel_words[k + 2u], dirt_model_texel_words[k + 3u]);
+    t.extent = uvec4(dirt_model_texel_word_g(k), dirt_model_texel_word_g(k + 1u),
+                     dirt_model_texel_word_g(k + 2u), dirt_model_texel_word_g(k + 3u));
     return t;
+}
+
+// The number of textures (the header's counts.x).
+uint dirt_model_texture_count_g()
+{
+    return dirt_model_texel_word_g(0u);
 }
 
 // Integer texel coordinate i wrapped into [0, n) (= wrap() of texture.c,
@@ -659,7 +732,8 @@ int dirt_texel_wrap_g(int i, int n)
 // sRGB-decoded when `srgb` (alpha never).
 vec4 dirt_texel_g(uint first, int width, bool srgb, int x, int y)
 {
-    uint p = dirt_model_texel_words[first + uint(y) * uint(width) + uint(x)];
+    uint p = dirt_model_texel_word_g(DIRT_MODEL_TEXELS_HEADER_WORDS + first +
+                                     uint(y) * uint(width) + uint(x));
     vec4 c = vec4(float(p & 255u), float((p >> 8u) & 255u), float((p >> 16u) & 255u),
                   float(p >> 24u)) / 255.0;
     if (srgb)
@@ -678,7 +752,7 @@ vec4 dirt_texel_g(uint first, int width, bool srgb, int x, int y)
 // only by the decode's division and pow.
 vec4 dirt_texture_sample_g(int tex, bool srgb, vec2 uv)
 {
-    if (tex < 0 || uint(tex) >= dirt_model_texels.counts.x)
+    if (tex < 0 || uint(tex) >= dirt_model_texture_count_g())
         return vec4(1.0);
     dirt_gpu_model_texture t = dirt_model_texture_g(uint(tex));
     int w = int(t.extent.y), h = int(t.extent.z);

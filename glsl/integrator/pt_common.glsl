@@ -128,12 +128,12 @@ pt_vertex make_vertex(dirt_gpu_gpoint g, vec3 dir, vec2 bary)
     vec2 uv = tri_uv(v.prim, bary.x, bary.y);
     vec3 n_ts;
     uint t0 = 3u * v.prim;
-    if (t0 + 2u < uint(dirt_model_tangents.length()) && dirt_material_normal_ts_g(mat, uv, n_ts)) {
+    if (t0 + 2u < dirt_model_tangent_count_g() && dirt_material_normal_ts_g(mat, uv, n_ts)) {
         // Normal map (= make_vertex of the reference): the front side's
         // normal, flipped below like the interpolated one.
         float b0 = 1.0 - bary.x - bary.y;
-        vec4 a = dirt_model_tangents[t0].tangent, b = dirt_model_tangents[t0 + 1u].tangent,
-             c = dirt_model_tangents[t0 + 2u].tangent;
+        vec4 a = dirt_model_tangent_g(t0), b = dirt_model_tangent_g(t0 + 1u),
+             c = dirt_model_tangent_g(t0 + 2u);
         vec3 t = a.xyz * b0 + b.xyz * bary.x + c.xyz * bary.y;
         float w = b0 * a.w + bary.x * b.w + bary.y * c.w;
         n = dirt_normal_map_apply_g(n, t, w, n_ts);

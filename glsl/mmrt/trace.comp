@@ -92,7 +92,7 @@ struct hit_state {
 uint g_steps = 0u;
 // The ray and its alpha key (dirt_alpha_ray_key_g; set when u_alpha != 0).
 uint g_alpha_key = 0u;
-vec3 g_org, g_dir;
+vec3 g_org = vec3(0.0), g_dir = vec3(0.0);
 
 // Whether the ray sees the fragment of data node n: the alpha test at the
 // UV where the ray meets the plane of the fragment's primitive (barycentrics

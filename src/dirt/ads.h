@@ -101,7 +101,7 @@ void dirt_ads_data_free(dirt_ads_data *data);
 typedef struct dirt_trace_opts {
     int hiz_levels;   /* 0 = start at the pyramid's top; n > 0: at level n - 1 */
     bool any_hit;     /* visibility rays: stop at the first hit found */
-    dirt_trace_alpha alpha; /* alpha-tested traversal (core/ray.h); zero = none */
+    dirt_trace_alpha alpha; /* alpha-tested traversal (views/tracer.h); zero = none */
     uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
                          set_batch); 0 = the call's rays 0 .. count - 1 */
     uint32_t work;    /* GL buffer of one dirt_trace_work per ray: the counting

@@ -141,6 +141,11 @@ bool ads_programs(dirt_ads *a);
  * the arrays in `arrays` (ADS_ARR(enum ads_array) bits). */
 bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char *const *paths,
                  const glsl_define *defs, size_t n, unsigned arrays);
+/* The same with one more split array the shaders read (NULL: none; the
+ * traces' alpha test reads the texels, dirt_trace_alpha.texels). */
+bool ads_program_extra(dirt_ads *a, gl_split_program *p, const char *label,
+                       const char *const *paths, const glsl_define *defs, size_t n,
+                       unsigned arrays, const gl_split *extra);
 #define ADS_ARR(x) (1u << (x))
 /* The trace's arrays. */
 #define ADS_TRACE_ARRAYS (ADS_ARR(ADS_VERTICES) | ADS_ARR(ADS_PRIM_MATERIAL) | \

@@ -106,13 +106,14 @@ static void ads_arrays(dirt_ads *a, gl_split *arr[ADS_NUM_ARRAYS])
     arr[ADS_DEPTH] = &a->depth;
 }
 
-bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char *const *paths,
-                 const glsl_define *defs, size_t n, unsigned arrays)
+bool ads_program_extra(dirt_ads *a, gl_split_program *p, const char *label,
+                       const char *const *paths, const glsl_define *defs, size_t n,
+                       unsigned arrays, const gl_split *extra)
 {
     gl_split *arr[ADS_NUM_ARRAYS];
     ads_arrays(a, arr);
-    const gl_split_desc *d[ADS_NUM_ARRAYS];
-    dirt_split_layout l[ADS_NUM_ARRAYS];
+    const gl_split_desc *d[ADS_NUM_ARRAYS + 1];
+    gl_split_layout l[ADS_NUM_ARRAYS + 1];
     size_t k = 0;
     for (int i = 0; i < ADS_NUM_ARRAYS; i++) {
         if (arrays & ADS_ARR(i)) {
@@ -121,7 +122,18 @@ bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char
             k++;
         }
     }
+    if (extra) {
+        d[k] = extra->desc;
+        l[k] = extra->layout;
+        k++;
+    }
     return gl_split_program_ensure(p, label, paths, defs, n, d, l, k);
+}
+
+bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char *const *paths,
+                 const glsl_define *defs, size_t n, unsigned arrays)
+{
+    return ads_program_extra(a, p, label, paths, defs, n, arrays, NULL);
 }
 
 bool ads_programs(dirt_ads *a)
@@ -414,7 +426,7 @@ static size_t grown(const dirt_ads *a, size_t need, size_t bytes_each)
  * the passes that count them). False after logging what to change. */
 static bool check_sizes(dirt_ads *a, const dirt_frame *f)
 {
-    dirt_split_layout l;
+    gl_split_layout l;
     size_t heads = (size_t)a->opts.buckets * (size_t)a->set.num_tiles;
     return gl_split_plan(a->gpu, ads_array_desc[ADS_VERTICES], f->num_triangles, &l) &&
            gl_split_plan(a->gpu, ads_array_desc[ADS_PRIM_MATERIAL], f->num_triangles + 1, &l) &&

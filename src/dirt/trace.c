@@ -51,8 +51,8 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     if (opts.work)
         defs[n++] = (glsl_define){"DIRT_TRACE_COUNT", "1"};
     const char *paths[] = {"dirt/trace.comp", NULL};
-    if (!ads_program(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
-                     ADS_TRACE_ARRAYS)) {
+    if (!ads_program_extra(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
+                           ADS_TRACE_ARRAYS, al->materials ? al->texels : NULL)) {
         gl_group_pop();
         return false;
     }
@@ -65,7 +65,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     if (al->materials) {
         glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, al->materials);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, al->texels);
+        gl_split_bind(al->texels);
         glUniform4ui(DIRT_LOC_ALPHA_KEY, al->seed, al->sample, al->bounce, al->dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, al->first_pixel);
     }

@@ -44,9 +44,9 @@ size_t gl_split_texel_bytes(GLenum format)
 }
 
 bool gl_split_plan(const dirt_gpu *gpu, const gl_split_desc *d, size_t records,
-                   dirt_split_layout *out)
+                   gl_split_layout *out)
 {
-    *out = (dirt_split_layout){0, 0};
+    *out = (gl_split_layout){0, 0};
     const dirt_gpu_caps *c = dirt_gpu_get_caps(gpu);
     size_t texel = gl_split_texel_bytes(d->format);
     if (!texel || d->record_bytes % texel) {
@@ -96,7 +96,7 @@ bool gl_split_plan(const dirt_gpu *gpu, const gl_split_desc *d, size_t records,
                    d->unit, (unsigned long long)(d->unit + parts - 1), units, advice);
         return false;
     }
-    *out = (dirt_split_layout){(int)parts, shift};
+    *out = (gl_split_layout){(int)parts, shift};
     return true;
 }
 
@@ -108,7 +108,7 @@ void gl_split_release(gl_split *s)
         s->part_bytes[k] = 0;
     }
     s->capacity = 0;
-    s->layout = (dirt_split_layout){0, 0};
+    s->layout = (gl_split_layout){0, 0};
 }
 
 size_t gl_split_part_records(const gl_split *s)
@@ -124,7 +124,7 @@ bool gl_split_ensure(dirt_gpu *gpu, gl_split *s, const gl_split_desc *d, size_t 
         return true;
     gl_split_release(s);
     s->desc = d;
-    dirt_split_layout l;
+    gl_split_layout l;
     if (!gl_split_plan(gpu, d, records, &l))
         return false;
     if (l.parts == 0) {
@@ -246,7 +246,7 @@ void gl_split_bind(const gl_split *s)
     }
 }
 
-void gl_split_defines(const gl_split_desc *d, dirt_split_layout layout, gl_split_defs *out)
+void gl_split_defines(const gl_split_desc *d, gl_split_layout layout, gl_split_defs *out)
 {
     snprintf(out->name[0], sizeof(out->name[0]), "%s", d->define);
     snprintf(out->name[1], sizeof(out->name[1]), "%s_SHIFT", d->define);
@@ -256,7 +256,7 @@ void gl_split_defines(const gl_split_desc *d, dirt_split_layout layout, gl_split
         out->def[i] = (glsl_define){out->name[i], out->value[i]};
 }
 
-uint32_t gl_split_key(dirt_split_layout layout)
+uint32_t gl_split_key(gl_split_layout layout)
 {
     return (uint32_t)layout.parts | (uint32_t)layout.shift << 8;
 }
@@ -309,7 +309,7 @@ GLbitfield gl_split_barrier(const gl_split *s)
 
 bool gl_split_program_ensure(gl_split_program *p, const char *label, const char *const *paths,
                       const glsl_define *defines, size_t num_defines,
-                      const gl_split_desc *const *descs, const dirt_split_layout *layouts,
+                      const gl_split_desc *const *descs, const gl_split_layout *layouts,
                       size_t n)
 {
     if (n > GL_SPLIT_PROGRAM_MAX_ARRAYS || num_defines > 16) {

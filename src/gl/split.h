@@ -4,7 +4,7 @@
  * While an array fits dirt_gpu_caps.max_ssbo_size it is one buffer, bound
  * and read as one storage block exactly as before (layout.parts = 0: the
  * shaders are built as they always were). Past it, the array is cut into
- * parts of 2^shift records (dirt_split_layout), each its own buffer at most
+ * parts of 2^shift records (gl_split_layout), each its own buffer at most
  * the texel-buffer limit (GL_MAX_TEXTURE_BUFFER_SIZE texels) and
  * DIRT_MAX_BLOCK_BYTES, read through a texel buffer per part: samplers for
  * arrays the CPU writes (texelFetch), images for arrays shaders write
@@ -20,6 +20,19 @@
 #include "gl/gl.h"
 #include "gl/glsl_source.h"
 #include "graph/graph.h"
+
+/* How an array that may pass one storage block is stored (arrays of
+ * records: vertices, list nodes, ...; doc/architecture.md, "Arrays past one
+ * storage block"). parts = 0: one buffer read as one shader storage block
+ * (the array fits dirt_gpu_caps.max_ssbo_size). parts >= 1: `parts`
+ * buffers of 2^shift records each (the last may hold fewer; at most
+ * DIRT_SPLIT_MAX_PARTS of glsl/common/constants.h), read through texel
+ * buffers (samplers for arrays the CPU writes, images for arrays
+ * shaders write). Every shader that reads the array is built for it. */
+typedef struct gl_split_layout {
+    int parts;
+    int shift;
+} gl_split_layout;
 
 /* What an array is. Static storage (the arrays keep a pointer). */
 typedef struct gl_split_desc {
@@ -43,7 +56,7 @@ typedef struct gl_split_desc {
  * allocated; gl_split_bind binds nothing). */
 typedef struct gl_split {
     const gl_split_desc *desc;
-    dirt_split_layout layout;
+    gl_split_layout layout;
     size_t capacity;                    /* records */
     GLuint buf[DIRT_SPLIT_MAX_PARTS];   /* [0]: the one block; else part k */
     GLuint tex[DIRT_SPLIT_MAX_PARTS];   /* texel-buffer views of the parts */
@@ -69,7 +82,7 @@ size_t gl_split_texel_bytes(GLenum format);
  * has. Pure arithmetic on the caps: the same inputs give the same layout
  * everywhere (a technique and the integrator agree without talking). */
 bool gl_split_plan(const dirt_gpu *gpu, const gl_split_desc *d, size_t records,
-                   dirt_split_layout *out);
+                   gl_split_layout *out);
 
 /* Makes `s` (of array `d`) hold at least `records` records: kept when its
  * capacity suffices, else remade (content lost) for exactly max(records, 1)
@@ -102,16 +115,16 @@ typedef struct gl_split_defs {
     char name[2][64];
     char value[2][16];
 } gl_split_defs;
-void gl_split_defines(const gl_split_desc *d, dirt_split_layout layout, gl_split_defs *out);
+void gl_split_defines(const gl_split_desc *d, gl_split_layout layout, gl_split_defs *out);
 /* The same as one key (programs are rebuilt when it changes). */
-uint32_t gl_split_key(dirt_split_layout layout);
+uint32_t gl_split_key(gl_split_layout layout);
 
 /* A program built for the layouts of the split arrays its shaders read:
  * remade when one changes. Zero-initialised = not made. */
 #define GL_SPLIT_PROGRAM_MAX_ARRAYS 12
 typedef struct gl_split_program {
     GLuint id;
-    dirt_split_layout built[GL_SPLIT_PROGRAM_MAX_ARRAYS];
+    gl_split_layout built[GL_SPLIT_PROGRAM_MAX_ARRAYS];
     size_t num_built;
 } gl_split_program;
 
@@ -121,7 +134,7 @@ typedef struct gl_split_program {
  * and the arrays' defines. False after logging; p is then not made. */
 bool gl_split_program_ensure(gl_split_program *p, const char *label, const char *const *paths,
                       const glsl_define *defines, size_t num_defines,
-                      const gl_split_desc *const *descs, const dirt_split_layout *layouts,
+                      const gl_split_desc *const *descs, const gl_split_layout *layouts,
                       size_t n);
 void gl_split_program_destroy(gl_split_program *p);
 

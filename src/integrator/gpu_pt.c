@@ -118,21 +118,23 @@ struct dirt_pt {
 };
 
 /* Makes Shade and its AO build the ones for the geometry of `tech` (NULL:
- * one storage block each). False after logging. */
+ * one storage block each) and the tables' texels and tangents. False after
+ * logging. */
 static bool shade_programs(dirt_pt *pt, const dirt_tracer *tech)
 {
-    const gl_split_desc *d[2] = {&gl_split_vertices, &gl_split_prim_material};
-    dirt_split_layout l[2] = {{0, 0}, {0, 0}};
+    const gl_split_desc *d[4] = {&gl_split_vertices, &gl_split_prim_material};
+    gl_split_layout l[4] = {{0, 0}, {0, 0}};
     if (tech) {
         l[0] = tech->vertices_split;
         l[1] = tech->prim_material_split;
     }
+    dirt_gpu_model_tables_arrays(&pt->tables, d + 2, l + 2);
     const char *paths[] = {"integrator/shade.comp", NULL};
     glsl_define ao = {"DIRT_AO", "1"};
     return gl_split_program_ensure(&pt->prog_shade, "integrator/shade.comp", paths, NULL, 0, d,
-                                   l, 2) &&
+                                   l, 4) &&
            gl_split_program_ensure(&pt->prog_ao, "integrator/shade.comp (AO)", paths, &ao, 1, d,
-                                   l, 2);
+                                   l, 4);
 }
 
 dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
@@ -161,6 +163,12 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
         return NULL;
     }
     return pt;
+}
+
+bool dirt_pt_check_frame(dirt_pt *pt, const dirt_frame *frame)
+{
+    gl_split_layout texels, tangents;
+    return dirt_gpu_model_tables_plan(pt->gpu, pt->scene, frame, &texels, &tangents);
 }
 
 static void release_buffers(dirt_pt *pt)
@@ -373,7 +381,7 @@ static void set_alpha(dirt_pt *pt, uint32_t bounce, uint32_t dim)
         return;
     dirt_trace_alpha a = {0};
     if (pt->alpha) {
-        a = (dirt_trace_alpha){.materials = pt->tables.materials, .texels = pt->tables.texels,
+        a = (dirt_trace_alpha){.materials = pt->tables.materials, .texels = &pt->tables.texels,
                                .seed = pt->opts->seed, .sample = pt->sample, .bounce = bounce,
                                .dim = dim, .first_pixel = (uint32_t)pt->cur_offset};
     }
@@ -813,10 +821,11 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     if (!dirt_area_lights_build(&area, frame, dirt_scene_materials(pt->scene),
                                 dirt_scene_num_materials(pt->scene)))
         goto done;
-    if (!ensure_env(pt, &opts) || !shade_programs(pt, tech))
+    if (!ensure_env(pt, &opts))
         goto done;
-    /* Materials and textures are the scene's: uploaded once; lights and the
-     * camera change per frame. */
+    /* Materials and textures are the scene's: uploaded once; lights, the
+     * camera and the tangents change per frame. Shade is built for the
+     * tables' layouts. */
     if (pt->tables.materials) {
         if (!dirt_gpu_model_tables_set_frame(pt->gpu, &pt->tables, frame, &area, cam)) {
             dirt_gpu_model_tables_destroy(&pt->tables);
@@ -826,6 +835,8 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
                                              &pt->tables)) {
         goto done;
     }
+    if (!shade_programs(pt, tech))
+        goto done;
     /* Alpha-tested traversal (doc/light-transport.md section 1, Alpha). */
     pt->alpha = dirt_materials_alpha_tested(dirt_scene_materials(pt->scene),
                                             dirt_scene_num_materials(pt->scene));
@@ -878,7 +889,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             pt->depth_pixels = pt->depth && pt->ids ? pt->pixels : 0;
         }
         dirt_trace_alpha za = {.materials = pt->alpha ? pt->tables.materials : 0,
-                               .texels = pt->tables.texels, .seed = opts.seed};
+                               .texels = &pt->tables.texels, .seed = opts.seed};
         if (!pt->depth_pixels || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height,
                                                   pt->chunk, &za, pt->depth, pt->ids))
             goto done;

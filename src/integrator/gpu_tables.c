@@ -269,20 +269,36 @@ void dirt_gpu_texel_buffer_free(dirt_gpu_texel_buffer *b)
 
 /* ---- GL objects --------------------------------------------------------- */
 
-bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, unsigned *buffer)
+const gl_split_desc dirt_gpu_split_texels = {
+    .label = "scene's texels", .define = "DIRT_SPLIT_TEXELS", .record_bytes = sizeof(uint32_t),
+    .format = GL_R32UI, .binding = DIRT_BIND_MODEL_TEXELS, .unit = DIRT_UNIT_SPLIT_TEXELS,
+    .advice = "make the scene's textures smaller or fewer",
+};
+const gl_split_desc dirt_gpu_split_tangents = {
+    .label = "frame's tangents", .define = "DIRT_SPLIT_TANGENTS",
+    .record_bytes = sizeof(struct dirt_gpu_model_tangent), .format = GL_RGBA32F,
+    .binding = DIRT_BIND_MODEL_TANGENTS, .unit = DIRT_UNIT_SPLIT_TANGENTS,
+    .advice = "render a scene of fewer triangles, or one without normal maps",
+};
+
+bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, gl_split *out)
 {
-    *buffer = 0;
-    const dirt_gpu_caps *caps = dirt_gpu_get_caps(gpu);
-    if (caps && caps->max_ssbo_size > 0 && (uint64_t)b->size > (uint64_t)caps->max_ssbo_size) {
-        DIRT_ERROR("gpu tables: the scene's %zu textures need %zu bytes of texels (%zu texels), "
-                   "more than this GPU's maximum storage block size "
-                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes; the texels are not split): "
-                   "make the textures smaller or fewer", b->num_textures, b->size,
-                   b->num_texels, (long long)caps->max_ssbo_size);
+    gl_split_release(out);
+    size_t words = b->size / sizeof(uint32_t);
+    if (!gl_split_ensure(gpu, out, &dirt_gpu_split_texels, words) ||
+        !gl_split_write(out, 0, words, b->words)) {
+        gl_split_release(out);
         return false;
     }
-    *buffer = gl_buffer_create(gpu, b->size, b->words, false, "model texels");
-    return *buffer != 0;
+    return true;
+}
+
+/* Frame vertices with a tangent record: 3 per triangle when a material has
+ * a normal map and the frame has tangents, else 0 (one zero record is
+ * uploaded). */
+static size_t tangent_records(bool normal_maps, const dirt_frame *frame)
+{
+    return normal_maps && frame && frame->tangent ? 3 * frame->num_triangles : 0;
 }
 
 /* (Re)uploads the frame's tangents (dirt_gpu_model_tangent per frame
@@ -290,30 +306,53 @@ bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, uns
  * one zero record. False after logging. */
 static bool upload_tangents(dirt_gpu *gpu, dirt_gpu_model_tables *t, const dirt_frame *frame)
 {
-    gl_buffer_destroy(&t->tangents);
+    gl_split_release(&t->tangents);
     t->tangent_bytes = 0;
-    size_t n = t->normal_maps && frame && frame->tangent ? 3 * frame->num_triangles : 0;
-    size_t bytes = (n > 0 ? n : 1) * sizeof(struct dirt_gpu_model_tangent);
-    const dirt_gpu_caps *caps = dirt_gpu_get_caps(gpu);
-    if (caps && caps->max_ssbo_size > 0 && (uint64_t)bytes > (uint64_t)caps->max_ssbo_size) {
-        DIRT_ERROR("gpu tables: the frame's tangents need %zu bytes (%zu triangles), more "
-                   "than this GPU's maximum storage block size "
-                   "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld bytes; tangents are not split): "
-                   "use a scene of at most %lld triangles, or one without normal maps", bytes,
-                   frame->num_triangles, (long long)caps->max_ssbo_size,
-                   (long long)(caps->max_ssbo_size /
-                               (3 * (int64_t)sizeof(struct dirt_gpu_model_tangent))));
-        return false;
-    }
+    size_t n = tangent_records(t->normal_maps, frame);
     /* dirt_frame.tangent is float[4] per vertex: the record's layout. */
     _Static_assert(sizeof(struct dirt_gpu_model_tangent) == 4 * sizeof(float), "tangent record");
     static const struct dirt_gpu_model_tangent zero;
-    t->tangents = gl_buffer_create(gpu, bytes, n > 0 ? (const void *)frame->tangent : &zero, false,
-                                   "model tangents");
-    if (!t->tangents)
+    if (!gl_split_ensure(gpu, &t->tangents, &dirt_gpu_split_tangents, n > 0 ? n : 1) ||
+        !gl_split_write(&t->tangents, 0, n > 0 ? n : 1,
+                        n > 0 ? (const void *)frame->tangent : &zero)) {
+        gl_split_release(&t->tangents);
         return false;
-    t->tangent_bytes = bytes;
+    }
+    t->tangent_bytes = gl_split_bytes(&t->tangents);
     return true;
+}
+
+bool dirt_gpu_model_tables_plan(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame *frame,
+                                gl_split_layout *texels, gl_split_layout *tangents)
+{
+    const dirt_texture *tex = dirt_scene_textures(scene);
+    size_t nt = dirt_scene_num_textures(scene);
+    /* The words dirt_gpu_textures_pack writes: header, records, texels. */
+    uint64_t words = sizeof(struct dirt_gpu_model_texels) / sizeof(uint32_t) + (uint64_t)nt * 4;
+    for (size_t i = 0; i < nt; i++)
+        if (has_pixels(&tex[i]))
+            words += (uint64_t)tex[i].width * (uint64_t)tex[i].height;
+    if (words > SIZE_MAX / sizeof(uint32_t)) {
+        DIRT_ERROR("gpu tables: the %zu textures need %llu texels and records, more than "
+                   "this machine addresses", nt, (unsigned long long)words);
+        return false;
+    }
+    const dirt_material *m = dirt_scene_materials(scene);
+    bool normal_maps = false;
+    for (size_t i = 0; i < dirt_scene_num_materials(scene); i++)
+        normal_maps |= m[i].normal_tex >= 0 && (size_t)m[i].normal_tex < nt;
+    return gl_split_plan(gpu, &dirt_gpu_split_texels, (size_t)words, texels) &&
+           gl_split_plan(gpu, &dirt_gpu_split_tangents, tangent_records(normal_maps, frame),
+                         tangents);
+}
+
+void dirt_gpu_model_tables_arrays(const dirt_gpu_model_tables *t, const gl_split_desc **descs,
+                                  gl_split_layout *layouts)
+{
+    descs[0] = &dirt_gpu_split_texels;
+    descs[1] = &dirt_gpu_split_tangents;
+    layouts[0] = t->texels.layout;
+    layouts[1] = t->tangents.layout;
 }
 
 bool dirt_gpu_model_tables_set_frame(dirt_gpu *gpu, dirt_gpu_model_tables *t,
@@ -379,7 +418,7 @@ bool dirt_gpu_model_tables_create(dirt_gpu *gpu, const dirt_scene *scene,
     out->materials = gl_buffer_create(gpu, nm * sizeof(*mats), mats, false, "model materials");
     if (!out->materials || !dirt_gpu_textures_upload(gpu, &tb, &out->texels))
         goto done;
-    out->texel_bytes = tb.size;
+    out->texel_bytes = gl_split_bytes(&out->texels);
     for (size_t i = 0; i < nm; i++)
         out->normal_maps |= mats[i].textures2.x >= 0;
     ok = dirt_gpu_model_tables_set_frame(gpu, out, frame, area, camera);
@@ -406,8 +445,8 @@ void dirt_gpu_model_tables_bind(const dirt_gpu_model_tables *t)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_AREA_PRIMS, t->area_prims);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_PUNCTUAL, t->punctual);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_CAMERA, t->camera);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, t->texels);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TANGENTS, t->tangents);
+    gl_split_bind(&t->texels);
+    gl_split_bind(&t->tangents);
 }
 
 void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t)
@@ -420,7 +459,7 @@ void dirt_gpu_model_tables_destroy(dirt_gpu_model_tables *t)
     b = t->area_prims; gl_buffer_destroy(&b);
     b = t->punctual; gl_buffer_destroy(&b);
     b = t->camera; gl_buffer_destroy(&b);
-    b = t->texels; gl_buffer_destroy(&b);
-    b = t->tangents; gl_buffer_destroy(&b);
+    gl_split_release(&t->texels);
+    gl_split_release(&t->tangents);
     memset(t, 0, sizeof(*t));
 }

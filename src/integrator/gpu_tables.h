@@ -15,6 +15,7 @@
 #include "dirt/gpu.h"
 #include "integrator/integrator.h"
 #include "dirt/scene.h"
+#include "gl/split.h"
 
 #include "common/integrator_layout.h"
 
@@ -107,25 +108,44 @@ void dirt_gpu_texel_buffer_free(dirt_gpu_texel_buffer *b);
 
 /* ---- GL objects --------------------------------------------------------- */
 
+/* The texel table and the tangents as split arrays (gl/split.h; model.glsl
+ * reads them through dirt_model_texel_word_g / dirt_model_tangent_g): the
+ * texel table's words (header included, R32UI texels when split) and one
+ * dirt_gpu_model_tangent per frame vertex (RGBA32F). */
+extern const gl_split_desc dirt_gpu_split_texels, dirt_gpu_split_tangents;
+
 /* Every table of model.glsl on the GPU. GL names (GLuint), 0 = none. */
 typedef struct dirt_gpu_model_tables {
     unsigned materials, area_cdf, area_prims, punctual, camera;
-    unsigned texels;     /* the texel buffer (dirt_gpu_texel_buffer) */
+    gl_split texels;     /* the texel buffer (dirt_gpu_texel_buffer) */
     size_t texel_bytes;  /* its size: allocated = used */
     size_t num_materials, num_area, num_punctual, num_textures;
-    unsigned tangents;   /* the frame's tangents (dirt_gpu_model_tangent per
+    gl_split tangents;   /* the frame's tangents (dirt_gpu_model_tangent per
                             frame vertex; one zero record when no material
                             has a normal map or the frame has no tangents) */
     size_t tangent_bytes;
     bool normal_maps;    /* a material has a normal map */
 } dirt_gpu_model_tables;
 
-/* Uploads a texel buffer into a new GL buffer (*buffer). False after
- * logging, *buffer then 0: more bytes than this GPU's
- * GL_MAX_SHADER_STORAGE_BLOCK_SIZE (caps.max_ssbo_size; the shader reads it
- * as one storage block), or a GL error. */
-bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b,
-                              unsigned *buffer);
+/* Uploads a texel buffer into `out` (one storage block while it fits this
+ * GPU's GL_MAX_SHADER_STORAGE_BLOCK_SIZE, else texel-buffer parts). False
+ * after logging, `out` then empty: more than one split array holds (the
+ * error says to make the textures smaller or fewer), or a GL error. */
+bool dirt_gpu_textures_upload(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b, gl_split *out);
+
+/* The layouts the texels and tangents of `scene` at `frame` (NULL: none)
+ * take on this GPU, as dirt_gpu_model_tables_create makes them: pure
+ * arithmetic, before any upload or pass. False after logging what to
+ * change when one does not fit (the size checks of the path tracer,
+ * dirt_pt_check_frame). */
+bool dirt_gpu_model_tables_plan(dirt_gpu *gpu, const dirt_scene *scene, const dirt_frame *frame,
+                                gl_split_layout *texels, gl_split_layout *tangents);
+
+/* The defines and layouts of a program that reads the tables (the
+ * texels' and tangents' split arrays): `descs` and `layouts` get 2
+ * entries. */
+void dirt_gpu_model_tables_arrays(const dirt_gpu_model_tables *t, const gl_split_desc **descs,
+                                  gl_split_layout *layouts);
 
 /* Creates every buffer for one frame of a scene: materials
  * (dirt_gpu_scene_materials with `specular`, NULL = 1), the texel buffer of

@@ -117,6 +117,13 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene);
 /* Accepts NULL. */
 void dirt_pt_destroy(dirt_pt *pt);
 
+/* The size checks of the scene's tables at `frame` that need no pass (the
+ * texels and the tangents in one storage block or a split array:
+ * dirt_gpu_model_tables_plan): the engines call it before their build, so
+ * a scene they cannot hold fails before any expensive work. False after
+ * logging what to change. */
+bool dirt_pt_check_frame(dirt_pt *pt, const dirt_frame *frame);
+
 /* Starts a new accumulation of width x height pixels (0 samples). The image
  * is worked through in chunks (wavefronts) of dirt_pt_chunk_pixels pixels,
  * so any size fits the GPU's storage blocks; the pixels do not depend on the

@@ -66,13 +66,14 @@ GLbitfield mmrt_split_barriers(dirt_mmrt *m)
     return bits;
 }
 
-bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
-                  const glsl_define *defs, size_t n, unsigned arrays)
+bool mmrt_program_extra(dirt_mmrt *m, gl_split_program *p, const char *label,
+                        const char *const *paths, const glsl_define *defs, size_t n,
+                        unsigned arrays, const gl_split *extra)
 {
     gl_split *arr[MMRT_NUM_ARRAYS];
     mmrt_arrays(m, arr);
-    const gl_split_desc *d[MMRT_NUM_ARRAYS];
-    dirt_split_layout l[MMRT_NUM_ARRAYS];
+    const gl_split_desc *d[MMRT_NUM_ARRAYS + 1];
+    gl_split_layout l[MMRT_NUM_ARRAYS + 1];
     size_t k = 0;
     for (int i = 0; i < MMRT_NUM_ARRAYS; i++) {
         if (arrays & MMRT_ARR(i)) {
@@ -81,7 +82,18 @@ bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const ch
             k++;
         }
     }
+    if (extra) {
+        d[k] = extra->desc;
+        l[k] = extra->layout;
+        k++;
+    }
     return gl_split_program_ensure(p, label, paths, defs, n, d, l, k);
+}
+
+bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
+                  const glsl_define *defs, size_t n, unsigned arrays)
+{
+    return mmrt_program_extra(m, p, label, paths, defs, n, arrays, NULL);
 }
 
 /* Every program (but the alpha trace's) for the arrays' current layouts. */
@@ -293,7 +305,7 @@ static bool ensure_nodes(dirt_mmrt *m, size_t nodes)
  * count). False after logging what to change. */
 static bool check_sizes(dirt_mmrt *m, const dirt_frame *f)
 {
-    dirt_split_layout l;
+    gl_split_layout l;
     size_t heads = (size_t)m->opts.buckets * (size_t)m->set.num_tiles;
     return gl_split_plan(m->gpu, mmrt_array_desc[MMRT_VERTICES], f->num_triangles, &l) &&
            gl_split_plan(m->gpu, mmrt_array_desc[MMRT_PRIM_MATERIAL], f->num_triangles, &l) &&

@@ -127,7 +127,7 @@ typedef struct dirt_mmrt_trace_opts {
                          hit (default: each part of the ray in one view, the
                          first of camera, faces whose frustum holds it) */
     bool count;       /* count pixels tested / nodes visited (atomics) */
-    dirt_trace_alpha alpha; /* alpha-tested traversal (core/ray.h): the fragments
+    dirt_trace_alpha alpha; /* alpha-tested traversal (views/tracer.h): the fragments
                            of hits it rejects are passed over; zero = none */
     uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
                          set_batch): count is its capacity; 0 = none */

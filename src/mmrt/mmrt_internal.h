@@ -91,6 +91,11 @@ GLbitfield mmrt_split_barriers(dirt_mmrt *m);
  * logging. */
 bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
                   const glsl_define *defs, size_t n, unsigned arrays);
+/* The same with one more split array the shaders read (NULL: none; the
+ * traces' alpha test reads the texels, dirt_trace_alpha.texels). */
+bool mmrt_program_extra(dirt_mmrt *m, gl_split_program *p, const char *label,
+                        const char *const *paths, const glsl_define *defs, size_t n,
+                        unsigned arrays, const gl_split *extra);
 
 /* Binds the vertices and the per-primitive materials (storage blocks or
  * texel buffers) for the shaders that read them. */

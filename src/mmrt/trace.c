@@ -47,8 +47,9 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     if (o.alpha.materials) {
         glsl_define def = {"DIRT_TRACE_ALPHA", "1"};
         const char *paths[] = {"mmrt/trace.comp", NULL};
-        if (!mmrt_program(m, &m->prog_trace_alpha, "mmrt/trace.comp (alpha)", paths, &def, 1,
-                          MMRT_ARR(MMRT_VERTICES) | MMRT_ABUFFER))
+        if (!mmrt_program_extra(m, &m->prog_trace_alpha, "mmrt/trace.comp (alpha)", paths,
+                                &def, 1, MMRT_ARR(MMRT_VERTICES) | MMRT_ABUFFER,
+                                o.alpha.texels))
             return false;
     }
     gl_group_push("mmrt trace");
@@ -77,7 +78,7 @@ bool dirt_mmrt_trace(dirt_mmrt *m, GLuint rays, GLuint hits, uint32_t count,
     if (o.alpha.materials) {
         glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, o.alpha.materials);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, o.alpha.texels);
+        gl_split_bind(o.alpha.texels);
         glUniform4ui(DIRT_LOC_ALPHA_KEY, o.alpha.seed, o.alpha.sample, o.alpha.bounce,
                      o.alpha.dim);
         glUniform1ui(DIRT_LOC_ALPHA_FIRST_PIXEL, o.alpha.first_pixel);

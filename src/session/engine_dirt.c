@@ -122,6 +122,10 @@ static bool build(engine *e, const engine_env *env)
 {
     dirt_state *d = (dirt_state *)e;
     d->pt.tracer = NULL;
+    /* The path tracer's tables first: a scene it cannot hold fails before
+     * the build. */
+    if (!dirt_pt_check_frame(d->pt.pt, env->frame))
+        return false;
     if (!dirt_ads_build(d->ads, env->frame, env->cam))
         return false;
     dirt_ads_tracer_opts to = {.trace = {.hiz_levels = env->opts->hiz_levels},

@@ -75,6 +75,10 @@ static bool build(engine *e, const engine_env *env)
 {
     mmrt_engine *m = (mmrt_engine *)e;
     m->pt.tracer = NULL;
+    /* The path tracer's tables first: a scene it cannot hold fails before
+     * the build. */
+    if (!dirt_pt_check_frame(m->pt.pt, env->frame))
+        return false;
     if (!dirt_mmrt_build(m->mmrt, env->frame, env->cam))
         return false;
     dirt_mmrt_trace_opts to = trace_opts(env->opts);

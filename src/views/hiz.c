@@ -3,7 +3,7 @@
 #include "common/layout.h"
 #include "gl/program.h"
 
-bool views_hiz_program(gl_split_program *p, dirt_split_layout layout)
+bool views_hiz_program(gl_split_program *p, gl_split_layout layout)
 {
     const char *paths[] = {"views/hiz.comp", NULL};
     const gl_split_desc *d = &gl_split_depth;

@@ -10,7 +10,7 @@
 /* Makes `p` the pyramid program for depth bounds stored in `layout`
  * (gl_split_depth). False after logging. The caller owns it
  * (gl_split_program_destroy). */
-bool views_hiz_program(gl_split_program *p, dirt_split_layout layout);
+bool views_hiz_program(gl_split_program *p, gl_split_layout layout);
 
 /* Builds levels 1.. of the pyramid of every view of `set` with `program`;
  * the views and the pyramid must be bound (DIRT_BIND_VIEWS; the pyramid

@@ -18,11 +18,35 @@
 
 #include "core/ray.h"
 #include "dirt/gpu.h"
+#include "gl/split.h"
 #include "views/views.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* What a GPU trace needs for alpha-tested traversal (doc/light-transport.md
+ * section 1, "Alpha"): a hit of a MASK or BLEND material that the alpha test
+ * rejects is no hit, and the trace goes on to the next one. Zero-initialised
+ * = no test (every surface opaque, the trace as fast as without alpha).
+ * The tables are the integrator's (dirt_gpu_model_tables, integrator/gpu_tables.h):
+ * the trace binds them at DIRT_BIND_MODEL_MATERIALS and _TEXELS (or the
+ * texels' parts, gl_split_bind) and reads
+ * the per-primitive materials, UVs and texels. BLEND decisions use the key
+ * dirt_rng_u32(seed, first_pixel + owner(i), sample, bounce, dim) for ray i
+ * of the batch, owner(i) = i or its ray batch's owner (views/tracer.h,
+ * set_batch; doc/rng.md, "Alpha"). */
+typedef struct dirt_trace_alpha {
+    uint32_t materials;   /* GL buffer of dirt_gpu_model_material; 0 = no test */
+    const gl_split *texels; /* the texel table (dirt_gpu_model_tables.texels:
+                               one storage block, or texel-buffer parts the
+                               trace's program is built for) */
+    uint32_t seed;        /* the render's seed */
+    uint32_t sample;      /* sample index */
+    uint32_t bounce;      /* the vertex the rays leave (0: camera rays) */
+    uint32_t dim;         /* DIRT_RNG_DIM_ALPHA_PATH or _SHADOW */
+    uint32_t first_pixel; /* pixel of ray 0 of the batch */
+} dirt_trace_alpha;
 
 /* A technique's tracer for the structure of its last build. Owned by the
  * technique; valid until its next build, option change or destruction.
@@ -68,7 +92,7 @@ typedef struct dirt_tracer {
      * ray keys them by (call of the sample, pixel), so that the chunking
      * changes no result. NULL when there is nothing to key. */
     void (*begin_chunk)(void *self, uint32_t first);
-    /* Alpha-tested traversal for the traces that follow (core/ray.h; the
+    /* Alpha-tested traversal for the traces that follow (dirt_trace_alpha above; the
      * integrator sets it before each trace: its keys differ per ray kind
      * and path event). A zeroed `alpha` (or NULL) turns the test off.
      * NULL when the technique cannot test alpha. */
@@ -84,10 +108,10 @@ typedef struct dirt_tracer {
      * paths only after event 1, and refuses a tracer without it. */
     void (*set_batch)(void *self, uint32_t batch);
     const dirt_view_set *views; /* the technique's views (direct visibility) */
-    /* How the arrays bind_geometry binds are stored (dirt/gpu.h; their
+    /* How the arrays bind_geometry binds are stored (gl/split.h; their
      * texel buffers' units: common/constants.h): Shade is built for them
      * (common/vertices.glsl). */
-    dirt_split_layout vertices_split, prim_material_split;
+    gl_split_layout vertices_split, prim_material_split;
     uint64_t bytes_extra;      /* integrator-side buffers the technique owns */
     /* World distance by which rays leaving a surface start off it along its
      * geometric normal (on the side they leave, beyond the integrator's own

@@ -10,6 +10,14 @@
 #    bit (exr_compare --exact; the headers differ: provenance), for dirt
 #    (raster and compute build), mmrt and the raster preview; the
 #    split DIRT render equals Embree's with the same seed (relMSE < 1e-4);
+#  - the same room normal-mapped and textured (make-scale-scene.py
+#    --normal-map: 2 textures of 256 x 256, tangents generated) with blocks
+#    of 192 KiB: the frame's tangents and the scene's texels are split too
+#    (read by Shade, and the texels by the traces' alpha test builds), and
+#    the EXR equals the unsplit one bit for bit for dirt (raster and compute
+#    build) and mmrt (at 64x48: its data nodes grow with the pixels); the split DIRT render equals Embree's (relMSE < 1e-4);
+#    textures past one split array (1024 x 1024, blocks of 512 KiB) exit 1
+#    before the build, saying to make the textures smaller or fewer;
 #  - a malformed DIRT_MAX_BLOCK_BYTES is warned about and ignored;
 #  - past what one array holds (blocks of 8 KiB: the vertices need more than
 #    8 parts) the render exits 1 before any pass with one error saying what
@@ -63,6 +71,46 @@ for run in "dirt --build raster" "dirt --build compute" "mmrt -B 4" "raster"; do
 done
 "$compare" "$tmp/dirt_raster_split.exr" "$tmp/embree.exr" 1e-4 ||
   fail "the split DIRT render differs from Embree's"
+
+# Normal-mapped and textured: the tangents and the texels split as well.
+"${PYTHON:-/usr/bin/python3}" "$root/perf/make-scale-scene.py" "$tmp/nmap.glb" 5000 \
+  --normal-map >/dev/null || fail "cannot write the normal-mapped scene"
+"$render" "$tmp/nmap.glb" -o "$tmp/nmap_embree.exr" --engine embree "${common[@]}" \
+  >"$tmp/log" 2>&1 || { fail "nmap: embree render"; cat "$tmp/log" >&2; }
+for run in "dirt --build raster" "dirt --build compute" "mmrt -B 4"; do
+  set -- $run
+  name=nmap_$1
+  [ "${2:-}" = --build ] && name=nmap_$1_$3
+  # MMRT's data nodes grow with the pixels: a smaller image keeps them
+  # within 8 parts of the blocks that split the tangents.
+  size=()
+  [ $1 = mmrt ] && size=(-W 64 -H 48)
+  "$render" "$tmp/nmap.glb" -o "$tmp/$name.exr" --engine $run "${common[@]}" "${size[@]}" \
+    >"$tmp/log" 2>&1 || { fail "$name: unsplit render"; cat "$tmp/log" >&2; }
+  grep -q "texel buffers" "$tmp/log" && fail "$name: the unsplit render split an array"
+  DIRT_MAX_BLOCK_BYTES=192K "$render" "$tmp/nmap.glb" -o "$tmp/${name}_split.exr" \
+    --engine $run "${common[@]}" "${size[@]}" >"$tmp/log" 2>&1 ||
+    { fail "$name: split render"; cat "$tmp/log" >&2; }
+  for w in "scene's texels" "frame's tangents"; do
+    grep -Eq "the $w: .* in [2-8] parts of " "$tmp/log" ||
+      { fail "$name: the $w were not split"; grep "parts of" "$tmp/log" >&2; }
+  done
+  "$compare" --exact "$tmp/$name.exr" "$tmp/${name}_split.exr" >/dev/null ||
+    fail "$name: the split EXR differs from the unsplit one"
+done
+"$compare" "$tmp/nmap_dirt_raster_split.exr" "$tmp/nmap_embree.exr" 1e-4 ||
+  fail "nmap: the split DIRT render differs from Embree's"
+"${PYTHON:-/usr/bin/python3}" "$root/perf/make-scale-scene.py" "$tmp/nmap_big.glb" 5000 \
+  --normal-map --texture-size 1024 >/dev/null || fail "cannot write the 1024^2 textures"
+DIRT_MAX_BLOCK_BYTES=512K "$render" "$tmp/nmap_big.glb" -o "$tmp/toobig.exr" "${common[@]}" \
+  >"$tmp/log" 2>&1
+rc=$?
+[ $rc -eq 1 ] || fail "texels past one array: exit $rc, want 1"
+grep -q "the scene's texels need .* more than this GPU holds in one array" "$tmp/log" &&
+  grep -q "make the scene's textures smaller or fewer" "$tmp/log" ||
+  { fail "texels past one array: no clear error"; cat "$tmp/log" >&2; }
+grep -Eq "DIRT (build|list)|sample" "$tmp/log" && fail "texels past one array: work before the error"
+[ -e "$tmp/toobig.exr" ] && fail "texels past one array: a failed render left its output"
 
 DIRT_MAX_BLOCK_BYTES=lots "$render" "$tmp/room.glb" -o "$tmp/warned.png" "${common[@]}" \
   >"$tmp/log" 2>&1 || fail "a malformed DIRT_MAX_BLOCK_BYTES failed the render"

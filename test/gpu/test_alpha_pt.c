@@ -125,7 +125,7 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
             for (int t = DIRT_RAY_PRIMARY; t < DIRT_RAY_TYPES; t++) {
                 bool vis = t == DIRT_RAY_VISIBILITY;
                 dirt_trace_opts to = {.any_hit = vis};
-                to.alpha = (dirt_trace_alpha){tables.materials, tables.texels, SEED, SAMPLE,
+                to.alpha = (dirt_trace_alpha){tables.materials, &tables.texels, SEED, SAMPLE,
                                               BOUNCE, vis ? DIRT_RNG_DIM_ALPHA_SHADOW
                                                           : DIRT_RNG_DIM_ALPHA_PATH, 0};
                 dirt_trace_stats ts;
@@ -186,7 +186,7 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
         }
         dirt_ref_hit *e = malloc(count[t] * sizeof(dirt_ref_hit));
         dirt_ref_intersect_keys(accel, (const dirt_ref_ray *)r, keys[t], e, count[t], 0);
-        mt.alpha = (dirt_trace_alpha){tables.materials, tables.texels, SEED, SAMPLE, BOUNCE,
+        mt.alpha = (dirt_trace_alpha){tables.materials, &tables.texels, SEED, SAMPLE, BOUNCE,
                                       vis ? DIRT_RNG_DIM_ALPHA_SHADOW : DIRT_RNG_DIM_ALPHA_PATH, 0};
         dirt_mmrt_trace_stats ts;
         CHECK(dirt_mmrt_trace_cpu(m, r, count[t], out, &mt, &ts));

@@ -1257,30 +1257,40 @@ static void count_limit_errors(void *user, enum dirt_log_level level, const char
                                const char *msg)
 {
     (void)user, (void)file, (void)line;
-    if (level == DIRT_LOG_ERROR && strstr(msg, "GL_MAX_SHADER_STORAGE_BLOCK_SIZE"))
+    if (level == DIRT_LOG_ERROR && strstr(msg, "scene's texels") &&
+        strstr(msg, "textures smaller or fewer"))
         limit_errors++;
     fprintf(stderr, "[log] %s\n", msg);
 }
 
-/* Texels over the GPU's storage-block limit (the limit lowered to one byte
- * under the buffer's size) are refused with one error naming the limit. */
+/* The texel table against the GPU's storage-block limit: at exactly the
+ * limit one block; one byte under it, texel-buffer parts holding the same
+ * words (read back); with parts of a sixteenth of it (DIRT_MAX_BLOCK_BYTES'
+ * override), more parts than one split array has: refused with one error
+ * saying what to change. */
 static void check_texel_limit(dirt_gpu *gpu, const dirt_gpu_texel_buffer *b)
 {
-    int64_t saved = gpu->caps.max_ssbo_size;
+    dirt_gpu_caps saved = gpu->caps;
+    size_t words = b->size / 4;
+    gl_split s = {0};
+    gpu->caps.max_ssbo_size = (int64_t)b->size; /* exactly the limit: one block */
+    bool ok = dirt_gpu_textures_upload(gpu, b, &s);
+    CHECK(ok && s.buf[0] && s.layout.parts == 0);
     gpu->caps.max_ssbo_size = (int64_t)b->size - 1;
+    gpu->caps.block_override = (int64_t)b->size / 3;
+    ok = dirt_gpu_textures_upload(gpu, b, &s);
+    CHECK_MSG(ok && s.layout.parts >= 3 && s.layout.parts <= 6, "%d parts", s.layout.parts);
+    uint32_t *back = calloc(words, 4);
+    CHECK(back && gl_split_read(&s, 0, words, back) && !memcmp(back, b->words, b->size));
+    free(back);
+    gpu->caps.block_override = (int64_t)b->size / 16;
     limit_errors = 0;
-    unsigned buf = 1;
     dirt_log_set_callback(count_limit_errors, NULL);
-    bool ok = dirt_gpu_textures_upload(gpu, b, &buf);
+    ok = dirt_gpu_textures_upload(gpu, b, &s);
     dirt_log_set_callback(NULL, NULL);
-    gpu->caps.max_ssbo_size = saved;
-    CHECK(!ok && buf == 0 && limit_errors == 1);
-    gpu->caps.max_ssbo_size = (int64_t)b->size; /* exactly the limit: accepted */
-    ok = dirt_gpu_textures_upload(gpu, b, &buf);
-    gpu->caps.max_ssbo_size = saved;
-    CHECK(ok && buf != 0);
-    GLuint g = buf;
-    gl_buffer_destroy(&g);
+    CHECK(!ok && !s.buf[0] && limit_errors == 1);
+    gpu->caps = saved;
+    gl_split_release(&s);
 }
 
 int main(void)

@@ -243,18 +243,18 @@ int main(void)
     dirt_gpu_texel_buffer tb = {0};
     CHECK(dirt_gpu_textures_pack(g_tex, NUM_TEXTURES, &tb));
     GLuint mats = gl_buffer_create(gpu, sizeof(recs), recs, false, "nmap test materials");
-    GLuint texels = 0;
+    gl_split texels = {0};
     CHECK(mats && dirt_gpu_textures_upload(gpu, &tb, &texels));
-    if (prog && fault && mats && texels) {
+    if (prog && fault && mats && texels.buf[0]) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_MATERIALS, mats);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_MODEL_TEXELS, texels);
+        gl_split_bind(&texels);
         compare(gpu, prog, true);
         int f = compare(gpu, fault, false);
         fprintf(stderr, "fault shader: %d of %d records differ\n", f, 4 * N);
         CHECK_MSG(f > 4 * N * 9 / 10, "the comparison does not catch a faulty shader (%d)", f);
     }
     gl_buffer_destroy(&mats);
-    gl_buffer_destroy(&texels);
+    gl_split_release(&texels);
     dirt_gpu_texel_buffer_free(&tb);
     for (int t = 0; t < NUM_TEXTURES; t++)
         free(g_tex[t].rgba);

@@ -65,7 +65,7 @@ static void accessors(dirt_gpu *gpu, int64_t block, bool parts_at_limit, int wan
         gpu->caps.block_override = 0;
     gl_split arr[A_N];
     memset(arr, 0, sizeof(arr));
-    dirt_split_layout lay[A_N];
+    gl_split_layout lay[A_N];
     bool ok = true;
     for (int a = 0; a < A_N; a++) {
         ok = ok && gl_split_ensure(gpu, &arr[a], descs[a], counts[a]);

@@ -117,19 +117,6 @@ typedef struct dirt_gpu_caps {
     int max_ssbo_bindings;
 } dirt_gpu_caps;
 
-/* How an array that may pass one storage block is stored (arrays of
- * records: vertices, list nodes, ...; doc/architecture.md, "Arrays past one
- * storage block"). parts = 0: one buffer read as one shader storage block
- * (the array fits dirt_gpu_caps.max_ssbo_size). parts >= 1: `parts`
- * buffers of 2^shift records each (the last may hold fewer; at most
- * DIRT_SPLIT_MAX_PARTS of glsl/common/constants.h), read through texel
- * buffers (samplers for arrays the CPU writes, images for arrays
- * shaders write). Every shader that reads the array is built for it. */
-typedef struct dirt_split_layout {
-    int parts;
-    int shift;
-} dirt_split_layout;
-
 /* Makes a GL 4.5 core context. Returns NULL after logging why (no EGL display,
  * no GL 4.5, no window system, or a renderer string without the text the
  * environment variable DIRT_EXPECT_RENDERER names, case-insensitively: the
