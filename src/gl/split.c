@@ -237,6 +237,9 @@ void gl_split_bind(const gl_split *s)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, d->binding, s->buf[0]);
         return;
     }
+    /* Nothing at the block's binding: a shader built for one block must not
+     * read a stale buffer there. */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, d->binding, 0);
     for (int k = 0; k < s->layout.parts; k++) {
         if (d->image)
             glBindImageTexture(d->unit + (GLuint)k, s->tex[k], 0, GL_FALSE, 0, GL_READ_WRITE,

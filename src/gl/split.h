@@ -105,7 +105,7 @@ void gl_split_clear(gl_split *s, GLenum internal, GLenum format, GLenum type, co
 
 /* Binds the array for the shaders: the block at desc->binding, or part k's
  * texel buffer at desc->unit + k (texture unit, or image unit with
- * GL_READ_WRITE). */
+ * GL_READ_WRITE) and no buffer at desc->binding. */
 void gl_split_bind(const gl_split *s);
 
 /* The shaders' defines of a layout: DEFINE = parts and DEFINE_SHIFT =

@@ -14,7 +14,11 @@
  *  - the acceptance, sessions of the three engines with one seed: DIRT ==
  *    Embree (relMSE below 1e-6), MMRT within its documented thickness error
  *    (relMSE below 0.6, mean luminance within 25 %, as env_pt); the alpha
- *    test matters (the opaque variant differs by relMSE > 1e-2). */
+ *    test matters (the opaque variant differs by relMSE > 1e-2);
+ *  - the texel table split into texel-buffer parts (the storage block
+ *    lowered under it, parts of a third of it: 3..6 parts): DIRT (S = 1,
+ *    B = 8) and MMRT answer every ray type with it bit for bit as with one
+ *    block. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,6 +33,7 @@
 #include "ref/raytypes.h"
 #include "ref/ref.h"
 #include "dirt/session.h"
+#include "gl/gl.h"
 #include "gpu.h"
 #include "session_util.h"
 #include "integrator/rng.h"
@@ -52,6 +57,32 @@ static bool agree(const dirt_hit *d, const dirt_ref_hit *e, bool visibility)
     return d->prim == e->prim || fabs(d->t - e->t) <= AGREE_T_TOL * fmax(e->t, 1e-3);
 }
 
+/* The scene's texel table in parts (see the top). False on failure. */
+static bool split_texels(dirt_gpu *gpu, const dirt_scene *scene, gl_split *out)
+{
+    dirt_gpu_texel_buffer tb;
+    if (!dirt_gpu_textures_pack(dirt_scene_textures(scene), dirt_scene_num_textures(scene), &tb))
+        return false;
+    dirt_gpu_caps saved = gpu->caps;
+    gpu->caps.max_ssbo_size = (int64_t)tb.size - 1;
+    gpu->caps.block_override = (int64_t)tb.size / 3;
+    bool ok = dirt_gpu_textures_upload(gpu, &tb, out);
+    gpu->caps = saved;
+    dirt_gpu_texel_buffer_free(&tb);
+    CHECK_MSG(ok && out->layout.parts >= 3, "texels in %d parts", out->layout.parts);
+    return ok && out->layout.parts >= 3;
+}
+
+/* Hits a and b of n rays are the same (primitive, view, t, u, v). */
+static size_t same_hits(const dirt_hit *a, const dirt_hit *b, size_t n)
+{
+    size_t same = 0;
+    for (size_t i = 0; i < n; i++)
+        same += a[i].prim == b[i].prim && a[i].t == b[i].t && a[i].u == b[i].u &&
+                a[i].v == b[i].v;
+    return same;
+}
+
 static void hits(dirt_gpu *gpu, const dirt_scene *scene)
 {
     dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
@@ -69,6 +100,9 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
     CHECK(accel && opaque && dirt_ref_accel_alpha_tested(accel));
     dirt_gpu_model_tables tables;
     CHECK(dirt_gpu_model_tables_create(gpu, scene, f, NULL, &cam, NULL, &tables));
+    gl_split texels = {0};
+    bool split_ok = split_texels(gpu, scene, &texels);
+    dirt_hit *kept[DIRT_RAY_TYPES] = {0}; /* DIRT's hits with one block */
     dirt_gbuffer g;
     CHECK(dirt_gbuffer_build(accel, scene, f, &cam, 48, 36, &g));
     size_t cap = (size_t)48 * 36;
@@ -143,8 +177,27 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
                         100.0 * same / (double)count[t]);
                 CHECK_MSG(same >= MIN_AGREEMENT * count[t], "DIRT %s: %zu of %zu agree",
                           dirt_ray_type_names[t], same, count[t]);
+                if (s == 0 && b == 1 && split_ok) {
+                    kept[t] = malloc(count[t] * sizeof(dirt_hit));
+                    memcpy(kept[t], out, count[t] * sizeof(dirt_hit));
+                }
             }
             fputc('\n', stderr);
+            /* The same traces with the texels split. */
+            for (int t = DIRT_RAY_PRIMARY; t < DIRT_RAY_TYPES && kept[t]; t++) {
+                bool vis = t == DIRT_RAY_VISIBILITY;
+                dirt_trace_opts to = {.any_hit = vis};
+                to.alpha = (dirt_trace_alpha){tables.materials, &texels, SEED, SAMPLE, BOUNCE,
+                                              vis ? DIRT_RNG_DIM_ALPHA_SHADOW
+                                                  : DIRT_RNG_DIM_ALPHA_PATH, 0};
+                CHECK(dirt_ads_trace(ads, rays[t], count[t], out, &to, NULL));
+                size_t same = same_hits(out, kept[t], count[t]);
+                CHECK_MSG(same == count[t], "DIRT %s, texels in %d parts: %zu of %zu hits as "
+                          "with one block", dirt_ray_type_names[t], texels.layout.parts, same,
+                          count[t]);
+                free(kept[t]);
+                kept[t] = NULL;
+            }
             dirt_ads_destroy(ads);
         }
     }
@@ -191,6 +244,17 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
         dirt_mmrt_trace_stats ts;
         CHECK(dirt_mmrt_trace_cpu(m, r, count[t], out, &mt, &ts));
         CHECK(ts.aborted == 0);
+        if (split_ok) {
+            /* The same trace with the texels split. */
+            dirt_hit *sp = malloc(count[t] * sizeof(dirt_hit));
+            dirt_mmrt_trace_opts ms = mt;
+            ms.alpha.texels = &texels;
+            CHECK(dirt_mmrt_trace_cpu(m, r, count[t], sp, &ms, NULL));
+            size_t n = same_hits(sp, out, count[t]);
+            CHECK_MSG(n == count[t], "MMRT %s, texels in %d parts: %zu of %zu hits as with one "
+                      "block", dirt_ray_type_names[t], texels.layout.parts, n, count[t]);
+            free(sp);
+        }
         size_t same = 0, same_changed = 0, num_changed = 0;
         for (size_t i = 0; i < count[t]; i++) {
             bool mh = out[i].prim != DIRT_HIT_NONE, eh = e[i].prim != DIRT_REF_MISS;
@@ -223,6 +287,7 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
     dirt_mmrt_destroy(m);
     dirt_gbuffer_free(&g);
     dirt_gpu_model_tables_destroy(&tables);
+    gl_split_release(&texels);
     dirt_ref_accel_destroy(accel);
     dirt_ref_accel_destroy(opaque);
     dirt_frame_destroy(f);
