@@ -115,6 +115,9 @@ struct dirt_gpu_model_camera {
  * texel (i, j) (row j = 0 = the first image row, as in dirt_texture) is word
  * extent.x + j * width + i, holding R in bits 0-7, G 8-15, B 16-23, A 24-31
  * (the bytes of dirt_texture.rgba, unchanged). */
+/* Words of the header before the records (= sizeof(struct
+ * dirt_gpu_model_texels) / 4). */
+#define DIRT_MODEL_TEXELS_HEADER_WORDS 4
 struct dirt_gpu_model_texels {
     DIRT_UV4 counts;     /* x textures (records that follow), y words after
                             the header (records and texels), zw 0 */

@@ -662,8 +662,6 @@ uint dirt_model_texel_word_g(uint k)
     return r;
 }
 #endif
-// Words of the header (dirt_gpu_model_texels) before word 0 of the records.
-#define DIRT_MODEL_TEXELS_HEADER_WORDS 4u
 
 #ifndef DIRT_MODEL_SURFACE_ONLY
 #if DIRT_SPLIT_TANGENTS == 0
@@ -705,7 +703,7 @@ uint dirt_model_tangent_count_g()
 // Record of texture `tex` (0 <= tex < counts.x).
 dirt_gpu_model_texture dirt_model_texture_g(uint tex)
 {
-    uint k = DIRT_MODEL_TEXELS_HEADER_WORDS + 4u * tex;
+    uint k = uint(DIRT_MODEL_TEXELS_HEADER_WORDS) + 4u * tex;
     dirt_gpu_model_texture t;
     t.extent = uvec4(dirt_model_texel_word_g(k), dirt_model_texel_word_g(k + 1u),
                      dirt_model_texel_word_g(k + 2u), dirt_model_texel_word_g(k + 3u));
@@ -732,7 +730,7 @@ int dirt_texel_wrap_g(int i, int n)
 // sRGB-decoded when `srgb` (alpha never).
 vec4 dirt_texel_g(uint first, int width, bool srgb, int x, int y)
 {
-    uint p = dirt_model_texel_word_g(DIRT_MODEL_TEXELS_HEADER_WORDS + first +
+    uint p = dirt_model_texel_word_g(uint(DIRT_MODEL_TEXELS_HEADER_WORDS) + first +
                                      uint(y) * uint(width) + uint(x));
     vec4 c = vec4(float(p & 255u), float((p >> 8u) & 255u), float((p >> 16u) & 255u),
                   float(p >> 24u)) / 255.0;

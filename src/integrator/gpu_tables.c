@@ -197,7 +197,8 @@ void *dirt_gpu_env_pack(const dirt_env *env, size_t max_bytes, size_t *size)
 
 /* ---- textures ----------------------------------------------------------- */
 
-_Static_assert(sizeof(struct dirt_gpu_model_texels) == 4 * sizeof(uint32_t) &&
+_Static_assert(sizeof(struct dirt_gpu_model_texels) ==
+                   DIRT_MODEL_TEXELS_HEADER_WORDS * sizeof(uint32_t) &&
                sizeof(struct dirt_gpu_model_texture) == 4 * sizeof(uint32_t),
                "texel buffer records are 4 words");
 
@@ -328,7 +329,7 @@ bool dirt_gpu_model_tables_plan(dirt_gpu *gpu, const dirt_scene *scene, const di
     const dirt_texture *tex = dirt_scene_textures(scene);
     size_t nt = dirt_scene_num_textures(scene);
     /* The words dirt_gpu_textures_pack writes: header, records, texels. */
-    uint64_t words = sizeof(struct dirt_gpu_model_texels) / sizeof(uint32_t) + (uint64_t)nt * 4;
+    uint64_t words = DIRT_MODEL_TEXELS_HEADER_WORDS + (uint64_t)nt * 4;
     for (size_t i = 0; i < nt; i++)
         if (has_pixels(&tex[i]))
             words += (uint64_t)tex[i].width * (uint64_t)tex[i].height;

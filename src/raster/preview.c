@@ -107,9 +107,19 @@ static bool upload_textures(dirt_raster *r)
         DIRT_ERROR("out of memory");
         return false;
     }
+    int max = dirt_gpu_get_caps(r->gpu)->max_texture_size;
     for (size_t i = 0; i < r->num_textures; i++) {
         if (!tex[i].rgba || tex[i].width <= 0 || tex[i].height <= 0)
             continue;
+        /* Each texture is a 2D texture of its own: its limit is a side, not
+         * a storage block (the path tracer reads the texel table, a split
+         * array). */
+        if (max > 0 && (tex[i].width > max || tex[i].height > max)) {
+            DIRT_ERROR("the raster preview: texture %zu '%s' is %dx%d, more than this GPU's "
+                       "GL_MAX_TEXTURE_SIZE (%d) a side: scale it down to at most %dx%d", i,
+                       tex[i].name, tex[i].width, tex[i].height, max, max, max);
+            return false;
+        }
         int levels = 1;
         for (int s = tex[i].width > tex[i].height ? tex[i].width : tex[i].height; s > 1; s >>= 1)
             levels++;
