@@ -171,23 +171,8 @@ static int prepare(viewer *v, dirt_scene **scene)
     if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene))
         return DIRT_EXIT_USAGE;
     /* No output (at exit or from the script) may be an input. */
-    enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
-    const char *souts[SCRIPT_OUTS] = {0};
-    static char spng[SCRIPT_OUTS][4200];
-    vs_outputs(&v->script, souts, spng, SCRIPT_OUTS);
-    char save_png[4200] = "";
-    if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
-        cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
-    bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
-    cli_io io = {.scene_path = scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
-                 .scene = *scene,
-                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"}},
-                 .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
-                         {save_png[0] ? save_png : NULL, "--save-image"},
-                         {v->o.report, "--report"}}};
-    for (size_t i = 0; i < SCRIPT_OUTS; i++)
-        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
-    if (cli_check_io(PROG, &io) != DIRT_EXIT_OK)
+    if (view_check_io(v, scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
+                      *scene) != DIRT_EXIT_OK)
         return DIRT_EXIT_USAGE;
     v->env_intensity = v->o.env_intensity;
     v->env_rotation = v->o.env_rotation;

@@ -169,6 +169,16 @@ bool view_save_render(viewer *v, const char *path);
 bool view_screenshot(viewer *v, const char *path);
 bool view_take_screenshots(viewer *v);
 void view_render_args(const viewer *v, char *buf, size_t size);
+/* Checks the files of this run with `scene` (loaded from `scene_path`,
+ * NULL for the default scene) as its scene: no output asked for (at exit
+ * or by the script) may be the scene, a file it read, the environment or
+ * the script (cli_check_io). DIRT_EXIT_OK, or DIRT_EXIT_USAGE after
+ * printing why. */
+int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *scene);
+/* Names the next file of the P / O keys and buttons, "dirt-view-N.EXT" in
+ * the current folder with N the first number after the last one used
+ * whose file does not exist, so that no file is replaced. */
+void view_shot_name(viewer *v, const char *ext, char *path, size_t size);
 bool view_write_report(viewer *v, const char *path);
 extern const char *const view_bindings[][2];
 extern const size_t view_num_bindings;

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "app/cli.h"
 #include "app/view.h"
 #include "app/setup.h"
 #include "app/view_camera.h"
@@ -97,7 +98,7 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         v->o.exposure += 1;
     if (p[DIRT_KEY_P] || p[DIRT_KEY_O]) {
         char path[64];
-        snprintf(path, sizeof(path), "dirt-view-%d.%s", ++v->shots, p[DIRT_KEY_P] ? "png" : "exr");
+        view_shot_name(v, p[DIRT_KEY_P] ? "png" : "exr", path, sizeof(path));
         if (p[DIRT_KEY_O])
             view_save_render(v, path);
         else
@@ -132,7 +133,8 @@ void view_focus_at(viewer *v)
 
 /* Opens the scene last dropped on the window (with --max-scene-memory,
  * --strict and --allow-outside-paths);
- * a scene that does not load leaves the shown one. False when the sessions
+ * a scene that does not load, or one that this run's outputs would
+ * overwrite a file of (view_check_io), leaves the shown one. False when the sessions
  * for the new one cannot be made. */
 bool view_open_drops(viewer *v, const dirt_window_input *in)
 {
@@ -144,6 +146,12 @@ bool view_open_drops(viewer *v, const dirt_window_input *in)
     dirt_scene *sc = dirt_scene_load(keep, &lo);
     if (!sc) {
         view_status(v, "could not open '%s' (see the log); kept the scene", keep);
+        return true;
+    }
+    if (view_check_io(v, keep, sc) != DIRT_EXIT_OK) {
+        dirt_scene_destroy(sc);
+        view_status(v, "did not open '%s': this run writes one of its files (see the log); "
+                       "kept the scene", keep);
         return true;
     }
     if (!view_load_scene(v, sc, keep))

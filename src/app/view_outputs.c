@@ -2,10 +2,12 @@
  * provenance), reports, and the dirt-render command line of what it shows;
  * the key bindings it lists. */
 #include <cjson/cJSON.h>
+#include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "app/cli.h"
 #include "app/view.h"
@@ -59,6 +61,35 @@ bool view_save_render(viewer *v, const char *path)
     if (ok)
         view_status(v, "saved %s (%d samples)", path, dirt_session_samples(v->s));
     return ok;
+}
+
+int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *scene)
+{
+    enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
+    const char *souts[SCRIPT_OUTS] = {0};
+    static char spng[SCRIPT_OUTS][4200];
+    vs_outputs(&v->script, souts, spng, SCRIPT_OUTS);
+    char save_png[4200] = "";
+    if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
+        cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
+    bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
+    cli_io io = {.scene_path = scene_path,
+                 .scene = scene,
+                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"}},
+                 .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
+                         {save_png[0] ? save_png : NULL, "--save-image"},
+                         {v->o.report, "--report"}}};
+    for (size_t i = 0; i < SCRIPT_OUTS; i++)
+        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
+    return cli_check_io(PROG, &io);
+}
+
+void view_shot_name(viewer *v, const char *ext, char *path, size_t size)
+{
+    struct stat st;
+    do
+        snprintf(path, size, "dirt-view-%d.%s", ++v->shots, ext);
+    while (lstat(path, &st) == 0 && v->shots < INT_MAX);
 }
 
 /* Requested window screenshots are taken at the end of the frame, after

@@ -186,13 +186,13 @@ static void panel_settings(viewer *v)
         if (dirt_ui_header("Files", false)) {
             if (dirt_ui_button("screenshot (P)")) {
                 char path[64];
-                snprintf(path, sizeof(path), "dirt-view-%d.png", ++v->shots);
+                view_shot_name(v, "png", path, sizeof(path));
                 view_screenshot(v, path);
             }
             dirt_ui_same_line();
             if (dirt_ui_button("save render (O)")) {
                 char path[64];
-                snprintf(path, sizeof(path), "dirt-view-%d.exr", ++v->shots);
+                view_shot_name(v, "exr", path, sizeof(path));
                 view_save_render(v, path);
             }
             dirt_ui_text_disabled("drop a .gltf / .glb on the window to open it");
