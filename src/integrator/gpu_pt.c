@@ -792,14 +792,22 @@ static size_t chunk_bytes_per_pixel(void)
            2 * sizeof(uint32_t);
 }
 
+/* Bytes of the ray sort's buffers for chunks of `px` pixels: the unsorted
+ * rays and batch, and the scratch. */
+static size_t sort_bytes(size_t px)
+{
+    return px * sizeof(struct dirt_gpu_ray) + batch_bytes(px) + dirt_ray_sort_scratch_bytes(px);
+}
+
 /* Bytes of the integrator's buffers: the chunk's, the batches' headers and
  * the paths per event, then the whole image's sums (360 B per pixel while
- * the image is one chunk, and 292 B). */
+ * the image is one chunk, and 292 B), and the ray sort's once made. */
 static uint64_t integrator_bytes(const dirt_pt *pt)
 {
     return (uint64_t)pt->chunk * chunk_bytes_per_pixel() +
            2 * sizeof(struct dirt_gpu_ray_batch) + DIRT_PT_MAX_EVENTS * sizeof(uint32_t) +
-           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum);
+           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum) +
+           (pt->sort_rays ? sort_bytes(pt->chunk) : 0);
 }
 
 int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
@@ -817,6 +825,8 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt paths per event", DIRT_PT_MAX_EVENTS * sizeof(uint32_t), 0},
         {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
         {"pt environment", pt->env_bytes, 0},
+        /* the ray sort's input and scratch (made on first use) */
+        {"pt ray sort", pt->sort_rays ? sort_bytes(px) : 0, 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
         /* the scene's textures (made with the first samples) */
         {"model texels", pt->tables.texel_bytes, 0},
