@@ -170,6 +170,9 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "agreement rays of the image: DIRT's tiles, Hi-Z steps, list nodes and triangle tests, "
         "MMRT's fragments, Embree's BVH nodes and triangle tests over the same rays) into the "
         "stats; the image does not change", NULL, NULL},
+    [APP_OPT_SORT_RAYS] = {APP_OPT_SORT_RAYS, NULL, "--sort-rays", NULL, NULL, 'F',
+        OFF(s.sort_rays), 0, 0, NULL, "dirt and mmrt: sort each bounce's rays by origin and "
+        "direction before tracing them (coherent rays; the image does not change)", NULL, NULL},
     /* ---- the structure ---- */
     [APP_OPT_VIEWS] = {APP_OPT_VIEWS, NULL, "--views", NULL, "MODE", 'c', OFF(s.views), 0, 0,
         app_views_names, "the structure's views: single, cube or cube+camera", "cube+camera",

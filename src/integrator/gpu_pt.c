@@ -16,6 +16,7 @@
 #include "gl/graph_gl.h"
 #include "gl/split.h"
 #include "integrator/depth.h"
+#include "integrator/ray_sort.h"
 #include "integrator/rng.h"
 
 /* The session's per-event figures (dirt/types.h) hold every event the
@@ -32,6 +33,7 @@ const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
     [DIRT_PT_PASS_RESOLVE] = "resolve",
     [DIRT_PT_PASS_ACCUMULATE] = "accumulate",
     [DIRT_PT_PASS_COMPACT] = "compact",
+    [DIRT_PT_PASS_SORT] = "ray sort",
 };
 
 typedef struct pass_ctx {
@@ -39,6 +41,7 @@ typedef struct pass_ctx {
     enum dirt_pt_pass kind;
     int k;       /* path event */
     bool finish; /* compaction's second pass (the next batch's dispatch) */
+    enum dirt_ray_sort_pass sort; /* DIRT_PT_PASS_SORT: which pass */
 } pass_ctx;
 
 #define MAX_PASSES 512
@@ -67,6 +70,12 @@ struct dirt_pt {
     GLuint rays, hits, shadow_rays, shadow_hits, gpoints, paths;
     GLuint batch[2];
     GLuint events;     /* uint[DIRT_PT_MAX_EVENTS]: paths per event (compact.comp) */
+    /* the ray sort (dirt_pt_opts.sort_rays; made on first use): compaction
+     * gathers the live rays into sort_rays and sort_batch, which the sort
+     * permutes into the event's rays and batch */
+    dirt_ray_sort *sort;
+    GLuint sort_rays, sort_batch, sort_scratch;
+    float sort_min[3], sort_max[3]; /* the box of its origin grid (the frame's bounds) */
     /* accumulation: one buffer per chunk (accum[c] = pixels c*chunk ...) */
     GLuint *accum;
     size_t pixels;     /* of the image */
@@ -81,6 +90,7 @@ struct dirt_pt {
     int g_events;
     enum dirt_pt_mode g_mode;
     bool g_direct;
+    bool g_sort;
     pass_ctx ctx[MAX_PASSES];
     int num_ctx;
     /* pass times that came after the dirt_pt_add_samples call that issued
@@ -166,7 +176,8 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
 static void release_buffers(dirt_pt *pt)
 {
     GLuint *b[] = {&pt->rays, &pt->hits, &pt->shadow_rays, &pt->shadow_hits,
-                   &pt->gpoints, &pt->paths, &pt->batch[0], &pt->batch[1], &pt->events};
+                   &pt->gpoints, &pt->paths, &pt->batch[0], &pt->batch[1], &pt->events,
+                   &pt->sort_rays, &pt->sort_batch, &pt->sort_scratch};
     for (size_t i = 0; i < sizeof(b) / sizeof(b[0]); i++)
         gl_buffer_destroy(b[i]);
     for (size_t c = 0; c < pt->num_chunks && pt->accum; c++)
@@ -246,6 +257,7 @@ void dirt_pt_destroy(dirt_pt *pt)
         gl_program_destroy(p[i]);
     gl_split_program_destroy(&pt->prog_shade);
     gl_split_program_destroy(&pt->prog_ao);
+    dirt_ray_sort_destroy(pt->sort);
     release_buffers(pt);
     dirt_gpu_model_tables_destroy(&pt->tables);
     gl_buffer_destroy(&pt->env_buf);
@@ -300,6 +312,31 @@ static bool ensure_buffers(dirt_pt *pt, size_t pixels)
         release_buffers(pt);
         return false;
     }
+    return true;
+}
+
+/* The sort's programs and buffers (after ensure_buffers). False after
+ * logging. */
+static bool ensure_sort(dirt_pt *pt)
+{
+    if (!pt->sort && !(pt->sort = dirt_ray_sort_create()))
+        return false;
+    if (pt->sort_rays)
+        return true;
+    size_t chunk = pt->chunk;
+    pt->sort_rays = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_ray), NULL, false,
+                                     "pt unsorted rays");
+    pt->sort_batch = gl_buffer_create(pt->gpu, batch_bytes(chunk), NULL, false,
+                                      "pt unsorted batch");
+    pt->sort_scratch = gl_buffer_create(pt->gpu, dirt_ray_sort_scratch_bytes(chunk), NULL, false,
+                                        "pt ray sort");
+    if (!pt->sort_rays || !pt->sort_batch || !pt->sort_scratch) {
+        gl_buffer_destroy(&pt->sort_rays);
+        gl_buffer_destroy(&pt->sort_batch);
+        gl_buffer_destroy(&pt->sort_scratch);
+        return false;
+    }
+    pt->g_pixels = 0; /* the graph imports these buffers: remake it */
     return true;
 }
 
@@ -469,8 +506,19 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         bind(DIRT_BIND_HITS, pt->shadow_hits);
         dispatch_batch(pt, c->k);
         break;
+    case DIRT_PT_PASS_SORT: {
+        dirt_ray_sort_io io = {
+            .in_rays = pt->sort_rays, .in_batch = pt->sort_batch,
+            .out_rays = event_rays(pt, c->k + 1), .out_batch = event_batch(pt, c->k + 1),
+            .scratch = pt->sort_scratch, .capacity = (uint32_t)pt->cur_count};
+        memcpy(io.bounds_min, pt->sort_min, sizeof(io.bounds_min));
+        memcpy(io.bounds_max, pt->sort_max, sizeof(io.bounds_max));
+        dirt_ray_sort_pass(pt->sort, c->sort, &io);
+        return true;
+    }
     case DIRT_PT_PASS_COMPACT: {
-        GLuint next = event_batch(pt, c->k + 1);
+        /* With the sort, into its input; else into event k + 1's batch. */
+        GLuint next = pt->g_sort ? pt->sort_batch : event_batch(pt, c->k + 1);
         bind(DIRT_BIND_NEXT_BATCH, next);
         if (c->finish) {
             /* The next batch's dispatch from its count; the paths of k + 1. */
@@ -488,7 +536,7 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         glUseProgram(pt->prog_compact);
         glUniform1ui(DIRT_LOC_COMPACT_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_RAYS, event_rays(pt, c->k));
-        bind(DIRT_BIND_SHADOW_RAYS, event_shadow_rays(pt, c->k));
+        bind(DIRT_BIND_SHADOW_RAYS, pt->g_sort ? pt->sort_rays : event_shadow_rays(pt, c->k));
         dispatch_batch(pt, c->k);
         break;
     }
@@ -547,9 +595,18 @@ static bool make_graph(dirt_pt *pt, int events)
                                   DIRT_PT_MAX_EVENTS * sizeof(uint32_t));
     fg_res accum = fg_import_buffer(g, "accumulation", pt->accum[0],
                                     chunk_pixels(pt, 0) * sizeof(struct dirt_gpu_accum));
+    /* the sort's input and scratch (pt->g_sort) */
+    fg_res urays = {0}, ubatch = {0}, scratch = {0};
+    if (pt->g_sort) {
+        urays = fg_import_buffer(g, "unsorted rays", pt->sort_rays,
+                                 px * sizeof(struct dirt_gpu_ray));
+        ubatch = fg_import_buffer(g, "unsorted batch", pt->sort_batch, batch_bytes(px));
+        scratch = fg_import_buffer(g, "ray sort", pt->sort_scratch,
+                                   dirt_ray_sort_scratch_bytes(px));
+    }
     pt->num_ctx = 0;
 #define ADD(kind_, k_)                                                                   \
-    (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_), false},                         \
+    (pt->ctx[pt->num_ctx] = (pass_ctx){.pt = pt, .kind = (kind_), .k = (k_)},              \
      fg_add_pass(g, name, FG_COMPUTE, exec_pass, &pt->ctx[pt->num_ctx++]))
     char name[64];
     snprintf(name, sizeof(name), "raygen");
@@ -558,7 +615,7 @@ static bool make_graph(dirt_pt *pt, int events)
     fg_write(p, batch[0], FG_SSBO_WRITE);
     fg_write(p, paths, FG_SSBO_WRITE);
     for (int k = 1; k <= events; k++) {
-        if (pt->num_ctx + 9 >= MAX_PASSES) {
+        if (pt->num_ctx + 12 >= MAX_PASSES) {
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
@@ -608,20 +665,53 @@ static bool make_graph(dirt_pt *pt, int events)
         /* Compaction in two passes (the graph orders the second after the
          * first's atomics): the live rays into the next batch, then its
          * dispatch and the paths per event. */
+        /* With the sort, compaction gathers into the sort's input, which
+         * the sort then permutes into the next event's rays and batch. */
+        fg_res crays = pt->g_sort ? urays : srays, cbatch = pt->g_sort ? ubatch : bnext;
         snprintf(name, sizeof(name), "compact %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         fg_read(p, rays, FG_SSBO_READ);
         read_batch(p, b);
-        fg_write(p, srays, FG_SSBO_WRITE);
-        fg_use(p, bnext, FG_SSBO_READ, NULL);
-        fg_write(p, bnext, FG_SSBO_WRITE);
+        fg_write(p, crays, FG_SSBO_WRITE);
+        fg_use(p, cbatch, FG_SSBO_READ, NULL);
+        fg_write(p, cbatch, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "compact finish %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         pt->ctx[pt->num_ctx - 1].finish = true;
-        fg_use(p, bnext, FG_SSBO_READ, NULL);
-        fg_write(p, bnext, FG_SSBO_WRITE);
+        fg_use(p, cbatch, FG_SSBO_READ, NULL);
+        fg_write(p, cbatch, FG_SSBO_WRITE);
         fg_use(p, evs, FG_SSBO_READ, NULL);
         fg_write(p, evs, FG_SSBO_WRITE);
+        if (!pt->g_sort)
+            continue;
+        /* count: the keys and rays per bucket (the counters cleared first) */
+        snprintf(name, sizeof(name), "sort count %d", k + 1);
+        p = ADD(DIRT_PT_PASS_SORT, k);
+        pt->ctx[pt->num_ctx - 1].sort = DIRT_RAY_SORT_COUNT;
+        fg_read(p, urays, FG_SSBO_READ);
+        read_batch(p, ubatch);
+        fg_use(p, scratch, FG_SSBO_READ, NULL);
+        fg_write(p, scratch, FG_SSBO_WRITE);
+        /* scan: first slots; the next batch's header */
+        snprintf(name, sizeof(name), "sort scan %d", k + 1);
+        p = ADD(DIRT_PT_PASS_SORT, k);
+        pt->ctx[pt->num_ctx - 1].sort = DIRT_RAY_SORT_SCAN;
+        fg_read(p, ubatch, FG_SSBO_READ);
+        fg_use(p, scratch, FG_SSBO_READ, NULL);
+        fg_write(p, scratch, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
+        /* scatter: the rays and owners of k + 1, in key order */
+        snprintf(name, sizeof(name), "sort scatter %d", k + 1);
+        p = ADD(DIRT_PT_PASS_SORT, k);
+        pt->ctx[pt->num_ctx - 1].sort = DIRT_RAY_SORT_SCATTER;
+        fg_read(p, urays, FG_SSBO_READ);
+        read_batch(p, ubatch);
+        fg_use(p, scratch, FG_SSBO_READ, NULL);
+        fg_write(p, scratch, FG_SSBO_WRITE);
+        fg_write(p, srays, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
     }
     snprintf(name, sizeof(name), "accumulate");
     p = ADD(DIRT_PT_PASS_ACCUMULATE, 0);
@@ -644,6 +734,7 @@ static void sum_kinds(dirt_pt_stats *st)
     st->visibility_ms = st->pass_ms[DIRT_PT_PASS_VISIBILITY];
     st->shade_ms = st->pass_ms[DIRT_PT_PASS_RAYGEN] + st->pass_ms[DIRT_PT_PASS_SHADE] +
                    st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_COMPACT] +
+                   st->pass_ms[DIRT_PT_PASS_SORT] +
                    st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
 }
 
@@ -701,14 +792,22 @@ static size_t chunk_bytes_per_pixel(void)
            2 * sizeof(uint32_t);
 }
 
+/* Bytes of the ray sort's buffers for chunks of `px` pixels: the unsorted
+ * rays and batch, and the scratch. */
+static size_t sort_bytes(size_t px)
+{
+    return px * sizeof(struct dirt_gpu_ray) + batch_bytes(px) + dirt_ray_sort_scratch_bytes(px);
+}
+
 /* Bytes of the integrator's buffers: the chunk's, the batches' headers and
  * the paths per event, then the whole image's sums (360 B per pixel while
- * the image is one chunk, and 292 B). */
+ * the image is one chunk, and 292 B), and the ray sort's once made. */
 static uint64_t integrator_bytes(const dirt_pt *pt)
 {
     return (uint64_t)pt->chunk * chunk_bytes_per_pixel() +
            2 * sizeof(struct dirt_gpu_ray_batch) + DIRT_PT_MAX_EVENTS * sizeof(uint32_t) +
-           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum);
+           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum) +
+           (pt->sort_rays ? sort_bytes(pt->chunk) : 0);
 }
 
 int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
@@ -726,6 +825,8 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt paths per event", DIRT_PT_MAX_EVENTS * sizeof(uint32_t), 0},
         {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
         {"pt environment", pt->env_bytes, 0},
+        /* the ray sort's input and scratch (made on first use) */
+        {"pt ray sort", pt->sort_rays ? sort_bytes(px) : 0, 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
         /* the scene's textures (made with the first samples) */
         {"model texels", pt->tables.texel_bytes, 0},
@@ -861,10 +962,18 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             goto done;
         }
     }
+    /* The sort's origin grid spans the frame's bounds. */
+    bool sort = opts.sort_rays && events > 1;
+    if (sort && !ensure_sort(pt))
+        goto done;
+    memcpy(pt->sort_min, frame->bounds_min, sizeof(pt->sort_min));
+    memcpy(pt->sort_max, frame->bounds_max, sizeof(pt->sort_max));
     if (!pt->graph || pt->g_pixels != pt->chunk || pt->g_events != events ||
-        pt->g_mode != opts.mode || pt->g_direct != opts.direct_visibility) {
+        pt->g_mode != opts.mode || pt->g_direct != opts.direct_visibility ||
+        pt->g_sort != sort) {
         pt->g_mode = opts.mode;
         pt->g_direct = opts.direct_visibility;
+        pt->g_sort = sort;
         if (!make_graph(pt, events))
             goto done;
     }

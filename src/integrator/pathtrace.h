@@ -53,6 +53,10 @@ typedef struct dirt_pt_opts {
     /* G_1 from a visibility buffer of the camera view instead of traced
      * camera rays (pixel centres: no pixel jitter, no depth of field). */
     bool direct_visibility;   /* needs a tracer with a visibility function */
+    /* Sort each event's live rays (k >= 2) by a key of origin and direction
+     * before its trace (glsl/integrator/sort.comp): neighbouring
+     * invocations trace neighbouring rays. The image does not change. */
+    bool sort_rays;
     /* Called after every sample of a call (done/total of that call; may be NULL). */
     void (*progress)(void *user, int done, int total);
     void *progress_user;
@@ -69,6 +73,7 @@ enum dirt_pt_pass {
     DIRT_PT_PASS_RESOLVE,
     DIRT_PT_PASS_ACCUMULATE,
     DIRT_PT_PASS_COMPACT,     /* the live paths of the next event, gathered */
+    DIRT_PT_PASS_SORT,        /* and sorted (dirt_pt_opts.sort_rays) */
     DIRT_PT_NUM_PASSES
 };
 

@@ -44,6 +44,7 @@ static dirt_pt_opts pt_opts(const dirt_session_opts *o)
         .env = o->env,
         .ao_distance = o->ao_distance,
         .direct_visibility = o->direct_visibility,
+        .sort_rays = o->sort_rays,
     };
 }
 

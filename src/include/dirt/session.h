@@ -163,6 +163,11 @@ typedef struct dirt_session_opts {
      * dirt_session_stats.work. The image does not change. dirt, mmrt and
      * embree (its BVH's counts only). */
     bool count_work;
+    /* dirt and mmrt path tracing: sort each event's live rays (after the
+     * first) by a key of origin and direction before tracing them, so that
+     * neighbouring GPU invocations trace neighbouring rays (doc/light-
+     * transport-gpu.md, "Ray sort"). The image does not change. */
+    bool sort_rays;
     /* Times: the GPU engines' come with the GPU's one clock (dirt_gpu_clock;
      * the CPU clock on a GPU needs dirt_gpu_opts.cpu_timing); Embree's are
      * CPU times. */
