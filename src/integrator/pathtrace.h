@@ -151,7 +151,8 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tracer, const dirt_fram
  * `budget_ms` of wall time, in pieces of pixels in pixel order (whole work
  * groups, within a chunk; sized by the pace measured so far; each piece
  * ends with glFinish so that its time is the work's), and returns after
- * the piece that reaches the budget or completes the sample: at least one
+ * the piece that completes the sample or reaches three quarters of the
+ * budget (a piece sized for the rest fills it): at least one
  * piece per call; budget 0 (or below) does one smallest piece. The sample
  * spans as many calls as it needs; *completed (may be NULL) says whether
  * this call completed it (dirt_pt_samples grew by one). With direct
