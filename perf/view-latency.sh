@@ -25,10 +25,18 @@ for tool in Xvfb xdotool python3; do
 done
 tmp=$(mktemp -d /tmp/view-latency-XXXXXX)
 xvfb_pid= vpid=
-trap '[ -n "${KEEP:-}" ] && cp "$tmp/view.out" /tmp/view-latency.out; rm -rf "$tmp"; [ -n "$vpid" ] && kill "$vpid" 2>/dev/null; [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null' EXIT
+cleanup() {
+  [ -n "$vpid" ] && kill "$vpid" 2>/dev/null
+  [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+# The background children get no descriptor above 2 (under `flock LOCK
+# perf/view-latency.sh` an X server left behind would keep the lock).
 for n in $(seq 170 230); do
   [ -e /tmp/.X11-unix/X$n ] || [ -e /tmp/.X$n-lock ] && continue
-  Xvfb :$n -screen 0 1600x1000x24 -nolisten tcp -noreset >"$tmp/xvfb.log" 2>&1 &
+  Xvfb :$n -screen 0 1600x1000x24 -nolisten tcp -noreset >"$tmp/xvfb.log" 2>&1 \
+    3>&- 4>&- 5>&- 6>&- 7>&- 8>&- 9>&- &
   xvfb_pid=$!
   export DISPLAY=:$n
   for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
@@ -39,9 +47,9 @@ done
 printf 'wait-file %s\nreport %s\nquit\n' "$tmp/stop" "$tmp/report.json" >"$tmp/script.txt"
 # shellcheck disable=SC2086
 DIRT_VIEW_FRAME_LOG="$tmp/frames.log" "$view" $scene --spp 1048576 --script "$tmp/script.txt" "$@" \
-  >"$tmp/view.out" 2>&1 &
+  >"$tmp/view.out" 2>&1 3>&- 4>&- 5>&- 6>&- 7>&- 8>&- 9>&- &
 vpid=$!
-python3 - "$tmp" "$repeats" "$warmup" <<'PY'
+python3 - "$tmp" "$repeats" "$warmup" <<'PY' || { cat "$tmp/view.out" >&2; exit 1; }
 import json, os, statistics, subprocess, sys, time
 tmp, repeats, warmup = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 log = os.path.join(tmp, "frames.log")

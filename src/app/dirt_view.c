@@ -167,8 +167,9 @@ static bool advance(viewer *v, int have, int target)
 }
 
 /* A bounded amount of work: a slice of the path tracer (advance), or the
- * raster preview while input moves the camera; none in a frame whose image
- * a script output took. False when rendering fails. */
+ * raster preview while input moves the camera; no tracing in a frame whose
+ * image a script output took, nor in the quick frames after a click. False
+ * when rendering fails. */
 static bool sample(viewer *v, bool *preview)
 {
     int have = dirt_session_samples(v->s);
@@ -179,6 +180,10 @@ static bool sample(viewer *v, bool *preview)
         *preview = false;
     }
     int target = view_target(v, v->s);
+    if (v->quick_frames > 0) {
+        v->quick_frames--;
+        return true;
+    }
     if (!*preview && !v->hold && (target == 0 || have < target)) {
         dirt_session_stats before = *dirt_session_get_stats(v->s);
         if (!advance(v, have, target)) {
@@ -234,6 +239,12 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     }
     view_handle_input(v, &in, dt, ui_mouse, ui_keys);
+    /* A mouse button went down or up: this frame and the next trace
+     * nothing, so that a click (which the panels see over two frames,
+     * press then release) shows at once. */
+    for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++)
+        if (in.button_pressed[b] || in.button_released[b])
+            v->quick_frames = 2;
     for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         if (v->held[k] > 0)
             v->held[k]--;

@@ -112,6 +112,7 @@ typedef struct viewer {
     /* a sample in pieces over frames (--slice-ms) */
     double sample_work_ms;      /* time in the sample in progress so far */
     double last_sample_ms;      /* the last completed sample's (0: none yet) */
+    int quick_frames;           /* frames left that trace nothing (a click is answered) */
     /* the automatic --scale on a software renderer (o.scale 0 at start) */
     bool auto_scale;            /* o.scale is the automatic choice */
     double pace_ms;             /* a sample's milliseconds per pixel (measured, or assumed) */
