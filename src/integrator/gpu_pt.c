@@ -824,7 +824,8 @@ static bool keep_shown(dirt_pt *pt)
             return false;
         }
     }
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* (The last call that wrote the sums ended with the
+     * GL_BUFFER_UPDATE_BARRIER_BIT this copy needs.) */
     for (size_t c = 0; c < pt->num_chunks; c++)
         glCopyNamedBufferSubData(pt->accum[c], pt->shown[c], 0, 0,
                                  (GLsizeiptr)(chunk_pixels(pt, c) * sizeof(struct dirt_gpu_accum)));
