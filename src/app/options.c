@@ -239,8 +239,12 @@ static const app_opt_def table[APP_NUM_OPTS] = {
     [APP_OPT_WINDOW] = {APP_OPT_WINDOW, NULL, "--window", NULL, "WxH", 'x', OFF(window), 64,
         16384, NULL, "window size", "1280x720", NULL},
     [APP_OPT_SAMPLES_PER_FRAME] = {APP_OPT_SAMPLES_PER_FRAME, NULL, "--samples-per-frame", NULL,
-        "N", 'i', OFF(samples_per_frame), 1, 1024, NULL, "samples added per displayed frame",
-        "1", NULL},
+        "N", 'i', OFF(samples_per_frame), 1, 1024, NULL, "samples completed per displayed frame "
+        "at most", "1", NULL},
+    [APP_OPT_SLICE_MS] = {APP_OPT_SLICE_MS, NULL, "--slice-ms", NULL, "MS", 'i', OFF(slice_ms), 0,
+        10000, NULL, "path tracing per displayed frame, in milliseconds: a sample is traced in "
+        "pieces of pixels over as many frames as it needs, so the window answers between "
+        "them (0: one smallest piece a frame)", "30", NULL},
     [APP_OPT_BUFFER] = {APP_OPT_BUFFER, NULL, "--buffer", NULL, "NAME", 'c', OFF(buffer), 0, 0,
         app_buffer_names, "what the window shows: beauty, albedo, normal, depth, id, lists, "
         "buckets, zmin or zmax", "beauty", NULL},
@@ -255,7 +259,9 @@ static const app_opt_def table[APP_NUM_OPTS] = {
     [APP_OPT_DIFF_RANGE] = {APP_OPT_DIFF_RANGE, NULL, "--diff-range", NULL, "R", 'f',
         OFF(diff_range), 1e-6, 1e6, NULL, "the difference that shows white", "0.1", NULL},
     [APP_OPT_SCALE] = {APP_OPT_SCALE, NULL, "--scale", NULL, "N", 'i', OFF(scale), 1, 16, NULL,
-        "render at the window's size / N, shown enlarged", "1", NULL},
+        "render at the window's size / N, shown enlarged (default: 1 on a GPU; on a software "
+        "renderer, llvmpipe or lavapipe, the N that makes a sample take about 1 s, measured "
+        "and said in the log and the Settings panel)", NULL, NULL},
     [APP_OPT_NO_PREVIEW] = {APP_OPT_NO_PREVIEW, NULL, "--no-preview", NULL, NULL, 'F',
         OFF(no_preview), 0, 0, NULL, "path trace while the camera moves (without it: the raster "
         "preview until it stops)", NULL, NULL},

@@ -108,6 +108,18 @@ typedef struct viewer {
     bool bar;
     float bar_lo, bar_hi, bar_rect[4];
     int slow_frame_ms;          /* test hook DIRT_VIEW_SLOW_FRAME_MS: added to every frame */
+    FILE *frame_log;            /* test hook DIRT_VIEW_FRAME_LOG: a line per frame shown */
+    /* a sample in pieces over frames (--slice-ms) */
+    double sample_work_ms;      /* time in the sample in progress so far */
+    double last_sample_ms;      /* the last completed sample's (0: none yet) */
+    int quick_frames;           /* frames left that trace nothing (a click is answered) */
+    /* the automatic --scale on a software renderer (o.scale 0 at start) */
+    bool auto_scale;            /* o.scale is the automatic choice */
+    double pace_ms;             /* a sample's milliseconds per pixel (measured, or assumed) */
+    bool paced;                 /* this accumulation's pace was looked at */
+    int auto_w, auto_h;         /* the window size the scale was chosen for */
+    int auto_n;                 /* the scale it chose */
+    char scale_note[192];       /* what the panel says of it */
     /* the inspector: every channel of both images under the cursor */
     double cursor_x, cursor_y;  /* window pixels */
     struct view_probe {

@@ -205,6 +205,12 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddItemToObject(r, "window", cJSON_CreateIntArray(win, 2));
     cJSON_AddItemToObject(r, "render", cJSON_CreateIntArray(ren, 2));
     cJSON_AddNumberToObject(r, "samples", dirt_session_samples(v->s));
+    /* the slices (a sample over frames) and the render scale */
+    cJSON_AddNumberToObject(r, "sample_part", dirt_session_sample_part(v->s));
+    cJSON_AddNumberToObject(r, "slice_ms", v->o.slice_ms);
+    cJSON_AddNumberToObject(r, "last_sample_ms", v->last_sample_ms);
+    cJSON_AddNumberToObject(r, "scale", v->o.s.width > 0 ? 1 : v->o.scale);
+    cJSON_AddBoolToObject(r, "scale_auto", v->auto_scale);
     cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
     cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
     cJSON_AddBoolToObject(r, "diff", v->o.diff);

@@ -41,6 +41,12 @@ static void panel_settings(viewer *v)
         dirt_ui_text("%d / %d samples in %.1f s%s", samples, o->spp,
                      dirt_session_get_stats(v->s)->total_ms / 1000.0,
                      o->spp && samples >= o->spp ? " (done)" : "");
+        double part = dirt_session_sample_part(v->s);
+        if (part > 0)
+            dirt_ui_text("sample %d: %.0f %% (%d ms a frame; the last took %.2f s)", samples + 1,
+                         100.0 * part, o->slice_ms, v->last_sample_ms / 1000.0);
+        if (v->scale_note[0])
+            dirt_ui_text_disabled("%s", v->scale_note);
         if (v->status[0])
             dirt_ui_text_disabled("%s", v->status);
         if (dirt_ui_header("Render", true)) {
@@ -57,6 +63,9 @@ static void panel_settings(viewer *v)
             }
             dirt_ui_slider_int("target spp (0 = no limit)", &o->spp, 0, 4096);
             dirt_ui_slider_int("samples per frame", &o->samples_per_frame, 1, 64);
+            dirt_ui_slider_int("ms of tracing per frame", &o->slice_ms, 0, 1000);
+            if (o->s.width <= 0)
+                dirt_ui_slider_int("render scale (window / N)", &o->scale, 1, 16);
             int mode = (int)o->s.mode;
             if (dirt_ui_combo("mode", &mode, app_mode_names, 2))
                 o->s.mode = (enum dirt_pt_mode)mode;

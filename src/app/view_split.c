@@ -1,5 +1,5 @@
 /* dirt-view's split view (view.h): a second session of another engine on
- * the same camera, time and settings (--compare, V), one sample per frame,
+ * the same camera, time and settings (--compare, V), a slice per frame,
  * shown beside the main one (--split) or as a heat map of the difference
  * (--diff, X). */
 #include <string.h>
@@ -40,16 +40,22 @@ bool view_sync_compare(viewer *v)
     return true;
 }
 
-/* One sample of the comparison up to the target (--spp); a failure turns
- * the split view off. */
+/* A slice of the comparison's next sample (--slice-ms, as the main
+ * session's) up to the target (--spp); a failure turns the split view
+ * off. */
 void view_sample_compare(viewer *v)
 {
     if (!v->cmp)
         return;
     int hc = dirt_session_samples(v->cmp), target = view_target(v, v->cmp);
-    if ((target == 0 || hc < target) && !dirt_session_add_samples(v->cmp, 1, NULL, NULL)) {
+    bool done = false;
+    if (target != 0 && hc >= target)
+        return;
+    if (!dirt_session_advance(v->cmp, v->o.slice_ms, &done)) {
         view_status(v, "the comparison engine failed (see the log); split view off");
         v->o.compare = 0;
+    } else if (done) {
+        v->generation++;
     }
 }
 

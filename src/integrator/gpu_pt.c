@@ -78,6 +78,19 @@ struct dirt_pt {
     float sort_min[3], sort_max[3]; /* the box of its origin grid (the frame's bounds) */
     /* accumulation: one buffer per chunk (accum[c] = pixels c*chunk ...) */
     GLuint *accum;
+    /* dirt_pt_advance: the sample in progress is done for pixels
+     * 0 .. part_done - 1 (0: none in progress); while one is, `shown` (one
+     * buffer per chunk, made at the first partial sample) holds the
+     * accumulation of the completed samples, which the readback and the
+     * display give. Pieces start at multiples of `granule` pixels within
+     * their chunk (whole work groups whose accumulation records start at
+     * the GL's storage-buffer offset alignment); `px_per_ms` is the
+     * measured pace that sizes them. */
+    size_t part_done;
+    GLuint *shown;
+    bool shown_current;       /* `shown` holds this sample's completed ones */
+    size_t granule;
+    double px_per_ms;
     size_t pixels;     /* of the image */
     size_t chunk;      /* pixels per chunk (the last may hold fewer) */
     size_t num_chunks;
@@ -154,6 +167,12 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
     }
     pt->gpu = gpu;
     pt->scene = scene;
+    GLint align = 0;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    pt->granule = DIRT_GROUP_SIZE;
+    while (align > 0 && (pt->granule * sizeof(struct dirt_gpu_accum)) % (size_t)align != 0 &&
+           pt->granule < 64 * DIRT_GROUP_SIZE)
+        pt->granule += DIRT_GROUP_SIZE;
     /* Test hook: DIRT_PT_CHUNK_PIXELS=n forces chunks of at most n pixels. */
     const char *hook = getenv("DIRT_PT_CHUNK_PIXELS");
     if (hook && *hook)
@@ -182,8 +201,12 @@ static void release_buffers(dirt_pt *pt)
         gl_buffer_destroy(b[i]);
     for (size_t c = 0; c < pt->num_chunks && pt->accum; c++)
         gl_buffer_destroy(&pt->accum[c]);
+    for (size_t c = 0; c < pt->num_chunks && pt->shown; c++)
+        gl_buffer_destroy(&pt->shown[c]);
     free(pt->accum);
-    pt->accum = NULL;
+    free(pt->shown);
+    pt->accum = pt->shown = NULL;
+    pt->part_done = 0;
     pt->num_chunks = 0;
     pt->chunk = 0;
     gl_texture_destroy(&pt->display);
@@ -545,7 +568,12 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         glUseProgram(pt->prog_accum);
         glUniform1ui(DIRT_LOC_ACCUM_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_PATHS, pt->paths);
-        bind(DIRT_BIND_ACCUM, pt->accum[pt->cur_chunk]);
+        /* This piece's records of the chunk's sums (a whole chunk, or a
+         * part starting at a multiple of pt->granule: aligned). */
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_ACCUM, pt->accum[pt->cur_chunk],
+                          (GLintptr)((pt->cur_offset - pt->cur_chunk * pt->chunk) *
+                                     sizeof(struct dirt_gpu_accum)),
+                          (GLsizeiptr)(pt->cur_count * sizeof(struct dirt_gpu_accum)));
         glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     }
@@ -863,6 +891,8 @@ bool dirt_pt_reset(dirt_pt *pt, int width, int height)
     pt->width = width;
     pt->height = height;
     pt->samples = 0;
+    pt->part_done = 0;
+    pt->shown_current = false;
     pt->accum_valid = true;
     pt->display_samples = UINT32_MAX;
     return gl_check("dirt_pt_reset");
@@ -873,10 +903,74 @@ int dirt_pt_samples(const dirt_pt *pt)
     return pt->accum_valid ? (int)pt->samples : 0;
 }
 
-bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
-                         const dirt_camera *cam, const dirt_pt_opts *opts_in, int count,
-                         dirt_pt_stats *stats)
+/* The accumulation of the completed samples into pt->shown (made when
+ * missing), before a sample is worked on in pieces. False after logging. */
+static bool keep_shown(dirt_pt *pt)
 {
+    if (!pt->shown) {
+        pt->shown = calloc(pt->num_chunks, sizeof(*pt->shown));
+        bool ok = pt->shown != NULL;
+        for (size_t c = 0; ok && c < pt->num_chunks; c++) {
+            pt->shown[c] = gl_buffer_create(pt->gpu, chunk_pixels(pt, c) *
+                                                         sizeof(struct dirt_gpu_accum),
+                                            NULL, true, "pt shown accumulation");
+            ok = pt->shown[c] != 0;
+        }
+        if (!ok) {
+            for (size_t c = 0; pt->shown && c < pt->num_chunks; c++)
+                gl_buffer_destroy(&pt->shown[c]);
+            free(pt->shown);
+            pt->shown = NULL;
+            DIRT_ERROR("out of memory for the completed samples' copy");
+            return false;
+        }
+    }
+    /* (The last call that wrote the sums ended with the
+     * GL_BUFFER_UPDATE_BARRIER_BIT this copy needs.) */
+    for (size_t c = 0; c < pt->num_chunks; c++)
+        glCopyNamedBufferSubData(pt->accum[c], pt->shown[c], 0, 0,
+                                 (GLsizeiptr)(chunk_pixels(pt, c) * sizeof(struct dirt_gpu_accum)));
+    pt->shown_current = true;
+    return true;
+}
+
+/* The accumulation buffers of the completed samples. */
+static const GLuint *completed_sums(const dirt_pt *pt)
+{
+    return pt->part_done > 0 && pt->shown_current ? pt->shown : pt->accum;
+}
+
+/* Pixels of the next piece at pixel `off` of the sample in progress: the
+ * rest of off's chunk for whole samples (budget_ms < 0) or direct
+ * visibility (which resolves a whole camera view), else what the measured
+ * pace does in the budget's rest (one granule with budget 0), in granules. */
+static size_t piece_pixels(const dirt_pt *pt, size_t off, double budget_ms, double left_ms)
+{
+    size_t c = off / pt->chunk;
+    size_t rest = c * pt->chunk + chunk_pixels(pt, c) - off;
+    if (budget_ms < 0 || pt->g_direct)
+        return rest;
+    size_t n = pt->granule;
+    if (budget_ms > 0 && pt->px_per_ms > 0 && left_ms > 0) {
+        double want = pt->px_per_ms * left_ms;
+        n = want >= (double)rest ? rest : (size_t)want;
+    } else if (budget_ms > 0) {
+        n = 4 * pt->granule; /* the pace is not known yet */
+    }
+    if (n < rest)
+        n = n < pt->granule ? pt->granule : n - n % pt->granule;
+    return n < rest ? n : rest;
+}
+
+/* dirt_pt_add_samples (budget_ms < 0: `count` whole samples, the one in
+ * progress first) and dirt_pt_advance (count 1, pieces until budget_ms;
+ * *completed says whether the sample completed). */
+static bool run(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                const dirt_camera *cam, const dirt_pt_opts *opts_in, int count, double budget_ms,
+                bool *completed, dirt_pt_stats *stats)
+{
+    if (completed)
+        *completed = false;
     if (!pt->accum_valid) {
         DIRT_ERROR("dirt_pt_add_samples before dirt_pt_reset");
         return false;
@@ -977,8 +1071,7 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
         if (!make_graph(pt, events))
             goto done;
     }
-    if (pt->samples == 0) {
-        /* The depth first: a tracer's per-trace randomness restarts below. */
+    if (pt->samples == 0 && pt->part_done == 0) {
         if (pt->depth_pixels != pt->pixels) {
             free(pt->depth);
             free(pt->ids);
@@ -986,14 +1079,13 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             pt->ids = malloc(pt->pixels * sizeof(float));
             pt->depth_pixels = pt->depth && pt->ids ? pt->pixels : 0;
         }
-        dirt_trace_alpha za = {.materials = pt->alpha ? pt->tables.materials : 0,
-                               .texels = pt->tables.texels, .seed = opts.seed};
-        if (!pt->depth_pixels || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height,
-                                                  pt->chunk, &za, pt->depth, pt->ids))
+        if (!pt->depth_pixels) {
+            DIRT_ERROR("out of memory for the depth of %zu pixels", pt->pixels);
             goto done;
-        if (tech->restart)
-            tech->restart(tech->self);
+        }
     }
+    dirt_trace_alpha za = {.materials = pt->alpha ? pt->tables.materials : 0,
+                           .texels = pt->tables.texels, .seed = opts.seed};
     tech->reset_counts(tech->self);
     static const uint32_t zero = 0;
     glClearNamedBufferData(pt->events, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -1001,20 +1093,54 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     /* Asynchronous timers: no pass waits for its time query; late times are
      * drained at the readback (dirt_pt_read). */
     fg_exec_opts eo = {.validate = true, .async_timers = true};
+    bool partial = budget_ms >= 0;
     for (int s = 0; s < count; s++) {
         pt->sample = pt->samples;
-        for (size_t c = 0; c < pt->num_chunks; c++) {
-            pt->cur_chunk = c;
-            pt->cur_offset = c * pt->chunk;
-            pt->cur_count = chunk_pixels(pt, c);
+        if (partial && pt->part_done == 0 && pt->samples > 0 && !keep_shown(pt))
+            goto done;
+        /* Pieces in pixel order: whole chunks, or (partial) parts of one
+         * chunk; the pixels are the same either way (keyed by pixel). */
+        while (pt->part_done < pt->pixels) {
+            double p0 = dirt_clock_ms();
+            size_t off = pt->part_done;
+            size_t n = piece_pixels(pt, off, budget_ms, budget_ms - (p0 - t0));
+            pt->cur_chunk = off / pt->chunk;
+            pt->cur_offset = off;
+            pt->cur_count = n;
+            if (pt->samples == 0) {
+                /* The depth AOV of these pixels first (its traces restart
+                 * a randomised tracer's sequence), then sample 0's. */
+                if (!pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, off, n,
+                                     pt->chunk, &za, pt->depth, pt->ids))
+                    goto done;
+                if (tech->restart)
+                    tech->restart(tech->self);
+            }
             if (tech->begin_chunk)
-                tech->begin_chunk(tech->self, (uint32_t)pt->cur_offset);
+                tech->begin_chunk(tech->self, (uint32_t)off);
             if (!fg_execute(pt->graph, &eo))
                 goto done;
             add_times(pt, st);
-            st->paths_at_event[1] += pt->cur_count; /* event 1: every pixel */
+            st->paths_at_event[1] += n; /* event 1: every pixel */
+            pt->part_done += n;
+            if (partial) {
+                glFinish(); /* the pace of work done, not of work issued */
+                double ms = dirt_clock_ms() - p0;
+                double pace = (double)n / (ms > 0.01 ? ms : 0.01);
+                pt->px_per_ms = pt->px_per_ms > 0 ? 0.5 * (pt->px_per_ms + pace) : pace;
+                /* A last piece of under a quarter of the budget would cost
+                 * its fixed overhead for little: the call ends instead. */
+                if (dirt_clock_ms() - t0 >= 0.75 * budget_ms)
+                    break;
+            }
         }
+        if (pt->part_done < pt->pixels)
+            break; /* the budget ran out within the sample */
+        pt->part_done = 0;
+        pt->shown_current = false;
         pt->samples++;
+        if (completed)
+            *completed = true;
         if (opts.progress)
             opts.progress(opts.progress_user, s + 1, count);
     }
@@ -1042,6 +1168,25 @@ done:
     return ok;
 }
 
+bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                         const dirt_camera *cam, const dirt_pt_opts *opts, int count,
+                         dirt_pt_stats *stats)
+{
+    return run(pt, tech, frame, cam, opts, count, -1.0, NULL, stats);
+}
+
+bool dirt_pt_advance(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                     const dirt_camera *cam, const dirt_pt_opts *opts, double budget_ms,
+                     bool *completed, dirt_pt_stats *stats)
+{
+    return run(pt, tech, frame, cam, opts, 1, budget_ms < 0 ? 0 : budget_ms, completed, stats);
+}
+
+size_t dirt_pt_part_pixels(const dirt_pt *pt)
+{
+    return pt->accum_valid ? pt->part_done : 0;
+}
+
 bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
 {
     if (!pt->accum_valid || !pt->samples) {
@@ -1058,8 +1203,9 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
      * GL_BUFFER_UPDATE_BARRIER_BIT this readback needs.) */
     struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
     bool got = sums != NULL;
+    const GLuint *src = completed_sums(pt);
     for (size_t c = 0; got && c < pt->num_chunks; c++)
-        got = gl_buffer_read(pt->accum[c], 0, chunk_pixels(pt, c) * sizeof(*sums),
+        got = gl_buffer_read(src[c], 0, chunk_pixels(pt, c) * sizeof(*sums),
                              sums + c * pt->chunk);
     if (!got) {
         free(sums);
@@ -1135,7 +1281,7 @@ uint32_t dirt_pt_display_texture(dirt_pt *pt)
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)chunk_pixels(pt, c));
         glUniform1ui(DIRT_LOC_DISPLAY_PIXEL_OFFSET, (GLuint)(c * pt->chunk));
-        bind(DIRT_BIND_ACCUM, pt->accum[c]);
+        bind(DIRT_BIND_ACCUM, completed_sums(pt)[c]);
         glDispatchCompute(groups(chunk_pixels(pt, c)), 1, 1);
     }
     glUseProgram(0);

@@ -290,6 +290,29 @@ DIRT_API void dirt_session_reset(dirt_session *s);
  * logging on failure. */
 DIRT_API bool dirt_session_add_samples(dirt_session *s, int count,
                                        void (*progress)(void *user, int done, int total), void *user);
+/* Works on the next sample for about `budget_ms` milliseconds of wall time
+ * and returns (a bounded slice of work, for a program that must answer
+ * its user between slices): the path tracers (dirt, mmrt) trace a sample
+ * in pieces of pixels, sized by the pace measured so far, and stop after
+ * the piece that reaches the budget or completes the sample, so one sample
+ * may span many calls; budget 0 does one smallest piece (whole work
+ * groups). The structure is built first when needed (dirt_session_build,
+ * not split). The other engines (embree, raster) add one whole sample per
+ * call. *completed (may be NULL) says whether this call completed a sample
+ * (dirt_session_samples grew by one). The pixels are those of
+ * dirt_session_add_samples, bit for bit: N samples made by any mix of
+ * calls equal one render of N. While a sample is in progress,
+ * dirt_session_samples, dirt_session_image and dirt_session_display_texture
+ * give the completed samples only (the path tracers keep a copy of their
+ * sums when a sample begins: 48 bytes per pixel more, from the first split
+ * sample on), and dirt_session_add_samples completes it first (as one of
+ * its `count`). A restart drops it. False after logging on failure
+ * (ARGUMENT for a negative or NaN budget). */
+DIRT_API bool dirt_session_advance(dirt_session *s, double budget_ms, bool *completed);
+/* The part of the sample in progress done, in [0, 1): 0 when none is in
+ * progress (and for the engines that do not split a sample). */
+DIRT_API double dirt_session_sample_part(const dirt_session *s);
+/* Completed samples in the accumulation. */
 DIRT_API int dirt_session_samples(const dirt_session *s);
 
 /* The accumulated image: RGBA beauty (the mean) and the engine's AOVs
