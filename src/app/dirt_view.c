@@ -28,15 +28,19 @@ void view_status(viewer *v, const char *fmt, ...)
         fprintf(stderr, "%s: %s\n", PROG, v->status);
 }
 
-/* The passes of this frame's samples (the stats add up over the
- * accumulation: the difference to before). */
+/* The passes of this frame's samples: the path tracer's as the difference
+ * to before (they add up over the accumulation), the build's as the last
+ * build's times (they are not summed: a build runs once per restart). */
 static void record_passes(viewer *v, const dirt_session_stats *before, bool restarted)
 {
     const dirt_session_stats *st = dirt_session_get_stats(v->s);
     v->num_frame_passes = st->num_passes < 32 ? st->num_passes : 32;
+    v->num_build_passes = st->num_build_passes < v->num_frame_passes ? st->num_build_passes
+                                                                     : v->num_frame_passes;
     for (int i = 0; i < v->num_frame_passes; i++) {
         v->frame_passes[i] = st->passes[i];
-        if (!restarted && i < before->num_passes && before->passes[i].name == st->passes[i].name)
+        if (i >= v->num_build_passes && !restarted && i < before->num_passes &&
+            before->passes[i].name == st->passes[i].name)
             v->frame_passes[i].ms -= before->passes[i].ms;
     }
     v->last = *st;

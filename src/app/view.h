@@ -73,13 +73,17 @@ typedef struct viewer {
     int aux_w, aux_h;
     long aux_key;               /* generation the aux texture shows, -1 none */
     float aux_lo, aux_hi;
+    float zoom;                 /* 0: fitted; else window pixels per image pixel */
+    double zoom_u, zoom_v;      /* with a zoom: the image point at the window's centre
+                                   (fractions of the image) */
     long generation;            /* bumps on every restart and sample */
     /* numbers */
     float frame_ms[RING], sample_ms[RING];
     int ring_pos, ring_count;
     dirt_session_stats last;    /* stats after the last frame's samples */
-    dirt_pass_time frame_passes[32];
+    dirt_pass_time frame_passes[32]; /* the last build's, then this frame's samples' */
     int num_frame_passes;
+    int num_build_passes;       /* frame_passes[0 .. num_build_passes): the build's */
     /* input and script */
     int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
     bool pressed[DIRT_NUM_KEYS]; /* a script key went down in this frame */
