@@ -101,6 +101,7 @@ typedef struct viewer {
     char shot_path[4][4096];    /* window screenshots asked for in this frame */
     int num_shots;
     char status[512];
+    float memory_rect[4];       /* the Numbers panel's memory line (window pixels) */
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
@@ -155,6 +156,13 @@ void view_focus_at(viewer *v);
 
 /* view_display.c */
 void view_fit(const viewer *v, int w, int h, int r[4]);
+/* Zoom: `zoom` window pixels per image pixel (clamped to 1/16 .. 64; 0 or
+ * less: fitted), keeping the image point under window pixel (wx, wy) there;
+ * `steps` powers of two in (+) or out (-) from the scale shown; panning the
+ * image by window pixels (a fitted image keeps its scale). */
+void view_zoom_at(viewer *v, double zoom, double wx, double wy);
+void view_zoom_steps(viewer *v, double steps, double wx, double wy);
+void view_pan_image(viewer *v, double dx, double dy);
 void view_draw(viewer *v, bool preview);
 
 /* The values of every channel (R, G, B, A, then the AOVs) of both images

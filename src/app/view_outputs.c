@@ -32,6 +32,9 @@ const char *const view_bindings[][2] = {
     {"Minus Equal", "exposure down / up one stop"},
     {"P", "screenshot of the window (dirt-view-N.png)"},
     {"O", "save the render (dirt-view-N.exr and .png)"},
+    {"Ctrl + Wheel", "zoom the image in / out (powers of 2) about the cursor"},
+    {"Ctrl + Left drag", "pan the image (zoomed or not)"},
+    {"Z", "zoom 1:1 about the cursor / back to fitted"},
     {"H", "hide / show the panels"},
     {"F1", "this help"},
     {"Escape", "quit"},
@@ -258,6 +261,31 @@ bool view_write_report(viewer *v, const char *path)
         cJSON_AddNumberToObject(b, "lo", v->bar_lo);
         cJSON_AddNumberToObject(b, "hi", v->bar_hi);
         cJSON_AddItemToObject(b, "rect", cJSON_CreateFloatArray(v->bar_rect, 4));
+    }
+    /* The Numbers panel's passes: the last build's, then the last frame's
+     * samples'; memory, and where its line is (0s: not shown). */
+    cJSON *passes = cJSON_AddArrayToObject(r, "passes");
+    for (int i = 0; i < v->num_frame_passes; i++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddStringToObject(p, "name", v->frame_passes[i].name);
+        cJSON_AddNumberToObject(p, "ms", v->frame_passes[i].ms);
+        cJSON_AddStringToObject(p, "clock", dirt_clock_names[v->frame_passes[i].clock]);
+        cJSON_AddBoolToObject(p, "build", i < v->num_build_passes);
+        cJSON_AddItemToArray(passes, p);
+    }
+    cJSON *mem = cJSON_AddObjectToObject(r, "memory");
+    cJSON_AddNumberToObject(mem, "used", (double)v->last.bytes_total_used);
+    cJSON_AddNumberToObject(mem, "allocated", (double)v->last.bytes_total_allocated);
+    cJSON_AddItemToObject(mem, "rect", cJSON_CreateFloatArray(v->memory_rect, 4));
+    /* Where the image is: its rectangle in the window, and the zoom (0:
+     * fitted). */
+    {
+        int iw = v->rw, ih = v->rh, ir[4];
+        if (v->o.buffer != BUF_BEAUTY && v->aux_tex && v->aux_w > 0)
+            iw = v->aux_w, ih = v->aux_h;
+        view_fit(v, iw, ih, ir);
+        cJSON_AddItemToObject(r, "image_rect", cJSON_CreateIntArray(ir, 4));
+        cJSON_AddNumberToObject(r, "zoom", v->zoom);
     }
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)

@@ -57,7 +57,12 @@ typedef struct dirt_window_input {
     bool button_pressed[DIRT_MOUSE_BUTTONS];
     bool button_released[DIRT_MOUSE_BUTTONS];
     int double_clicks;                 /* left-button double clicks in this poll */
-    double scroll;                     /* wheel steps in this poll (+ = away from the user) */
+    double scroll;                     /* wheel steps in this poll (+ = away from the user),
+                                          those with Ctrl held excepted: */
+    double ctrl_scroll;                /* wheel steps with Ctrl held, in this poll */
+    double ctrl_scroll_x, ctrl_scroll_y; /* the cursor at the last of them */
+    double ctrl_drag_dx, ctrl_drag_dy; /* cursor motion with the left button and Ctrl held,
+                                          in this poll (not in drag_dx/dy[DIRT_MOUSE_LEFT]) */
     bool key[DIRT_NUM_KEYS];           /* held */
     bool key_pressed[DIRT_NUM_KEYS];   /* went down (or repeated) in this poll */
     int num_drops;                     /* paths dropped on the window in this poll */

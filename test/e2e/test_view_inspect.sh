@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# dirt-view's inspector, read from a real window under Xvfb with real X
+# input from xdotool:
+#  - pass times: after several frames the report's build passes (dirt) have
+#    their times (the last build's), not 0, and the path tracer's too;
+#  - memory: at the top of the Numbers panel, inside the panel and the
+#    window (not below the fold), with the session's bytes;
+#  - zoom: Ctrl + wheel over window pixel (40, 30) of a 1:1 render zooms to
+#    2x about it: the window shows dirt-render's image with each pixel a
+#    2x2 block, the block under the cursor the same render pixel; the
+#    inspector names the render pixel under the cursor; Z goes back to
+#    fitted; the script's zoom 4 and pan-image place the image where they
+#    say;
+#  - colour bars: the difference view's bar and a heat-map buffer's (depth)
+#    are the present shader's ramp, column by column, in the screenshot.
+#   test_view_inspect.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK
+set -u
+view=$1 render=$2 check=$3
+tmp=$(mktemp -d /tmp/dirt-view-insp-XXXXXX)
+trap 'rm -rf "$tmp"; [ -n "${xvfb_pid:-}" ] && kill "$xvfb_pid" 2>/dev/null' EXIT
+fails=0 passes=0
+ok()   { passes=$((passes + 1)); }
+fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
+# shellcheck source=view_xvfb.sh
+. "$(dirname "$0")/view_xvfb.sh"
+
+# The viewer's window id, once it is mapped.
+window_id() {
+  local wid=
+  for _ in $(seq 100); do
+    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
+    [ -n "$wid" ] && break; sleep 0.1
+  done
+  echo "$wid"
+}
+
+# ---- pass times and memory ----
+# 4 frames of 1 sample each; the report after the last one.
+printf 'wait-samples 4\nwait-frames 1\nreport %s\nquit\n' "$tmp/passes.json" >"$tmp/s.txt"
+"$view" --window 1024x768 -W 64 -H 48 --spp 4 --seed 5 --bounces 2 --script "$tmp/s.txt" -q \
+  >"$tmp/passes.out" 2>&1 || { fail "passes run: exit $?"; cat "$tmp/passes.out" >&2; }
+python3 - "$tmp/passes.json" <<'PY' && ok || fail "the build passes' times after several frames"
+import json, sys
+r = json.load(open(sys.argv[1]))
+build = [p for p in r["passes"] if p["build"]]
+pt = [p for p in r["passes"] if not p["build"]]
+print("frames %d, samples %d; build passes: %s; path tracer: %s" % (r["frames"], r["samples"],
+      ", ".join("%s %.3f" % (p["name"], p["ms"]) for p in build),
+      ", ".join("%s %.3f" % (p["name"], p["ms"]) for p in pt)))
+bad = r["frames"] < 4 or r["samples"] != 4 or len(build) < 3 or len(pt) < 3
+bad = bad or any(not p["ms"] > 0 for p in build) or not any(p["ms"] > 0 for p in pt)
+sys.exit(1 if bad else 0)
+PY
+python3 - "$tmp/passes.json" <<'PY' && ok || fail "memory is not in view at the top of the Numbers panel"
+import json, sys
+r = json.load(open(sys.argv[1]))
+m = r["memory"]
+x, y, w, h = m["rect"]
+win_w, win_h = r["window"]
+numbers = [p for p in r["panels"] if p[0] > 340]  # Settings is at x = 8
+print("memory", m, "numbers panel", numbers, "window", r["window"])
+bad = not numbers or w <= 0 or h <= 0 or m["used"] <= 0 or m["allocated"] < m["used"]
+if not bad:
+    px, py, pw, ph = numbers[0]
+    # inside the panel, in its first lines, and inside the window
+    bad = not (px <= x and x + w <= px + pw and py <= y and y + h <= py + ph)
+    bad = bad or y - py > 60 or y + h > win_h
+sys.exit(1 if bad else 0)
+PY
+
+# ---- zoom, pan and the inspector's readout ----
+W=160 H=120
+"$render" -W $W -H $H --seed 5 --bounces 2 --spp 2 -q --png -o "$tmp/r.exr" || fail "dirt-render failed"
+cat >"$tmp/s.txt" <<EOF
+wait-samples 2
+wait-frames 1
+screenshot $tmp/z1.png
+wait-file $tmp/go1
+wait-frames 1
+screenshot $tmp/z2.png
+report $tmp/z2.json
+wait-file $tmp/go2
+wait-frames 1
+report $tmp/z2b.json
+wait-file $tmp/go3
+wait-frames 1
+report $tmp/fit.json
+zoom 4 80 60
+wait-frames 1
+screenshot $tmp/z4.png
+report $tmp/z4.json
+pan-image 12 -8
+wait-frames 1
+screenshot $tmp/z4p.png
+report $tmp/z4p.json
+quit
+EOF
+"$view" --window ${W}x$H --no-ui --seed 5 --bounces 2 --spp 2 --script "$tmp/s.txt" -q \
+  >"$tmp/zoom.out" 2>&1 &
+vpid=$!
+wid=$(window_id)
+[ -n "$wid" ] || fail "no dirt-view window"
+for _ in $(seq 600); do [ -s "$tmp/z1.png" ] && break; sleep 0.1; done
+# Ctrl + one wheel step up over window pixel (40, 30).
+xdotool mousemove --window "$wid" 40 30; sleep 0.3
+xdotool keydown ctrl; sleep 0.2; xdotool click 4; sleep 0.2; xdotool keyup ctrl; sleep 0.3
+touch "$tmp/go1"
+for _ in $(seq 100); do [ -s "$tmp/z2.json" ] && break; sleep 0.1; done
+# The cursor over window pixel (101, 71): render pixel ((101 + 40) / 2, (71 + 30) / 2).
+xdotool mousemove --window "$wid" 101 71; sleep 0.3
+touch "$tmp/go2"
+for _ in $(seq 100); do [ -s "$tmp/z2b.json" ] && break; sleep 0.1; done
+xdotool key z; sleep 0.3
+touch "$tmp/go3"
+wait "$vpid" || { fail "zoom run: exit $?"; cat "$tmp/zoom.out" >&2; }
+# 1:1 first: the window is the render.
+if "$check" zoom "$tmp/z1.png" "$tmp/r.png" 0 0 1; then ok; else fail "1:1: the window is not the render"; fi
+# 2x about (40, 30): the image's top left at (40 - 2 * 40, 30 - 2 * 30).
+if "$check" zoom "$tmp/z2.png" "$tmp/r.png" -40 -30 2; then ok; else
+  fail "Ctrl + wheel: the window is not the render at 2x about the cursor"; fi
+python3 - "$tmp" "$check" <<'PY' && ok || fail "the reports of the zoom, or the inspector's pixel under the cursor"
+import json, subprocess, sys
+t = sys.argv[1]
+z2, z2b, fit = (json.load(open("%s/%s.json" % (t, n))) for n in ("z2", "z2b", "fit"))
+z4, z4p = (json.load(open("%s/%s.json" % (t, n))) for n in ("z4", "z4p"))
+print("z2", z2["zoom"], z2["image_rect"], z2["inspect"].get("pixel"))
+print("z2b", z2b["zoom"], z2b["inspect"].get("pixel"), "fit", fit["zoom"], fit["image_rect"],
+      fit["inspect"].get("pixel"))
+print("z4", z4["zoom"], z4["image_rect"], "after pan", z4p["image_rect"])
+bad = z2["zoom"] != 2 or z2["image_rect"] != [-40, -30, 320, 240]
+bad |= z2["inspect"].get("pixel") != [40, 30]            # the point under the cursor stayed
+bad |= z2b["inspect"].get("pixel") != [70, 50]           # (101 + 40) // 2, (71 + 30) // 2
+# the inspector's R there is the render's R at that pixel
+want = subprocess.run([sys.argv[2], "pixel", t + "/r.exr", "R", "70", "50"], capture_output=True,
+                      text=True).stdout.strip()
+print("R at 70, 50:", z2b["inspect"].get("a", {}).get("R"), "want", want)
+bad |= abs(z2b["inspect"]["a"]["R"] - float(want)) > 1e-6 * max(1, abs(float(want)))
+bad |= fit["zoom"] != 0 or fit["image_rect"] != [0, 0, 160, 120]
+bad |= fit["inspect"].get("pixel") != [101, 71]
+# zoom 4 about (80, 60) from fitted: the render's centre stays at the window's
+bad |= z4["zoom"] != 4 or z4["image_rect"] != [-240, -180, 640, 480]
+bad |= z4p["image_rect"] != [-240 + 12, -180 - 8, 640, 480]
+sys.exit(1 if bad else 0)
+PY
+if "$check" zoom "$tmp/z4p.png" "$tmp/r.png" -228 -188 4; then ok; else
+  fail "zoom 4 and pan-image: the window is not the render at 4x, moved"; fi
+
+# ---- colour bars ----
+# At 320x240 the panels start collapsed; the bar is drawn over the image.
+printf 'wait-samples 1\nset diff on\nwait-frames 1\nscreenshot %s\nreport %s\nset diff off\nset compare none\nset buffer depth\nwait-frames 2\nscreenshot %s\nreport %s\nquit\n' \
+  "$tmp/bar-diff.png" "$tmp/bar-diff.json" "$tmp/bar-depth.png" "$tmp/bar-depth.json" >"$tmp/s.txt"
+"$view" --window 320x240 --engine mmrt --compare embree --seed 5 --bounces 1 --spp 1 \
+  --diff-range 0.05 --script "$tmp/s.txt" -q >"$tmp/bar.out" 2>&1 || { fail "bars run: exit $?"; cat "$tmp/bar.out" >&2; }
+for what in diff depth; do
+  rect=$(python3 -c "import json,sys; b=json.load(open(sys.argv[1])).get('colour_bar'); print(*[int(v) for v in b['rect']] if b else '')" "$tmp/bar-$what.json")
+  # shellcheck disable=SC2086
+  if [ -n "$rect" ] && "$check" ramp "$tmp/bar-$what.png" $rect; then ok; else
+    fail "the $what view's colour bar is not the display ramp (bar: ${rect:-none})"; fi
+done
+
+echo "test_view_inspect: $passes passed, $fails failed"
+[ "$fails" -eq 0 ]
