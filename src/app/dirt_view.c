@@ -172,7 +172,8 @@ static int prepare(viewer *v, dirt_scene **scene)
             return DIRT_EXIT_USAGE;
     const char *scene_path = v->o.num_scenes ? v->o.scenes[0] : NULL;
     *scene = app_load_scene(PROG, scene_path, &v->o);
-    if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene))
+    if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene) ||
+        !view_load_reference(v))
         return DIRT_EXIT_USAGE;
     /* No output (at exit or from the script) may be an input. */
     enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
@@ -185,7 +186,8 @@ static int prepare(viewer *v, dirt_scene **scene)
     bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
     cli_io io = {.scene_path = scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
                  .scene = *scene,
-                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"}},
+                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"},
+                        {v->o.compare_image, "--compare-image"}},
                  .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
                          {save_png[0] ? save_png : NULL, "--save-image"},
                          {v->o.report, "--report"}}};
@@ -300,6 +302,8 @@ int main(int argc, char **argv)
         dirt_scene_destroy(scene);
     }
     dirt_gpu_texture_destroy(v->gpu, v->aux_tex);
+    dirt_gpu_texture_destroy(v->gpu, v->ref_tex);
+    dirt_image_destroy(v->ref);
     dirt_session_destroy(v->pre);
     dirt_session_destroy(v->cmp);
     dirt_session_destroy(v->s);

@@ -53,6 +53,10 @@ typedef struct viewer {
     float env_intensity, env_rotation; /* what env was made with */
     dirt_session *s, *cmp;
     int cmp_engine;             /* engine of cmp, -1 none */
+    dirt_image *ref;            /* --compare-image: the reference, shown instead of cmp */
+    uint32_t ref_tex;           /*   its display texture (0 until uploaded) */
+    bool ref_on;                /*   shown (V toggles it) */
+    bool ref_mismatch;          /*   its size is not the render's (said once) */
     dirt_session *pre;          /* the raster preview shown while the camera moves */
     bool moving;                /* input moved the camera in this frame */
     bool hold;                  /* an output was taken in this frame: no new samples */
@@ -137,6 +141,16 @@ void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);
 
 /* view_split.c */
+/* Reads --compare-image (before the window): exit 2's reasons printed,
+ * false when it cannot be read or its size is not the render's (-W/-H);
+ * without -W/-H the render takes its size. */
+bool view_load_reference(viewer *v);
+/* The comparison shown now: the reference (when its size is the render's)
+ * or the comparison session, with samples; its name ("reference" or the
+ * engine's). */
+bool view_ref_shown(const viewer *v);
+bool view_comparing(const viewer *v);
+const char *view_compare_name(const viewer *v);
 bool view_sync_compare(viewer *v);
 void view_sample_compare(viewer *v);
 void view_present_split(const viewer *v, dirt_present_opts *p);

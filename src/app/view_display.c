@@ -251,14 +251,10 @@ void view_draw(viewer *v, bool preview)
         dirt_gpu_present(v->gpu, &p);
 }
 
-/* One session's channels at render pixel (x, y); false off the image or
- * before samples. */
-static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
+/* One image's channels at pixel (x, y); false off the image. */
+static bool probe_image(const dirt_image *img, int x, int y, struct view_probe *pr)
 {
     pr->valid = false;
-    if (!s || dirt_session_samples(s) == 0)
-        return false;
-    const dirt_image *img = dirt_session_image(s);
     if (!img || x < 0 || y < 0 || x >= img->width || y >= img->height)
         return false;
     size_t i = (size_t)y * img->width + x;
@@ -278,6 +274,16 @@ static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
     return true;
 }
 
+/* One session's channels at render pixel (x, y); false off the image or
+ * before samples. */
+static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
+{
+    pr->valid = false;
+    if (!s || dirt_session_samples(s) == 0)
+        return false;
+    return probe_image(dirt_session_image(s), x, y, pr);
+}
+
 void view_inspect(viewer *v)
 {
     v->probe[0].valid = v->probe[1].valid = false;
@@ -290,5 +296,8 @@ void view_inspect(viewer *v)
     if (x < 0 || y < 0 || x >= v->rw || y >= v->rh)
         return;
     probe_session(v->s, x, y, &v->probe[0]);
-    probe_session(v->cmp, x, y, &v->probe[1]);
+    if (view_ref_shown(v))
+        probe_image(v->ref, x, y, &v->probe[1]);
+    else
+        probe_session(v->cmp, x, y, &v->probe[1]);
 }

@@ -87,7 +87,9 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
             v->o.buffer = k;
     if (p[DIRT_KEY_TAB])
         v->o.s.engine = (enum dirt_engine)((v->o.s.engine + 1) % DIRT_NUM_ENGINES);
-    if (p[DIRT_KEY_V])
+    if (p[DIRT_KEY_V] && v->ref)
+        v->ref_on = !v->ref_on;
+    else if (p[DIRT_KEY_V])
         v->o.compare = v->o.compare ? 0 : (v->o.s.engine == DIRT_ENGINE_MMRT ? 1 : 2);
     if (p[DIRT_KEY_X])
         v->o.diff = !v->o.diff;

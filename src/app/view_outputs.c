@@ -25,7 +25,7 @@ const char *const view_bindings[][2] = {
     {"C", "next scene camera"},
     {"1 .. 9", "buffer: beauty, albedo, normal, depth, id, lists, buckets, zmin, zmax"},
     {"Tab", "next engine (dirt, mmrt, embree, raster)"},
-    {"V", "split view against the comparison engine on / off"},
+    {"V", "split view against the comparison engine (or --compare-image) on / off"},
     {"X", "difference heat map of the split on / off"},
     {"Space", "play / pause the animation"},
     {"Left Right", "step the animation one frame (1/24 s) back / forward"},
@@ -177,7 +177,9 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddItemToObject(r, "window", cJSON_CreateIntArray(win, 2));
     cJSON_AddItemToObject(r, "render", cJSON_CreateIntArray(ren, 2));
     cJSON_AddNumberToObject(r, "samples", dirt_session_samples(v->s));
-    cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
+    cJSON_AddStringToObject(r, "compare", view_compare_name(v));
+    if (v->o.compare_image)
+        cJSON_AddStringToObject(r, "compare_image", v->o.compare_image);
     cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
     cJSON_AddBoolToObject(r, "diff", v->o.diff);
     cJSON_AddStringToObject(r, "buffer", app_buffer_names[v->o.buffer]);

@@ -47,8 +47,11 @@ static void panel_settings(viewer *v)
             int eng = (int)o->s.engine;
             if (dirt_ui_combo("engine", &eng, app_engine_names, DIRT_NUM_ENGINES))
                 o->s.engine = (enum dirt_engine)eng;
-            dirt_ui_combo("compare with", &o->compare, app_compare_names, 5);
-            if (o->compare) {
+            if (v->ref)
+                dirt_ui_checkbox("compare with the reference image (V)", &v->ref_on);
+            if (!v->ref || !v->ref_on)
+                dirt_ui_combo("compare with", &o->compare, app_compare_names, 5);
+            if (o->compare || (v->ref && v->ref_on)) {
                 dirt_ui_slider_float("split", &o->split, 0.0f, 1.0f, "%.2f", false);
                 dirt_ui_checkbox("difference heat map", &o->diff);
                 if (o->diff)
@@ -225,7 +228,7 @@ static void panel_numbers(viewer *v)
                 else
                     dirt_ui_text("pixel %d, %d (fitted)", a->x, a->y);
                 const char *heads[3] = {"channel", dirt_engine_names[v->applied.engine],
-                                        b->valid ? dirt_engine_names[v->cmp_engine] : ""};
+                                        b->valid ? view_compare_name(v) : ""};
                 if (dirt_ui_table_begin("inspect", b->valid ? 3 : 2, heads)) {
                     for (int c = 0; c < a->count; c++) {
                         dirt_ui_table_row();
@@ -347,7 +350,7 @@ static void overlay(viewer *v)
     v->num_labels = 0;
     v->bar = false;
     int r[4];
-    bool cmp = v->cmp && dirt_session_samples(v->cmp) > 0 && dirt_session_samples(v->s) > 0;
+    bool cmp = view_comparing(v);
     if (v->o.buffer == BUF_BEAUTY && cmp && !v->o.diff) {
         view_fit(v, v->rw, v->rh, r);
         float split = v->o.split > 0 && v->o.split < 1 ? v->o.split : 0.5f;
@@ -357,7 +360,7 @@ static void overlay(viewer *v)
         if (sx > (float)r[0])
             label(v, (float)r[0] + 4, y, "%s", dirt_engine_names[v->applied.engine]);
         if (sx < (float)(r[0] + r[2]))
-            label(v, fmaxf(sx, (float)r[0]) + 4, y, "%s", dirt_engine_names[v->cmp_engine]);
+            label(v, fmaxf(sx, (float)r[0]) + 4, y, "%s", view_compare_name(v));
         return;
     }
     float lo, hi;
@@ -366,7 +369,7 @@ static void overlay(viewer *v)
         visible_fit(v, v->rw, v->rh, r);
         lo = 0, hi = v->o.diff_range;
         snprintf(what, sizeof(what), "|lum(%s) - lum(%s)|", dirt_engine_names[v->applied.engine],
-                 dirt_engine_names[v->cmp_engine]);
+                 view_compare_name(v));
     } else if ((v->o.buffer == BUF_DEPTH || v->o.buffer >= BUF_LISTS) && v->aux_tex) {
         visible_fit(v, v->aux_w, v->aux_h, r);
         lo = v->aux_lo, hi = v->aux_hi > v->aux_lo ? v->aux_hi : v->aux_lo + 1;

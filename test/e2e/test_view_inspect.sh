@@ -158,5 +158,73 @@ for what in diff depth; do
     fail "the $what view's colour bar is not the display ramp (bar: ${rect:-none})"; fi
 done
 
+# ---- a reference image from disk ----
+# Embree's image (another seed) as the reference, dirt's render beside it: left of the
+# line dirt-render's dirt image, right of it the EXR; the difference is the
+# ramp of |lum(dirt) - lum(EXR)|; the inspector's right-hand values over
+# pixel (70, 40) are the EXR's there. The render takes the EXR's size.
+W=96 H=72
+"$render" -W $W -H $H --engine embree --seed 9 --bounces 2 --spp 2 -q -o "$tmp/ref.exr" || fail "dirt-render embree"
+"$render" -W $W -H $H --engine dirt --seed 5 --bounces 2 --spp 2 -q -o "$tmp/dirt.exr" || fail "dirt-render dirt"
+cat >"$tmp/s.txt" <<EOF
+wait-samples 2
+wait-frames 1
+screenshot $tmp/ref-split.png
+set diff on
+wait-frames 1
+screenshot $tmp/ref-diff.png
+wait-file $tmp/go4
+wait-frames 1
+report $tmp/ref.json
+quit
+EOF
+"$view" --window ${W}x$H --no-ui --seed 5 --bounces 2 --spp 2 --diff-range 0.05 \
+  --compare-image "$tmp/ref.exr" --script "$tmp/s.txt" -q >"$tmp/ref.out" 2>&1 &
+vpid=$!
+wid=$(window_id)
+[ -n "$wid" ] && xdotool mousemove --window "$wid" 70 40 && sleep 0.3
+touch "$tmp/go4"
+wait "$vpid" || { fail "reference run: exit $?"; cat "$tmp/ref.out" >&2; }
+if "$check" split "$tmp/ref-split.png" "$tmp/dirt.exr" "$tmp/ref.exr"; then ok; else
+  fail "--compare-image: the split is not dirt's image left and the EXR right"; fi
+if "$check" diff "$tmp/ref-diff.png" "$tmp/dirt.exr" "$tmp/ref.exr" 0.05; then ok; else
+  fail "--compare-image: the difference is not |dirt - EXR| through the ramp"; fi
+python3 - "$tmp/ref.json" "$check" "$tmp/ref.exr" <<'PY' && ok || fail "--compare-image: the report or the inspector's reference values"
+import json, struct, subprocess, sys
+r = json.load(open(sys.argv[1]))
+f32 = lambda x: struct.unpack("f", struct.pack("f", float(x)))[0]
+insp = r["inspect"]
+print("compare", r["compare"], r.get("compare_image"), "render", r["render"], "pixel", insp.get("pixel"))
+bad = r["compare"] != "reference" or r["render"] != [96, 72] or insp.get("pixel") != [70, 40]
+b = insp.get("b", {})
+for name in ("R", "G", "B", "A", "albedo.R", "N.X", "Z", "ID"):
+    want = subprocess.run([sys.argv[2], "pixel", sys.argv[3], name, "70", "40"],
+                          capture_output=True, text=True).stdout.strip()
+    got = b.get(name)
+    same = got is not None and want and f32(got) == f32(float(want))
+    if not same:
+        print(name, got, "want", want); bad = True
+sys.exit(1 if bad else 0)
+PY
+# Refused up front (exit 2, no window, nothing written, the reference
+# untouched): missing, not an .exr name, not an EXR, a size that is not the
+# render's, the reference as an output (of the command line or a script).
+sum_before=$(md5sum <"$tmp/ref.exr")
+printf 'not an exr\n' >"$tmp/bad.exr"
+printf 'save-image %s\nquit\n' "$tmp/ref.exr" >"$tmp/clobber.txt"
+i=0
+for args in "--compare-image $tmp/missing.exr" "--compare-image $tmp/ref.png" \
+    "--compare-image $tmp/bad.exr" "--compare-image $tmp/ref.exr -W 64 -H 48" \
+    "--compare-image $tmp/ref.exr --save-image $tmp/ref.exr" \
+    "--compare-image $tmp/ref.exr --script $tmp/clobber.txt"; do
+  i=$((i + 1))
+  # shellcheck disable=SC2086
+  "$view" --window 96x72 --no-ui --test-frames 1 $args -q >"$tmp/bad$i.out" 2>&1
+  rc=$?
+  if [ $rc -eq 2 ] && grep -q 'compare-image' "$tmp/bad$i.out"; then ok; else
+    fail "dirt-view $args: exit $rc (want 2 naming --compare-image)"; cat "$tmp/bad$i.out" >&2; fi
+done
+[ "$(md5sum <"$tmp/ref.exr")" = "$sum_before" ] && ok || fail "the reference was overwritten"
+
 echo "test_view_inspect: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]
