@@ -106,6 +106,9 @@ typedef struct viewer {
     int num_shots;
     char status[512];
     float memory_rect[4];       /* the Numbers panel's memory line (window pixels) */
+    int shader_reloads;         /* F5 reloads that took */
+    int shader_reload_failures; /* F5 reloads refused (the old programs kept) */
+    char reload_status[512];    /* what the last F5 did */
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
@@ -139,6 +142,11 @@ dirt_session_opts view_wanted_opts(const viewer *v, int engine);
 bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);
+/* Shader reload (F5): with the shaders read from a source tree
+ * (DIRT_GLSL_DIR), remakes the sessions and the presentation program from
+ * them; a shader that does not compile keeps the old programs (the status
+ * line and the log say why). False when nothing was reloaded. */
+bool view_reload_shaders(viewer *v);
 
 /* view_split.c */
 /* Reads --compare-image (before the window): exit 2's reasons printed,

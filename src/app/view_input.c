@@ -76,6 +76,8 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         v->show_help = !v->show_help;
     if (p[DIRT_KEY_H])
         v->o.no_ui = !v->o.no_ui;
+    if (p[DIRT_KEY_F5])
+        view_reload_shaders(v);
     if (p[DIRT_KEY_R]) {
         view_reset_camera(v);
         view_status(v, "camera reset");

@@ -36,6 +36,7 @@ const char *const view_bindings[][2] = {
     {"Ctrl + Left drag", "pan the image (zoomed or not)"},
     {"Z", "zoom 1:1 about the cursor / back to fitted"},
     {"H", "hide / show the panels"},
+    {"F5", "reload the shaders from DIRT_GLSL_DIR (a broken one keeps the old programs)"},
     {"F1", "this help"},
     {"Escape", "quit"},
 };
@@ -188,6 +189,9 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "exposure", v->o.exposure);
     cJSON_AddBoolToObject(r, "play", v->o.play);
     cJSON_AddNumberToObject(r, "frames", (double)v->frame);
+    cJSON_AddNumberToObject(r, "shader_reloads", v->shader_reloads);
+    cJSON_AddNumberToObject(r, "shader_reload_failures", v->shader_reload_failures);
+    cJSON_AddStringToObject(r, "shader_reload_status", v->reload_status);
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
     cJSON_AddStringToObject(r, "camera_args", cam);

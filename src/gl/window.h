@@ -125,6 +125,14 @@ typedef struct dirt_present_opts {
  * texture, bad rectangle, split or range). */
 bool dirt_gpu_present(dirt_gpu *gpu, const dirt_present_opts *opts);
 
+/* The folder the shaders are read from at each compile: $DIRT_GLSL_DIR (a
+ * source tree's glsl/), or NULL when they are the library's embedded ones
+ * (nothing to reload). */
+const char *dirt_gpu_glsl_dir(void);
+/* Compiles the presentation program again from the shader sources; when
+ * that fails (logged), the old one stays in use. False then. */
+bool dirt_gpu_present_reload(dirt_gpu *gpu);
+
 /* Clears the window's back buffer to an RGB colour. */
 bool dirt_gpu_window_clear(dirt_gpu *gpu, const float rgb[3]);
 

@@ -12,7 +12,10 @@
 #    fitted; the script's zoom 4 and pan-image place the image where they
 #    say;
 #  - colour bars: the difference view's bar and a heat-map buffer's (depth)
-#    are the present shader's ramp, column by column, in the screenshot.
+#    are the present shader's ramp, column by column, in the screenshot;
+#  - --compare-image: the split and difference against an EXR from disk,
+#    the inspector's reference values, and its up-front refusals;
+#  - shader reload (F5) from DIRT_GLSL_DIR, and a broken shader kept out.
 #   test_view_inspect.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK
 set -u
 view=$1 render=$2 check=$3
@@ -225,6 +228,72 @@ for args in "--compare-image $tmp/missing.exr" "--compare-image $tmp/ref.png" \
     fail "dirt-view $args: exit $rc (want 2 naming --compare-image)"; cat "$tmp/bad$i.out" >&2; fi
 done
 [ "$(md5sum <"$tmp/ref.exr")" = "$sum_before" ] && ok || fail "the reference was overwritten"
+
+# ---- shader reload (F5) ----
+# The shaders read from a copy of the source tree (DIRT_GLSL_DIR). The
+# present shader edited to show 255 - q, a real F5: the window is the
+# negative of what it was, exactly. Then a path tracer shader that does not
+# compile, F5: the compiler's error in the log, the old programs kept (the
+# same window, the reload count unchanged); then a broken present shader,
+# F5: the same. Without DIRT_GLSL_DIR, F5 says it is unavailable.
+glsl_src=$(dirname "$0")/../../glsl
+cp -r "$glsl_src" "$tmp/glsl"
+cat >"$tmp/s.txt" <<EOF
+wait-samples 1
+wait-frames 1
+screenshot $tmp/sh-a.png
+wait-file $tmp/go5
+wait-frames 2
+screenshot $tmp/sh-b.png
+report $tmp/sh-b.json
+wait-file $tmp/go6
+wait-frames 2
+screenshot $tmp/sh-c.png
+report $tmp/sh-c.json
+wait-file $tmp/go7
+wait-frames 2
+screenshot $tmp/sh-d.png
+report $tmp/sh-d.json
+quit
+EOF
+DIRT_GLSL_DIR=$tmp/glsl "$view" --window 96x72 --no-ui --seed 5 --bounces 2 --spp 1 \
+  --script "$tmp/s.txt" >"$tmp/sh.out" 2>&1 &
+vpid=$!
+wid=$(window_id)
+[ -n "$wid" ] && xdotool mousemove --window "$wid" 10 10
+for _ in $(seq 600); do [ -s "$tmp/sh-a.png" ] && break; sleep 0.1; done
+sed -i 's/out_color = vec4(rgb, 1.0);/out_color = vec4(vec3(1.0) - rgb, 1.0);/' "$tmp/glsl/present/present.frag"
+xdotool key F5; sleep 0.5; touch "$tmp/go5"
+for _ in $(seq 600); do [ -s "$tmp/sh-b.json" ] && break; sleep 0.1; done
+sed -i '1a this is not GLSL;' "$tmp/glsl/integrator/raygen.comp"
+xdotool key F5; sleep 0.5; touch "$tmp/go6"
+for _ in $(seq 600); do [ -s "$tmp/sh-c.json" ] && break; sleep 0.1; done
+cp "$glsl_src/integrator/raygen.comp" "$tmp/glsl/integrator/raygen.comp"
+sed -i '1a this is not GLSL either;' "$tmp/glsl/present/present.frag"
+xdotool key F5; sleep 0.5; touch "$tmp/go7"
+wait "$vpid" || { fail "shader reload run: exit $?"; cat "$tmp/sh.out" >&2; }
+"$check" pngs "$tmp/sh-a.png" "$tmp/sh-b.png" negative && ok || fail "F5 after editing present.frag: the window is not the negative"
+"$check" pngs "$tmp/sh-b.png" "$tmp/sh-c.png" same && "$check" pngs "$tmp/sh-b.png" "$tmp/sh-d.png" same &&
+  ok || fail "F5 with a broken shader changed the window (the old programs were not kept)"
+python3 - "$tmp" <<'PY' && ok || fail "the reports' reload count or status"
+import json, sys
+rb, rc, rd = (json.load(open("%s/sh-%s.json" % (sys.argv[1], k))) for k in "bcd")
+print("reloads", rb["shader_reloads"], rc["shader_reloads"], rd["shader_reloads"])
+print("failures", rb["shader_reload_failures"], rc["shader_reload_failures"], rd["shader_reload_failures"])
+st = [r["shader_reload_status"] for r in (rb, rc, rd)]
+print("statuses:", " | ".join(st))
+bad = rb["shader_reloads"] != 1 or rc["shader_reloads"] != 1 or rd["shader_reloads"] != 1
+bad |= [r["shader_reload_failures"] for r in (rb, rc, rd)] != [0, 1, 2]
+bad |= "reloaded" not in st[0] or "failed" not in st[1] or "failed" not in st[2]
+sys.exit(1 if bad else 0)
+PY
+grep -q 'raygen' "$tmp/sh.out" && grep -q 'present' "$tmp/sh.out" && ok ||
+  { fail "the compiler's errors of the broken shaders are not in the log"; cat "$tmp/sh.out" >&2; }
+printf 'wait-samples 1\nkey F5\nwait-frames 1\nreport %s\nquit\n' "$tmp/sh-e.json" >"$tmp/s.txt"
+env -u DIRT_GLSL_DIR "$view" --window 96x72 --no-ui --spp 1 --script "$tmp/s.txt" -q >"$tmp/she.out" 2>&1 ||
+  fail "embedded shaders run: exit $?"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); s=r['shader_reload_status']; print(s); sys.exit(0 if 'unavailable' in s and r['shader_reloads'] == 0 else 1)" \
+  "$tmp/sh-e.json" && ok || fail "F5 with embedded shaders does not say it is unavailable"
 
 echo "test_view_inspect: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -33,6 +33,8 @@
  *       SHOT's rectangle X, Y, W, H (a colour bar) has in column i the heat
  *       ramp at (i + 0.5) / W, sRGB-encoded as the present shader shows it
  *       (glsl/common/display.h's keys), exactly, in every row
+ *   view_check pngs A.png B.png same|negative
+ *       B equals A at every pixel (RGB), or is its negative (255 - A)
  *   view_check pixel IMAGE.exr CHANNEL X Y
  *       prints the value of CHANNEL (R, G, B, A: the beauty's) at pixel (X, Y)
  *       (row 0 = top), %.9g
@@ -415,6 +417,31 @@ done:
     return rc;
 }
 
+static int pngs(const char *a_path, const char *b_path, bool negative)
+{
+    int aw, ah, bw, bh, c;
+    unsigned char *a = stbi_load(a_path, &aw, &ah, &c, 4);
+    unsigned char *b = stbi_load(b_path, &bw, &bh, &c, 4);
+    int rc = 2;
+    if (!a || !b || aw != bw || ah != bh) {
+        printf("unreadable input or sizes differ\n");
+        goto done;
+    }
+    size_t n = (size_t)aw * ah, match = 0;
+    for (size_t i = 0; i < n; i++) {
+        bool m = true;
+        for (int j = 0; j < 3; j++)
+            m = m && b[4 * i + j] == (negative ? 255 - a[4 * i + j] : a[4 * i + j]);
+        match += m;
+    }
+    printf("%zu of %zu pixels %s\n", match, n, negative ? "the negative" : "the same");
+    rc = match == n ? 0 : 1;
+done:
+    stbi_image_free(a);
+    stbi_image_free(b);
+    return rc;
+}
+
 static int pixel(const char *path, const char *channel, int x, int y)
 {
     dirt_image *img = dirt_image_read_exr(path);
@@ -449,6 +476,9 @@ int main(int argc, char **argv)
         return zoom(argv[2], argv[3], atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
     if (argc == 7 && !strcmp(argv[1], "ramp"))
         return ramp_bar(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
+    if (argc == 5 && !strcmp(argv[1], "pngs") &&
+        (!strcmp(argv[4], "same") || !strcmp(argv[4], "negative")))
+        return pngs(argv[2], argv[3], !strcmp(argv[4], "negative"));
     if (argc == 4 && !strcmp(argv[1], "same"))
         return same(argv[2], argv[3]);
     if (argc == 5 && !strcmp(argv[1], "window"))
@@ -457,6 +487,6 @@ int main(int argc, char **argv)
         return window(argv[2], argv[3], argv[4], true);
     fprintf(stderr, "usage: view_check same A.exr B.exr | window SHOT.png RENDER.png REPORT.json [collapsed] | "
             "heat SHOT.png IMAGE.exr | split SHOT.png A.exr B.exr | diff SHOT.png A.exr B.exr RANGE | "
-            "zoom SHOT.png RENDER.png X0 Y0 Z | ramp SHOT.png X Y W H | pixel IMAGE.exr CHANNEL X Y\n");
+            "zoom SHOT.png RENDER.png X0 Y0 Z | ramp SHOT.png X Y W H | pngs A.png B.png same|negative | pixel IMAGE.exr CHANNEL X Y\n");
     return 2;
 }
