@@ -29,15 +29,19 @@ void view_status(viewer *v, const char *fmt, ...)
         fprintf(stderr, "%s: %s\n", PROG, v->status);
 }
 
-/* The passes of this frame's samples (the stats add up over the
- * accumulation: the difference to before). */
+/* The passes of this frame's samples: the path tracer's as the difference
+ * to before (they add up over the accumulation), the build's as the last
+ * build's times (they are not summed: a build runs once per restart). */
 static void record_passes(viewer *v, const dirt_session_stats *before, bool restarted)
 {
     const dirt_session_stats *st = dirt_session_get_stats(v->s);
     v->num_frame_passes = st->num_passes < 32 ? st->num_passes : 32;
+    v->num_build_passes = st->num_build_passes < v->num_frame_passes ? st->num_build_passes
+                                                                     : v->num_frame_passes;
     for (int i = 0; i < v->num_frame_passes; i++) {
         v->frame_passes[i] = st->passes[i];
-        if (!restarted && i < before->num_passes && before->passes[i].name == st->passes[i].name)
+        if (i >= v->num_build_passes && !restarted && i < before->num_passes &&
+            before->passes[i].name == st->passes[i].name)
             v->frame_passes[i].ms -= before->passes[i].ms;
     }
     v->last = *st;
@@ -306,7 +310,8 @@ static int prepare(viewer *v, dirt_scene **scene)
             return DIRT_EXIT_USAGE;
     const char *scene_path = v->o.num_scenes ? v->o.scenes[0] : NULL;
     *scene = app_load_scene(PROG, scene_path, &v->o);
-    if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene))
+    if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene) ||
+        !view_load_reference(v))
         return DIRT_EXIT_USAGE;
     /* No output (at exit or from the script) may be an input. */
     if (view_check_io(v, scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
@@ -434,6 +439,8 @@ int main(int argc, char **argv)
     if (v->frame_log)
         fclose(v->frame_log);
     dirt_gpu_texture_destroy(v->gpu, v->aux_tex);
+    dirt_gpu_texture_destroy(v->gpu, v->ref_tex);
+    dirt_image_destroy(v->ref);
     dirt_session_destroy(v->pre);
     dirt_session_destroy(v->cmp);
     dirt_session_destroy(v->s);

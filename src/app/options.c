@@ -29,6 +29,7 @@ static const char *const ext_jsonl[] = {".jsonl", NULL};
 static const char *const ext_dot[] = {".dot", NULL};
 static const char *const ext_png[] = {".png", NULL};
 static const char *const ext_image[] = {".exr", ".png", NULL};
+static const char *const ext_exr[] = {".exr", NULL};
 
 /* Kinds: 'F' flag (bool; on/off from a script), 'i' int, 'l' long,
  * 'u' uint32_t, 'f' float, 'd' double (each in [lo, hi]), 'c' a choice of
@@ -251,6 +252,10 @@ static const app_opt_def table[APP_NUM_OPTS] = {
     [APP_OPT_COMPARE] = {APP_OPT_COMPARE, NULL, "--compare", NULL, "ENGINE", 'c', OFF(compare), 0,
         0, app_compare_names, "split view against a second engine on the same camera: dirt, "
         "mmrt, embree, raster or none", "none", NULL},
+    [APP_OPT_COMPARE_IMAGE] = {APP_OPT_COMPARE_IMAGE, NULL, "--compare-image", NULL, "FILE.exr",
+        'p', OFF(compare_image), 0, 0, ext_exr, "split view against a reference image from disk "
+        "instead of a second engine (V turns it on and off); the render takes its size (with "
+        "-W/-H they must be its size)", NULL, NULL},
     [APP_OPT_SPLIT] = {APP_OPT_SPLIT, NULL, "--split", NULL, "X", 'f', OFF(split), 0, 1, NULL,
         "where the split is, 0..1 of the width", "0.5", NULL},
     [APP_OPT_DIFF] = {APP_OPT_DIFF, NULL, "--diff", NULL, NULL, 'F', OFF(diff), 0, 0, NULL,

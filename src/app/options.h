@@ -41,7 +41,8 @@ enum app_opt {
     APP_OPT_SKIP_EXISTING, APP_OPT_PLACEHOLDERS, APP_OPT_CLAIM_TIMEOUT, APP_OPT_CHUNK,
     APP_OPT_ANIMATED_SEED, APP_OPT_LOG,
     /* the window (dirt-view) */
-    APP_OPT_WINDOW, APP_OPT_SAMPLES_PER_FRAME, APP_OPT_SLICE_MS, APP_OPT_BUFFER, APP_OPT_COMPARE, APP_OPT_SPLIT,
+    APP_OPT_WINDOW, APP_OPT_SAMPLES_PER_FRAME, APP_OPT_SLICE_MS, APP_OPT_BUFFER, APP_OPT_COMPARE,
+    APP_OPT_COMPARE_IMAGE, APP_OPT_SPLIT,
     APP_OPT_DIFF, APP_OPT_DIFF_RANGE, APP_OPT_SCALE, APP_OPT_NO_PREVIEW, APP_OPT_NO_UI,
     APP_OPT_SCRIPT, APP_OPT_TEST_FRAMES, APP_OPT_SCREENSHOT, APP_OPT_SAVE_IMAGE, APP_OPT_REPORT,
     APP_OPT_BINDINGS,
@@ -104,6 +105,7 @@ typedef struct app_opts {
     float split, diff_range;
     bool diff, no_preview, no_ui, bindings;
     const char *script, *screenshot, *save_image, *report;
+    const char *compare_image;  /* --compare-image: a reference EXR to compare with */
     long test_frames;
     /* measurement */
     int res[2], agree_res[2], warmup, repeat, dirt_buckets, mmrt_buckets;

@@ -140,7 +140,8 @@ static const app_use view_window_opts[] = {
     {APP_OPT_HEIGHT, RT, NULL, "follow the window, or width / the camera's aspect with --width"},
     {APP_OPT_SPP, RT, "1024", "1024: stop accumulating there"},
     {APP_OPT_SAMPLES_PER_FRAME, RT}, {APP_OPT_SLICE_MS, RT}, {APP_OPT_BUFFER, RT}, {APP_OPT_EXPOSURE, RT},
-    {APP_OPT_TONEMAP, RT}, {APP_OPT_COMPARE, RT}, {APP_OPT_SPLIT, RT}, {APP_OPT_DIFF, RT},
+    {APP_OPT_TONEMAP, RT}, {APP_OPT_COMPARE, RT}, {APP_OPT_COMPARE_IMAGE},
+    {APP_OPT_SPLIT, RT}, {APP_OPT_DIFF, RT},
     {APP_OPT_DIFF_RANGE, RT}, {APP_OPT_SCALE, RT}, {APP_OPT_NO_PREVIEW, RT}, {APP_OPT_NO_UI, RT},
     {APP_OPT_NONE}};
 static const app_use view_scene_opts[] = {

@@ -53,6 +53,10 @@ typedef struct viewer {
     float env_intensity, env_rotation; /* what env was made with */
     dirt_session *s, *cmp;
     int cmp_engine;             /* engine of cmp, -1 none */
+    dirt_image *ref;            /* --compare-image: the reference, shown instead of cmp */
+    uint32_t ref_tex;           /*   its display texture (0 until uploaded) */
+    bool ref_on;                /*   shown (V toggles it) */
+    bool ref_mismatch;          /*   its size is not the render's (said once) */
     dirt_session *pre;          /* the raster preview shown while the camera moves */
     bool moving;                /* input moved the camera in this frame */
     bool hold;                  /* an output was taken in this frame: no new samples */
@@ -73,13 +77,17 @@ typedef struct viewer {
     int aux_w, aux_h;
     long aux_key;               /* generation the aux texture shows, -1 none */
     float aux_lo, aux_hi;
+    float zoom;                 /* 0: fitted; else window pixels per image pixel */
+    double zoom_u, zoom_v;      /* with a zoom: the image point at the window's centre
+                                   (fractions of the image) */
     long generation;            /* bumps on every restart and sample */
     /* numbers */
     float frame_ms[RING], sample_ms[RING];
     int ring_pos, ring_count;
     dirt_session_stats last;    /* stats after the last frame's samples */
-    dirt_pass_time frame_passes[32];
+    dirt_pass_time frame_passes[32]; /* the last build's, then this frame's samples' */
     int num_frame_passes;
+    int num_build_passes;       /* frame_passes[0 .. num_build_passes): the build's */
     /* input and script */
     int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
     bool pressed[DIRT_NUM_KEYS]; /* a script key went down in this frame */
@@ -97,6 +105,10 @@ typedef struct viewer {
     char shot_path[4][4096];    /* window screenshots asked for in this frame */
     int num_shots;
     char status[512];
+    float memory_rect[4];       /* the Numbers panel's memory line (window pixels) */
+    int shader_reloads;         /* F5 reloads that took */
+    int shader_reload_failures; /* F5 reloads refused (the old programs kept) */
+    char reload_status[512];    /* what the last F5 did */
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
@@ -142,8 +154,23 @@ dirt_session_opts view_wanted_opts(const viewer *v, int engine);
 bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);
+/* Shader reload (F5): with the shaders read from a source tree
+ * (DIRT_GLSL_DIR), remakes the sessions and the presentation program from
+ * them; a shader that does not compile keeps the old programs (the status
+ * line and the log say why). False when nothing was reloaded. */
+bool view_reload_shaders(viewer *v);
 
 /* view_split.c */
+/* Reads --compare-image (before the window): exit 2's reasons printed,
+ * false when it cannot be read or its size is not the render's (-W/-H);
+ * without -W/-H the render takes its size. */
+bool view_load_reference(viewer *v);
+/* The comparison shown now: the reference (when its size is the render's)
+ * or the comparison session, with samples; its name ("reference" or the
+ * engine's). */
+bool view_ref_shown(const viewer *v);
+bool view_comparing(const viewer *v);
+const char *view_compare_name(const viewer *v);
 bool view_sync_compare(viewer *v);
 void view_sample_compare(viewer *v);
 void view_present_split(const viewer *v, dirt_present_opts *p);
@@ -163,6 +190,13 @@ void view_focus_at(viewer *v);
 
 /* view_display.c */
 void view_fit(const viewer *v, int w, int h, int r[4]);
+/* Zoom: `zoom` window pixels per image pixel (clamped to 1/16 .. 64; 0 or
+ * less: fitted), keeping the image point under window pixel (wx, wy) there;
+ * `steps` powers of two in (+) or out (-) from the scale shown; panning the
+ * image by window pixels (a fitted image keeps its scale). */
+void view_zoom_at(viewer *v, double zoom, double wx, double wy);
+void view_zoom_steps(viewer *v, double steps, double wx, double wy);
+void view_pan_image(viewer *v, double dx, double dy);
 void view_draw(viewer *v, bool preview);
 
 /* The values of every channel (R, G, B, A, then the AOVs) of both images

@@ -41,6 +41,12 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
             vcam_dolly(&v->look, powf(0.85f, (float)in->scroll));
             v->cam_dirty = v->moving = true;
         }
+        /* Ctrl + wheel zooms the image about the cursor, Ctrl + left drag
+         * pans it (the camera stays). */
+        if (in->ctrl_scroll != 0)
+            view_zoom_steps(v, in->ctrl_scroll, in->ctrl_scroll_x, in->ctrl_scroll_y);
+        if (in->ctrl_drag_dx != 0 || in->ctrl_drag_dy != 0)
+            view_pan_image(v, in->ctrl_drag_dx, in->ctrl_drag_dy);
         if (in->double_clicks > 0) {
             v->click_pending = true;
             v->click_x = in->mouse_x;
@@ -71,6 +77,8 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         v->show_help = !v->show_help;
     if (p[DIRT_KEY_H])
         v->o.no_ui = !v->o.no_ui;
+    if (p[DIRT_KEY_F5])
+        view_reload_shaders(v);
     if (p[DIRT_KEY_R]) {
         view_reset_camera(v);
         view_status(v, "camera reset");
@@ -82,10 +90,20 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
             v->o.buffer = k;
     if (p[DIRT_KEY_TAB])
         v->o.s.engine = (enum dirt_engine)((v->o.s.engine + 1) % DIRT_NUM_ENGINES);
-    if (p[DIRT_KEY_V])
+    if (p[DIRT_KEY_V] && v->ref)
+        v->ref_on = !v->ref_on;
+    else if (p[DIRT_KEY_V])
         v->o.compare = v->o.compare ? 0 : (v->o.s.engine == DIRT_ENGINE_MMRT ? 1 : 2);
     if (p[DIRT_KEY_X])
         v->o.diff = !v->o.diff;
+    if (p[DIRT_KEY_Z]) {
+        /* 1:1 about the cursor (the window's centre when it is outside), or
+         * back to fitted. */
+        bool inside = in->mouse_x >= 0 && in->mouse_y >= 0 && in->mouse_x < in->width &&
+                      in->mouse_y < in->height;
+        view_zoom_at(v, v->zoom > 0 ? 0 : 1, inside ? in->mouse_x : in->width / 2.0,
+                     inside ? in->mouse_y : in->height / 2.0);
+    }
     if (p[DIRT_KEY_SPACE])
         v->o.play = !v->o.play;
     if (p[DIRT_KEY_RIGHT] || p[DIRT_KEY_LEFT]) {

@@ -27,14 +27,18 @@ const char *const view_bindings[][2] = {
     {"C", "next scene camera"},
     {"1 .. 9", "buffer: beauty, albedo, normal, depth, id, lists, buckets, zmin, zmax"},
     {"Tab", "next engine (dirt, mmrt, embree, raster)"},
-    {"V", "split view against the comparison engine on / off"},
+    {"V", "split view against the comparison engine (or --compare-image) on / off"},
     {"X", "difference heat map of the split on / off"},
     {"Space", "play / pause the animation"},
     {"Left Right", "step the animation one frame (1/24 s) back / forward"},
     {"Minus Equal", "exposure down / up one stop"},
     {"P", "screenshot of the window (dirt-view-N.png)"},
     {"O", "save the render (dirt-view-N.exr and .png)"},
+    {"Ctrl + Wheel", "zoom the image in / out (powers of 2) about the cursor"},
+    {"Ctrl + Left drag", "pan the image (zoomed or not)"},
+    {"Z", "zoom 1:1 about the cursor / back to fitted"},
     {"H", "hide / show the panels"},
+    {"F5", "reload the shaders from DIRT_GLSL_DIR (a broken one keeps the old programs)"},
     {"F1", "this help"},
     {"Escape", "quit"},
 };
@@ -75,7 +79,8 @@ int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *sce
     bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
     cli_io io = {.scene_path = scene_path,
                  .scene = scene,
-                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"}},
+                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"},
+                        {v->o.compare_image, "--compare-image"}},
                  .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
                          {save_png[0] ? save_png : NULL, "--save-image"},
                          {v->o.report, "--report"}}};
@@ -211,7 +216,9 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "last_sample_ms", v->last_sample_ms);
     cJSON_AddNumberToObject(r, "scale", v->o.s.width > 0 ? 1 : v->o.scale);
     cJSON_AddBoolToObject(r, "scale_auto", v->auto_scale);
-    cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
+    cJSON_AddStringToObject(r, "compare", view_compare_name(v));
+    if (v->o.compare_image)
+        cJSON_AddStringToObject(r, "compare_image", v->o.compare_image);
     cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
     cJSON_AddBoolToObject(r, "diff", v->o.diff);
     cJSON_AddStringToObject(r, "buffer", app_buffer_names[v->o.buffer]);
@@ -220,6 +227,9 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "exposure", v->o.exposure);
     cJSON_AddBoolToObject(r, "play", v->o.play);
     cJSON_AddNumberToObject(r, "frames", (double)v->frame);
+    cJSON_AddNumberToObject(r, "shader_reloads", v->shader_reloads);
+    cJSON_AddNumberToObject(r, "shader_reload_failures", v->shader_reload_failures);
+    cJSON_AddStringToObject(r, "shader_reload_status", v->reload_status);
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
     cJSON_AddStringToObject(r, "camera_args", cam);
@@ -295,6 +305,31 @@ bool view_write_report(viewer *v, const char *path)
         cJSON_AddNumberToObject(b, "lo", v->bar_lo);
         cJSON_AddNumberToObject(b, "hi", v->bar_hi);
         cJSON_AddItemToObject(b, "rect", cJSON_CreateFloatArray(v->bar_rect, 4));
+    }
+    /* The Numbers panel's passes: the last build's, then the last frame's
+     * samples'; memory, and where its line is (0s: not shown). */
+    cJSON *passes = cJSON_AddArrayToObject(r, "passes");
+    for (int i = 0; i < v->num_frame_passes; i++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddStringToObject(p, "name", v->frame_passes[i].name);
+        cJSON_AddNumberToObject(p, "ms", v->frame_passes[i].ms);
+        cJSON_AddStringToObject(p, "clock", dirt_clock_names[v->frame_passes[i].clock]);
+        cJSON_AddBoolToObject(p, "build", i < v->num_build_passes);
+        cJSON_AddItemToArray(passes, p);
+    }
+    cJSON *mem = cJSON_AddObjectToObject(r, "memory");
+    cJSON_AddNumberToObject(mem, "used", (double)v->last.bytes_total_used);
+    cJSON_AddNumberToObject(mem, "allocated", (double)v->last.bytes_total_allocated);
+    cJSON_AddItemToObject(mem, "rect", cJSON_CreateFloatArray(v->memory_rect, 4));
+    /* Where the image is: its rectangle in the window, and the zoom (0:
+     * fitted). */
+    {
+        int iw = v->rw, ih = v->rh, ir[4];
+        if (v->o.buffer != BUF_BEAUTY && v->aux_tex && v->aux_w > 0)
+            iw = v->aux_w, ih = v->aux_h;
+        view_fit(v, iw, ih, ir);
+        cJSON_AddItemToObject(r, "image_rect", cJSON_CreateIntArray(ir, 4));
+        cJSON_AddNumberToObject(r, "zoom", v->zoom);
     }
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)

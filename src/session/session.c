@@ -424,6 +424,7 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
     st->bytes_total_used = st->bytes_total_allocated = 0;
     st->build_ms = 0;
     s->ops->build_stats(s->engine, st);
+    st->num_build_passes = st->num_passes;
 }
 
 static void fill_common(dirt_session *s, dirt_session_stats *st)

@@ -231,6 +231,9 @@ typedef struct dirt_session_stats {
     uint64_t paths_at_event[DIRT_MAX_EVENTS];
     int num_passes;
     dirt_pass_time passes[32];  /* build passes, then the path tracer's */
+    int num_build_passes;       /* passes[0 .. num_build_passes) are the last build's (its
+                                   times, not summed over the samples); the rest add up
+                                   over the accumulation */
     int num_buffers;
     dirt_buffer_bytes buffers[24];
     uint64_t bytes_total_used, bytes_total_allocated;
