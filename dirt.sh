@@ -20,7 +20,7 @@ PACKAGES=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   libglfw3-dev libimgui-dev libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libembree-dev glslang-tools libcjson-dev python3 gnuplot-nox
-  xvfb xauth xdotool
+  xvfb xauth xdotool libx11-dev
   slurm-wlm munge openimageio-tools procps
   clang libclang-rt-14-dev
   python3-cffi python3-numpy python3-pytest python3-matplotlib binutils

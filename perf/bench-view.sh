@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The displayed frame time of dirt-view while it path traces: per window
-# size and engine, dirt-view runs FRAMES frames (panels shown, one sample
-# per frame) under xvfb-run and reports the frame and sample times (min,
+# size and engine, dirt-view runs FRAMES frames (panels shown, rendering at
+# the window's size: --scale 1; a frame traces a slice of --slice-ms of a
+# sample, or one whole sample of embree and raster) under xvfb-run and reports the frame and sample times (min,
 # median, max over the frames after the first). The configurations run
 # interleaved, REPEATS times each; the table keeps each one's minimum of
 # the medians. Prints a markdown table with the machine and renderer.
@@ -18,7 +19,7 @@ for r in $(seq "$repeats"); do
     for engine in $engines; do
       # shellcheck disable=SC2086
       xvfb-run -a -s "-screen 0 1600x1000x24" "$view" $scene --window "$size" \
-        --engine "$engine" --spp 1048576 --test-frames "$frames" -q \
+        --engine "$engine" --scale 1 --spp 1048576 --test-frames "$frames" -q \
         --report "$tmp/$size-$engine-$r.json"
     done
   done

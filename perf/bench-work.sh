@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Work per ray (--count-work; doc/dirt-trace.md, "Work counters"): DIRT vs
 # MMRT vs Embree's BVH over the same rays, per ray type, on the default
-# scene, a generated closed room with dense geometry (perf/make-room.py) and
-# any SCENE given. Counts, not times: deterministic, so any machine may
-# record them (perf/results/work-llvmpipe.md).
+# scene, the generated scenes nobody tuned for (perf/gen-scenes.sh: a closed
+# room with dense geometry, the same kind of geometry over a mirror floor,
+# thin slats at grazing angles) and any SCENE given. Counts, not times:
+# deterministic, so any machine may record them
+# (perf/results/work-llvmpipe.md).
 #
 #   perf/bench-work.sh [BUILD_DIR] [WxH] [SCENE...]
 set -euo pipefail
@@ -13,8 +15,8 @@ shift $(( $# > 2 ? 2 : $# ))
 render=$build/src/app/dirt-render
 tmp=$(mktemp -d /tmp/dirt-bench-work-XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
-python3 "$(dirname "$0")/make-room.py" "$tmp/room69k.gltf" 69000 >/dev/null
-scenes=(default "$tmp/room69k.gltf" "$@")
+"$(dirname "$0")/gen-scenes.sh" "$tmp" >/dev/null
+scenes=(default "$tmp"/room69k.gltf "$tmp"/mirror69k.glb "$tmp"/slats69k.glb "$@")
 W=${res%x*} H=${res#*x}
 echo "| scene | ray type | DIRT tri tests | tiles | Hi-Z steps | list nodes | MMRT fragments | MMRT Hi-Z steps | Embree tri tests | Embree BVH nodes | DIRT / Embree tri tests |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"

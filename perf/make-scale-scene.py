@@ -1,36 +1,52 @@
 #!/usr/bin/env python3
-"""Writes a closed room full of objects as one binary glTF (.glb), for the
-scaling benchmark (perf/bench-scale.py) and the large-scene checks: the
-4 x 3 x 5 room of perf/make-room.py (white floor, ceiling, back and front
+"""Writes a closed room full of geometry as one glTF file (binary .glb, or
+.gltf with the buffer embedded), for the scaling benchmark
+(perf/bench-scale.py), the work counters (perf/bench-work.sh) and the
+large-scene checks: a 4 x 3 x 5 room (white floor, ceiling, back and front
 walls, red and green side walls, an emissive ceiling panel, a camera inside
-looking at the back wall) holding OBJECTS objects (default: about
-sqrt(TRIANGLES) / 3, at least 8) of about TRIANGLES triangles in all: bumpy
-spheres, tori and rounded boxes, each tessellated to its share, scattered
-with a fixed seed through the back of the room (random sizes, rotations and diffuse,
-glossy or metallic materials) in front of the camera.
+at eye height looking at the back wall) holding about TRIANGLES triangles
+of one of these kinds (--kind):
+
+  objects  OBJECTS objects (default: about sqrt(TRIANGLES) / 3, at least 8):
+           bumpy spheres, tori and rounded boxes, each tessellated to its
+           share, scattered with a fixed seed through the back of the room
+           (random sizes, rotations and diffuse, glossy or metallic
+           materials) in front of the camera;
+  mirror   the same objects over a mirror floor (metallic, roughness 0):
+           a specular floor under dense geometry;
+  slats    OBJECTS thin slats (4 mm thick, 12-20 cm wide, 1.2-3.2 m long,
+           tessellated along their length to their share): horizontal
+           blinds stacked through the height of the room and vertical
+           blades along its depth, each turned a few degrees off the
+           camera's line of sight, so that most are seen nearly edge-on
+           (thin geometry at grazing angles).
 
 Each object is its own mesh (no shared meshes: the loader would expand
 instances anyway, but a file of distinct meshes is what a scanned or CAD
 scene is). The file holds positions, normals and 32-bit indices, about
 16 bytes per triangle, so 10 M triangles make a file of about 160 MB: keep
 such files out of the repository (write them under /tmp or build/).
+perf/make-room.py writes the same room around one bumpy sphere.
 
 With --normal-map every mesh also gets texture coordinates (no TANGENT:
-the loader generates the tangents) and every material but the light a
-tangent-space normal map of bumps and a checker base colour texture, both
-SIZE x SIZE (--texture-size, default 256) PNGs inside the file: a
-normal-mapped, textured scene for the large-scene checks of the tangents
-and texels (about 8 more bytes per triangle in the file; 4 * SIZE^2 bytes
-of texels per texture on the GPU).
+the loader generates the tangents; the walls repeat the textures once a
+metre, the objects twice around, the slats once a metre on each face) and
+every material but the light a tangent-space normal map of bumps and a
+checker base colour texture, both SIZE x SIZE (--texture-size, default
+256) PNGs inside the file: a normal-mapped, textured scene of any kind for
+the large-scene checks of the tangents and texels (about 8 more bytes per
+triangle in the file; 4 * SIZE^2 bytes of texels per texture on the GPU).
 
-    perf/make-scale-scene.py OUT.glb TRIANGLES [--objects N] [--seed S]
+    perf/make-scale-scene.py OUT.glb|OUT.gltf TRIANGLES [--kind KIND] [--objects N] [--seed S]
                              [--normal-map [--texture-size SIZE]]
 
 Prints the file written and its triangle count. Needs python3-numpy.
 """
 import argparse
-import json
+import importlib.util
+import copy
 import math
+import os
 import struct
 import sys
 import zlib
@@ -41,7 +57,12 @@ except ImportError:
     sys.exit("make-scale-scene.py: needs numpy (Debian: python3-numpy; run it with "
              "/usr/bin/python3)")
 
-ROOM = (-2.0, 2.0, 0.0, 3.0, -5.0, 0.0)  # x0, x1, y0, y1, z0, z1
+# The room, its first materials and the writer are perf/make-room.py's.
+_spec = importlib.util.spec_from_file_location(
+    "make_room", os.path.join(os.path.dirname(os.path.abspath(__file__)), "make-room.py"))
+room_base = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(room_base)
+ROOM = room_base.ROOM
 
 
 def grid(n_u, n_v, closed_u, closed_v):
@@ -140,37 +161,7 @@ def rotation(rng):
                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-def quad(p0, p1, p2, p3, n):
-    pos = np.array([p0, p1, p2, p3], dtype=np.float64)
-    uv = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], dtype=np.float64)
-    return (pos, np.array([n] * 4, dtype=np.float64), np.array([[0, 1, 2], [0, 2, 3]], np.uint32),
-            uv)
-
-
-def room():
-    x0, x1, y0, y1, z0, z1 = ROOM
-    return [  # (name, (pos, nrm, idx), material), inward normals
-        ("floor", quad((x0, y0, z1), (x1, y0, z1), (x1, y0, z0), (x0, y0, z0), (0, 1, 0)), 0),
-        ("ceiling", quad((x0, y1, z0), (x1, y1, z0), (x1, y1, z1), (x0, y1, z1), (0, -1, 0)), 0),
-        ("back", quad((x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (0, 0, 1)), 0),
-        ("front", quad((x1, y0, z1), (x0, y0, z1), (x0, y1, z1), (x1, y1, z1), (0, 0, -1)), 0),
-        ("left", quad((x0, y0, z1), (x0, y0, z0), (x0, y1, z0), (x0, y1, z1), (1, 0, 0)), 1),
-        ("right", quad((x1, y0, z0), (x1, y0, z1), (x1, y1, z1), (x1, y1, z0), (-1, 0, 0)), 2),
-        ("light", quad((-0.5, y1 - 1e-3, -3.0), (0.5, y1 - 1e-3, -3.0), (0.5, y1 - 1e-3, -2.0),
-                       (-0.5, y1 - 1e-3, -2.0), (0, -1, 0)), 3),
-    ]
-
-
-MATERIALS = [
-    {"name": "white", "pbrMetallicRoughness": {"baseColorFactor": [0.73, 0.73, 0.73, 1],
-                                                "metallicFactor": 0, "roughnessFactor": 1}},
-    {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.63, 0.065, 0.05, 1],
-                                              "metallicFactor": 0, "roughnessFactor": 1}},
-    {"name": "green", "pbrMetallicRoughness": {"baseColorFactor": [0.14, 0.45, 0.091, 1],
-                                                "metallicFactor": 0, "roughnessFactor": 1}},
-    {"name": "light", "emissiveFactor": [1, 1, 1],
-     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 15}},
-     "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+MATERIALS = room_base.MATERIALS + [
     {"name": "clay", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.55, 0.35, 1],
                                                "metallicFactor": 0, "roughnessFactor": 0.9}},
     {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.7, 1],
@@ -179,7 +170,12 @@ MATERIALS = [
                                                "metallicFactor": 1, "roughnessFactor": 0.35}},
     {"name": "plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.85, 0.85, 0.8, 1],
                                                   "metallicFactor": 0, "roughnessFactor": 0.2}},
+    {"name": "mirror", "pbrMetallicRoughness": {"baseColorFactor": [0.95, 0.95, 0.95, 1],
+                                                 "metallicFactor": 1, "roughnessFactor": 0}},
+    {"name": "slat", "pbrMetallicRoughness": {"baseColorFactor": [0.75, 0.7, 0.6, 1],
+                                               "metallicFactor": 0, "roughnessFactor": 0.6}},
 ]
+MIRROR, SLAT = 8, 9
 
 
 def objects(total, count, rng):
@@ -217,6 +213,83 @@ def object_uv(pos):
     return np.stack([u, v], -1)
 
 
+def slat_box(length, width, thick, segs):
+    """A box along x (length) by y (thickness) by z (width), centred at the
+    origin, its four long faces cut into `segs` quads along x: 8 segs + 4
+    triangles, flat normals; texture coordinates in metres along each face
+    (u along the length, v across; on the end caps u = y, v = z)."""
+    x = np.linspace(-length / 2, length / 2, segs + 1)
+    h, w = thick / 2, width / 2
+    pos, nrm, idx, uv = [], [], [], []
+    # the long faces: (y, z) corners a -> b, outward normal
+    for (ya, za), (yb, zb), n in (((h, -w), (h, w), (0, 1, 0)), ((-h, w), (-h, -w), (0, -1, 0)),
+                                  ((-h, w), (h, w), (0, 0, 1)), ((h, -w), (-h, -w), (0, 0, -1))):
+        base = sum(len(p) for p in pos)
+        p = np.zeros((2 * (segs + 1), 3))
+        p[0::2, 0], p[0::2, 1], p[0::2, 2] = x, ya, za
+        p[1::2, 0], p[1::2, 1], p[1::2, 2] = x, yb, zb
+        pos.append(p)
+        nrm.append(np.tile(n, (len(p), 1)))
+        t = np.zeros((len(p), 2))
+        t[:, 0] = p[:, 0] + length / 2
+        t[1::2, 1] = math.hypot(yb - ya, zb - za)
+        uv.append(t)
+        k = np.arange(segs) * 2 + base
+        idx.append(np.stack([k, k + 2, k + 1], -1))
+        idx.append(np.stack([k + 1, k + 2, k + 3], -1))
+    for sx in (-1, 1):  # end caps
+        base = sum(len(p) for p in pos)
+        xe = sx * length / 2
+        c = [(xe, -h, -w), (xe, h, -w), (xe, h, w), (xe, -h, w)]
+        pos.append(np.array(c))
+        nrm.append(np.tile((sx, 0, 0), (4, 1)))
+        uv.append(np.array(c)[:, 1:] + (h, w))
+        q = [[0, 1, 2], [0, 2, 3]] if sx > 0 else [[0, 2, 1], [0, 3, 2]]
+        idx.append(np.array(q) + base)
+    return (np.vstack(pos), np.vstack(nrm).astype(np.float64), np.vstack(idx).astype(np.uint32),
+            np.vstack(uv))
+
+
+def slats(total, count, rng):
+    """`count` thin slats of about `total` triangles in all: half
+    horizontal blinds across the room (seen edge-on from the camera's
+    height, at grazing angles above and below it), half vertical blades
+    along its depth (seen edge-on from straight ahead, grazing off it),
+    each turned up to 4 degrees off those planes."""
+    x0, x1, y0, y1, z0, z1 = ROOM
+    segs = max(1, (max(total // count, 12) - 4) // 8)
+    out = []
+    for k in range(count):
+        thick, width = 0.004, rng.uniform(0.12, 0.2)
+        tilt = np.radians(rng.uniform(-4, 4))
+        if k % 2 == 0:  # a blind: along x, thin in y
+            length = rng.uniform(1.2, 3.2)
+            pos, nrm, idx, uv = slat_box(length, width, thick, segs)
+            c, s_ = np.cos(tilt), np.sin(tilt)  # about x: the width tips up or down
+            rot = np.array([[1, 0, 0], [0, c, -s_], [0, s_, c]])
+            centre = (rng.uniform(x0 + length / 2 + 0.05, x1 - length / 2 - 0.05)
+                      if length < x1 - x0 - 0.2 else 0.0,
+                      rng.uniform(y0 + 0.2, y1 - 0.3), rng.uniform(-4.6, -1.9))
+        else:  # a blade: along z, thin in x, standing
+            length = rng.uniform(1.2, 2.6)
+            pos, nrm, idx, uv = slat_box(length, width, thick, segs)
+            # x -> -z (length along the depth), y -> x (thin across), z -> y (width up)
+            to_blade = np.array([[0, 1, 0], [0, 0, 1], [-1, 0, 0]])
+            c, s_ = np.cos(tilt), np.sin(tilt)  # about y: off the line of sight
+            rot = np.array([[c, 0, s_], [0, 1, 0], [-s_, 0, c]]) @ to_blade
+            centre = (rng.uniform(x0 + 0.3, x1 - 0.3), rng.uniform(y0 + 0.1, y1 - 0.4),
+                      rng.uniform(z0 + length / 2 + 0.1, -0.6 - length / 2))
+        out.append((f"slat{k}", (pos @ rot.T + np.array(centre), nrm @ rot.T, idx, uv), SLAT))
+    return out
+
+
+def room_uv(walls):
+    """The room's quads with texture coordinates: the textures once a
+    metre along each side of the room (4 x 4 on every quad)."""
+    uv = [(0, 0), (4, 0), (4, 4), (0, 4)]
+    return [(n, (pos, nrm, idx, uv), m) for n, (pos, nrm, idx), m in walls]
+
+
 def png(rgb):
     """An 8-bit RGB PNG of an H x W x 3 uint8 array."""
     h, w, _ = rgb.shape
@@ -243,100 +316,39 @@ def textures(size):
     normal = np.clip(np.round((n * 0.5 + 0.5) * 255), 0, 255).astype(np.uint8)
     cells = ((np.floor(u * 8) + np.floor(v * 8)) % 2)[..., None]
     checker = np.where(cells > 0, 230, 140) * np.ones(3)
-    return png(normal), png(checker.astype(np.uint8))
+    return [png(normal), png(checker.astype(np.uint8))]
 
 
-def write_glb(path, meshes, texture_size=0):
-    bin_ = bytearray()
-    views, accessors, gl_meshes, nodes = [], [], [], []
-    tris = 0
-
-    def add(data, target, comp, typ, minmax=False):
-        while len(bin_) % 4:
-            bin_.append(0)
-        start = len(bin_)
-        bin_.extend(data.tobytes())
-        views.append({"buffer": 0, "byteOffset": start, "byteLength": len(bin_) - start,
-                      "target": target})
-        acc = {"bufferView": len(views) - 1, "count": int(data.shape[0]) if typ != "SCALAR"
-               else int(data.size), "componentType": comp, "type": typ}
-        if minmax:
-            acc["min"] = [float(v) for v in data.min(axis=0)]
-            acc["max"] = [float(v) for v in data.max(axis=0)]
-        accessors.append(acc)
-        return len(accessors) - 1
-
-    for name, (pos, nrm, idx, uv), mat in meshes:
-        tris += idx.shape[0]
-        p = add(np.ascontiguousarray(pos, np.float32), 34962, 5126, "VEC3", True)
-        n = add(np.ascontiguousarray(nrm, np.float32), 34962, 5126, "VEC3")
-        i = add(np.ascontiguousarray(idx.reshape(-1), np.uint32), 34963, 5125, "SCALAR")
-        attributes = {"POSITION": p, "NORMAL": n}
-        if texture_size:
-            attributes["TEXCOORD_0"] = add(np.ascontiguousarray(uv, np.float32), 34962, 5126,
-                                           "VEC2")
-        gl_meshes.append({"name": name, "primitives": [
-            {"attributes": attributes, "indices": i, "material": mat, "mode": 4}]})
-        nodes.append({"name": name, "mesh": len(gl_meshes) - 1})
-    nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 1.5, -0.3]})
-    materials = MATERIALS
-    images = []
-    if texture_size:
-        for data in textures(texture_size):
-            while len(bin_) % 4:
-                bin_.append(0)
-            views.append({"buffer": 0, "byteOffset": len(bin_), "byteLength": len(data)})
-            bin_.extend(data)
-            images.append({"bufferView": len(views) - 1, "mimeType": "image/png"})
-        materials = json.loads(json.dumps(MATERIALS))
-        for m in materials:
-            if "emissiveFactor" not in m:
-                m["normalTexture"] = {"index": 0}
-                m["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 1}
-    gltf = {
-        "asset": {"version": "2.0", "generator": "DIRT perf/make-scale-scene.py"},
-        "extensionsUsed": ["KHR_materials_emissive_strength"],
-        "scene": 0,
-        "scenes": [{"nodes": list(range(len(nodes)))}],
-        "nodes": nodes,
-        "meshes": gl_meshes,
-        "materials": materials,
-        "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.05,
-                                                            "aspectRatio": 4.0 / 3.0}}],
-        "accessors": accessors,
-        "bufferViews": views,
-        "buffers": [{"byteLength": len(bin_)}],
-    }
-    if images:
-        gltf["images"] = images
-        gltf["textures"] = [{"source": 0}, {"source": 1}]
-    js = json.dumps(gltf, separators=(",", ":")).encode()
-    js += b" " * (-len(js) % 4)
-    while len(bin_) % 4:
-        bin_.append(0)
-    with open(path, "wb") as f:
-        f.write(struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(js) + 8 + len(bin_)))
-        f.write(struct.pack("<II", len(js), 0x4E4F534A) + js)
-        f.write(struct.pack("<II", len(bin_), 0x004E4942))
-        f.write(bin_)
-    return tris
+def textured(materials):
+    """`materials` with the normal map (texture 0) and the checker base
+    colour (texture 1) on every one but the light (the emissive one)."""
+    out = copy.deepcopy(materials)
+    for m in out:
+        if "emissiveFactor" not in m:
+            m["normalTexture"] = {"index": 0}
+            m["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 1}
+    return out
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("out", help="the .glb to write")
+    ap.add_argument("out", help="the .glb or .gltf to write")
     ap.add_argument("triangles", type=int, help="about how many triangles in all (>= 1000)")
+    ap.add_argument("--kind", choices=("objects", "mirror", "slats"), default="objects",
+                    help="what fills the room (default objects)")
     ap.add_argument("--objects", type=int, default=0,
-                    help="how many objects (default: about sqrt(TRIANGLES) / 3, at least 8)")
+                    help="how many objects or slats (default: about sqrt(TRIANGLES) / 3, "
+                    "at least 8)")
     ap.add_argument("--seed", type=int, default=1, help="placement seed (default 1)")
     ap.add_argument("--normal-map", action="store_true",
-                    help="texture coordinates, a normal map and a base colour texture")
+                    help="texture coordinates, a normal map and a base colour texture on "
+                    "every material but the light")
     ap.add_argument("--texture-size", type=int, default=256,
                     help="the textures' width and height with --normal-map (default 256)")
     a = ap.parse_args()
-    if not a.out.lower().endswith(".glb"):
-        sys.exit("make-scale-scene.py: the output must end in .glb")
+    if not a.out.lower().endswith((".glb", ".gltf")):
+        sys.exit("make-scale-scene.py: the output must end in .glb or .gltf")
     if a.triangles < 1000:
         sys.exit("make-scale-scene.py: TRIANGLES must be at least 1000")
     count = a.objects or max(8, int(round(math.sqrt(a.triangles) / 3)))
@@ -345,10 +357,22 @@ def main():
     if a.normal_map and not 1 <= a.texture_size <= 16384:
         sys.exit("make-scale-scene.py: --texture-size must be 1 .. 16384")
     rng = np.random.default_rng(a.seed)
-    meshes = room() + objects(a.triangles - 14, count, rng)
-    tris = write_glb(a.out, meshes, a.texture_size if a.normal_map else 0)
+    walls = room_base.room()
+    if a.kind == "mirror":
+        walls = [(n, g, MIRROR if n == "floor" else m) for n, g, m in walls]
+    fill = slats if a.kind == "slats" else objects
+    meshes = fill(a.triangles - 14, count, rng)
+    if a.normal_map:
+        meshes = room_uv(walls) + meshes
+        materials, images = textured(MATERIALS), textures(a.texture_size)
+    else:
+        meshes = walls + [(n, g[:3], m) for n, g, m in meshes]
+        materials, images = MATERIALS, []
+    tris = room_base.write_gltf(a.out, meshes, materials, "DIRT perf/make-scale-scene.py",
+                                 4.0 / 3.0, images)
     extra = f", normal-mapped, {a.texture_size}^2 textures" if a.normal_map else ""
-    print(f"{a.out}: {tris} triangles ({count} objects{extra})")
+    print(f"{a.out}: {tris} triangles ({count} {'slats' if a.kind == 'slats' else 'objects'}"
+          f"{', mirror floor' if a.kind == 'mirror' else ''}{extra})")
 
 
 if __name__ == "__main__":

@@ -62,6 +62,21 @@
  * after them. */
 #define DIRT_PT_MAX_EVENTS 65
 
+/* The path tracer's ray sort (dirt_pt_opts.sort_rays; glsl/integrator/
+ * sort.comp): a ray's key is its direction's cell on a
+ * DIRT_SORT_DIR_CELLS x DIRT_SORT_DIR_CELLS octahedral map (high bits)
+ * above the Morton code of its origin's cell on a DIRT_SORT_GRID^3 grid
+ * over the scene's bounds (low bits); one bucket per key. */
+#define DIRT_SORT_DIR_BITS 2                         /* per axis of the map */
+#define DIRT_SORT_GRID_BITS 3                        /* per axis of the grid */
+#define DIRT_SORT_DIR_CELLS (1 << DIRT_SORT_DIR_BITS)
+#define DIRT_SORT_GRID (1 << DIRT_SORT_GRID_BITS)
+#define DIRT_SORT_BUCKETS (1 << (2 * DIRT_SORT_DIR_BITS + 3 * DIRT_SORT_GRID_BITS))
+#define DIRT_SORT_SCAN_GROUP 256                     /* invocations of the scan */
+#if DIRT_SORT_BUCKETS % DIRT_SORT_SCAN_GROUP != 0
+#error "common/constants.h: DIRT_SORT_SCAN_GROUP must divide DIRT_SORT_BUCKETS"
+#endif
+
 /* ---- Storage-buffer binding points ----
  *
  * Each subsystem owns the range [DIRT_BIND_<S>_FIRST, DIRT_BIND_<S>_LAST];
@@ -154,9 +169,22 @@
                                           Hi-Z steps, list nodes, triangle tests) */
 #define DIRT_BIND_WORK_LAST 39
 
+/* The DIRT structure's grid of large primitives (common/layout.h; the ADS
+ * range is full). */
+#define DIRT_BIND_LARGE_FIRST 40
+#define DIRT_BIND_LARGE_CELLS 40       /* uvec2[entries]: float bits of (zmin, zmax) per large
+                                          primitive and grid cell */
+#define DIRT_BIND_LARGE_LAST 40
+
+/* The path tracer's ray sort (src/integrator/ray_sort.c,
+ * glsl/integrator/sort.comp). */
+#define DIRT_BIND_SORT_FIRST 41
+#define DIRT_BIND_SORT 41              /* uint offset[DIRT_SORT_BUCKETS], uint key[rays] */
+#define DIRT_BIND_SORT_LAST 41
+
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
-#define DIRT_BIND_LAST DIRT_BIND_WORK_LAST
+#define DIRT_BIND_LAST DIRT_BIND_SORT_LAST
 
 /* The ranges are non-empty, ascending and disjoint. */
 #if DIRT_BIND_SHARED_FIRST != 0 || DIRT_BIND_SHARED_LAST < DIRT_BIND_SHARED_FIRST || \
@@ -171,7 +199,9 @@
     DIRT_BIND_PREVIEW_FIRST <= DIRT_BIND_MODEL_LAST || \
     DIRT_BIND_PREVIEW_LAST < DIRT_BIND_PREVIEW_FIRST || \
     DIRT_BIND_TEST_FIRST <= DIRT_BIND_PREVIEW_LAST || DIRT_BIND_TEST_LAST < DIRT_BIND_TEST_FIRST || \
-    DIRT_BIND_WORK_FIRST <= DIRT_BIND_TEST_LAST || DIRT_BIND_WORK_LAST < DIRT_BIND_WORK_FIRST
+    DIRT_BIND_WORK_FIRST <= DIRT_BIND_TEST_LAST || DIRT_BIND_WORK_LAST < DIRT_BIND_WORK_FIRST || \
+    DIRT_BIND_LARGE_FIRST <= DIRT_BIND_WORK_LAST || DIRT_BIND_LARGE_LAST < DIRT_BIND_LARGE_FIRST || \
+    DIRT_BIND_SORT_FIRST <= DIRT_BIND_LARGE_LAST || DIRT_BIND_SORT_LAST < DIRT_BIND_SORT_FIRST
 #error "common/constants.h: storage-buffer binding ranges overlap or are out of order"
 #endif
 
@@ -236,6 +266,9 @@
 #endif
 #if !DIRT_BIND_IN(DIRT_BIND_WORK, DIRT_BIND_WORK_FIRST, DIRT_BIND_WORK_LAST)
 #error "common/constants.h: the work binding lies outside DIRT_BIND_WORK_*"
+#endif
+#if !DIRT_BIND_IN(DIRT_BIND_SORT, DIRT_BIND_SORT_FIRST, DIRT_BIND_SORT_LAST)
+#error "common/constants.h: the sort binding lies outside DIRT_BIND_SORT_*"
 #endif
 
 /* ---- Texture and image units ---- */
@@ -336,6 +369,10 @@
 /* glsl/integrator/compact.comp, batch.comp */
 #define DIRT_LOC_COMPACT_PIXELS 0    /* uint: pixels of this chunk (a batch's capacity) */
 #define DIRT_LOC_COMPACT_EVENT 1     /* uint k: the path event whose survivors are gathered */
+/* glsl/integrator/sort.comp (every pass) */
+#define DIRT_LOC_SORT_RAYS 0         /* uint: the capacity of the batch being sorted */
+#define DIRT_LOC_SORT_BOUNDS_MIN 1   /* vec3: the box the origin grid spans */
+#define DIRT_LOC_SORT_BOUNDS_MAX 2   /* vec3 */
 /* glsl/integrator/accumulate.comp */
 #define DIRT_LOC_ACCUM_PIXELS 0      /* uint: pixels of this chunk */
 /* glsl/integrator/display.comp */

@@ -375,6 +375,23 @@ class Session:
         if not lib.dirt_session_add_samples(self._live(), int(n), ffi.NULL, ffi.NULL):
             _raise("session")
 
+    def advance(self, budget_ms=0.0):
+        """Works on the next sample for about budget_ms milliseconds (0: one
+        smallest piece) and returns whether this call completed it; a
+        sample may span many calls, and N samples made so equal
+        add_samples(N) bit for bit (dirt_session_advance). Meanwhile
+        samples, image() and the rest give the completed samples."""
+        _begin()
+        done = ffi.new("bool *")
+        if not lib.dirt_session_advance(self._live(), float(budget_ms), done):
+            _raise("session")
+        return bool(done[0])
+
+    @property
+    def sample_part(self):
+        """The part of the sample in progress done, in [0, 1) (0: none)."""
+        return float(lib.dirt_session_sample_part(self._live()))
+
     def reset(self):
         """Restarts the accumulation (0 samples)."""
         lib.dirt_session_reset(self._live())

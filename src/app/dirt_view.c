@@ -2,8 +2,9 @@
  *
  * A GLFW window with panels (gl/ui.h) over the progressive render of one
  * session, and optionally a second session on the same camera for a split
- * or difference view. Every displayed frame adds a bounded number of
- * samples (--samples-per-frame, default 1), never a whole render. This
+ * or difference view. Every displayed frame does a bounded slice of work:
+ * about --slice-ms of path tracing (a sample spans as many frames as it
+ * needs: dirt_session_advance), at most --samples-per-frame samples. This
  * file holds the options, the start, the frame loop and the exit; the
  * viewer's parts are listed in view.h. */
 #include <math.h>
@@ -28,15 +29,19 @@ void view_status(viewer *v, const char *fmt, ...)
         fprintf(stderr, "%s: %s\n", PROG, v->status);
 }
 
-/* The passes of this frame's samples (the stats add up over the
- * accumulation: the difference to before). */
+/* The passes of this frame's samples: the path tracer's as the difference
+ * to before (they add up over the accumulation), the build's as the last
+ * build's times (they are not summed: a build runs once per restart). */
 static void record_passes(viewer *v, const dirt_session_stats *before, bool restarted)
 {
     const dirt_session_stats *st = dirt_session_get_stats(v->s);
     v->num_frame_passes = st->num_passes < 32 ? st->num_passes : 32;
+    v->num_build_passes = st->num_build_passes < v->num_frame_passes ? st->num_build_passes
+                                                                     : v->num_frame_passes;
     for (int i = 0; i < v->num_frame_passes; i++) {
         v->frame_passes[i] = st->passes[i];
-        if (!restarted && i < before->num_passes && before->passes[i].name == st->passes[i].name)
+        if (i >= v->num_build_passes && !restarted && i < before->num_passes &&
+            before->passes[i].name == st->passes[i].name)
             v->frame_passes[i].ms -= before->passes[i].ms;
     }
     v->last = *st;
@@ -54,9 +59,121 @@ static void play(viewer *v, double dt)
     }
 }
 
-/* A bounded amount of work: at most samples_per_frame samples, or the
- * raster preview while input moves the camera; none in a frame whose image
- * a script output took. False when rendering fails. */
+/* A sample of the window's every pixel on a software renderer takes
+ * about this long at the automatic scale. */
+#define AUTO_SAMPLE_MS 1000.0
+/* The pace assumed before one is measured, in ms per pixel per sample: the
+ * default scene on llvmpipe, 35.6 s for 1024 x 768 (issue 26's figure). */
+#define ASSUMED_PACE_MS (35600.0 / (1024.0 * 768.0))
+
+/* A software renderer (llvmpipe, softpipe, or lavapipe under zink), from
+ * the GL renderer string. */
+static bool software_renderer(const dirt_gpu *gpu)
+{
+    const dirt_gpu_caps *c = dirt_gpu_get_caps(gpu);
+    return c->software || strstr(c->renderer, "llvmpipe") || strstr(c->renderer, "lavapipe") ||
+           strstr(c->renderer, "softpipe");
+}
+
+/* Chooses the automatic scale for a win_w x win_h window at v->pace_ms:
+ * the integer N (1 .. 16) whose render of window / N takes closest to
+ * AUTO_SAMPLE_MS a sample; says so when it changes (`why`: where the pace
+ * comes from). */
+static void choose_scale(viewer *v, int win_w, int win_h, const char *why)
+{
+    double best = -1;
+    int n = 1;
+    for (int k = 1; k <= 16; k++) {
+        double w = win_w / k >= 16 ? win_w / k : 16, h = win_h / k >= 16 ? win_h / k : 16;
+        double err = fabs(log(w * h * v->pace_ms / AUTO_SAMPLE_MS));
+        if (best < 0 || err < best) {
+            best = err;
+            n = k;
+        }
+    }
+    v->auto_w = win_w;
+    v->auto_h = win_h;
+    int rw = win_w / n >= 16 ? win_w / n : 16, rh = win_h / n >= 16 ? win_h / n : 16;
+    double est = rw * (double)rh * v->pace_ms / 1000.0;
+    snprintf(v->scale_note, sizeof(v->scale_note),
+             "software renderer: window / %d, about %.1f s a sample (%s); --scale sets it", n,
+             est, why);
+    if (n != v->o.scale && !v->o.quiet)
+        fprintf(stderr, "%s: software renderer (%s): rendering at the window's size / %d "
+                "(%d x %d) so that a sample takes about %.1f s (%s: %.3g ms per pixel); "
+                "--scale N sets it\n", PROG, dirt_gpu_get_caps(v->gpu)->renderer, n, rw, rh,
+                est, why, v->pace_ms);
+    v->o.scale = n;
+    v->auto_n = n;
+}
+
+/* Keeps the automatic scale (if still in charge): again for a new window
+ * size; off once the panel or the script set another. */
+static void update_scale(viewer *v, int win_w, int win_h)
+{
+    if (!v->auto_scale)
+        return;
+    if (v->o.scale != v->auto_n) {
+        v->auto_scale = false;
+        snprintf(v->scale_note, sizeof(v->scale_note), "window / %d (set)", v->o.scale);
+        return;
+    }
+    if (win_w != v->auto_w || win_h != v->auto_h)
+        choose_scale(v, win_w, win_h, "window resized");
+}
+
+/* A sample completed after `ms` of work, the `nth` of its accumulation:
+ * the automatic scale looks at the pace once per accumulation (at the
+ * second sample: the first also traces the depth AOV) and chooses again
+ * when a sample took less than half or more than twice its aim. */
+static void sample_done(viewer *v, double ms, int nth)
+{
+    v->last_sample_ms = ms;
+    if (!v->auto_scale || v->paced || nth < 2 || v->o.scale != v->auto_n)
+        return;
+    v->paced = true;
+    v->pace_ms = ms / ((double)v->rw * (double)v->rh);
+    if (ms < 0.5 * AUTO_SAMPLE_MS || ms > 2 * AUTO_SAMPLE_MS)
+        choose_scale(v, v->win_w, v->win_h, "measured");
+}
+
+/* About o.slice_ms of the main session's next samples (a new accumulation
+ * builds its structure first, then goes on in the next frame when that
+ * took the slice), at most o.samples_per_frame completed and up to
+ * `target`. False when rendering fails. */
+static bool advance(viewer *v, int have, int target)
+{
+    double t0 = dirt_clock_ms();
+    if (have == 0 && dirt_session_sample_part(v->s) == 0) {
+        v->sample_work_ms = 0;
+        v->paced = false;
+        if (!dirt_session_build(v->s))
+            return false;
+        if (dirt_clock_ms() - t0 >= v->o.slice_ms && v->o.slice_ms > 0)
+            return true;
+    }
+    for (int added = 0;;) {
+        double a0 = dirt_clock_ms(), left = v->o.slice_ms - (a0 - t0);
+        bool done = false;
+        if (!dirt_session_advance(v->s, left > 0 ? left : 0, &done))
+            return false;
+        v->sample_work_ms += dirt_clock_ms() - a0;
+        if (!done)
+            return true; /* the slice is over within the sample */
+        added++;
+        v->generation++;
+        sample_done(v, v->sample_work_ms, have + added);
+        v->sample_work_ms = 0;
+        if (added >= v->o.samples_per_frame || (target && have + added >= target) ||
+            dirt_clock_ms() - t0 >= v->o.slice_ms)
+            return true;
+    }
+}
+
+/* A bounded amount of work: a slice of the path tracer (advance), or the
+ * raster preview while input moves the camera; no tracing in a frame whose
+ * image a script output took, nor in the quick frames after a click. False
+ * when rendering fails. */
 static bool sample(viewer *v, bool *preview)
 {
     int have = dirt_session_samples(v->s);
@@ -67,21 +184,38 @@ static bool sample(viewer *v, bool *preview)
         *preview = false;
     }
     int target = view_target(v, v->s);
+    if (v->quick_frames > 0) {
+        v->quick_frames--;
+        return true;
+    }
     if (!*preview && !v->hold && (target == 0 || have < target)) {
-        int n = v->o.samples_per_frame;
-        if (target && have + n > target)
-            n = target - have;
         dirt_session_stats before = *dirt_session_get_stats(v->s);
-        if (!dirt_session_add_samples(v->s, n, NULL, NULL)) {
+        if (!advance(v, have, target)) {
             cli_error(PROG, "rendering failed (see the log)");
             return false;
         }
         record_passes(v, &before, have == 0);
-        v->generation++;
     }
     if (!*preview && !v->hold)
         view_sample_compare(v);
     return true;
+}
+
+/* Test hook DIRT_VIEW_FRAME_LOG: after each frame is shown, its wall-clock
+ * time, number, the main session's samples and part of the one in
+ * progress, the buffer, whether the panels are shown and the Settings
+ * panel's height (collapsed or open). */
+static void log_frame(viewer *v)
+{
+    if (!v->frame_log)
+        return;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    fprintf(v->frame_log, "%lld.%06ld %ld %d %.4f %s %d %.0f\n", (long long)ts.tv_sec,
+            ts.tv_nsec / 1000, v->frame, dirt_session_samples(v->s),
+            dirt_session_sample_part(v->s), app_buffer_names[v->o.buffer], !v->o.no_ui,
+            v->num_panels > 0 ? v->panels[0][3] : 0.0f);
+    fflush(v->frame_log);
 }
 
 /* One displayed frame: input, the script, the sessions, samples, drawing,
@@ -109,6 +243,12 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     }
     view_handle_input(v, &in, dt, ui_mouse, ui_keys);
+    /* A mouse button went down or up: this frame and the next trace
+     * nothing, so that a click (which the panels see over two frames,
+     * press then release) shows at once. */
+    for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++)
+        if (in.button_pressed[b] || in.button_released[b])
+            v->quick_frames = 2;
     for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         if (v->held[k] > 0)
             v->held[k]--;
@@ -116,6 +256,7 @@ static bool frame(viewer *v, double dt)
     }
     if (v->o.play)
         play(v, dt);
+    update_scale(v, in.width, in.height);
     view_render_size(v, in.width, in.height);
     view_sync_sessions(v);
     if (v->click_pending)
@@ -134,6 +275,7 @@ static bool frame(viewer *v, double dt)
         v->exit_code = DIRT_EXIT_FAILURE;
     }
     dirt_gpu_window_swap(v->gpu);
+    log_frame(v);
     if (v->slow_frame_ms > 0)
         nanosleep(&(struct timespec){.tv_sec = v->slow_frame_ms / 1000,
                                      .tv_nsec = (v->slow_frame_ms % 1000) * 1000000L},
@@ -168,26 +310,12 @@ static int prepare(viewer *v, dirt_scene **scene)
             return DIRT_EXIT_USAGE;
     const char *scene_path = v->o.num_scenes ? v->o.scenes[0] : NULL;
     *scene = app_load_scene(PROG, scene_path, &v->o);
-    if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene))
+    if (!*scene || !app_load_env(PROG, &v->o, &v->env) || !app_check_scene(PROG, &v->o, *scene) ||
+        !view_load_reference(v))
         return DIRT_EXIT_USAGE;
     /* No output (at exit or from the script) may be an input. */
-    enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
-    const char *souts[SCRIPT_OUTS] = {0};
-    static char spng[SCRIPT_OUTS][4200];
-    vs_outputs(&v->script, souts, spng, SCRIPT_OUTS);
-    char save_png[4200] = "";
-    if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
-        cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
-    bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
-    cli_io io = {.scene_path = scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
-                 .scene = *scene,
-                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"}},
-                 .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
-                         {save_png[0] ? save_png : NULL, "--save-image"},
-                         {v->o.report, "--report"}}};
-    for (size_t i = 0; i < SCRIPT_OUTS; i++)
-        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
-    if (cli_check_io(PROG, &io) != DIRT_EXIT_OK)
+    if (view_check_io(v, scene_path && strcmp(scene_path, "default") ? scene_path : NULL,
+                      *scene) != DIRT_EXIT_OK)
         return DIRT_EXIT_USAGE;
     v->env_intensity = v->o.env_intensity;
     v->env_rotation = v->o.env_rotation;
@@ -245,6 +373,13 @@ static int run(viewer *v, dirt_scene *scene)
     dirt_gpu_window_input(v->gpu, &in);
     v->win_w = in.width;
     v->win_h = in.height;
+    if (v->o.scale == 0 && v->o.s.width <= 0 && software_renderer(v->gpu)) {
+        v->auto_scale = true;
+        v->pace_ms = ASSUMED_PACE_MS;
+        choose_scale(v, in.width, in.height, "assumed");
+    } else if (v->o.scale == 0) {
+        v->o.scale = 1;
+    }
     view_render_size(v, in.width, in.height);
     if (!view_load_scene(v, scene, v->o.num_scenes ? v->o.scenes[0] : NULL))
         return DIRT_EXIT_FAILURE;
@@ -259,6 +394,12 @@ static int run(viewer *v, dirt_scene *scene)
      * frame, for the input that arrives during one). */
     const char *slow = getenv("DIRT_VIEW_SLOW_FRAME_MS");
     v->slow_frame_ms = slow ? atoi(slow) : 0;
+    /* Test hook: a line per frame shown (log_frame), for a latency probe. */
+    const char *flog = getenv("DIRT_VIEW_FRAME_LOG");
+    if (flog && *flog && !(v->frame_log = fopen(flog, "w"))) {
+        cli_error(PROG, "DIRT_VIEW_FRAME_LOG: cannot write %s", flog);
+        return DIRT_EXIT_USAGE;
+    }
     double last = dirt_clock_ms();
     while (!v->quit) {
         double now = dirt_clock_ms();
@@ -295,7 +436,11 @@ int main(int argc, char **argv)
     } else {
         dirt_scene_destroy(scene);
     }
+    if (v->frame_log)
+        fclose(v->frame_log);
     dirt_gpu_texture_destroy(v->gpu, v->aux_tex);
+    dirt_gpu_texture_destroy(v->gpu, v->ref_tex);
+    dirt_image_destroy(v->ref);
     dirt_session_destroy(v->pre);
     dirt_session_destroy(v->cmp);
     dirt_session_destroy(v->s);

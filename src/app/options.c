@@ -29,6 +29,7 @@ static const char *const ext_jsonl[] = {".jsonl", NULL};
 static const char *const ext_dot[] = {".dot", NULL};
 static const char *const ext_png[] = {".png", NULL};
 static const char *const ext_image[] = {".exr", ".png", NULL};
+static const char *const ext_exr[] = {".exr", NULL};
 
 /* Kinds: 'F' flag (bool; on/off from a script), 'i' int, 'l' long,
  * 'u' uint32_t, 'f' float, 'd' double (each in [lo, hi]), 'c' a choice of
@@ -170,6 +171,9 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "agreement rays of the image: DIRT's tiles, Hi-Z steps, list nodes and triangle tests, "
         "MMRT's fragments, Embree's BVH nodes and triangle tests over the same rays) into the "
         "stats; the image does not change", NULL, NULL},
+    [APP_OPT_SORT_RAYS] = {APP_OPT_SORT_RAYS, NULL, "--sort-rays", NULL, NULL, 'F',
+        OFF(s.sort_rays), 0, 0, NULL, "dirt and mmrt: sort each bounce's rays by origin and "
+        "direction before tracing them (coherent rays; the image does not change)", NULL, NULL},
     /* ---- the structure ---- */
     [APP_OPT_VIEWS] = {APP_OPT_VIEWS, NULL, "--views", NULL, "MODE", 'c', OFF(s.views), 0, 0,
         app_views_names, "the structure's views: single, cube or cube+camera", "cube+camera",
@@ -190,8 +194,8 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "doc/dirt-build.md): raster, compute, or auto: compute on a software renderer, raster "
         "on a GPU, as measured", "auto", NULL},
     [APP_OPT_LARGE] = {APP_OPT_LARGE, NULL, "--large", "--dirt-large", "N", 'l', OFF(large), 0,
-        16, NULL, "at most N of the largest triangles are tested by every ray instead of "
-        "listed in DIRT's tiles (doc/dirt-trace.md; 0 = none)", "16", NULL},
+        16, NULL, "at most N of the largest triangles are kept out of DIRT's tiles and "
+        "tested through a coarse grid of their own (doc/dirt-trace.md; 0 = none)", "16", NULL},
     [APP_OPT_HIZ_TOP] = {APP_OPT_HIZ_TOP, NULL, "--hiz-top", NULL, "L", 'l', OFF(hiz_top), -1, 15,
         NULL, "highest Hi-Z level the march starts from; 0 = tiles only, no Hi-Z; -1 = the "
         "pyramid's top", "-1", NULL},
@@ -236,14 +240,22 @@ static const app_opt_def table[APP_NUM_OPTS] = {
     [APP_OPT_WINDOW] = {APP_OPT_WINDOW, NULL, "--window", NULL, "WxH", 'x', OFF(window), 64,
         16384, NULL, "window size", "1280x720", NULL},
     [APP_OPT_SAMPLES_PER_FRAME] = {APP_OPT_SAMPLES_PER_FRAME, NULL, "--samples-per-frame", NULL,
-        "N", 'i', OFF(samples_per_frame), 1, 1024, NULL, "samples added per displayed frame",
-        "1", NULL},
+        "N", 'i', OFF(samples_per_frame), 1, 1024, NULL, "samples completed per displayed frame "
+        "at most", "1", NULL},
+    [APP_OPT_SLICE_MS] = {APP_OPT_SLICE_MS, NULL, "--slice-ms", NULL, "MS", 'i', OFF(slice_ms), 0,
+        10000, NULL, "path tracing per displayed frame, in milliseconds: a sample is traced in "
+        "pieces of pixels over as many frames as it needs, so the window answers between "
+        "them (0: one smallest piece a frame)", "30", NULL},
     [APP_OPT_BUFFER] = {APP_OPT_BUFFER, NULL, "--buffer", NULL, "NAME", 'c', OFF(buffer), 0, 0,
         app_buffer_names, "what the window shows: beauty, albedo, normal, depth, id, lists, "
         "buckets, zmin or zmax", "beauty", NULL},
     [APP_OPT_COMPARE] = {APP_OPT_COMPARE, NULL, "--compare", NULL, "ENGINE", 'c', OFF(compare), 0,
         0, app_compare_names, "split view against a second engine on the same camera: dirt, "
         "mmrt, embree, raster or none", "none", NULL},
+    [APP_OPT_COMPARE_IMAGE] = {APP_OPT_COMPARE_IMAGE, NULL, "--compare-image", NULL, "FILE.exr",
+        'p', OFF(compare_image), 0, 0, ext_exr, "split view against a reference image from disk "
+        "instead of a second engine (V turns it on and off); the render takes its size (with "
+        "-W/-H they must be its size)", NULL, NULL},
     [APP_OPT_SPLIT] = {APP_OPT_SPLIT, NULL, "--split", NULL, "X", 'f', OFF(split), 0, 1, NULL,
         "where the split is, 0..1 of the width", "0.5", NULL},
     [APP_OPT_DIFF] = {APP_OPT_DIFF, NULL, "--diff", NULL, NULL, 'F', OFF(diff), 0, 0, NULL,
@@ -252,7 +264,9 @@ static const app_opt_def table[APP_NUM_OPTS] = {
     [APP_OPT_DIFF_RANGE] = {APP_OPT_DIFF_RANGE, NULL, "--diff-range", NULL, "R", 'f',
         OFF(diff_range), 1e-6, 1e6, NULL, "the difference that shows white", "0.1", NULL},
     [APP_OPT_SCALE] = {APP_OPT_SCALE, NULL, "--scale", NULL, "N", 'i', OFF(scale), 1, 16, NULL,
-        "render at the window's size / N, shown enlarged", "1", NULL},
+        "render at the window's size / N, shown enlarged (default: 1 on a GPU; on a software "
+        "renderer, llvmpipe or lavapipe, the N that makes a sample take about 1 s, measured "
+        "and said in the log and the Settings panel)", NULL, NULL},
     [APP_OPT_NO_PREVIEW] = {APP_OPT_NO_PREVIEW, NULL, "--no-preview", NULL, NULL, 'F',
         OFF(no_preview), 0, 0, NULL, "path trace while the camera moves (without it: the raster "
         "preview until it stops)", NULL, NULL},

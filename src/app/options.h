@@ -32,7 +32,7 @@ enum app_opt {
     /* light transport and the device */
     APP_OPT_ENGINE, APP_OPT_MODE, APP_OPT_SPP, APP_OPT_BOUNCES, APP_OPT_SEED, APP_OPT_AO_DISTANCE,
     APP_OPT_BACKGROUND, APP_OPT_ENV, APP_OPT_ENV_INTENSITY, APP_OPT_ENV_ROTATION, APP_OPT_THREADS,
-    APP_OPT_GPU, APP_OPT_CPU_TIMING, APP_OPT_COUNT_WORK,
+    APP_OPT_GPU, APP_OPT_CPU_TIMING, APP_OPT_COUNT_WORK, APP_OPT_SORT_RAYS,
     /* the structure: DIRT and MMRT */
     APP_OPT_VIEWS, APP_OPT_TILE, APP_OPT_BUCKETS, APP_OPT_FACE_SIZE, APP_OPT_NO_CONSERVATIVE,
     APP_OPT_BUILD, APP_OPT_LARGE, APP_OPT_HIZ_TOP, APP_OPT_FETCH, APP_OPT_DIRECT_VISIBILITY,
@@ -41,7 +41,8 @@ enum app_opt {
     APP_OPT_SKIP_EXISTING, APP_OPT_PLACEHOLDERS, APP_OPT_CLAIM_TIMEOUT, APP_OPT_CHUNK,
     APP_OPT_ANIMATED_SEED, APP_OPT_LOG,
     /* the window (dirt-view) */
-    APP_OPT_WINDOW, APP_OPT_SAMPLES_PER_FRAME, APP_OPT_BUFFER, APP_OPT_COMPARE, APP_OPT_SPLIT,
+    APP_OPT_WINDOW, APP_OPT_SAMPLES_PER_FRAME, APP_OPT_SLICE_MS, APP_OPT_BUFFER, APP_OPT_COMPARE,
+    APP_OPT_COMPARE_IMAGE, APP_OPT_SPLIT,
     APP_OPT_DIFF, APP_OPT_DIFF_RANGE, APP_OPT_SCALE, APP_OPT_NO_PREVIEW, APP_OPT_NO_UI,
     APP_OPT_SCRIPT, APP_OPT_TEST_FRAMES, APP_OPT_SCREENSHOT, APP_OPT_SAVE_IMAGE, APP_OPT_REPORT,
     APP_OPT_BINDINGS,
@@ -100,10 +101,11 @@ typedef struct app_opts {
     const char *chunk;
     /* the window */
     int window[2];
-    int samples_per_frame, buffer, compare, scale;
+    int samples_per_frame, slice_ms, buffer, compare, scale; /* scale 0: automatic */
     float split, diff_range;
     bool diff, no_preview, no_ui, bindings;
     const char *script, *screenshot, *save_image, *report;
+    const char *compare_image;  /* --compare-image: a reference EXR to compare with */
     long test_frames;
     /* measurement */
     int res[2], agree_res[2], warmup, repeat, dirt_buckets, mmrt_buckets;

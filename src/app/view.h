@@ -53,6 +53,10 @@ typedef struct viewer {
     float env_intensity, env_rotation; /* what env was made with */
     dirt_session *s, *cmp;
     int cmp_engine;             /* engine of cmp, -1 none */
+    dirt_image *ref;            /* --compare-image: the reference, shown instead of cmp */
+    uint32_t ref_tex;           /*   its display texture (0 until uploaded) */
+    bool ref_on;                /*   shown (V toggles it) */
+    bool ref_mismatch;          /*   its size is not the render's (said once) */
     dirt_session *pre;          /* the raster preview shown while the camera moves */
     bool moving;                /* input moved the camera in this frame */
     bool hold;                  /* an output was taken in this frame: no new samples */
@@ -73,13 +77,17 @@ typedef struct viewer {
     int aux_w, aux_h;
     long aux_key;               /* generation the aux texture shows, -1 none */
     float aux_lo, aux_hi;
+    float zoom;                 /* 0: fitted; else window pixels per image pixel */
+    double zoom_u, zoom_v;      /* with a zoom: the image point at the window's centre
+                                   (fractions of the image) */
     long generation;            /* bumps on every restart and sample */
     /* numbers */
     float frame_ms[RING], sample_ms[RING];
     int ring_pos, ring_count;
     dirt_session_stats last;    /* stats after the last frame's samples */
-    dirt_pass_time frame_passes[32];
+    dirt_pass_time frame_passes[32]; /* the last build's, then this frame's samples' */
     int num_frame_passes;
+    int num_build_passes;       /* frame_passes[0 .. num_build_passes): the build's */
     /* input and script */
     int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
     bool pressed[DIRT_NUM_KEYS]; /* a script key went down in this frame */
@@ -97,6 +105,10 @@ typedef struct viewer {
     char shot_path[4][4096];    /* window screenshots asked for in this frame */
     int num_shots;
     char status[512];
+    float memory_rect[4];       /* the Numbers panel's memory line (window pixels) */
+    int shader_reloads;         /* F5 reloads that took */
+    int shader_reload_failures; /* F5 reloads refused (the old programs kept) */
+    char reload_status[512];    /* what the last F5 did */
     float panels[4][4];
     int num_panels;
     int win_w, win_h;
@@ -108,6 +120,18 @@ typedef struct viewer {
     bool bar;
     float bar_lo, bar_hi, bar_rect[4];
     int slow_frame_ms;          /* test hook DIRT_VIEW_SLOW_FRAME_MS: added to every frame */
+    FILE *frame_log;            /* test hook DIRT_VIEW_FRAME_LOG: a line per frame shown */
+    /* a sample in pieces over frames (--slice-ms) */
+    double sample_work_ms;      /* time in the sample in progress so far */
+    double last_sample_ms;      /* the last completed sample's (0: none yet) */
+    int quick_frames;           /* frames left that trace nothing (a click is answered) */
+    /* the automatic --scale on a software renderer (o.scale 0 at start) */
+    bool auto_scale;            /* o.scale is the automatic choice */
+    double pace_ms;             /* a sample's milliseconds per pixel (measured, or assumed) */
+    bool paced;                 /* this accumulation's pace was looked at */
+    int auto_w, auto_h;         /* the window size the scale was chosen for */
+    int auto_n;                 /* the scale it chose */
+    char scale_note[192];       /* what the panel says of it */
     /* the inspector: every channel of both images under the cursor */
     double cursor_x, cursor_y;  /* window pixels */
     struct view_probe {
@@ -130,8 +154,23 @@ dirt_session_opts view_wanted_opts(const viewer *v, int engine);
 bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);
+/* Shader reload (F5): with the shaders read from a source tree
+ * (DIRT_GLSL_DIR), remakes the sessions and the presentation program from
+ * them; a shader that does not compile keeps the old programs (the status
+ * line and the log say why). False when nothing was reloaded. */
+bool view_reload_shaders(viewer *v);
 
 /* view_split.c */
+/* Reads --compare-image (before the window): exit 2's reasons printed,
+ * false when it cannot be read or its size is not the render's (-W/-H);
+ * without -W/-H the render takes its size. */
+bool view_load_reference(viewer *v);
+/* The comparison shown now: the reference (when its size is the render's)
+ * or the comparison session, with samples; its name ("reference" or the
+ * engine's). */
+bool view_ref_shown(const viewer *v);
+bool view_comparing(const viewer *v);
+const char *view_compare_name(const viewer *v);
 bool view_sync_compare(viewer *v);
 void view_sample_compare(viewer *v);
 void view_present_split(const viewer *v, dirt_present_opts *p);
@@ -151,6 +190,13 @@ void view_focus_at(viewer *v);
 
 /* view_display.c */
 void view_fit(const viewer *v, int w, int h, int r[4]);
+/* Zoom: `zoom` window pixels per image pixel (clamped to 1/16 .. 64; 0 or
+ * less: fitted), keeping the image point under window pixel (wx, wy) there;
+ * `steps` powers of two in (+) or out (-) from the scale shown; panning the
+ * image by window pixels (a fitted image keeps its scale). */
+void view_zoom_at(viewer *v, double zoom, double wx, double wy);
+void view_zoom_steps(viewer *v, double steps, double wx, double wy);
+void view_pan_image(viewer *v, double dx, double dy);
 void view_draw(viewer *v, bool preview);
 
 /* The values of every channel (R, G, B, A, then the AOVs) of both images
@@ -169,6 +215,16 @@ bool view_save_render(viewer *v, const char *path);
 bool view_screenshot(viewer *v, const char *path);
 bool view_take_screenshots(viewer *v);
 void view_render_args(const viewer *v, char *buf, size_t size);
+/* Checks the files of this run with `scene` (loaded from `scene_path`,
+ * NULL for the default scene) as its scene: no output asked for (at exit
+ * or by the script) may be the scene, a file it read, the environment or
+ * the script (cli_check_io). DIRT_EXIT_OK, or DIRT_EXIT_USAGE after
+ * printing why. */
+int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *scene);
+/* Names the next file of the P / O keys and buttons, "dirt-view-N.EXT" in
+ * the current folder with N the first number after the last one used
+ * whose file does not exist, so that no file is replaced. */
+void view_shot_name(viewer *v, const char *ext, char *path, size_t size);
 bool view_write_report(viewer *v, const char *path);
 extern const char *const view_bindings[][2];
 extern const size_t view_num_bindings;

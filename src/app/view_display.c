@@ -103,10 +103,21 @@ static bool aux_texture(viewer *v)
     return ok && v->aux_tex;
 }
 
-/* The rectangle an image of w x h takes in the window: 1:1 at the top
- * left when it follows the window, else fitted and centred. */
+/* The rectangle an image of w x h takes in the window: fitted (1:1 at the
+ * top left when it follows the window, else fitted and centred), or with a
+ * zoom, zoom window pixels per image pixel with the image point
+ * (zoom_u, zoom_v) (fractions of the image) at the window's centre. */
 void view_fit(const viewer *v, int w, int h, int r[4])
 {
+    if (v->zoom > 0) {
+        r[2] = (int)lround(w * (double)v->zoom);
+        r[3] = (int)lround(h * (double)v->zoom);
+        r[2] = r[2] < 1 ? 1 : r[2];
+        r[3] = r[3] < 1 ? 1 : r[3];
+        r[0] = (int)lround(v->win_w / 2.0 - v->zoom_u * r[2]);
+        r[1] = (int)lround(v->win_h / 2.0 - v->zoom_v * r[3]);
+        return;
+    }
     if (w == v->win_w && h == v->win_h) {
         r[0] = r[1] = 0, r[2] = w, r[3] = h;
         return;
@@ -120,6 +131,76 @@ void view_fit(const viewer *v, int w, int h, int r[4])
         r[3] = 1;
     r[0] = (v->win_w - r[2]) / 2;
     r[1] = (v->win_h - r[3]) / 2;
+}
+
+/* The size of the image shown: the render, or the buffer's picture. */
+static void shown_size(const viewer *v, int *w, int *h)
+{
+    *w = v->rw, *h = v->rh;
+    if (v->o.buffer != BUF_BEAUTY && v->aux_tex && v->aux_w > 0)
+        *w = v->aux_w, *h = v->aux_h;
+}
+
+/* Zoom limits: 1/16 .. 64 window pixels per image pixel, and no wider than
+ * a viewport may be. */
+#define ZOOM_MIN 0.0625
+#define ZOOM_MAX 64.0
+#define ZOOM_MAX_PIXELS 16384.0
+
+void view_zoom_at(viewer *v, double zoom, double wx, double wy)
+{
+    int w, h, r[4];
+    shown_size(v, &w, &h);
+    if (w <= 0 || h <= 0 || v->win_w <= 0 || v->win_h <= 0)
+        return;
+    if (!(zoom > 0)) {
+        v->zoom = 0;
+        view_status(v, "zoom: fitted");
+        return;
+    }
+    double zmax = fmin(ZOOM_MAX, ZOOM_MAX_PIXELS / (w > h ? w : h));
+    zoom = fmin(fmax(zoom, ZOOM_MIN), zmax);
+    view_fit(v, w, h, r);
+    /* The image point under (wx, wy) stays there. */
+    double pu = (wx - r[0]) / r[2], pv = (wy - r[1]) / r[3];
+    double left = wx - pu * w * zoom, top = wy - pv * h * zoom;
+    v->zoom = (float)zoom;
+    v->zoom_u = (v->win_w / 2.0 - left) / (w * zoom);
+    v->zoom_v = (v->win_h / 2.0 - top) / (h * zoom);
+    v->zoom_u = fmin(fmax(v->zoom_u, 0), 1);
+    v->zoom_v = fmin(fmax(v->zoom_v, 0), 1);
+    view_status(v, "zoom %g:1", zoom);
+}
+
+void view_zoom_steps(viewer *v, double steps, double wx, double wy)
+{
+    int w, h, r[4];
+    shown_size(v, &w, &h);
+    if (w <= 0 || steps == 0)
+        return;
+    view_fit(v, w, h, r);
+    /* Powers of two; from a fit between two, the next one that way. */
+    double l = log2((double)r[2] / w);
+    double to = steps > 0 ? floor(l + 1e-9) + steps : ceil(l - 1e-9) + steps;
+    view_zoom_at(v, exp2(to), wx, wy);
+}
+
+void view_pan_image(viewer *v, double dx, double dy)
+{
+    int w, h, r[4];
+    shown_size(v, &w, &h);
+    if (w <= 0 || (dx == 0 && dy == 0))
+        return;
+    if (!(v->zoom > 0)) {
+        /* Panning a fitted image: the same scale, now movable. */
+        view_fit(v, w, h, r);
+        v->zoom = (float)r[2] / (float)w;
+        v->zoom_u = (v->win_w / 2.0 - r[0]) / r[2];
+        v->zoom_v = (v->win_h / 2.0 - r[1]) / r[3];
+    }
+    view_fit(v, w, h, r);
+    v->zoom_u = fmin(fmax(v->zoom_u - dx / r[2], 0), 1);
+    v->zoom_v = fmin(fmax(v->zoom_v - dy / r[3], 0), 1);
 }
 
 /* Draws the frame's image: the raster preview while the camera moves (or
@@ -170,14 +251,10 @@ void view_draw(viewer *v, bool preview)
         dirt_gpu_present(v->gpu, &p);
 }
 
-/* One session's channels at render pixel (x, y); false off the image or
- * before samples. */
-static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
+/* One image's channels at pixel (x, y); false off the image. */
+static bool probe_image(const dirt_image *img, int x, int y, struct view_probe *pr)
 {
     pr->valid = false;
-    if (!s || dirt_session_samples(s) == 0)
-        return false;
-    const dirt_image *img = dirt_session_image(s);
     if (!img || x < 0 || y < 0 || x >= img->width || y >= img->height)
         return false;
     size_t i = (size_t)y * img->width + x;
@@ -197,6 +274,16 @@ static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
     return true;
 }
 
+/* One session's channels at render pixel (x, y); false off the image or
+ * before samples. */
+static bool probe_session(dirt_session *s, int x, int y, struct view_probe *pr)
+{
+    pr->valid = false;
+    if (!s || dirt_session_samples(s) == 0)
+        return false;
+    return probe_image(dirt_session_image(s), x, y, pr);
+}
+
 void view_inspect(viewer *v)
 {
     v->probe[0].valid = v->probe[1].valid = false;
@@ -209,5 +296,8 @@ void view_inspect(viewer *v)
     if (x < 0 || y < 0 || x >= v->rw || y >= v->rh)
         return;
     probe_session(v->s, x, y, &v->probe[0]);
-    probe_session(v->cmp, x, y, &v->probe[1]);
+    if (view_ref_shown(v))
+        probe_image(v->ref, x, y, &v->probe[1]);
+    else
+        probe_session(v->cmp, x, y, &v->probe[1]);
 }

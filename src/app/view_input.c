@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "app/cli.h"
 #include "app/view.h"
 #include "app/setup.h"
 #include "app/view_camera.h"
@@ -40,6 +41,12 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
             vcam_dolly(&v->look, powf(0.85f, (float)in->scroll));
             v->cam_dirty = v->moving = true;
         }
+        /* Ctrl + wheel zooms the image about the cursor, Ctrl + left drag
+         * pans it (the camera stays). */
+        if (in->ctrl_scroll != 0)
+            view_zoom_steps(v, in->ctrl_scroll, in->ctrl_scroll_x, in->ctrl_scroll_y);
+        if (in->ctrl_drag_dx != 0 || in->ctrl_drag_dy != 0)
+            view_pan_image(v, in->ctrl_drag_dx, in->ctrl_drag_dy);
         if (in->double_clicks > 0) {
             v->click_pending = true;
             v->click_x = in->mouse_x;
@@ -70,6 +77,8 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         v->show_help = !v->show_help;
     if (p[DIRT_KEY_H])
         v->o.no_ui = !v->o.no_ui;
+    if (p[DIRT_KEY_F5])
+        view_reload_shaders(v);
     if (p[DIRT_KEY_R]) {
         view_reset_camera(v);
         view_status(v, "camera reset");
@@ -81,10 +90,20 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
             v->o.buffer = k;
     if (p[DIRT_KEY_TAB])
         v->o.s.engine = (enum dirt_engine)((v->o.s.engine + 1) % DIRT_NUM_ENGINES);
-    if (p[DIRT_KEY_V])
+    if (p[DIRT_KEY_V] && v->ref)
+        v->ref_on = !v->ref_on;
+    else if (p[DIRT_KEY_V])
         v->o.compare = v->o.compare ? 0 : (v->o.s.engine == DIRT_ENGINE_MMRT ? 1 : 2);
     if (p[DIRT_KEY_X])
         v->o.diff = !v->o.diff;
+    if (p[DIRT_KEY_Z]) {
+        /* 1:1 about the cursor (the window's centre when it is outside), or
+         * back to fitted. */
+        bool inside = in->mouse_x >= 0 && in->mouse_y >= 0 && in->mouse_x < in->width &&
+                      in->mouse_y < in->height;
+        view_zoom_at(v, v->zoom > 0 ? 0 : 1, inside ? in->mouse_x : in->width / 2.0,
+                     inside ? in->mouse_y : in->height / 2.0);
+    }
     if (p[DIRT_KEY_SPACE])
         v->o.play = !v->o.play;
     if (p[DIRT_KEY_RIGHT] || p[DIRT_KEY_LEFT]) {
@@ -97,7 +116,7 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         v->o.exposure += 1;
     if (p[DIRT_KEY_P] || p[DIRT_KEY_O]) {
         char path[64];
-        snprintf(path, sizeof(path), "dirt-view-%d.%s", ++v->shots, p[DIRT_KEY_P] ? "png" : "exr");
+        view_shot_name(v, p[DIRT_KEY_P] ? "png" : "exr", path, sizeof(path));
         if (p[DIRT_KEY_O])
             view_save_render(v, path);
         else
@@ -132,7 +151,8 @@ void view_focus_at(viewer *v)
 
 /* Opens the scene last dropped on the window (with --max-scene-memory,
  * --strict and --allow-outside-paths);
- * a scene that does not load leaves the shown one. False when the sessions
+ * a scene that does not load, or one that this run's outputs would
+ * overwrite a file of (view_check_io), leaves the shown one. False when the sessions
  * for the new one cannot be made. */
 bool view_open_drops(viewer *v, const dirt_window_input *in)
 {
@@ -144,6 +164,12 @@ bool view_open_drops(viewer *v, const dirt_window_input *in)
     dirt_scene *sc = dirt_scene_load(keep, &lo);
     if (!sc) {
         view_status(v, "could not open '%s' (see the log); kept the scene", keep);
+        return true;
+    }
+    if (view_check_io(v, keep, sc) != DIRT_EXIT_OK) {
+        dirt_scene_destroy(sc);
+        view_status(v, "did not open '%s': this run writes one of its files (see the log); "
+                       "kept the scene", keep);
         return true;
     }
     if (!view_load_scene(v, sc, keep))

@@ -2,10 +2,12 @@
  * provenance), reports, and the dirt-render command line of what it shows;
  * the key bindings it lists. */
 #include <cjson/cJSON.h>
+#include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "app/cli.h"
 #include "app/view.h"
@@ -25,14 +27,18 @@ const char *const view_bindings[][2] = {
     {"C", "next scene camera"},
     {"1 .. 9", "buffer: beauty, albedo, normal, depth, id, lists, buckets, zmin, zmax"},
     {"Tab", "next engine (dirt, mmrt, embree, raster)"},
-    {"V", "split view against the comparison engine on / off"},
+    {"V", "split view against the comparison engine (or --compare-image) on / off"},
     {"X", "difference heat map of the split on / off"},
     {"Space", "play / pause the animation"},
     {"Left Right", "step the animation one frame (1/24 s) back / forward"},
     {"Minus Equal", "exposure down / up one stop"},
     {"P", "screenshot of the window (dirt-view-N.png)"},
     {"O", "save the render (dirt-view-N.exr and .png)"},
+    {"Ctrl + Wheel", "zoom the image in / out (powers of 2) about the cursor"},
+    {"Ctrl + Left drag", "pan the image (zoomed or not)"},
+    {"Z", "zoom 1:1 about the cursor / back to fitted"},
     {"H", "hide / show the panels"},
+    {"F5", "reload the shaders from DIRT_GLSL_DIR (a broken one keeps the old programs)"},
     {"F1", "this help"},
     {"Escape", "quit"},
 };
@@ -59,6 +65,36 @@ bool view_save_render(viewer *v, const char *path)
     if (ok)
         view_status(v, "saved %s (%d samples)", path, dirt_session_samples(v->s));
     return ok;
+}
+
+int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *scene)
+{
+    enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
+    const char *souts[SCRIPT_OUTS] = {0};
+    static char spng[SCRIPT_OUTS][4200];
+    vs_outputs(&v->script, souts, spng, SCRIPT_OUTS);
+    char save_png[4200] = "";
+    if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
+        cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
+    bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
+    cli_io io = {.scene_path = scene_path,
+                 .scene = scene,
+                 .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"},
+                        {v->o.compare_image, "--compare-image"}},
+                 .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
+                         {save_png[0] ? save_png : NULL, "--save-image"},
+                         {v->o.report, "--report"}}};
+    for (size_t i = 0; i < SCRIPT_OUTS; i++)
+        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
+    return cli_check_io(PROG, &io);
+}
+
+void view_shot_name(viewer *v, const char *ext, char *path, size_t size)
+{
+    struct stat st;
+    do
+        snprintf(path, size, "dirt-view-%d.%s", ++v->shots, ext);
+    while (lstat(path, &st) == 0 && v->shots < INT_MAX);
 }
 
 /* Requested window screenshots are taken at the end of the frame, after
@@ -174,7 +210,15 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddItemToObject(r, "window", cJSON_CreateIntArray(win, 2));
     cJSON_AddItemToObject(r, "render", cJSON_CreateIntArray(ren, 2));
     cJSON_AddNumberToObject(r, "samples", dirt_session_samples(v->s));
-    cJSON_AddStringToObject(r, "compare", v->cmp ? dirt_engine_names[v->cmp_engine] : "none");
+    /* the slices (a sample over frames) and the render scale */
+    cJSON_AddNumberToObject(r, "sample_part", dirt_session_sample_part(v->s));
+    cJSON_AddNumberToObject(r, "slice_ms", v->o.slice_ms);
+    cJSON_AddNumberToObject(r, "last_sample_ms", v->last_sample_ms);
+    cJSON_AddNumberToObject(r, "scale", v->o.s.width > 0 ? 1 : v->o.scale);
+    cJSON_AddBoolToObject(r, "scale_auto", v->auto_scale);
+    cJSON_AddStringToObject(r, "compare", view_compare_name(v));
+    if (v->o.compare_image)
+        cJSON_AddStringToObject(r, "compare_image", v->o.compare_image);
     cJSON_AddNumberToObject(r, "compare_samples", v->cmp ? dirt_session_samples(v->cmp) : 0);
     cJSON_AddBoolToObject(r, "diff", v->o.diff);
     cJSON_AddStringToObject(r, "buffer", app_buffer_names[v->o.buffer]);
@@ -183,6 +227,9 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "exposure", v->o.exposure);
     cJSON_AddBoolToObject(r, "play", v->o.play);
     cJSON_AddNumberToObject(r, "frames", (double)v->frame);
+    cJSON_AddNumberToObject(r, "shader_reloads", v->shader_reloads);
+    cJSON_AddNumberToObject(r, "shader_reload_failures", v->shader_reload_failures);
+    cJSON_AddStringToObject(r, "shader_reload_status", v->reload_status);
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
     cJSON_AddStringToObject(r, "camera_args", cam);
@@ -258,6 +305,31 @@ bool view_write_report(viewer *v, const char *path)
         cJSON_AddNumberToObject(b, "lo", v->bar_lo);
         cJSON_AddNumberToObject(b, "hi", v->bar_hi);
         cJSON_AddItemToObject(b, "rect", cJSON_CreateFloatArray(v->bar_rect, 4));
+    }
+    /* The Numbers panel's passes: the last build's, then the last frame's
+     * samples'; memory, and where its line is (0s: not shown). */
+    cJSON *passes = cJSON_AddArrayToObject(r, "passes");
+    for (int i = 0; i < v->num_frame_passes; i++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddStringToObject(p, "name", v->frame_passes[i].name);
+        cJSON_AddNumberToObject(p, "ms", v->frame_passes[i].ms);
+        cJSON_AddStringToObject(p, "clock", dirt_clock_names[v->frame_passes[i].clock]);
+        cJSON_AddBoolToObject(p, "build", i < v->num_build_passes);
+        cJSON_AddItemToArray(passes, p);
+    }
+    cJSON *mem = cJSON_AddObjectToObject(r, "memory");
+    cJSON_AddNumberToObject(mem, "used", (double)v->last.bytes_total_used);
+    cJSON_AddNumberToObject(mem, "allocated", (double)v->last.bytes_total_allocated);
+    cJSON_AddItemToObject(mem, "rect", cJSON_CreateFloatArray(v->memory_rect, 4));
+    /* Where the image is: its rectangle in the window, and the zoom (0:
+     * fitted). */
+    {
+        int iw = v->rw, ih = v->rh, ir[4];
+        if (v->o.buffer != BUF_BEAUTY && v->aux_tex && v->aux_w > 0)
+            iw = v->aux_w, ih = v->aux_h;
+        view_fit(v, iw, ih, ir);
+        cJSON_AddItemToObject(r, "image_rect", cJSON_CreateIntArray(ir, 4));
+        cJSON_AddNumberToObject(r, "zoom", v->zoom);
     }
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)

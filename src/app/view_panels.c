@@ -41,14 +41,23 @@ static void panel_settings(viewer *v)
         dirt_ui_text("%d / %d samples in %.1f s%s", samples, o->spp,
                      dirt_session_get_stats(v->s)->total_ms / 1000.0,
                      o->spp && samples >= o->spp ? " (done)" : "");
+        double part = dirt_session_sample_part(v->s);
+        if (part > 0)
+            dirt_ui_text("sample %d: %.0f %% (%d ms a frame; the last took %.2f s)", samples + 1,
+                         100.0 * part, o->slice_ms, v->last_sample_ms / 1000.0);
+        if (v->scale_note[0])
+            dirt_ui_text_disabled("%s", v->scale_note);
         if (v->status[0])
             dirt_ui_text_disabled("%s", v->status);
         if (dirt_ui_header("Render", true)) {
             int eng = (int)o->s.engine;
             if (dirt_ui_combo("engine", &eng, app_engine_names, DIRT_NUM_ENGINES))
                 o->s.engine = (enum dirt_engine)eng;
-            dirt_ui_combo("compare with", &o->compare, app_compare_names, 5);
-            if (o->compare) {
+            if (v->ref)
+                dirt_ui_checkbox("compare with the reference image (V)", &v->ref_on);
+            if (!v->ref || !v->ref_on)
+                dirt_ui_combo("compare with", &o->compare, app_compare_names, 5);
+            if (o->compare || (v->ref && v->ref_on)) {
                 dirt_ui_slider_float("split", &o->split, 0.0f, 1.0f, "%.2f", false);
                 dirt_ui_checkbox("difference heat map", &o->diff);
                 if (o->diff)
@@ -57,6 +66,9 @@ static void panel_settings(viewer *v)
             }
             dirt_ui_slider_int("target spp (0 = no limit)", &o->spp, 0, 4096);
             dirt_ui_slider_int("samples per frame", &o->samples_per_frame, 1, 64);
+            dirt_ui_slider_int("ms of tracing per frame", &o->slice_ms, 0, 1000);
+            if (o->s.width <= 0)
+                dirt_ui_slider_int("render scale (window / N)", &o->scale, 1, 16);
             int mode = (int)o->s.mode;
             if (dirt_ui_combo("mode", &mode, app_mode_names, 2))
                 o->s.mode = (enum dirt_pt_mode)mode;
@@ -186,13 +198,13 @@ static void panel_settings(viewer *v)
         if (dirt_ui_header("Files", false)) {
             if (dirt_ui_button("screenshot (P)")) {
                 char path[64];
-                snprintf(path, sizeof(path), "dirt-view-%d.png", ++v->shots);
+                view_shot_name(v, "png", path, sizeof(path));
                 view_screenshot(v, path);
             }
             dirt_ui_same_line();
             if (dirt_ui_button("save render (O)")) {
                 char path[64];
-                snprintf(path, sizeof(path), "dirt-view-%d.exr", ++v->shots);
+                view_shot_name(v, "exr", path, sizeof(path));
                 view_save_render(v, path);
             }
             dirt_ui_text_disabled("drop a .gltf / .glb on the window to open it");
@@ -210,15 +222,22 @@ static void panel_numbers(viewer *v)
     collapse_if_small(v);
     if (dirt_ui_begin("Numbers", NULL, x, 8, w, 420)) {
         const dirt_session_stats *st = &v->last;
+        /* Memory first, where it is always in view. */
+        dirt_ui_text("memory: %.2f MB used / %.2f MB allocated",
+                     st->bytes_total_used / 1048576.0, st->bytes_total_allocated / 1048576.0);
+        dirt_ui_item_rect(v->memory_rect);
         if (dirt_ui_header("Inspector (under the cursor)", true)) {
             view_inspect(v);
             const struct view_probe *a = &v->probe[0], *b = &v->probe[1];
             if (!a->valid) {
                 dirt_ui_text_disabled("move the cursor over the image");
             } else {
-                dirt_ui_text("pixel %d, %d", a->x, a->y);
+                if (v->zoom > 0)
+                    dirt_ui_text("pixel %d, %d (zoom %g:1)", a->x, a->y, (double)v->zoom);
+                else
+                    dirt_ui_text("pixel %d, %d (fitted)", a->x, a->y);
                 const char *heads[3] = {"channel", dirt_engine_names[v->applied.engine],
-                                        b->valid ? dirt_engine_names[v->cmp_engine] : ""};
+                                        b->valid ? view_compare_name(v) : ""};
                 if (dirt_ui_table_begin("inspect", b->valid ? 3 : 2, heads)) {
                     for (int c = 0; c < a->count; c++) {
                         dirt_ui_table_row();
@@ -255,13 +274,14 @@ static void panel_numbers(viewer *v)
         dirt_ui_text("%s", st->device);
         dirt_ui_text("%.2f Mrays/s, %llu rays, %llu aborted", st->mrays_per_s,
                      (unsigned long long)st->rays, (unsigned long long)st->aborted);
-        static const char *const ph[] = {"pass (last frame)", "ms", "clock"};
-        if (dirt_ui_table_begin("passes", 3, ph)) {
+        static const char *const ph[] = {"pass", "ms", "clock", "of"};
+        if (dirt_ui_table_begin("passes", 4, ph)) {
             for (int i = 0; i < v->num_frame_passes; i++) {
                 dirt_ui_table_row();
                 dirt_ui_table_cell("%s", v->frame_passes[i].name);
                 dirt_ui_table_cell("%.3f", v->frame_passes[i].ms);
                 dirt_ui_table_cell("%s", dirt_clock_names[v->frame_passes[i].clock]);
+                dirt_ui_table_cell("%s", i < v->num_build_passes ? "last build" : "last frame");
             }
             dirt_ui_table_end();
         }
@@ -321,6 +341,17 @@ static void label(viewer *v, float x, float y, const char *fmt, ...)
     memcpy(v->label_rect[i], r, sizeof(r));
 }
 
+/* The part of the image's rectangle inside the window (zoomed, it may be
+ * larger). */
+static void visible_fit(const viewer *v, int w, int h, int r[4])
+{
+    view_fit(v, w, h, r);
+    int x0 = r[0] > 0 ? r[0] : 0, y0 = r[1] > 0 ? r[1] : 0;
+    int x1 = r[0] + r[2] < v->win_w ? r[0] + r[2] : v->win_w;
+    int y1 = r[1] + r[3] < v->win_h ? r[1] + r[3] : v->win_h;
+    r[0] = x0, r[1] = y0, r[2] = x1 > x0 ? x1 - x0 : 0, r[3] = y1 > y0 ? y1 - y0 : 0;
+}
+
 /* Over the image: each half of the split labelled with its engine; under
  * a heat map or the difference, a colour bar with its range. */
 static void overlay(viewer *v)
@@ -328,30 +359,35 @@ static void overlay(viewer *v)
     v->num_labels = 0;
     v->bar = false;
     int r[4];
-    bool cmp = v->cmp && dirt_session_samples(v->cmp) > 0 && dirt_session_samples(v->s) > 0;
+    bool cmp = view_comparing(v);
     if (v->o.buffer == BUF_BEAUTY && cmp && !v->o.diff) {
         view_fit(v, v->rw, v->rh, r);
         float split = v->o.split > 0 && v->o.split < 1 ? v->o.split : 0.5f;
-        float sx = (float)r[0] + split * (float)r[2], y = (float)(r[1] + r[3]) - 24;
-        label(v, (float)r[0] + 4, y, "%s", dirt_engine_names[v->applied.engine]);
-        label(v, sx + 4, y, "%s", dirt_engine_names[v->cmp_engine]);
+        float sx = (float)r[0] + split * (float)r[2];
+        visible_fit(v, v->rw, v->rh, r);
+        float y = (float)(r[1] + r[3]) - 24;
+        if (sx > (float)r[0])
+            label(v, (float)r[0] + 4, y, "%s", dirt_engine_names[v->applied.engine]);
+        if (sx < (float)(r[0] + r[2]))
+            label(v, fmaxf(sx, (float)r[0]) + 4, y, "%s", view_compare_name(v));
         return;
     }
     float lo, hi;
     char what[64];
     if (v->o.buffer == BUF_BEAUTY && cmp && v->o.diff) {
-        view_fit(v, v->rw, v->rh, r);
+        visible_fit(v, v->rw, v->rh, r);
         lo = 0, hi = v->o.diff_range;
         snprintf(what, sizeof(what), "|lum(%s) - lum(%s)|", dirt_engine_names[v->applied.engine],
-                 dirt_engine_names[v->cmp_engine]);
+                 view_compare_name(v));
     } else if ((v->o.buffer == BUF_DEPTH || v->o.buffer >= BUF_LISTS) && v->aux_tex) {
-        view_fit(v, v->aux_w, v->aux_h, r);
+        visible_fit(v, v->aux_w, v->aux_h, r);
         lo = v->aux_lo, hi = v->aux_hi > v->aux_lo ? v->aux_hi : v->aux_lo + 1;
         snprintf(what, sizeof(what), "%s", buffer_labels[v->o.buffer]);
     } else {
         return;
     }
-    float w = fminf(256.0f, (float)r[2] - 16), x = (float)r[0] + ((float)r[2] - w) / 2;
+    /* Whole pixels: column i of the bar is the ramp at (i + 0.5) / w. */
+    float w = floorf(fminf(256.0f, (float)r[2] - 16)), x = floorf((float)r[0] + ((float)r[2] - w) / 2);
     float y = (float)(r[1] + r[3]) - 40;
     if (w < 32)
         return;
@@ -372,6 +408,7 @@ void view_panels(viewer *v)
     v->num_panels = 0;
     v->num_labels = 0;
     v->bar = false;
+    memset(v->memory_rect, 0, sizeof(v->memory_rect));
     if (v->o.no_ui)
         return;
     overlay(v);

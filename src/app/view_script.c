@@ -26,6 +26,7 @@ static const struct {
     {"resize", VS_RESIZE, 2, 2, false}, {"screenshot", VS_SCREENSHOT, 0, 0, true},
     {"save-image", VS_SAVE_IMAGE, 0, 0, true}, {"report", VS_REPORT, 0, 0, true},
     {"print-camera", VS_PRINT_CAMERA, 0, 0, false}, {"quit", VS_QUIT, 0, 0, false},
+    {"zoom", VS_ZOOM, 3, 1, false}, {"pan-image", VS_PAN_IMAGE, 2, 2, false},
 };
 
 static bool number(const char *tok, double *out)
@@ -99,6 +100,25 @@ static bool parse_line(char *line, int no, vs_action *a, char *why, size_t size)
         if (args == 2 && (!number(w[2], &a->num[0]) || a->num[0] < 1)) {
             snprintf(why, size, "line %d: key frames '%s' must be a number >= 1", no, w[2]);
             return false;
+        }
+        return true;
+    case VS_ZOOM:
+        if (args == 1 && !strcmp(w[1], "fit")) {
+            snprintf(a->name, sizeof(a->name), "fit");
+            return true;
+        }
+        if (args != 1 && args != 3) {
+            snprintf(why, size, "line %d: zoom takes a factor and optionally a window pixel X Y, "
+                     "or fit", no);
+            return false;
+        }
+        a->num[1] = a->num[2] = -1; /* the window's centre */
+        for (int k = 0; k < args; k++) {
+            if (!number(w[1 + k], &a->num[k]) || (k == 0 && !(a->num[0] > 0 && a->num[0] <= 64))) {
+                snprintf(why, size, "line %d: zoom '%s' must be a factor in (0, 64], or fit", no,
+                         w[1 + k]);
+                return false;
+            }
         }
         return true;
     case VS_SET:

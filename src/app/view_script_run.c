@@ -90,6 +90,13 @@ bool view_run_script(viewer *v)
             v->pressed[k] = true;
             break;
         }
+        case VS_ZOOM:
+            view_zoom_at(v, a->name[0] ? 0 : a->num[0], a->num[1] >= 0 ? a->num[1] : v->win_w / 2.0,
+                         a->num[2] >= 0 ? a->num[2] : v->win_h / 2.0);
+            break;
+        case VS_PAN_IMAGE:
+            view_pan_image(v, a->num[0], a->num[1]);
+            break;
         case VS_CLICK:
             v->click_pending = true;
             v->click_x = a->num[0];

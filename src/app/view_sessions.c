@@ -208,3 +208,43 @@ static bool sync_all(viewer *v)
     }
     return true;
 }
+
+/* A new main session from the shader sources, proven by one sample, then
+ * the presentation program; on any failure the old ones stay. */
+bool view_reload_shaders(viewer *v)
+{
+    const char *dir = dirt_gpu_glsl_dir();
+    if (!dir) {
+        v->shader_reload_failures++;
+        view_status(v, "shader reload: unavailable, the shaders are the library's embedded ones "
+                    "(run with DIRT_GLSL_DIR=a source tree's glsl/ folder)");
+        snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
+        return false;
+    }
+    dirt_eval_opts eval = {.clip = v->applied_clip, .loop = v->applied_loop};
+    dirt_session *ns = dirt_session_create(v->gpu, v->scene, &v->applied);
+    bool ok = ns && dirt_session_set_time(ns, v->applied_time, &eval) && view_apply_camera(v, ns) &&
+              dirt_session_add_samples(ns, 1, NULL, NULL) && dirt_gpu_present_reload(v->gpu);
+    if (!ok) {
+        dirt_session_destroy(ns);
+        v->shader_reload_failures++;
+        view_status(v, "shader reload from %s failed (the compiler's errors are in the log); "
+                    "kept the old programs", dir);
+        snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
+        return false;
+    }
+    dirt_session_destroy(v->s);
+    v->s = ns;
+    /* The comparison and the preview are made again at the next sync. */
+    dirt_session_destroy(v->cmp);
+    dirt_session_destroy(v->pre);
+    v->cmp = v->pre = NULL;
+    v->cmp_engine = -1;
+    v->aux_key = -1;
+    v->generation++;
+    v->last = *dirt_session_get_stats(v->s);
+    v->shader_reloads++;
+    view_status(v, "shaders reloaded from %s", dir);
+    snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
+    return true;
+}

@@ -102,6 +102,26 @@ static bool ensure_program(dirt_gpu *gpu)
     return true;
 }
 
+const char *dirt_gpu_glsl_dir(void)
+{
+    return glsl_root();
+}
+
+bool dirt_gpu_present_reload(dirt_gpu *gpu)
+{
+    if (!has_window(gpu, "dirt_gpu_present_reload"))
+        return false;
+    if (!gpu->present_program)
+        return ensure_program(gpu);
+    static const char *const paths[] = {"present/present.vert", "present/present.frag", NULL};
+    GLuint fresh = gl_program_create("present", paths, NULL, 0);
+    if (!fresh)
+        return false;
+    gl_program_destroy(&gpu->present_program);
+    gpu->present_program = fresh;
+    return true;
+}
+
 void gl_present_release(dirt_gpu *gpu)
 {
     gl_program_destroy(&gpu->present_program);

@@ -285,16 +285,24 @@ void dirt_ui_overlay_text(float x, float y, const char *text, float size[2])
         size[0] = t.x + 6, size[1] = t.y + 4;
 }
 
-/* A linear heat-ramp key as an 8-bit sRGB colour. */
-static ImU32 heat_colour(int k)
+/* The present shader's heat ramp at t in [0, 1] as the 8-bit sRGB colour it
+ * displays (glsl/present/present.frag: heat, then srgb8). */
+static ImU32 heat_colour(float t)
 {
     static const float keys[DIRT_HEAT_KEYS][3] = {{DIRT_HEAT_KEY_0}, {DIRT_HEAT_KEY_1},
                                                   {DIRT_HEAT_KEY_2}, {DIRT_HEAT_KEY_3},
                                                   {DIRT_HEAT_KEY_4}};
+    float x = (t < 0 ? 0 : t > 1 ? 1 : t) * (DIRT_HEAT_KEYS - 1);
+    int k = (int)x < DIRT_HEAT_KEYS - 1 ? (int)x : DIRT_HEAT_KEYS - 2;
+    float f = x - (float)k;
     int c[3];
     for (int j = 0; j < 3; j++) {
-        float l = keys[k][j];
-        float e = l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+        float l = keys[k][j] + f * (keys[k + 1][j] - keys[k][j]);
+        float e = l <= 0.0f  ? 0.0f
+                  : l >= 1.0f ? 1.0f
+                  : l <= DIRT_SRGB_LINEAR_MAX
+                      ? DIRT_SRGB_LINEAR_SCALE * l
+                      : DIRT_SRGB_SCALE * std::pow(l, DIRT_SRGB_EXPONENT) - DIRT_SRGB_OFFSET;
         c[j] = (int)std::lround(255.0f * (e < 0 ? 0 : e > 1 ? 1 : e));
     }
     return IM_COL32(c[0], c[1], c[2], 255);
@@ -305,12 +313,14 @@ void dirt_ui_overlay_ramp(float x, float y, float w, float h)
     if (!in_frame("dirt_ui_overlay_ramp"))
         return;
     ImDrawList *dl = ImGui::GetForegroundDrawList();
-    float seg = w / (DIRT_HEAT_KEYS - 1);
-    for (int k = 0; k + 1 < DIRT_HEAT_KEYS; k++) {
-        ImU32 a = heat_colour(k), b = heat_colour(k + 1);
-        dl->AddRectFilledMultiColor(ImVec2(x + k * seg, y), ImVec2(x + (k + 1) * seg, y + h), a, b,
-                                    b, a);
-    }
+    /* One flat column per pixel: column i shows the ramp at (i + 0.5) / w,
+     * as the present shader would show that value (no interpolation of
+     * encoded colours between keys). */
+    float x0 = std::floor(x + 0.5f), y0 = std::floor(y + 0.5f);
+    int n = (int)std::lround(w), rows = (int)std::lround(h);
+    for (int i = 0; i < n; i++)
+        dl->AddRectFilled(ImVec2(x0 + (float)i, y0), ImVec2(x0 + (float)i + 1.0f, y0 + (float)rows),
+                          heat_colour(((float)i + 0.5f) / (float)n));
 }
 
 void dirt_ui_end(void)
@@ -336,6 +346,15 @@ void dirt_ui_panel_rect(float rect[4])
     }
     ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
     rect[0] = p.x, rect[1] = p.y, rect[2] = s.x, rect[3] = s.y;
+}
+
+void dirt_ui_item_rect(float rect[4])
+{
+    rect[0] = rect[1] = rect[2] = rect[3] = 0.0f;
+    if (!in_frame("dirt_ui_item_rect") || g_ui->depth <= 0 || !g_ui->began[g_ui->depth - 1])
+        return;
+    ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    rect[0] = a.x, rect[1] = a.y, rect[2] = b.x - a.x, rect[3] = b.y - a.y;
 }
 
 bool dirt_ui_covers(const dirt_ui *ui, float x, float y)

@@ -49,6 +49,9 @@ void dirt_ui_end(void);
 void dirt_ui_next_collapsed(void);
 /* The current panel's rectangle in window pixels (x, y, w, h). */
 void dirt_ui_panel_rect(float rect[4]);
+/* The last widget's rectangle in window pixels (x, y, w, h); zeros outside
+ * a shown panel. */
+void dirt_ui_item_rect(float rect[4]);
 /* Whether any panel is shown at window pixel (x, y) in the last frame. */
 bool dirt_ui_covers(const dirt_ui *ui, float x, float y);
 
@@ -58,7 +61,8 @@ bool dirt_ui_covers(const dirt_ui *ui, float x, float y);
  * its size goes to size[2] (may be NULL). */
 void dirt_ui_overlay_text(float x, float y, const char *text, float size[2]);
 /* The heat ramp of the present shader (glsl/common/display.h), low at the
- * left, in the rectangle x, y, w, h. */
+ * left, in the rectangle x, y, w, h (rounded to whole pixels): column i
+ * has the colour the present shader shows for (i + 0.5) / w of the range. */
 void dirt_ui_overlay_ramp(float x, float y, float w, float h);
 
 /* ---- widgets ---- */

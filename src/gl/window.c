@@ -156,7 +156,12 @@ static void on_cursor(GLFWwindow *win, double x, double y)
         return;
     double nx = x * st->scale_x, ny = y * st->scale_y;
     for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++) {
-        if (st->in.button[b]) {
+        if (!st->in.button[b])
+            continue;
+        if (b == DIRT_MOUSE_LEFT && st->in.key[DIRT_KEY_CTRL]) {
+            st->in.ctrl_drag_dx += nx - st->in.mouse_x;
+            st->in.ctrl_drag_dy += ny - st->in.mouse_y;
+        } else {
             st->in.drag_dx[b] += nx - st->in.mouse_x;
             st->in.drag_dy[b] += ny - st->in.mouse_y;
         }
@@ -205,8 +210,15 @@ static void on_scroll(GLFWwindow *win, double dx, double dy)
 {
     (void)dx;
     struct gl_window_state *st = state_of(win);
-    if (st)
+    if (!st)
+        return;
+    if (st->in.key[DIRT_KEY_CTRL]) {
+        st->in.ctrl_scroll += dy;
+        st->in.ctrl_scroll_x = st->in.mouse_x;
+        st->in.ctrl_scroll_y = st->in.mouse_y;
+    } else {
         st->in.scroll += dy;
+    }
 }
 
 static void on_drop(GLFWwindow *win, int count, const char **paths)
@@ -307,6 +319,8 @@ void gl_window_poll_begin(dirt_gpu *gpu)
     memset(st->in.drag_dy, 0, sizeof(st->in.drag_dy));
     st->in.double_clicks = 0;
     st->in.scroll = 0;
+    st->in.ctrl_scroll = 0;
+    st->in.ctrl_drag_dx = st->in.ctrl_drag_dy = 0;
     st->in.resized = false;
     st->last_x = st->in.mouse_x;
     st->last_y = st->in.mouse_y;

@@ -57,7 +57,12 @@ typedef struct dirt_window_input {
     bool button_pressed[DIRT_MOUSE_BUTTONS];
     bool button_released[DIRT_MOUSE_BUTTONS];
     int double_clicks;                 /* left-button double clicks in this poll */
-    double scroll;                     /* wheel steps in this poll (+ = away from the user) */
+    double scroll;                     /* wheel steps in this poll (+ = away from the user),
+                                          those with Ctrl held excepted: */
+    double ctrl_scroll;                /* wheel steps with Ctrl held, in this poll */
+    double ctrl_scroll_x, ctrl_scroll_y; /* the cursor at the last of them */
+    double ctrl_drag_dx, ctrl_drag_dy; /* cursor motion with the left button and Ctrl held,
+                                          in this poll (not in drag_dx/dy[DIRT_MOUSE_LEFT]) */
     bool key[DIRT_NUM_KEYS];           /* held */
     bool key_pressed[DIRT_NUM_KEYS];   /* went down (or repeated) in this poll */
     int num_drops;                     /* paths dropped on the window in this poll */
@@ -119,6 +124,14 @@ typedef struct dirt_present_opts {
  * GL state it changes is restored). False after logging (no window, no
  * texture, bad rectangle, split or range). */
 bool dirt_gpu_present(dirt_gpu *gpu, const dirt_present_opts *opts);
+
+/* The folder the shaders are read from at each compile: $DIRT_GLSL_DIR (a
+ * source tree's glsl/), or NULL when they are the library's embedded ones
+ * (nothing to reload). */
+const char *dirt_gpu_glsl_dir(void);
+/* Compiles the presentation program again from the shader sources; when
+ * that fails (logged), the old one stays in use. False then. */
+bool dirt_gpu_present_reload(dirt_gpu *gpu);
 
 /* Clears the window's back buffer to an RGB colour. */
 bool dirt_gpu_window_clear(dirt_gpu *gpu, const float rgb[3]);

@@ -15,12 +15,17 @@
 #include "integrator/rng.h"
 
 bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera *cam, int width,
-                     int height, size_t batch, const dirt_trace_alpha *alpha, float *depth,
-                     float *ids)
+                     int height, size_t start, size_t count, size_t batch,
+                     const dirt_trace_alpha *alpha, float *depth, float *ids)
 {
     size_t pixels = (size_t)width * (size_t)height;
-    if (!batch || batch > pixels)
-        batch = pixels;
+    if (start > pixels)
+        start = pixels;
+    if (count > pixels - start)
+        count = pixels - start;
+    pixels = start + count;
+    if (!batch || batch > count)
+        batch = count ? count : 1;
     dirt_ray *rays = malloc(batch * sizeof(*rays));
     dirt_hit *hits = malloc(batch * sizeof(*hits));
     GLuint rbuf = gl_buffer_create(gpu, batch * sizeof(*rays), NULL, false, "pt depth rays");
@@ -30,8 +35,13 @@ bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera
         DIRT_ERROR("out of memory for the depth pass (%zu rays)", batch);
     dirt_vec3 forward = v3_normalize(v3_load(cam->forward)), eye = v3_load(cam->eye);
     gl_group_push("pt depth");
-    for (size_t first = 0; ok && first < pixels; first += batch) {
+    for (size_t first = start; ok && first < pixels; first += batch) {
         size_t n = pixels - first < batch ? pixels - first : batch;
+        /* A randomised tracer keys these rays by pixel, as the samples'. */
+        if (tracer->restart)
+            tracer->restart(tracer->self);
+        if (tracer->begin_chunk)
+            tracer->begin_chunk(tracer->self, (uint32_t)first);
         for (size_t i = 0; i < n; i++) {
             size_t p = first + i;
             dirt_vec3 org, dir;

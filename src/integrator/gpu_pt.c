@@ -16,6 +16,7 @@
 #include "gl/graph_gl.h"
 #include "gl/split.h"
 #include "integrator/depth.h"
+#include "integrator/ray_sort.h"
 #include "integrator/rng.h"
 
 /* The session's per-event figures (dirt/types.h) hold every event the
@@ -32,6 +33,7 @@ const char *const dirt_pt_pass_names[DIRT_PT_NUM_PASSES] = {
     [DIRT_PT_PASS_RESOLVE] = "resolve",
     [DIRT_PT_PASS_ACCUMULATE] = "accumulate",
     [DIRT_PT_PASS_COMPACT] = "compact",
+    [DIRT_PT_PASS_SORT] = "ray sort",
 };
 
 typedef struct pass_ctx {
@@ -39,6 +41,7 @@ typedef struct pass_ctx {
     enum dirt_pt_pass kind;
     int k;       /* path event */
     bool finish; /* compaction's second pass (the next batch's dispatch) */
+    enum dirt_ray_sort_pass sort; /* DIRT_PT_PASS_SORT: which pass */
 } pass_ctx;
 
 #define MAX_PASSES 512
@@ -67,8 +70,27 @@ struct dirt_pt {
     GLuint rays, hits, shadow_rays, shadow_hits, gpoints, paths;
     GLuint batch[2];
     GLuint events;     /* uint[DIRT_PT_MAX_EVENTS]: paths per event (compact.comp) */
+    /* the ray sort (dirt_pt_opts.sort_rays; made on first use): compaction
+     * gathers the live rays into sort_rays and sort_batch, which the sort
+     * permutes into the event's rays and batch */
+    dirt_ray_sort *sort;
+    GLuint sort_rays, sort_batch, sort_scratch;
+    float sort_min[3], sort_max[3]; /* the box of its origin grid (the frame's bounds) */
     /* accumulation: one buffer per chunk (accum[c] = pixels c*chunk ...) */
     GLuint *accum;
+    /* dirt_pt_advance: the sample in progress is done for pixels
+     * 0 .. part_done - 1 (0: none in progress); while one is, `shown` (one
+     * buffer per chunk, made at the first partial sample) holds the
+     * accumulation of the completed samples, which the readback and the
+     * display give. Pieces start at multiples of `granule` pixels within
+     * their chunk (whole work groups whose accumulation records start at
+     * the GL's storage-buffer offset alignment); `px_per_ms` is the
+     * measured pace that sizes them. */
+    size_t part_done;
+    GLuint *shown;
+    bool shown_current;       /* `shown` holds this sample's completed ones */
+    size_t granule;
+    double px_per_ms;
     size_t pixels;     /* of the image */
     size_t chunk;      /* pixels per chunk (the last may hold fewer) */
     size_t num_chunks;
@@ -81,6 +103,7 @@ struct dirt_pt {
     int g_events;
     enum dirt_pt_mode g_mode;
     bool g_direct;
+    bool g_sort;
     pass_ctx ctx[MAX_PASSES];
     int num_ctx;
     /* pass times that came after the dirt_pt_add_samples call that issued
@@ -146,6 +169,12 @@ dirt_pt *dirt_pt_create(dirt_gpu *gpu, const dirt_scene *scene)
     }
     pt->gpu = gpu;
     pt->scene = scene;
+    GLint align = 0;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    pt->granule = DIRT_GROUP_SIZE;
+    while (align > 0 && (pt->granule * sizeof(struct dirt_gpu_accum)) % (size_t)align != 0 &&
+           pt->granule < 64 * DIRT_GROUP_SIZE)
+        pt->granule += DIRT_GROUP_SIZE;
     /* Test hook: DIRT_PT_CHUNK_PIXELS=n forces chunks of at most n pixels. */
     const char *hook = getenv("DIRT_PT_CHUNK_PIXELS");
     if (hook && *hook)
@@ -174,13 +203,18 @@ bool dirt_pt_check_frame(dirt_pt *pt, const dirt_frame *frame)
 static void release_buffers(dirt_pt *pt)
 {
     GLuint *b[] = {&pt->rays, &pt->hits, &pt->shadow_rays, &pt->shadow_hits,
-                   &pt->gpoints, &pt->paths, &pt->batch[0], &pt->batch[1], &pt->events};
+                   &pt->gpoints, &pt->paths, &pt->batch[0], &pt->batch[1], &pt->events,
+                   &pt->sort_rays, &pt->sort_batch, &pt->sort_scratch};
     for (size_t i = 0; i < sizeof(b) / sizeof(b[0]); i++)
         gl_buffer_destroy(b[i]);
     for (size_t c = 0; c < pt->num_chunks && pt->accum; c++)
         gl_buffer_destroy(&pt->accum[c]);
+    for (size_t c = 0; c < pt->num_chunks && pt->shown; c++)
+        gl_buffer_destroy(&pt->shown[c]);
     free(pt->accum);
-    pt->accum = NULL;
+    free(pt->shown);
+    pt->accum = pt->shown = NULL;
+    pt->part_done = 0;
     pt->num_chunks = 0;
     pt->chunk = 0;
     gl_texture_destroy(&pt->display);
@@ -254,6 +288,7 @@ void dirt_pt_destroy(dirt_pt *pt)
         gl_program_destroy(p[i]);
     gl_split_program_destroy(&pt->prog_shade);
     gl_split_program_destroy(&pt->prog_ao);
+    dirt_ray_sort_destroy(pt->sort);
     release_buffers(pt);
     dirt_gpu_model_tables_destroy(&pt->tables);
     gl_buffer_destroy(&pt->env_buf);
@@ -308,6 +343,31 @@ static bool ensure_buffers(dirt_pt *pt, size_t pixels)
         release_buffers(pt);
         return false;
     }
+    return true;
+}
+
+/* The sort's programs and buffers (after ensure_buffers). False after
+ * logging. */
+static bool ensure_sort(dirt_pt *pt)
+{
+    if (!pt->sort && !(pt->sort = dirt_ray_sort_create()))
+        return false;
+    if (pt->sort_rays)
+        return true;
+    size_t chunk = pt->chunk;
+    pt->sort_rays = gl_buffer_create(pt->gpu, chunk * sizeof(struct dirt_gpu_ray), NULL, false,
+                                     "pt unsorted rays");
+    pt->sort_batch = gl_buffer_create(pt->gpu, batch_bytes(chunk), NULL, false,
+                                      "pt unsorted batch");
+    pt->sort_scratch = gl_buffer_create(pt->gpu, dirt_ray_sort_scratch_bytes(chunk), NULL, false,
+                                        "pt ray sort");
+    if (!pt->sort_rays || !pt->sort_batch || !pt->sort_scratch) {
+        gl_buffer_destroy(&pt->sort_rays);
+        gl_buffer_destroy(&pt->sort_batch);
+        gl_buffer_destroy(&pt->sort_scratch);
+        return false;
+    }
+    pt->g_pixels = 0; /* the graph imports these buffers: remake it */
     return true;
 }
 
@@ -477,8 +537,19 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         bind(DIRT_BIND_HITS, pt->shadow_hits);
         dispatch_batch(pt, c->k);
         break;
+    case DIRT_PT_PASS_SORT: {
+        dirt_ray_sort_io io = {
+            .in_rays = pt->sort_rays, .in_batch = pt->sort_batch,
+            .out_rays = event_rays(pt, c->k + 1), .out_batch = event_batch(pt, c->k + 1),
+            .scratch = pt->sort_scratch, .capacity = (uint32_t)pt->cur_count};
+        memcpy(io.bounds_min, pt->sort_min, sizeof(io.bounds_min));
+        memcpy(io.bounds_max, pt->sort_max, sizeof(io.bounds_max));
+        dirt_ray_sort_pass(pt->sort, c->sort, &io);
+        return true;
+    }
     case DIRT_PT_PASS_COMPACT: {
-        GLuint next = event_batch(pt, c->k + 1);
+        /* With the sort, into its input; else into event k + 1's batch. */
+        GLuint next = pt->g_sort ? pt->sort_batch : event_batch(pt, c->k + 1);
         bind(DIRT_BIND_NEXT_BATCH, next);
         if (c->finish) {
             /* The next batch's dispatch from its count; the paths of k + 1. */
@@ -496,7 +567,7 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         glUseProgram(pt->prog_compact);
         glUniform1ui(DIRT_LOC_COMPACT_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_RAYS, event_rays(pt, c->k));
-        bind(DIRT_BIND_SHADOW_RAYS, event_shadow_rays(pt, c->k));
+        bind(DIRT_BIND_SHADOW_RAYS, pt->g_sort ? pt->sort_rays : event_shadow_rays(pt, c->k));
         dispatch_batch(pt, c->k);
         break;
     }
@@ -505,7 +576,12 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         glUseProgram(pt->prog_accum);
         glUniform1ui(DIRT_LOC_ACCUM_PIXELS, (GLuint)pt->cur_count);
         bind(DIRT_BIND_PATHS, pt->paths);
-        bind(DIRT_BIND_ACCUM, pt->accum[pt->cur_chunk]);
+        /* This piece's records of the chunk's sums (a whole chunk, or a
+         * part starting at a multiple of pt->granule: aligned). */
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_ACCUM, pt->accum[pt->cur_chunk],
+                          (GLintptr)((pt->cur_offset - pt->cur_chunk * pt->chunk) *
+                                     sizeof(struct dirt_gpu_accum)),
+                          (GLsizeiptr)(pt->cur_count * sizeof(struct dirt_gpu_accum)));
         glDispatchCompute(groups(pt->cur_count), 1, 1);
         break;
     }
@@ -555,9 +631,18 @@ static bool make_graph(dirt_pt *pt, int events)
                                   DIRT_PT_MAX_EVENTS * sizeof(uint32_t));
     fg_res accum = fg_import_buffer(g, "accumulation", pt->accum[0],
                                     chunk_pixels(pt, 0) * sizeof(struct dirt_gpu_accum));
+    /* the sort's input and scratch (pt->g_sort) */
+    fg_res urays = {0}, ubatch = {0}, scratch = {0};
+    if (pt->g_sort) {
+        urays = fg_import_buffer(g, "unsorted rays", pt->sort_rays,
+                                 px * sizeof(struct dirt_gpu_ray));
+        ubatch = fg_import_buffer(g, "unsorted batch", pt->sort_batch, batch_bytes(px));
+        scratch = fg_import_buffer(g, "ray sort", pt->sort_scratch,
+                                   dirt_ray_sort_scratch_bytes(px));
+    }
     pt->num_ctx = 0;
 #define ADD(kind_, k_)                                                                   \
-    (pt->ctx[pt->num_ctx] = (pass_ctx){pt, (kind_), (k_), false},                         \
+    (pt->ctx[pt->num_ctx] = (pass_ctx){.pt = pt, .kind = (kind_), .k = (k_)},              \
      fg_add_pass(g, name, FG_COMPUTE, exec_pass, &pt->ctx[pt->num_ctx++]))
     char name[64];
     snprintf(name, sizeof(name), "raygen");
@@ -566,7 +651,7 @@ static bool make_graph(dirt_pt *pt, int events)
     fg_write(p, batch[0], FG_SSBO_WRITE);
     fg_write(p, paths, FG_SSBO_WRITE);
     for (int k = 1; k <= events; k++) {
-        if (pt->num_ctx + 9 >= MAX_PASSES) {
+        if (pt->num_ctx + 12 >= MAX_PASSES) {
             DIRT_ERROR("too many path events (%d)", events);
             return false;
         }
@@ -616,20 +701,53 @@ static bool make_graph(dirt_pt *pt, int events)
         /* Compaction in two passes (the graph orders the second after the
          * first's atomics): the live rays into the next batch, then its
          * dispatch and the paths per event. */
+        /* With the sort, compaction gathers into the sort's input, which
+         * the sort then permutes into the next event's rays and batch. */
+        fg_res crays = pt->g_sort ? urays : srays, cbatch = pt->g_sort ? ubatch : bnext;
         snprintf(name, sizeof(name), "compact %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         fg_read(p, rays, FG_SSBO_READ);
         read_batch(p, b);
-        fg_write(p, srays, FG_SSBO_WRITE);
-        fg_use(p, bnext, FG_SSBO_READ, NULL);
-        fg_write(p, bnext, FG_SSBO_WRITE);
+        fg_write(p, crays, FG_SSBO_WRITE);
+        fg_use(p, cbatch, FG_SSBO_READ, NULL);
+        fg_write(p, cbatch, FG_SSBO_WRITE);
         snprintf(name, sizeof(name), "compact finish %d", k);
         p = ADD(DIRT_PT_PASS_COMPACT, k);
         pt->ctx[pt->num_ctx - 1].finish = true;
-        fg_use(p, bnext, FG_SSBO_READ, NULL);
-        fg_write(p, bnext, FG_SSBO_WRITE);
+        fg_use(p, cbatch, FG_SSBO_READ, NULL);
+        fg_write(p, cbatch, FG_SSBO_WRITE);
         fg_use(p, evs, FG_SSBO_READ, NULL);
         fg_write(p, evs, FG_SSBO_WRITE);
+        if (!pt->g_sort)
+            continue;
+        /* count: the keys and rays per bucket (the counters cleared first) */
+        snprintf(name, sizeof(name), "sort count %d", k + 1);
+        p = ADD(DIRT_PT_PASS_SORT, k);
+        pt->ctx[pt->num_ctx - 1].sort = DIRT_RAY_SORT_COUNT;
+        fg_read(p, urays, FG_SSBO_READ);
+        read_batch(p, ubatch);
+        fg_use(p, scratch, FG_SSBO_READ, NULL);
+        fg_write(p, scratch, FG_SSBO_WRITE);
+        /* scan: first slots; the next batch's header */
+        snprintf(name, sizeof(name), "sort scan %d", k + 1);
+        p = ADD(DIRT_PT_PASS_SORT, k);
+        pt->ctx[pt->num_ctx - 1].sort = DIRT_RAY_SORT_SCAN;
+        fg_read(p, ubatch, FG_SSBO_READ);
+        fg_use(p, scratch, FG_SSBO_READ, NULL);
+        fg_write(p, scratch, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
+        /* scatter: the rays and owners of k + 1, in key order */
+        snprintf(name, sizeof(name), "sort scatter %d", k + 1);
+        p = ADD(DIRT_PT_PASS_SORT, k);
+        pt->ctx[pt->num_ctx - 1].sort = DIRT_RAY_SORT_SCATTER;
+        fg_read(p, urays, FG_SSBO_READ);
+        read_batch(p, ubatch);
+        fg_use(p, scratch, FG_SSBO_READ, NULL);
+        fg_write(p, scratch, FG_SSBO_WRITE);
+        fg_write(p, srays, FG_SSBO_WRITE);
+        fg_use(p, bnext, FG_SSBO_READ, NULL);
+        fg_write(p, bnext, FG_SSBO_WRITE);
     }
     snprintf(name, sizeof(name), "accumulate");
     p = ADD(DIRT_PT_PASS_ACCUMULATE, 0);
@@ -652,6 +770,7 @@ static void sum_kinds(dirt_pt_stats *st)
     st->visibility_ms = st->pass_ms[DIRT_PT_PASS_VISIBILITY];
     st->shade_ms = st->pass_ms[DIRT_PT_PASS_RAYGEN] + st->pass_ms[DIRT_PT_PASS_SHADE] +
                    st->pass_ms[DIRT_PT_PASS_RESOLVE] + st->pass_ms[DIRT_PT_PASS_COMPACT] +
+                   st->pass_ms[DIRT_PT_PASS_SORT] +
                    st->pass_ms[DIRT_PT_PASS_ACCUMULATE];
 }
 
@@ -709,14 +828,22 @@ static size_t chunk_bytes_per_pixel(void)
            2 * sizeof(uint32_t);
 }
 
+/* Bytes of the ray sort's buffers for chunks of `px` pixels: the unsorted
+ * rays and batch, and the scratch. */
+static size_t sort_bytes(size_t px)
+{
+    return px * sizeof(struct dirt_gpu_ray) + batch_bytes(px) + dirt_ray_sort_scratch_bytes(px);
+}
+
 /* Bytes of the integrator's buffers: the chunk's, the batches' headers and
  * the paths per event, then the whole image's sums (360 B per pixel while
- * the image is one chunk, and 292 B). */
+ * the image is one chunk, and 292 B), and the ray sort's once made. */
 static uint64_t integrator_bytes(const dirt_pt *pt)
 {
     return (uint64_t)pt->chunk * chunk_bytes_per_pixel() +
            2 * sizeof(struct dirt_gpu_ray_batch) + DIRT_PT_MAX_EVENTS * sizeof(uint32_t) +
-           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum);
+           (uint64_t)pt->pixels * sizeof(struct dirt_gpu_accum) +
+           (pt->sort_rays ? sort_bytes(pt->chunk) : 0);
 }
 
 int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_bytes *out,
@@ -734,6 +861,8 @@ int dirt_pt_buffers(const dirt_pt *pt, const dirt_tracer *tracer, dirt_buffer_by
         {"pt paths per event", DIRT_PT_MAX_EVENTS * sizeof(uint32_t), 0},
         {"pt accumulation", pt->pixels * sizeof(struct dirt_gpu_accum), 0},
         {"pt environment", pt->env_bytes, 0},
+        /* the ray sort's input and scratch (made on first use) */
+        {"pt ray sort", pt->sort_rays ? sort_bytes(px) : 0, 0},
         {"tracer", tracer ? tracer->bytes_extra : 0, 0},
         /* the scene's textures (made with the first samples) */
         {"model texels", pt->tables.texel_bytes, 0},
@@ -770,6 +899,8 @@ bool dirt_pt_reset(dirt_pt *pt, int width, int height)
     pt->width = width;
     pt->height = height;
     pt->samples = 0;
+    pt->part_done = 0;
+    pt->shown_current = false;
     pt->accum_valid = true;
     pt->display_samples = UINT32_MAX;
     return gl_check("dirt_pt_reset");
@@ -780,10 +911,74 @@ int dirt_pt_samples(const dirt_pt *pt)
     return pt->accum_valid ? (int)pt->samples : 0;
 }
 
-bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
-                         const dirt_camera *cam, const dirt_pt_opts *opts_in, int count,
-                         dirt_pt_stats *stats)
+/* The accumulation of the completed samples into pt->shown (made when
+ * missing), before a sample is worked on in pieces. False after logging. */
+static bool keep_shown(dirt_pt *pt)
 {
+    if (!pt->shown) {
+        pt->shown = calloc(pt->num_chunks, sizeof(*pt->shown));
+        bool ok = pt->shown != NULL;
+        for (size_t c = 0; ok && c < pt->num_chunks; c++) {
+            pt->shown[c] = gl_buffer_create(pt->gpu, chunk_pixels(pt, c) *
+                                                         sizeof(struct dirt_gpu_accum),
+                                            NULL, true, "pt shown accumulation");
+            ok = pt->shown[c] != 0;
+        }
+        if (!ok) {
+            for (size_t c = 0; pt->shown && c < pt->num_chunks; c++)
+                gl_buffer_destroy(&pt->shown[c]);
+            free(pt->shown);
+            pt->shown = NULL;
+            DIRT_ERROR("out of memory for the completed samples' copy");
+            return false;
+        }
+    }
+    /* (The last call that wrote the sums ended with the
+     * GL_BUFFER_UPDATE_BARRIER_BIT this copy needs.) */
+    for (size_t c = 0; c < pt->num_chunks; c++)
+        glCopyNamedBufferSubData(pt->accum[c], pt->shown[c], 0, 0,
+                                 (GLsizeiptr)(chunk_pixels(pt, c) * sizeof(struct dirt_gpu_accum)));
+    pt->shown_current = true;
+    return true;
+}
+
+/* The accumulation buffers of the completed samples. */
+static const GLuint *completed_sums(const dirt_pt *pt)
+{
+    return pt->part_done > 0 && pt->shown_current ? pt->shown : pt->accum;
+}
+
+/* Pixels of the next piece at pixel `off` of the sample in progress: the
+ * rest of off's chunk for whole samples (budget_ms < 0) or direct
+ * visibility (which resolves a whole camera view), else what the measured
+ * pace does in the budget's rest (one granule with budget 0), in granules. */
+static size_t piece_pixels(const dirt_pt *pt, size_t off, double budget_ms, double left_ms)
+{
+    size_t c = off / pt->chunk;
+    size_t rest = c * pt->chunk + chunk_pixels(pt, c) - off;
+    if (budget_ms < 0 || pt->g_direct)
+        return rest;
+    size_t n = pt->granule;
+    if (budget_ms > 0 && pt->px_per_ms > 0 && left_ms > 0) {
+        double want = pt->px_per_ms * left_ms;
+        n = want >= (double)rest ? rest : (size_t)want;
+    } else if (budget_ms > 0) {
+        n = 4 * pt->granule; /* the pace is not known yet */
+    }
+    if (n < rest)
+        n = n < pt->granule ? pt->granule : n - n % pt->granule;
+    return n < rest ? n : rest;
+}
+
+/* dirt_pt_add_samples (budget_ms < 0: `count` whole samples, the one in
+ * progress first) and dirt_pt_advance (count 1, pieces until budget_ms;
+ * *completed says whether the sample completed). */
+static bool run(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                const dirt_camera *cam, const dirt_pt_opts *opts_in, int count, double budget_ms,
+                bool *completed, dirt_pt_stats *stats)
+{
+    if (completed)
+        *completed = false;
     if (!pt->accum_valid) {
         DIRT_ERROR("dirt_pt_add_samples before dirt_pt_reset");
         return false;
@@ -872,15 +1067,22 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             goto done;
         }
     }
+    /* The sort's origin grid spans the frame's bounds. */
+    bool sort = opts.sort_rays && events > 1;
+    if (sort && !ensure_sort(pt))
+        goto done;
+    memcpy(pt->sort_min, frame->bounds_min, sizeof(pt->sort_min));
+    memcpy(pt->sort_max, frame->bounds_max, sizeof(pt->sort_max));
     if (!pt->graph || pt->g_pixels != pt->chunk || pt->g_events != events ||
-        pt->g_mode != opts.mode || pt->g_direct != opts.direct_visibility) {
+        pt->g_mode != opts.mode || pt->g_direct != opts.direct_visibility ||
+        pt->g_sort != sort) {
         pt->g_mode = opts.mode;
         pt->g_direct = opts.direct_visibility;
+        pt->g_sort = sort;
         if (!make_graph(pt, events))
             goto done;
     }
-    if (pt->samples == 0) {
-        /* The depth first: a tracer's per-trace randomness restarts below. */
+    if (pt->samples == 0 && pt->part_done == 0) {
         if (pt->depth_pixels != pt->pixels) {
             free(pt->depth);
             free(pt->ids);
@@ -888,14 +1090,13 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
             pt->ids = malloc(pt->pixels * sizeof(float));
             pt->depth_pixels = pt->depth && pt->ids ? pt->pixels : 0;
         }
-        dirt_trace_alpha za = {.materials = pt->alpha ? pt->tables.materials : 0,
-                               .texels = &pt->tables.texels, .seed = opts.seed};
-        if (!pt->depth_pixels || !pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height,
-                                                  pt->chunk, &za, pt->depth, pt->ids))
+        if (!pt->depth_pixels) {
+            DIRT_ERROR("out of memory for the depth of %zu pixels", pt->pixels);
             goto done;
-        if (tech->restart)
-            tech->restart(tech->self);
+        }
     }
+    dirt_trace_alpha za = {.materials = pt->alpha ? pt->tables.materials : 0,
+                           .texels = &pt->tables.texels, .seed = opts.seed};
     tech->reset_counts(tech->self);
     static const uint32_t zero = 0;
     glClearNamedBufferData(pt->events, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -903,20 +1104,54 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame 
     /* Asynchronous timers: no pass waits for its time query; late times are
      * drained at the readback (dirt_pt_read). */
     fg_exec_opts eo = {.validate = true, .async_timers = true};
+    bool partial = budget_ms >= 0;
     for (int s = 0; s < count; s++) {
         pt->sample = pt->samples;
-        for (size_t c = 0; c < pt->num_chunks; c++) {
-            pt->cur_chunk = c;
-            pt->cur_offset = c * pt->chunk;
-            pt->cur_count = chunk_pixels(pt, c);
+        if (partial && pt->part_done == 0 && pt->samples > 0 && !keep_shown(pt))
+            goto done;
+        /* Pieces in pixel order: whole chunks, or (partial) parts of one
+         * chunk; the pixels are the same either way (keyed by pixel). */
+        while (pt->part_done < pt->pixels) {
+            double p0 = dirt_clock_ms();
+            size_t off = pt->part_done;
+            size_t n = piece_pixels(pt, off, budget_ms, budget_ms - (p0 - t0));
+            pt->cur_chunk = off / pt->chunk;
+            pt->cur_offset = off;
+            pt->cur_count = n;
+            if (pt->samples == 0) {
+                /* The depth AOV of these pixels first (its traces restart
+                 * a randomised tracer's sequence), then sample 0's. */
+                if (!pt_depth_render(pt->gpu, tech, cam, pt->width, pt->height, off, n,
+                                     pt->chunk, &za, pt->depth, pt->ids))
+                    goto done;
+                if (tech->restart)
+                    tech->restart(tech->self);
+            }
             if (tech->begin_chunk)
-                tech->begin_chunk(tech->self, (uint32_t)pt->cur_offset);
+                tech->begin_chunk(tech->self, (uint32_t)off);
             if (!fg_execute(pt->graph, &eo))
                 goto done;
             add_times(pt, st);
-            st->paths_at_event[1] += pt->cur_count; /* event 1: every pixel */
+            st->paths_at_event[1] += n; /* event 1: every pixel */
+            pt->part_done += n;
+            if (partial) {
+                glFinish(); /* the pace of work done, not of work issued */
+                double ms = dirt_clock_ms() - p0;
+                double pace = (double)n / (ms > 0.01 ? ms : 0.01);
+                pt->px_per_ms = pt->px_per_ms > 0 ? 0.5 * (pt->px_per_ms + pace) : pace;
+                /* A last piece of under a quarter of the budget would cost
+                 * its fixed overhead for little: the call ends instead. */
+                if (dirt_clock_ms() - t0 >= 0.75 * budget_ms)
+                    break;
+            }
         }
+        if (pt->part_done < pt->pixels)
+            break; /* the budget ran out within the sample */
+        pt->part_done = 0;
+        pt->shown_current = false;
         pt->samples++;
+        if (completed)
+            *completed = true;
         if (opts.progress)
             opts.progress(opts.progress_user, s + 1, count);
     }
@@ -944,6 +1179,25 @@ done:
     return ok;
 }
 
+bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                         const dirt_camera *cam, const dirt_pt_opts *opts, int count,
+                         dirt_pt_stats *stats)
+{
+    return run(pt, tech, frame, cam, opts, count, -1.0, NULL, stats);
+}
+
+bool dirt_pt_advance(dirt_pt *pt, const dirt_tracer *tech, const dirt_frame *frame,
+                     const dirt_camera *cam, const dirt_pt_opts *opts, double budget_ms,
+                     bool *completed, dirt_pt_stats *stats)
+{
+    return run(pt, tech, frame, cam, opts, 1, budget_ms < 0 ? 0 : budget_ms, completed, stats);
+}
+
+size_t dirt_pt_part_pixels(const dirt_pt *pt)
+{
+    return pt->accum_valid ? pt->part_done : 0;
+}
+
 bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
 {
     if (!pt->accum_valid || !pt->samples) {
@@ -960,8 +1214,9 @@ bool dirt_pt_read(dirt_pt *pt, dirt_image *out, uint64_t *invalid_samples)
      * GL_BUFFER_UPDATE_BARRIER_BIT this readback needs.) */
     struct dirt_gpu_accum *sums = malloc(pixels * sizeof(*sums));
     bool got = sums != NULL;
+    const GLuint *src = completed_sums(pt);
     for (size_t c = 0; got && c < pt->num_chunks; c++)
-        got = gl_buffer_read(pt->accum[c], 0, chunk_pixels(pt, c) * sizeof(*sums),
+        got = gl_buffer_read(src[c], 0, chunk_pixels(pt, c) * sizeof(*sums),
                              sums + c * pt->chunk);
     if (!got) {
         free(sums);
@@ -1037,7 +1292,7 @@ uint32_t dirt_pt_display_texture(dirt_pt *pt)
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUniform1ui(DIRT_LOC_DISPLAY_PIXELS, (GLuint)chunk_pixels(pt, c));
         glUniform1ui(DIRT_LOC_DISPLAY_PIXEL_OFFSET, (GLuint)(c * pt->chunk));
-        bind(DIRT_BIND_ACCUM, pt->accum[c]);
+        bind(DIRT_BIND_ACCUM, completed_sums(pt)[c]);
         glDispatchCompute(groups(chunk_pixels(pt, c)), 1, 1);
     }
     glUseProgram(0);

@@ -19,6 +19,7 @@
 #define DIRT_PATHTRACE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "common/constants.h"
@@ -53,6 +54,10 @@ typedef struct dirt_pt_opts {
     /* G_1 from a visibility buffer of the camera view instead of traced
      * camera rays (pixel centres: no pixel jitter, no depth of field). */
     bool direct_visibility;   /* needs a tracer with a visibility function */
+    /* Sort each event's live rays (k >= 2) by a key of origin and direction
+     * before its trace (glsl/integrator/sort.comp): neighbouring
+     * invocations trace neighbouring rays. The image does not change. */
+    bool sort_rays;
     /* Called after every sample of a call (done/total of that call; may be NULL). */
     void (*progress)(void *user, int done, int total);
     void *progress_user;
@@ -69,6 +74,7 @@ enum dirt_pt_pass {
     DIRT_PT_PASS_RESOLVE,
     DIRT_PT_PASS_ACCUMULATE,
     DIRT_PT_PASS_COMPACT,     /* the live paths of the next event, gathered */
+    DIRT_PT_PASS_SORT,        /* and sorted (dirt_pt_opts.sort_rays) */
     DIRT_PT_NUM_PASSES
 };
 
@@ -153,7 +159,30 @@ bool dirt_pt_add_samples(dirt_pt *pt, const dirt_tracer *tracer, const dirt_fram
                          const dirt_camera *cam, const dirt_pt_opts *opts, int count,
                          dirt_pt_stats *stats);
 
-/* Samples accumulated since the last reset. */
+/* Works on the next sample (as dirt_pt_add_samples with count 1) for about
+ * `budget_ms` of wall time, in pieces of pixels in pixel order (whole work
+ * groups, within a chunk; sized by the pace measured so far; each piece
+ * ends with glFinish so that its time is the work's), and returns after
+ * the piece that completes the sample or reaches three quarters of the
+ * budget (a piece sized for the rest fills it): at least one
+ * piece per call; budget 0 (or below) does one smallest piece. The sample
+ * spans as many calls as it needs; *completed (may be NULL) says whether
+ * this call completed it (dirt_pt_samples grew by one). With direct
+ * visibility a piece is a whole chunk. The pixels are those of
+ * dirt_pt_add_samples (keyed by pixel, not by piece). While a sample is in
+ * progress, dirt_pt_read and dirt_pt_display_texture give the completed
+ * samples (a copy of the sums made when it began, 48 B per pixel, kept
+ * from the first such sample on); dirt_pt_add_samples completes it first,
+ * counted as one of its `count`. `stats` as dirt_pt_add_samples's, for
+ * this call's pieces. False (logged) as dirt_pt_add_samples. */
+bool dirt_pt_advance(dirt_pt *pt, const dirt_tracer *tracer, const dirt_frame *frame,
+                     const dirt_camera *cam, const dirt_pt_opts *opts, double budget_ms,
+                     bool *completed, dirt_pt_stats *stats);
+
+/* Pixels of the sample in progress done so far (0: none in progress). */
+size_t dirt_pt_part_pixels(const dirt_pt *pt);
+
+/* Samples accumulated since the last reset (completed ones). */
 int dirt_pt_samples(const dirt_pt *pt);
 
 /* The mean of the accumulation into `out` (of the accumulation's size):

@@ -113,6 +113,16 @@ typedef struct engine_ops {
      * after every sample. False after logging. */
     bool (*add_samples)(engine *e, const engine_env *env, int count, engine_progress_fn progress,
                         void *user, dirt_session_stats *st, int *samples);
+    /* Works on the next sample for about `budget_ms` (dirt_session_advance):
+     * adds the call's figures to `st`, sets *samples to the completed
+     * samples and *completed to whether this call completed one. The
+     * image and display give the completed samples only. May be NULL: the
+     * session adds one whole sample instead. */
+    bool (*advance)(engine *e, const engine_env *env, double budget_ms, dirt_session_stats *st,
+                    int *samples, bool *completed);
+    /* The part of the sample in progress done, in [0, 1) (0: none). May be
+     * NULL (never one in progress). */
+    double (*part)(const engine *e, const engine_env *env);
     /* The accumulated image (beauty + the engine's AOVs), owned by the
      * engine; its late pass times go to `st`. NULL after logging. */
     const dirt_image *(*image)(engine *e, const engine_env *env, dirt_session_stats *st);

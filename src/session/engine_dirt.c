@@ -149,6 +149,8 @@ static void build_stats(engine *e, dirt_session_stats *st)
     engine_add_buffer(st, "list heads", a->bytes_heads, a->bytes_heads);
     engine_add_buffer(st, "id nodes", a->bytes_nodes_used, a->bytes_nodes_allocated);
     engine_add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
+    engine_add_buffer(st, "large primitives' grid", a->bytes_large_grid,
+                      a->bytes_large_grid_allocated);
 }
 
 static dirt_ads *ads_of(engine *e)
@@ -241,6 +243,8 @@ const engine_ops engine_dirt_ops = {
     .build_stats = build_stats,
     .restart = engine_pt_restart,
     .add_samples = engine_pt_add_samples,
+    .advance = engine_pt_advance,
+    .part = engine_pt_part,
     .image = engine_pt_image,
     .display_texture = engine_pt_display_texture,
     .late_times = engine_pt_late_times,

@@ -27,11 +27,13 @@ void engine_pt_drop(engine_pt *p)
     dirt_image_destroy(p->img);
     p->img = NULL;
     p->img_current = false;
+    p->fresh = true;
 }
 
 void engine_pt_restart(engine *e)
 {
     ((engine_pt *)e)->img_current = false;
+    ((engine_pt *)e)->fresh = true;
 }
 
 static dirt_pt_opts pt_opts(const dirt_session_opts *o)
@@ -44,6 +46,7 @@ static dirt_pt_opts pt_opts(const dirt_session_opts *o)
         .env = o->env,
         .ao_distance = o->ao_distance,
         .direct_visibility = o->direct_visibility,
+        .sort_rays = o->sort_rays,
     };
 }
 
@@ -57,11 +60,49 @@ static void add_passes(dirt_session_stats *st, const dirt_pt_stats *ps, bool vis
     }
 }
 
+/* Adds one call's figures `ps` to `st`; the integrator's buffers once. */
+static void add_figures(engine_pt *p, const dirt_pt_stats *ps, bool visibility,
+                        dirt_session_stats *st)
+{
+    st->trace_ms += ps->trace_ms;
+    st->fetch_ms += ps->fetch_ms;
+    st->visibility_ms += ps->visibility_ms;
+    st->shade_ms += ps->shade_ms;
+    st->rays += ps->rays;
+    st->aborted += ps->aborted;
+    engine_add_paths_at_event(st, ps->paths_at_event, ps->events);
+    add_passes(st, ps, visibility);
+    /* The integrator's buffers once, after the structure's (the copy of the
+     * completed samples may come later, with the first partial sample). */
+    bool listed = false, shown = false;
+    for (int i = 0; i < st->num_buffers; i++) {
+        listed |= !strcmp(st->buffers[i].name, "pt accumulation");
+        shown |= !strcmp(st->buffers[i].name, "pt shown accumulation");
+    }
+    dirt_buffer_bytes b[16];
+    int nb = !listed || !shown ? dirt_pt_buffers(p->pt, p->tracer, b, 16) : 0;
+    for (int i = 0; i < nb; i++)
+        if (!listed || !strcmp(b[i].name, "pt shown accumulation"))
+            engine_add_buffer(st, b[i].name, b[i].used, b[i].allocated);
+}
+
+/* A new accumulation (env->samples 0, and a restart or nothing in
+ * progress) starts with a reset to the image size. */
+static bool begin(engine_pt *p, const engine_env *env)
+{
+    if (env->samples == 0 && (p->fresh || dirt_pt_part_pixels(p->pt) == 0)) {
+        if (!dirt_pt_reset(p->pt, env->width, env->height))
+            return false;
+        p->fresh = false;
+    }
+    return true;
+}
+
 bool engine_pt_add_samples(engine *e, const engine_env *env, int count, engine_progress_fn progress,
                            void *user, dirt_session_stats *st, int *samples)
 {
     engine_pt *p = (engine_pt *)e;
-    if (env->samples == 0 && !dirt_pt_reset(p->pt, env->width, env->height))
+    if (!begin(p, env))
         return false;
     dirt_pt_opts po = pt_opts(env->opts);
     po.progress = progress;
@@ -71,25 +112,33 @@ bool engine_pt_add_samples(engine *e, const engine_env *env, int count, engine_p
         return false;
     *samples = dirt_pt_samples(p->pt);
     p->img_current = false;
-    st->trace_ms += ps.trace_ms;
-    st->fetch_ms += ps.fetch_ms;
-    st->visibility_ms += ps.visibility_ms;
-    st->shade_ms += ps.shade_ms;
-    st->rays += ps.rays;
-    st->aborted += ps.aborted;
-    engine_add_paths_at_event(st, ps.paths_at_event, ps.events);
-    add_passes(st, &ps, po.direct_visibility);
-    /* The integrator's buffers once, after the structure's. */
-    bool listed = false;
-    for (int i = 0; i < st->num_buffers; i++)
-        listed |= !strcmp(st->buffers[i].name, "pt accumulation");
-    if (!listed) {
-        dirt_buffer_bytes b[16];
-        int nb = dirt_pt_buffers(p->pt, p->tracer, b, 16);
-        for (int i = 0; i < nb; i++)
-            engine_add_buffer(st, b[i].name, b[i].used, b[i].allocated);
-    }
+    add_figures(p, &ps, po.direct_visibility, st);
     return true;
+}
+
+bool engine_pt_advance(engine *e, const engine_env *env, double budget_ms,
+                       dirt_session_stats *st, int *samples, bool *completed)
+{
+    engine_pt *p = (engine_pt *)e;
+    if (!begin(p, env))
+        return false;
+    dirt_pt_opts po = pt_opts(env->opts);
+    dirt_pt_stats ps;
+    if (!dirt_pt_advance(p->pt, p->tracer, env->frame, env->cam, &po, budget_ms, completed, &ps))
+        return false;
+    *samples = dirt_pt_samples(p->pt);
+    if (*completed)
+        p->img_current = false;
+    add_figures(p, &ps, po.direct_visibility, st);
+    return true;
+}
+
+double engine_pt_part(const engine *e, const engine_env *env)
+{
+    const engine_pt *p = (const engine_pt *)e;
+    size_t px = (size_t)env->width * (size_t)env->height;
+    size_t done = p->fresh ? 0 : dirt_pt_part_pixels(p->pt); /* a restart dropped it */
+    return px ? (double)done / (double)px : 0.0;
 }
 
 void engine_pt_late_times(engine *e, const engine_env *env, bool wait, dirt_session_stats *st)

@@ -13,6 +13,7 @@ typedef struct engine_pt {
     const dirt_tracer *tracer;  /* of the current build; NULL before it */
     dirt_image *img;            /* the accumulation read back */
     bool img_current;           /* img holds the current accumulation */
+    bool fresh;                 /* restarted: the next samples reset it */
 } engine_pt;
 
 /* Makes the path tracer (its programs compiled). False after logging. */
@@ -25,6 +26,9 @@ void engine_pt_drop(engine_pt *p);
 void engine_pt_restart(engine *e);
 bool engine_pt_add_samples(engine *e, const engine_env *env, int count, engine_progress_fn progress,
                            void *user, dirt_session_stats *st, int *samples);
+bool engine_pt_advance(engine *e, const engine_env *env, double budget_ms,
+                       dirt_session_stats *st, int *samples, bool *completed);
+double engine_pt_part(const engine *e, const engine_env *env);
 const dirt_image *engine_pt_image(engine *e, const engine_env *env, dirt_session_stats *st);
 uint32_t engine_pt_display_texture(engine *e, const engine_env *env);
 void engine_pt_late_times(engine *e, const engine_env *env, bool wait, dirt_session_stats *st);

@@ -93,6 +93,7 @@ static bool add_samples(engine *e, const engine_env *env, int count, engine_prog
         return false;
     r->display.current = false;
     st->num_passes = 0;
+    st->num_build_passes = 0; /* nothing built: the draw is the whole image */
     for (int i = 0; i < rs.num_passes; i++) {
         const dirt_raster_pass_stats *p = &rs.passes[i];
         engine_add_pass(st, i == 0 ? "preview draw" : "preview readback",

@@ -424,6 +424,7 @@ static void build_stats(dirt_session *s, dirt_session_stats *st)
     st->bytes_total_used = st->bytes_total_allocated = 0;
     st->build_ms = 0;
     s->ops->build_stats(s->engine, st);
+    st->num_build_passes = st->num_passes;
 }
 
 static void fill_common(dirt_session *s, dirt_session_stats *st)
@@ -470,15 +471,11 @@ bool dirt_session_build(dirt_session *s)
     return true;
 }
 
-bool dirt_session_add_samples(dirt_session *s, int count,
-                              void (*progress)(void *user, int done, int total), void *user)
+/* What dirt_session_add_samples and dirt_session_advance do first: the
+ * structure built, the stats' common part, the work counted. *t0 moves
+ * past the counting. False after recording the error. */
+static bool prepare_samples(dirt_session *s, double *t0)
 {
-    session_begin();
-    if (count < 1) {
-        DIRT_ERROR("sample count %d", count);
-        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
-    }
-    double t0 = dirt_clock_ms();
     bool was_built = s->built;
     if (!build(s))
         return session_fail(DIRT_SESSION_ERR_RENDER);
@@ -493,8 +490,23 @@ bool dirt_session_add_samples(dirt_session *s, int count,
         double c0 = dirt_clock_ms();
         if (!session_count_work(s, st))
             return session_fail(DIRT_SESSION_ERR_RENDER);
-        t0 += dirt_clock_ms() - c0;
+        *t0 += dirt_clock_ms() - c0;
     }
+    return true;
+}
+
+bool dirt_session_add_samples(dirt_session *s, int count,
+                              void (*progress)(void *user, int done, int total), void *user)
+{
+    session_begin();
+    if (count < 1) {
+        DIRT_ERROR("sample count %d", count);
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
+    }
+    double t0 = dirt_clock_ms();
+    if (!prepare_samples(s, &t0))
+        return false;
+    dirt_session_stats *st = &s->stats;
     engine_env env = env_of(s);
     if (!s->ops->add_samples(s->engine, &env, count, progress, user, st, &s->samples))
         return session_fail(DIRT_SESSION_ERR_RENDER);
@@ -502,6 +514,47 @@ bool dirt_session_add_samples(dirt_session *s, int count,
     st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
     st->total_ms += dirt_clock_ms() - t0;
     return true;
+}
+
+bool dirt_session_advance(dirt_session *s, double budget_ms, bool *completed)
+{
+    session_begin();
+    bool done = false;
+    if (completed)
+        *completed = false;
+    if (!(budget_ms >= 0)) {
+        DIRT_ERROR("time budget %g ms", budget_ms);
+        return session_fail(DIRT_SESSION_ERR_ARGUMENT);
+    }
+    if (!s->ops->advance) {
+        /* An engine that does not split a sample adds a whole one. */
+        if (!dirt_session_add_samples(s, 1, NULL, NULL))
+            return false;
+        if (completed)
+            *completed = true;
+        return true;
+    }
+    double t0 = dirt_clock_ms();
+    if (!prepare_samples(s, &t0))
+        return false;
+    dirt_session_stats *st = &s->stats;
+    engine_env env = env_of(s);
+    if (!s->ops->advance(s->engine, &env, budget_ms, st, &s->samples, &done))
+        return session_fail(DIRT_SESSION_ERR_RENDER);
+    st->samples = s->samples;
+    st->mrays_per_s = st->trace_ms > 0 ? st->rays / (st->trace_ms * 1e3) : 0;
+    st->total_ms += dirt_clock_ms() - t0;
+    if (completed)
+        *completed = done;
+    return true;
+}
+
+double dirt_session_sample_part(const dirt_session *s)
+{
+    if (!s->engine || !s->ops->part)
+        return 0.0;
+    engine_env env = env_of(s);
+    return s->ops->part(s->engine, &env);
 }
 
 const dirt_image *dirt_session_image(dirt_session *s)

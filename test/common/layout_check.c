@@ -56,11 +56,12 @@ AT(dirt_gpu_view, size, 6);
 AT(dirt_gpu_view, placement, 7);
 AT(dirt_gpu_view, level_base, 8); /* [4] */
 
-RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4);
+RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4 + DIRT_GPU_MAX_VIEWS);
 AT(dirt_gpu_ads_params, config, 0);
 AT(dirt_gpu_ads_params, pool, 1);
 AT(dirt_gpu_ads_params, cand, 2);
 AT(dirt_gpu_ads_params, large, 3);
+AT(dirt_gpu_ads_params, large_grid, 3 + DIRT_GPU_MAX_LARGE / 4);
 
 RECORD(dirt_gpu_ads_counters, 3);
 AT(dirt_gpu_ads_counters, fill, 0);
@@ -226,6 +227,8 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_TEST_IN, "TEST"),
     B(DIRT_BIND_TEST_OUT, "TEST"),
     B(DIRT_BIND_WORK, "WORK"),
+    B(DIRT_BIND_LARGE_CELLS, "LARGE"),
+    B(DIRT_BIND_SORT, "SORT"),
 };
 #undef B
 const size_t dirt_layout_num_bindings =
@@ -234,6 +237,7 @@ const size_t dirt_layout_num_bindings =
 #define R(name) {#name, DIRT_BIND_##name##_FIRST, DIRT_BIND_##name##_LAST}
 const dirt_layout_range dirt_layout_ranges[] = {
     R(SHARED), R(ADS), R(TRACE), R(INTEGRATOR), R(MMRT), R(MMRT_PT), R(MODEL), R(PREVIEW), R(TEST), R(WORK),
+    R(LARGE), R(SORT),
 };
 #undef R
 const size_t dirt_layout_num_ranges = sizeof(dirt_layout_ranges) / sizeof(dirt_layout_ranges[0]);
@@ -249,7 +253,9 @@ _Static_assert(DIRT_BIND_SHARED_FIRST == 0 && DIRT_BIND_ADS_FIRST == DIRT_BIND_S
                    DIRT_BIND_PREVIEW_FIRST == DIRT_BIND_MODEL_LAST + 1 &&
                    DIRT_BIND_TEST_FIRST == DIRT_BIND_PREVIEW_LAST + 1 &&
                    DIRT_BIND_WORK_FIRST == DIRT_BIND_TEST_LAST + 1 &&
-                   DIRT_BIND_LAST == DIRT_BIND_WORK_LAST,
+                   DIRT_BIND_LARGE_FIRST == DIRT_BIND_WORK_LAST + 1 &&
+                   DIRT_BIND_SORT_FIRST == DIRT_BIND_LARGE_LAST + 1 &&
+                   DIRT_BIND_LAST == DIRT_BIND_SORT_LAST,
                "binding ranges tile [0, DIRT_BIND_LAST]");
 /* As many names as binding points: with the distinct values checked by
  * dirt_layout_binding_name, every point of every range is named once. */
@@ -302,6 +308,8 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_TEST_IN);
         CASE(DIRT_BIND_TEST_OUT);
         CASE(DIRT_BIND_WORK);
+        CASE(DIRT_BIND_LARGE_CELLS);
+        CASE(DIRT_BIND_SORT);
     default:
         return NULL;
     }
@@ -439,6 +447,9 @@ static const dirt_layout_uniform u_to_gpoint[] = {
 static const dirt_layout_uniform u_fetch[] = {U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
 static const dirt_layout_uniform u_compact[] = {U("u_pixels", DIRT_LOC_COMPACT_PIXELS)};
 static const dirt_layout_uniform u_finish[] = {U("u_event", DIRT_LOC_COMPACT_EVENT)};
+static const dirt_layout_uniform u_sort[] = {
+    U("u_rays", DIRT_LOC_SORT_RAYS), U("u_bmin", DIRT_LOC_SORT_BOUNDS_MIN),
+    U("u_bmax", DIRT_LOC_SORT_BOUNDS_MAX)};
 static const dirt_layout_uniform u_preview[] = {
     U("u_view_proj", DIRT_LOC_PREVIEW_VIEW_PROJ), U("u_eye", DIRT_LOC_PREVIEW_EYE),
     U("u_material", DIRT_LOC_PREVIEW_MATERIAL),   U("u_num_lights", DIRT_LOC_PREVIEW_NUM_LIGHTS),
@@ -468,6 +479,12 @@ const dirt_layout_program dirt_layout_programs[] = {
     P("integrator/compact.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_compact),
     {{"integrator/compact.comp", NULL, NULL}, "DIRT_COMPACT_FINISH", DIRT_RANGE_INTEGRATOR,
      u_finish, sizeof(u_finish) / sizeof(u_finish[0])},
+    {{"integrator/sort.comp", NULL, NULL}, "DIRT_SORT_COUNT", SH | DIRT_RANGE_INTEGRATOR |
+     DIRT_RANGE_SORT, u_sort, sizeof(u_sort) / sizeof(u_sort[0])},
+    {{"integrator/sort.comp", NULL, NULL}, "DIRT_SORT_SCAN", SH | DIRT_RANGE_INTEGRATOR |
+     DIRT_RANGE_SORT, u_sort, sizeof(u_sort) / sizeof(u_sort[0])},
+    {{"integrator/sort.comp", NULL, NULL}, "DIRT_SORT_SCATTER", SH | DIRT_RANGE_INTEGRATOR |
+     DIRT_RANGE_SORT, u_sort, sizeof(u_sort) / sizeof(u_sort[0])},
     P("dirt/fetch.comp", NULL, SH | DIRT_RANGE_TRACE, u_fetch),
     P("dirt/fetch_miss.comp", NULL, SH | DIRT_RANGE_TRACE, u_fetch),
     P("integrator/test_model.comp", NULL, DIRT_RANGE_TEST | DIRT_RANGE_MODEL, u_test_model),

@@ -185,7 +185,7 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'd["paths_per_event"][0] == 32 * 24 * 2 and len(d["paths_per_event"]) == 5' \
   'all(a >= b for a, b in zip(d["paths_per_event"], d["paths_per_event"][1:]))' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
-  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates", "large grid")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model tangents"] == [(16, 16)]' \
   '[b["used"] for b in d["buffers"] if b["name"] == "pt environment"] == [36]' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model texels"] == [(16, 16)]' \
@@ -214,6 +214,19 @@ expect_rc 0 "count work, embree" -- --engine embree -o "$out/we.png" -W 32 -H 24
   'all(w["bvh_nodes"] > 0 and w["triangle_tests"] > 0 and "embree" not in w for w in d["frames"][0]["work"].values())' \
   && ok || fail "we.json work counts"
 expect_rc 2 "count work with the raster engine" -- --engine raster --count-work -o "$out/r3.png"
+# The ray sort (--sort-rays): the same image bit for bit, its passes ran, its
+# buffers counted (unsorted rays and batch: 36 B per pixel and a 16-byte
+# header; scratch: a counter per bucket and a key per pixel).
+expect_rc 0 "sorted rays" -- -o "$out/s.exr" -W 32 -H 24 --spp 2 --sort-rays --stats "$out/s.json"
+"$exr" --exact "$out/s.exr" "$out/d.exr" && ok || fail "--sort-rays changed the image"
+"$json" "$out/s.json" \
+  '[p["ms"] > 0 for p in d["passes"] if p["name"] == "ray sort"] == [True]' \
+  '[b["used"] for b in d["buffers"] if b["name"] == "pt ray sort"] == [32 * 24 * 40 + 16 + 8192 * 4]' \
+  'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
+  && ok || fail "s.json: the sort's pass and buffers"
+"$json" "$out/d.json" '[p["ms"] for p in d["passes"] if p["name"] == "ray sort"] == [0]' \
+  '"pt ray sort" not in [b["name"] for b in d["buffers"]]' \
+  && ok || fail "d.json: a sort without --sort-rays"
 # A DIRT EXR's provenance, and a scene within an explicit budget (the load
 # also counts the file it reads and the parsed JSON: this 585-byte glTF needs
 # between 32 and 36 KB).

@@ -27,7 +27,7 @@ for pair in mmrt:embree embree:dirt dirt:raster raster:mmrt; do
   out=$tmp/$a-$b
   printf 'wait-samples %d\nscreenshot %s\nreport %s\nset diff on\nwait-frames 1\nscreenshot %s\nquit\n' \
     $SPP "$out-split.png" "$out.json" "$out-diff.png" >"$tmp/s.txt"
-  if ! "$view" --window ${W}x$H --no-ui --engine "$a" --compare "$b" --seed 5 --bounces 2 \
+  if ! "$view" --window ${W}x$H --scale 1 --no-ui --engine "$a" --compare "$b" --seed 5 --bounces 2 \
       --spp $SPP --diff-range $RANGE --script "$tmp/s.txt" -q >"$out.out" 2>"$out.err"; then
     fail "$a | $b: dirt-view exit $?"; cat "$out.err" >&2; continue
   fi
@@ -55,7 +55,7 @@ done
 # engines, are those of dirt-render's images of each, bit for bit.
 printf 'wait-samples %d\nwait-file %s\nwait-frames 1\nreport %s\nquit\n' $SPP "$tmp/go" \
   "$tmp/insp.json" >"$tmp/s.txt"
-"$view" --window ${W}x$H --no-ui --engine mmrt --compare embree --seed 5 --bounces 2 --spp $SPP \
+"$view" --window ${W}x$H --scale 1 --no-ui --engine mmrt --compare embree --seed 5 --bounces 2 --spp $SPP \
   --script "$tmp/s.txt" -q >"$tmp/insp.out" 2>&1 &
 vpid=$! wid=
 for _ in $(seq 100); do
@@ -96,7 +96,7 @@ PY
 # difference view has a colour bar over 0..--diff-range, captioned.
 printf 'wait-samples 1\nwait-frames 1\nreport %s\nset diff on\nwait-frames 1\nreport %s\nquit\n' \
   "$tmp/lab-split.json" "$tmp/lab-diff.json" >"$tmp/s.txt"
-"$view" --window 320x240 --engine mmrt --compare embree --seed 5 --bounces 1 --spp 1 \
+"$view" --window 320x240 --scale 1 --engine mmrt --compare embree --seed 5 --bounces 1 --spp 1 \
   --diff-range $RANGE --script "$tmp/s.txt" -q >"$tmp/lab.out" 2>&1 || { fail "labels run: exit $?"; cat "$tmp/lab.out" >&2; }
 python3 - "$tmp/lab-split.json" "$tmp/lab-diff.json" $RANGE <<'PY' && ok || fail "the split's labels or the difference's colour bar"
 import json, sys

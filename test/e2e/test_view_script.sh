@@ -36,7 +36,7 @@ keys=(F1 H H 2 9 1 Tab V X Space Right Left Minus Equal W R C P O)
   echo 'quit'
 } >"$tmp/keys.txt"
 mkdir "$tmp/run"
-if (cd "$tmp/run" && "$view" --window 200x150 --spp 1 --script "$tmp/keys.txt" -q \
+if (cd "$tmp/run" && "$view" --window 200x150 --scale 1 --spp 1 --script "$tmp/keys.txt" -q \
     >"$tmp/keys.out" 2>"$tmp/keys.err"); then ok; else
   fail "keys run: exit $?"; cat "$tmp/keys.err" >&2; fi
 field() { python3 -c "import json,sys; v=json.load(open(sys.argv[1]))[sys.argv[2]]; print(str(v).lower() if isinstance(v, bool) else v)" "$tmp/run/k-$1.json" "$2" 2>/dev/null; }
@@ -74,7 +74,7 @@ expect 17 camera_mode scene
 
 # 2. The example script, run where its files go.
 mkdir "$tmp/tour"
-if (cd "$tmp/tour" && "$view" --window 160x120 --no-ui --seed 2 --script "$data/view-tour.txt" -q \
+if (cd "$tmp/tour" && "$view" --window 160x120 --scale 1 --seed 2 --script "$data/view-tour.txt" -q \
     >"$tmp/tour.out" 2>"$tmp/tour.err"); then ok; else
   fail "data/view-tour.txt: exit $?"; cat "$tmp/tour.err" >&2; fi
 for f in beauty help albedo split diff; do

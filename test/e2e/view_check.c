@@ -22,6 +22,19 @@
  *   view_check diff SHOT.png A.exr B.exr RANGE
  *       SHOT is the heat ramp of |luminance(A) - luminance(B)| over
  *       0..RANGE, sRGB-encoded, within one 8-bit step (exactly at 99%)
+ *   view_check zoom SHOT.png RENDER.png X0 Y0 Z
+ *       SHOT (a zoomed window without panels) shows RENDER (a PNG of the
+ *       render) at Z window pixels per render pixel with its top left at
+ *       window pixel (X0, Y0): every window pixel equals the render pixel
+ *       floor((p - X0) / Z) within one 8-bit step (exactly at 99% or more),
+ *       each Z x Z block of the window is one colour exactly, and the
+ *       window lies inside the image
+ *   view_check ramp SHOT.png X Y W H
+ *       SHOT's rectangle X, Y, W, H (a colour bar) has in column i the heat
+ *       ramp at (i + 0.5) / W, sRGB-encoded as the present shader shows it
+ *       (glsl/common/display.h's keys), exactly, in every row
+ *   view_check pngs A.png B.png same|negative
+ *       B equals A at every pixel (RGB), or is its negative (255 - A)
  *   view_check pixel IMAGE.exr CHANNEL X Y
  *       prints the value of CHANNEL (R, G, B, A: the beauty's) at pixel (X, Y)
  *       (row 0 = top), %.9g
@@ -329,6 +342,106 @@ done:
     return rc;
 }
 
+static int zoom(const char *shot_path, const char *render_path, int x0, int y0, int z)
+{
+    int sw, sh, rw, rh, c;
+    unsigned char *shot = stbi_load(shot_path, &sw, &sh, &c, 4);
+    unsigned char *ren = stbi_load(render_path, &rw, &rh, &c, 4);
+    int rc = 2;
+    if (!shot || !ren || z < 1) {
+        printf("unreadable input\n");
+        goto done;
+    }
+    rc = 1;
+    size_t n = 0, exact = 0, off = 0, outside = 0, blocks_split = 0;
+    for (int y = 0; y < sh; y++) {
+        for (int x = 0; x < sw; x++) {
+            int tx = (int)floor((double)(x - x0) / z), ty = (int)floor((double)(y - y0) / z);
+            if (tx < 0 || ty < 0 || tx >= rw || ty >= rh) {
+                outside++;
+                continue;
+            }
+            const unsigned char *a = shot + ((size_t)y * sw + x) * 4;
+            int want[3];
+            for (int j = 0; j < 3; j++)
+                want[j] = ren[((size_t)ty * rw + tx) * 4 + j];
+            int d = off_by(a, want);
+            n++;
+            exact += d == 0;
+            off += d > 1;
+            /* the block's top-left window pixel (when in the window) */
+            int bx = x0 + tx * z, by = y0 + ty * z;
+            if (bx >= 0 && by >= 0 && memcmp(a, shot + ((size_t)by * sw + bx) * 4, 3) != 0)
+                blocks_split++;
+        }
+    }
+    printf("zoom %d, image at (%d, %d): %zu window pixels, %zu exact, %zu off by more than 1; "
+           "%zu differ from their block; %zu outside the image\n", z, x0, y0, n, exact, off,
+           blocks_split, outside);
+    rc = n > 0 && off == 0 && exact * 100 >= n * 99 && blocks_split == 0 && outside == 0 ? 0 : 1;
+done:
+    stbi_image_free(shot);
+    stbi_image_free(ren);
+    return rc;
+}
+
+static int ramp_bar(const char *shot_path, int x0, int y0, int w, int h)
+{
+    int sw, sh, c;
+    unsigned char *shot = stbi_load(shot_path, &sw, &sh, &c, 4);
+    int rc = 2;
+    if (!shot || w < 2 || h < 1 || x0 < 0 || y0 < 0 || x0 + w > sw || y0 + h > sh) {
+        printf("unreadable input or the bar %d,%d %dx%d is outside the window\n", x0, y0, w, h);
+        goto done;
+    }
+    size_t n = 0, exact = 0;
+    int worst = 0;
+    for (int i = 0; i < w; i++) {
+        float rgb[3];
+        ramp(((float)i + 0.5f) / (float)w, rgb);
+        int want[3];
+        for (int j = 0; j < 3; j++)
+            want[j] = dirt_linear_to_srgb8(rgb[j]);
+        for (int y = y0; y < y0 + h; y++) {
+            int d = off_by(shot + ((size_t)y * sw + x0 + i) * 4, want);
+            n++;
+            exact += d == 0;
+            worst = d > worst ? d : worst;
+        }
+    }
+    printf("colour bar %d,%d %dx%d: %zu of %zu pixels exact (worst off by %d)\n", x0, y0, w, h,
+           exact, n, worst);
+    rc = exact == n ? 0 : 1;
+done:
+    stbi_image_free(shot);
+    return rc;
+}
+
+static int pngs(const char *a_path, const char *b_path, bool negative)
+{
+    int aw, ah, bw, bh, c;
+    unsigned char *a = stbi_load(a_path, &aw, &ah, &c, 4);
+    unsigned char *b = stbi_load(b_path, &bw, &bh, &c, 4);
+    int rc = 2;
+    if (!a || !b || aw != bw || ah != bh) {
+        printf("unreadable input or sizes differ\n");
+        goto done;
+    }
+    size_t n = (size_t)aw * ah, match = 0;
+    for (size_t i = 0; i < n; i++) {
+        bool m = true;
+        for (int j = 0; j < 3; j++)
+            m = m && b[4 * i + j] == (negative ? 255 - a[4 * i + j] : a[4 * i + j]);
+        match += m;
+    }
+    printf("%zu of %zu pixels %s\n", match, n, negative ? "the negative" : "the same");
+    rc = match == n ? 0 : 1;
+done:
+    stbi_image_free(a);
+    stbi_image_free(b);
+    return rc;
+}
+
 static int pixel(const char *path, const char *channel, int x, int y)
 {
     dirt_image *img = dirt_image_read_exr(path);
@@ -359,6 +472,13 @@ int main(int argc, char **argv)
         return diff(argv[2], argv[3], argv[4], strtof(argv[5], NULL));
     if (argc == 4 && !strcmp(argv[1], "heat"))
         return heat(argv[2], argv[3]);
+    if (argc == 7 && !strcmp(argv[1], "zoom"))
+        return zoom(argv[2], argv[3], atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
+    if (argc == 7 && !strcmp(argv[1], "ramp"))
+        return ramp_bar(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
+    if (argc == 5 && !strcmp(argv[1], "pngs") &&
+        (!strcmp(argv[4], "same") || !strcmp(argv[4], "negative")))
+        return pngs(argv[2], argv[3], !strcmp(argv[4], "negative"));
     if (argc == 4 && !strcmp(argv[1], "same"))
         return same(argv[2], argv[3]);
     if (argc == 5 && !strcmp(argv[1], "window"))
@@ -367,6 +487,6 @@ int main(int argc, char **argv)
         return window(argv[2], argv[3], argv[4], true);
     fprintf(stderr, "usage: view_check same A.exr B.exr | window SHOT.png RENDER.png REPORT.json [collapsed] | "
             "heat SHOT.png IMAGE.exr | split SHOT.png A.exr B.exr | diff SHOT.png A.exr B.exr RANGE | "
-            "pixel IMAGE.exr CHANNEL X Y\n");
+            "zoom SHOT.png RENDER.png X0 Y0 Z | ramp SHOT.png X Y W H | pngs A.png B.png same|negative | pixel IMAGE.exr CHANNEL X Y\n");
     return 2;
 }

@@ -322,8 +322,12 @@ bool dirt_fuzz_files_one(const uint8_t *data, size_t size)
     }
     bool ok = true;
     if (scene[0]) {
-        char real_s[PATH_MAX];
-        if (!realpath(sdir, real_s))
+        /* The scene's folder, as the loader takes it: the folder its path
+         * names, resolved (R/s, or above it for a scene named "../x"). */
+        char real_s[PATH_MAX], sfold[PATH_MAX];
+        snprintf(sfold, sizeof(sfold), "%s", scene);
+        *strrchr(sfold, '/') = 0;
+        if (!realpath(sfold, real_s))
             abort();
         for (int allow = 0; ok && allow < 2; allow++) {
             dirt_load_opts lo = {.max_bytes = FUZZ_BUDGET, .allow_outside = allow != 0};
@@ -335,7 +339,7 @@ bool dirt_fuzz_files_one(const uint8_t *data, size_t size)
                 continue;
             }
             dirt_fuzz_outcome |= !allow;
-            /* Confined, every file read lies in R/s. */
+            /* Confined, every file read lies in the scene's folder. */
             for (size_t i = 0; ok && !allow && i < dirt_scene_num_files(s); i++) {
                 char real[PATH_MAX];
                 const char *f = dirt_scene_file(s, i);
@@ -628,6 +632,12 @@ int dirt_fuzz_write_files_corpus(const char *dir)
     record(&b, &n, 0, "scene.obj", obj, sizeof(obj) - 1);
     record(&b, &n, 3, "m.mtl", "", 0);
     count += put_tree(dir, "obj_fifo", b, n);
+    /* 9: a scene above R/s (its folder is R), its MTL in R/s: inside. */
+    static const char obj_up[] = "mtllib s/m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    n = 0;
+    record(&b, &n, 0, "../up.obj", obj_up, sizeof(obj_up) - 1);
+    record(&b, &n, 0, "m.mtl", mtl, sizeof(mtl) - 1);
+    count += put_tree(dir, "obj_above", b, n);
     free(b);
     for (int k = 0; k < 6; k++)
         free(g[k]);

@@ -1,7 +1,7 @@
 /* Every hand-written glMemoryBarrier is needed, and the barrier checker
  * (src/gl/check.c) proves it: a workload that reaches every call site of
  * glMemoryBarrier in src/ (sessions of every GPU engine and Fetch, chunked
- * and whole, direct visibility, pool growth, the display texture and a
+ * and whole, samples whole and in pieces, direct visibility, pool growth, the display texture and a
  * shader sampling it, structure pictures, the technique APIs that read
  * back) runs clean with the checker counting; then once per call site
  * with that one call issuing nothing (gl_check_drop_barrier), and every
@@ -78,6 +78,17 @@ static void session(dirt_session_opts o, const char *chunk)
     float *px = malloc(sizeof(float) * 4 * W * H);
     CHECK(tex && px && gl_texture_read_rgba32f(tex, W, H, px));
     free(px);
+    /* A sample in pieces (dirt_session_advance: the accumulation bound in
+     * ranges), then one in progress: the display and the image of the
+     * completed samples, from their copy. */
+    bool done = false;
+    for (int i = 0; i < 100000 && !done; i++)
+        CHECK(dirt_session_advance(s, 0, &done));
+    CHECK(dirt_session_advance(s, 0, &done));
+    tex = dirt_session_display_texture(s);
+    CHECK(tex != 0);
+    sample_texture(tex);
+    CHECK(dirt_session_image(s) != NULL);
     if (o.engine == DIRT_ENGINE_DIRT || o.engine == DIRT_ENGINE_MMRT) {
         dirt_image *pic = dirt_session_picture(s, DIRT_PICTURE_LISTS, NULL);
         CHECK(pic != NULL);

@@ -59,6 +59,21 @@ def test_progressive_equals_one_render(scene):
         s.set_options(seed=6)
         s.add_samples(4)
         assert not np.array_equal(progressive, s.image())
+        # The same 4 samples in slices of one smallest piece: a sample spans
+        # several calls, the image meanwhile is the completed samples'.
+        s.set_options(seed=5)
+        calls, shown = 0, None
+        while s.samples < 4:
+            if s.advance(0):
+                shown = s.image()
+            elif shown is not None:
+                assert s.sample_part > 0 and np.array_equal(shown, s.image())
+            calls += 1
+        assert calls > 8 and s.sample_part == 0
+        assert np.array_equal(progressive, s.image())
+        with pytest.raises(dirt.Error) as e:
+            s.advance(-1)
+        assert e.value.id == "ARGUMENT"
 
 
 def test_aovs_stats_options_and_outputs(scene, tmp_path):

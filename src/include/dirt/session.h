@@ -134,8 +134,9 @@ typedef struct dirt_session_opts {
                                    renderer, 16 on a GPU), 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
     enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
-    int large;                  /* dirt: large primitives tested by every ray instead of
-                                   listed (doc/dirt-trace.md): 0 = up to 16, < 0 = none,
+    int large;                  /* dirt: large primitives tested through a grid of their
+                                   own instead of listed (doc/dirt-trace.md): 0 = up to
+                                   16, < 0 = none,
                                    n = up to n (at most 16) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
@@ -162,6 +163,11 @@ typedef struct dirt_session_opts {
      * dirt_session_stats.work. The image does not change. dirt, mmrt and
      * embree (its BVH's counts only). */
     bool count_work;
+    /* dirt and mmrt path tracing: sort each event's live rays (after the
+     * first) by a key of origin and direction before tracing them, so that
+     * neighbouring GPU invocations trace neighbouring rays (doc/light-
+     * transport-gpu.md, "Ray sort"). The image does not change. */
+    bool sort_rays;
     /* Times: the GPU engines' come with the GPU's one clock (dirt_gpu_clock;
      * the CPU clock on a GPU needs dirt_gpu_opts.cpu_timing); Embree's are
      * CPU times. */
@@ -225,6 +231,9 @@ typedef struct dirt_session_stats {
     uint64_t paths_at_event[DIRT_MAX_EVENTS];
     int num_passes;
     dirt_pass_time passes[32];  /* build passes, then the path tracer's */
+    int num_build_passes;       /* passes[0 .. num_build_passes) are the last build's (its
+                                   times, not summed over the samples); the rest add up
+                                   over the accumulation */
     int num_buffers;
     dirt_buffer_bytes buffers[24];
     uint64_t bytes_total_used, bytes_total_allocated;
@@ -284,6 +293,29 @@ DIRT_API void dirt_session_reset(dirt_session *s);
  * logging on failure. */
 DIRT_API bool dirt_session_add_samples(dirt_session *s, int count,
                                        void (*progress)(void *user, int done, int total), void *user);
+/* Works on the next sample for about `budget_ms` milliseconds of wall time
+ * and returns (a bounded slice of work, for a program that must answer
+ * its user between slices): the path tracers (dirt, mmrt) trace a sample
+ * in pieces of pixels, sized by the pace measured so far, and stop after
+ * the piece that reaches the budget or completes the sample, so one sample
+ * may span many calls; budget 0 does one smallest piece (whole work
+ * groups). The structure is built first when needed (dirt_session_build,
+ * not split). The other engines (embree, raster) add one whole sample per
+ * call. *completed (may be NULL) says whether this call completed a sample
+ * (dirt_session_samples grew by one). The pixels are those of
+ * dirt_session_add_samples, bit for bit: N samples made by any mix of
+ * calls equal one render of N. While a sample is in progress,
+ * dirt_session_samples, dirt_session_image and dirt_session_display_texture
+ * give the completed samples only (the path tracers keep a copy of their
+ * sums when a sample begins: 48 bytes per pixel more, from the first split
+ * sample on), and dirt_session_add_samples completes it first (as one of
+ * its `count`). A restart drops it. False after logging on failure
+ * (ARGUMENT for a negative or NaN budget). */
+DIRT_API bool dirt_session_advance(dirt_session *s, double budget_ms, bool *completed);
+/* The part of the sample in progress done, in [0, 1): 0 when none is in
+ * progress (and for the engines that do not split a sample). */
+DIRT_API double dirt_session_sample_part(const dirt_session *s);
+/* Completed samples in the accumulation. */
 DIRT_API int dirt_session_samples(const dirt_session *s);
 
 /* The accumulated image: RGBA beauty (the mean) and the engine's AOVs
