@@ -87,8 +87,8 @@ struct dirt_gpu_view {
 };
 
 /* Large primitives (doc/dirt-trace.md, "Large primitives"): at most this
- * many primitives are kept out of the tiles' lists and tested through the
- * large primitives' grid instead. */
+ * many primitives are kept out of the tiles' lists and tested by every ray
+ * instead. */
 #define DIRT_GPU_MAX_LARGE 16
 
 /* The large primitives' grid (doc/dirt-trace.md, "Large primitives"), at

@@ -194,8 +194,8 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "doc/dirt-build.md): raster, compute, or auto: compute on a software renderer, raster "
         "on a GPU, as measured", "auto", NULL},
     [APP_OPT_LARGE] = {APP_OPT_LARGE, NULL, "--large", "--dirt-large", "N", 'l', OFF(large), 0,
-        16, NULL, "at most N of the largest triangles are kept out of DIRT's tiles and "
-        "tested through a coarse grid of their own (doc/dirt-trace.md; 0 = none)", "16", NULL},
+        16, NULL, "at most N of the largest triangles are tested by every ray instead of "
+        "listed in DIRT's tiles (doc/dirt-trace.md; 0 = none)", "16", NULL},
     [APP_OPT_HIZ_TOP] = {APP_OPT_HIZ_TOP, NULL, "--hiz-top", NULL, "L", 'l', OFF(hiz_top), -1, 15,
         NULL, "highest Hi-Z level the march starts from; 0 = tiles only, no Hi-Z; -1 = the "
         "pyramid's top", "-1", NULL},

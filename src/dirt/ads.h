@@ -49,8 +49,7 @@ typedef struct dirt_ads_opts {
     enum dirt_build_mode build; /* default (raster), raster or compute passes */
     int large;                /* large primitives (doc/dirt-trace.md): at most this many
                                  of the frame's largest triangles (dirt_ads_select_large)
-                                 are left out of the lists and tested through the
-                                 large primitives' grid;
+                                 are left out of the lists and tested by every ray;
                                  0 = DIRT_ADS_MAX_LARGE, < 0 = none */
     double large_area;        /* the smallest large triangle's area, as a fraction of the
                                  squared diagonal of the frame's bounds (0 =

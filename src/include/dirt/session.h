@@ -134,9 +134,8 @@ typedef struct dirt_session_opts {
                                    renderer, 16 on a GPU), 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
     enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
-    int large;                  /* dirt: large primitives tested through a grid of their
-                                   own instead of listed (doc/dirt-trace.md): 0 = up to
-                                   16, < 0 = none,
+    int large;                  /* dirt: large primitives tested by every ray instead of
+                                   listed (doc/dirt-trace.md): 0 = up to 16, < 0 = none,
                                    n = up to n (at most 16) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
