@@ -999,10 +999,9 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_candidates_allocated = cands_bytes(a);
     st->bytes_candidates_used = (st->samples + st->work_records) * DIRT_CANDIDATE_BYTES;
     st->bytes_large_grid = a->large_entries * sizeof(*a->large_staging);
-    st->bytes_large_grid_allocated = a->large_cells_size;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                                 st->bytes_nodes_allocated + st->bytes_candidates_allocated +
-                                st->bytes_large_grid_allocated;
+                                st->bytes_large_grid;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                            st->bytes_nodes_used + st->bytes_candidates_used +
                            st->bytes_large_grid;

@@ -149,8 +149,6 @@ static void build_stats(engine *e, dirt_session_stats *st)
     engine_add_buffer(st, "list heads", a->bytes_heads, a->bytes_heads);
     engine_add_buffer(st, "id nodes", a->bytes_nodes_used, a->bytes_nodes_allocated);
     engine_add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
-    engine_add_buffer(st, "large primitives' grid", a->bytes_large_grid,
-                      a->bytes_large_grid_allocated);
 }
 
 static dirt_ads *ads_of(engine *e)

@@ -185,7 +185,7 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'd["paths_per_event"][0] == 32 * 24 * 2 and len(d["paths_per_event"]) == 5' \
   'all(a >= b for a, b in zip(d["paths_per_event"], d["paths_per_event"][1:]))' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
-  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates", "large grid")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model tangents"] == [(16, 16)]' \
   '[b["used"] for b in d["buffers"] if b["name"] == "pt environment"] == [36]' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model texels"] == [(16, 16)]' \

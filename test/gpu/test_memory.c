@@ -99,8 +99,7 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     }
     CHECK(st->num_large > 0);
     CHECK(st->bytes_large_grid == 8 * cells * (uint64_t)st->num_large);
-    CHECK(ads->large_cells_size >= st->bytes_large_grid &&
-          st->bytes_large_grid_allocated == ads->large_cells_size);
+    CHECK(ads->large_cells_size >= st->bytes_large_grid);
     uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + 8 * walked +
                        16 * pairs + 16 * st->work_records + 8 * cells * (uint64_t)st->num_large;
     CHECK_MSG(st->bytes_total_used == formula, "DIRT used %llu B, formula %llu B",
