@@ -169,18 +169,11 @@
                                           Hi-Z steps, list nodes, triangle tests) */
 #define DIRT_BIND_WORK_LAST 39
 
-/* The DIRT structure's grid of large primitives (common/layout.h; the ADS
- * range is full). */
-#define DIRT_BIND_LARGE_FIRST 40
-#define DIRT_BIND_LARGE_CELLS 40       /* uvec2[entries]: float bits of (zmin, zmax) per large
-                                          primitive and grid cell */
-#define DIRT_BIND_LARGE_LAST 40
-
 /* The path tracer's ray sort (src/integrator/ray_sort.c,
  * glsl/integrator/sort.comp). */
-#define DIRT_BIND_SORT_FIRST 41
-#define DIRT_BIND_SORT 41              /* uint offset[DIRT_SORT_BUCKETS], uint key[rays] */
-#define DIRT_BIND_SORT_LAST 41
+#define DIRT_BIND_SORT_FIRST 40
+#define DIRT_BIND_SORT 40              /* uint offset[DIRT_SORT_BUCKETS], uint key[rays] */
+#define DIRT_BIND_SORT_LAST 40
 
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
@@ -200,8 +193,7 @@
     DIRT_BIND_PREVIEW_LAST < DIRT_BIND_PREVIEW_FIRST || \
     DIRT_BIND_TEST_FIRST <= DIRT_BIND_PREVIEW_LAST || DIRT_BIND_TEST_LAST < DIRT_BIND_TEST_FIRST || \
     DIRT_BIND_WORK_FIRST <= DIRT_BIND_TEST_LAST || DIRT_BIND_WORK_LAST < DIRT_BIND_WORK_FIRST || \
-    DIRT_BIND_LARGE_FIRST <= DIRT_BIND_WORK_LAST || DIRT_BIND_LARGE_LAST < DIRT_BIND_LARGE_FIRST || \
-    DIRT_BIND_SORT_FIRST <= DIRT_BIND_LARGE_LAST || DIRT_BIND_SORT_LAST < DIRT_BIND_SORT_FIRST
+    DIRT_BIND_SORT_FIRST <= DIRT_BIND_WORK_LAST || DIRT_BIND_SORT_LAST < DIRT_BIND_SORT_FIRST
 #error "common/constants.h: storage-buffer binding ranges overlap or are out of order"
 #endif
 

@@ -112,8 +112,7 @@ typedef struct dirt_trace_opts {
  * "Work counters"): what it costs on any GPU, not a time. */
 typedef struct dirt_trace_work {
     uint32_t tiles;          /* level-0 tiles whose buckets were walked */
-    uint32_t hiz_steps;      /* march steps: cells of any level looked at, the large
-                                primitives' grid's included */
+    uint32_t hiz_steps;      /* march steps: cells of any level looked at */
     uint32_t list_nodes;     /* list nodes read */
     uint32_t triangle_tests; /* exact ray-triangle tests (large primitives' too) */
 } dirt_trace_work;

@@ -62,14 +62,6 @@ struct dirt_ads {
     struct dirt_gpu_vertex *staging;
     size_t staging_cap;
     dirt_ads_stats stats;
-    /* the large primitives' grid (common/layout.h, DIRT_BIND_LARGE_CELLS):
-     * per view (level, first entry, cells x, cells y), the entries' staging
-     * copy and the GL buffer */
-    struct dirt_i4 large_grid[DIRT_GPU_MAX_VIEWS];
-    uint32_t (*large_staging)[2];
-    size_t large_entries, large_staging_cap;
-    GLuint large_cells;
-    size_t large_cells_size;
     /* trace */
     /* The trace's builds, [alpha | large << 1 | count << 2]: DIRT_TRACE_ALPHA
      * (alpha tests), DIRT_TRACE_LARGE (large primitives; llvmpipe runs a

@@ -56,12 +56,11 @@ AT(dirt_gpu_view, size, 6);
 AT(dirt_gpu_view, placement, 7);
 AT(dirt_gpu_view, level_base, 8); /* [4] */
 
-RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4 + DIRT_GPU_MAX_VIEWS);
+RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4);
 AT(dirt_gpu_ads_params, config, 0);
 AT(dirt_gpu_ads_params, pool, 1);
 AT(dirt_gpu_ads_params, cand, 2);
 AT(dirt_gpu_ads_params, large, 3);
-AT(dirt_gpu_ads_params, large_grid, 3 + DIRT_GPU_MAX_LARGE / 4);
 
 RECORD(dirt_gpu_ads_counters, 3);
 AT(dirt_gpu_ads_counters, fill, 0);
@@ -227,7 +226,6 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_TEST_IN, "TEST"),
     B(DIRT_BIND_TEST_OUT, "TEST"),
     B(DIRT_BIND_WORK, "WORK"),
-    B(DIRT_BIND_LARGE_CELLS, "LARGE"),
     B(DIRT_BIND_SORT, "SORT"),
 };
 #undef B
@@ -237,7 +235,7 @@ const size_t dirt_layout_num_bindings =
 #define R(name) {#name, DIRT_BIND_##name##_FIRST, DIRT_BIND_##name##_LAST}
 const dirt_layout_range dirt_layout_ranges[] = {
     R(SHARED), R(ADS), R(TRACE), R(INTEGRATOR), R(MMRT), R(MMRT_PT), R(MODEL), R(PREVIEW), R(TEST), R(WORK),
-    R(LARGE), R(SORT),
+    R(SORT),
 };
 #undef R
 const size_t dirt_layout_num_ranges = sizeof(dirt_layout_ranges) / sizeof(dirt_layout_ranges[0]);
@@ -253,8 +251,7 @@ _Static_assert(DIRT_BIND_SHARED_FIRST == 0 && DIRT_BIND_ADS_FIRST == DIRT_BIND_S
                    DIRT_BIND_PREVIEW_FIRST == DIRT_BIND_MODEL_LAST + 1 &&
                    DIRT_BIND_TEST_FIRST == DIRT_BIND_PREVIEW_LAST + 1 &&
                    DIRT_BIND_WORK_FIRST == DIRT_BIND_TEST_LAST + 1 &&
-                   DIRT_BIND_LARGE_FIRST == DIRT_BIND_WORK_LAST + 1 &&
-                   DIRT_BIND_SORT_FIRST == DIRT_BIND_LARGE_LAST + 1 &&
+                   DIRT_BIND_SORT_FIRST == DIRT_BIND_WORK_LAST + 1 &&
                    DIRT_BIND_LAST == DIRT_BIND_SORT_LAST,
                "binding ranges tile [0, DIRT_BIND_LAST]");
 /* As many names as binding points: with the distinct values checked by
@@ -308,7 +305,6 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_TEST_IN);
         CASE(DIRT_BIND_TEST_OUT);
         CASE(DIRT_BIND_WORK);
-        CASE(DIRT_BIND_LARGE_CELLS);
         CASE(DIRT_BIND_SORT);
     default:
         return NULL;

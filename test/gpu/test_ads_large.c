@@ -11,11 +11,7 @@
  *    (camera G-buffer rays) on the default scene and the Cornell box, views
  *    single and cube+camera, S = 1 and 2, raster and compute build: the same
  *    primitive, t, u and v bits for every ray (a large primitive's hit counts
- *    only where the ray is inside a view, as a listed one's; the trace tests
- *    one only in cells of the large primitives' grid whose depth range for
- *    it the ray's span meets, so a range or a cell march that misses a hit
- *    shows here: testing only the span's entry depth made 200-687 rays of
- *    a type differ). */
+ *    only where the ray is inside a view, as a listed one's). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
