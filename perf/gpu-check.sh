@@ -98,7 +98,9 @@ else
               --res 368x276,1280x720,1920x1080,3840x2160 --frames 2
               --engines dirt-raster,dirt-compute,mmrt,embree,raster --timeout 60)
 fi
-part "scaling (bench-scale)" 200 "${PYTHON:-python3}" "$root/perf/bench-scale.py" "$out/scale" \
+# Debian's python3 (it has numpy) before another python3 on PATH.
+py=${PYTHON:-$(if [ -x /usr/bin/python3 ]; then echo /usr/bin/python3; else echo python3; fi)}
+part "scaling (bench-scale)" 200 "$py" "$root/perf/bench-scale.py" "$out/scale" \
   --render "$build/src/app/dirt-render" "${scale_args[@]}"
 [ -f "$out/scale/table.md" ] && { say ""; cat "$out/scale/table.md" >>"$report"; }
 say ""; say "total: $(( $(date +%s) - start )) s"
