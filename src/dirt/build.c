@@ -112,22 +112,8 @@ bool ads_program_extra(dirt_ads *a, gl_split_program *p, const char *label,
 {
     gl_split *arr[ADS_NUM_ARRAYS];
     ads_arrays(a, arr);
-    const gl_split_desc *d[ADS_NUM_ARRAYS + 1];
-    gl_split_layout l[ADS_NUM_ARRAYS + 1];
-    size_t k = 0;
-    for (int i = 0; i < ADS_NUM_ARRAYS; i++) {
-        if (arrays & ADS_ARR(i)) {
-            d[k] = ads_array_desc[i];
-            l[k] = arr[i]->layout;
-            k++;
-        }
-    }
-    if (extra) {
-        d[k] = extra->desc;
-        l[k] = extra->layout;
-        k++;
-    }
-    return gl_split_program_ensure(p, label, paths, defs, n, d, l, k);
+    return gl_split_program_select(p, label, paths, defs, n, ads_array_desc, arr, ADS_NUM_ARRAYS, arrays,
+                                   extra);
 }
 
 bool ads_program(dirt_ads *a, gl_split_program *p, const char *label, const char *const *paths,

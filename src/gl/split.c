@@ -348,3 +348,34 @@ void gl_split_program_destroy(gl_split_program *p)
     gl_program_destroy(&p->id);
     p->num_built = 0;
 }
+
+bool gl_split_program_select(gl_split_program *p, const char *label, const char *const *paths,
+                             const glsl_define *defines, size_t num_defines,
+                             const gl_split_desc *const *descs, gl_split *const *arr, size_t n,
+                             unsigned mask, const gl_split *extra)
+{
+    const gl_split_desc *d[GL_SPLIT_PROGRAM_MAX_ARRAYS];
+    gl_split_layout l[GL_SPLIT_PROGRAM_MAX_ARRAYS];
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (mask & (1u << i)) {
+            if (k == GL_SPLIT_PROGRAM_MAX_ARRAYS) {
+                DIRT_ERROR("%s: more than %d split arrays", label, GL_SPLIT_PROGRAM_MAX_ARRAYS);
+                return false;
+            }
+            d[k] = descs[i];
+            l[k] = arr[i]->layout;
+            k++;
+        }
+    }
+    if (extra) {
+        if (k == GL_SPLIT_PROGRAM_MAX_ARRAYS) {
+            DIRT_ERROR("%s: more than %d split arrays", label, GL_SPLIT_PROGRAM_MAX_ARRAYS);
+            return false;
+        }
+        d[k] = extra->desc;
+        l[k] = extra->layout;
+        k++;
+    }
+    return gl_split_program_ensure(p, label, paths, defines, num_defines, d, l, k);
+}

@@ -136,6 +136,13 @@ bool gl_split_program_ensure(gl_split_program *p, const char *label, const char 
                       const glsl_define *defines, size_t num_defines,
                       const gl_split_desc *const *descs, const gl_split_layout *layouts,
                       size_t n);
+/* gl_split_program_ensure for the arrays arr[i] (described by descs[i],
+ * i < n) whose bit 1 << i is set in `mask`, in that order, then `extra`
+ * when not NULL: how a module builds a program for the arrays it reads. */
+bool gl_split_program_select(gl_split_program *p, const char *label, const char *const *paths,
+                             const glsl_define *defines, size_t num_defines,
+                             const gl_split_desc *const *descs, gl_split *const *arr, size_t n,
+                             unsigned mask, const gl_split *extra);
 void gl_split_program_destroy(gl_split_program *p);
 
 /* Frame-graph resources of the parts (one imported buffer each, named after

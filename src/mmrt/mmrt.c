@@ -72,22 +72,8 @@ bool mmrt_program_extra(dirt_mmrt *m, gl_split_program *p, const char *label,
 {
     gl_split *arr[MMRT_NUM_ARRAYS];
     mmrt_arrays(m, arr);
-    const gl_split_desc *d[MMRT_NUM_ARRAYS + 1];
-    gl_split_layout l[MMRT_NUM_ARRAYS + 1];
-    size_t k = 0;
-    for (int i = 0; i < MMRT_NUM_ARRAYS; i++) {
-        if (arrays & MMRT_ARR(i)) {
-            d[k] = mmrt_array_desc[i];
-            l[k] = arr[i]->layout;
-            k++;
-        }
-    }
-    if (extra) {
-        d[k] = extra->desc;
-        l[k] = extra->layout;
-        k++;
-    }
-    return gl_split_program_ensure(p, label, paths, defs, n, d, l, k);
+    return gl_split_program_select(p, label, paths, defs, n, mmrt_array_desc, arr, MMRT_NUM_ARRAYS, arrays,
+                                   extra);
 }
 
 bool mmrt_program(dirt_mmrt *m, gl_split_program *p, const char *label, const char *const *paths,
