@@ -197,92 +197,49 @@ static val binop(val a, val b, char op)
     return r;
 }
 
-static val mul(expr *e)
+/* The binary operators by precedence, tightest first: each level's
+ * operators (text, the character that must not follow it, binop's code). */
+typedef struct {
+    const char *text;
+    char not_followed, code;
+} binary_op;
+
+static const binary_op binary_levels[][5] = {
+    {{"*", 0, '*'}, {"/", 0, '/'}, {"%", 0, '%'}},
+    {{"+", 0, '+'}, {"-", 0, '-'}},
+    {{"<<", 0, 'l'}, {">>", 0, 'r'}},
+    {{"<=", 0, 'L'}, {">=", 0, 'G'}, {"<", '<', '<'}, {">", '>', '>'}},
+    {{"==", 0, '='}, {"!=", 0, '!'}},
+    {{"&", '&', '&'}},
+    {{"^", 0, '^'}},
+    {{"|", '|', '|'}},
+};
+
+#define NUM_BINARY_LEVELS ((int)(sizeof(binary_levels) / sizeof(binary_levels[0])))
+
+/* The operators of `level` and tighter, left to right; level -1 is unary. */
+static val binary(expr *e, int level)
 {
-    val a = unary(e);
+    if (level < 0)
+        return unary(e);
+    val a = binary(e, level - 1);
     for (;;) {
-        char op = take(e, "*", 0) ? '*' : take(e, "/", 0) ? '/' : take(e, "%", 0) ? '%' : 0;
+        char op = 0;
+        for (const binary_op *o = binary_levels[level]; !op && o->text; o++)
+            if (take(e, o->text, o->not_followed))
+                op = o->code;
         if (!op)
             return a;
-        a = binop(a, unary(e), op);
+        a = binop(a, binary(e, level - 1), op);
     }
-}
-
-static val add(expr *e)
-{
-    val a = mul(e);
-    for (;;) {
-        char op = take(e, "+", 0) ? '+' : take(e, "-", 0) ? '-' : 0;
-        if (!op)
-            return a;
-        a = binop(a, mul(e), op);
-    }
-}
-
-static val shift(expr *e)
-{
-    val a = add(e);
-    for (;;) {
-        char op = take(e, "<<", 0) ? 'l' : take(e, ">>", 0) ? 'r' : 0;
-        if (!op)
-            return a;
-        a = binop(a, add(e), op);
-    }
-}
-
-static val rel(expr *e)
-{
-    val a = shift(e);
-    for (;;) {
-        char op = take(e, "<=", 0) ? 'L' : take(e, ">=", 0) ? 'G' : take(e, "<", '<') ? '<'
-                  : take(e, ">", '>') ? '>' : 0;
-        if (!op)
-            return a;
-        a = binop(a, shift(e), op);
-    }
-}
-
-static val eq(expr *e)
-{
-    val a = rel(e);
-    for (;;) {
-        char op = take(e, "==", 0) ? '=' : take(e, "!=", 0) ? '!' : 0;
-        if (!op)
-            return a;
-        a = binop(a, rel(e), op);
-    }
-}
-
-static val bit_and(expr *e)
-{
-    val a = eq(e);
-    while (take(e, "&", '&'))
-        a = binop(a, eq(e), '&');
-    return a;
-}
-
-static val bit_xor(expr *e)
-{
-    val a = bit_and(e);
-    while (take(e, "^", 0))
-        a = binop(a, bit_and(e), '^');
-    return a;
-}
-
-static val bit_or(expr *e)
-{
-    val a = bit_xor(e);
-    while (take(e, "|", '|'))
-        a = binop(a, bit_xor(e), '|');
-    return a;
 }
 
 /* && and ||: a known false (true) operand decides even beside an unknown. */
 static val logic_and(expr *e)
 {
-    val a = bit_or(e);
+    val a = binary(e, NUM_BINARY_LEVELS - 1);
     while (take(e, "&&", 0)) {
-        val b = bit_or(e);
+        val b = binary(e, NUM_BINARY_LEVELS - 1);
         bool f = (a.known && !a.v) || (b.known && !b.v);
         a = f ? (val){0, true} : (val){1, a.known && b.known};
     }

@@ -63,6 +63,12 @@ int main(void)
         "#else\n"
         "layout(binding = 10) writeonly buffer Unknown { uint u; };\n"
         "#endif\n"
+        "#if 1 + 2 * 3 == 7 && 8 >> 1 == 4 && (1 << 2 | 1) == 5 && 3 < 1 << 2 && \\\n"
+        "    6 % 4 - 1 == 1 && 1 + 1 << 1 == 4 && (6 & 3 ^ 1) == 3 && 7 / 2 >= 3\n"
+        "layout(binding = 13) readonly buffer Precedence { uint p; };\n"
+        "#else\n"
+        "layout(binding = 13) writeonly buffer Precedence { uint p; };\n"
+        "#endif\n"
         "#ifndef ACCESS\n"
         "#error no\n"
         "#endif\n"
@@ -77,7 +83,8 @@ int main(void)
         "void f(image2D not_a_uniform) {}\n"
         "void main() { uint buffer_like = 0u; }\n";
     int n = glsl_memory_decls(src, d, 32);
-    CHECK(n == 12);
+    CHECK(n == 13);
+    EXPECT("Precedence", false, GLSL_READ); /* C precedence */
     EXPECT("In", false, GLSL_READ);
     EXPECT("Out", false, GLSL_WRITE);
     EXPECT("Both", false, GLSL_READ_WRITE);
