@@ -111,6 +111,34 @@ dirt_view_opts engine_view_opts(const engine_env *env)
                             .face_size = o->face_size, .tile_size = o->tile_size ? o->tile_size : 2};
 }
 
+bool engine_cells_from_lists(engine_cells *c, int count, int buckets, const uint32_t *heads,
+                             const uint32_t *next, size_t next_stride, uint32_t num_nodes,
+                             uint32_t end, const float (*depth)[2])
+{
+    c->count = count;
+    c->buckets = buckets;
+    c->len = calloc((size_t)count + 1, sizeof(uint32_t));
+    c->used = calloc((size_t)count + 1, sizeof(uint32_t));
+    c->depth = malloc(((size_t)count + 1) * sizeof(*c->depth));
+    if (!c->len || !c->used || !c->depth) {
+        engine_cells_free(c);
+        DIRT_ERROR("out of memory");
+        return false;
+    }
+    for (int b = 0; b < buckets; b++) {
+        for (int i = 0; i < count; i++) {
+            uint32_t steps = 0;
+            for (uint32_t n = heads[(size_t)b * count + i];
+                 n != end && n < num_nodes && steps <= num_nodes; n = next[n * next_stride])
+                steps++;
+            c->len[i] += steps;
+            c->used[i] += steps > 0;
+        }
+    }
+    memcpy(c->depth, depth, (size_t)count * sizeof(*c->depth));
+    return true;
+}
+
 void engine_cells_free(engine_cells *c)
 {
     free(c->len);

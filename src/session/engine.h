@@ -180,6 +180,14 @@ void engine_display_release(engine_display *d);
 /* The structure's views for env's options and size (tile size 0 = 2). */
 dirt_view_opts engine_view_opts(const engine_env *env);
 
+/* The lists of a bucketed structure read back: `count` cells, `buckets`
+ * lists each (heads bucket-major, `end` ends a list), node n's successor
+ * at next[n * next_stride] (num_nodes nodes; a link past them ends the
+ * list), depth bounds per cell. Fills c's len, used and depth (set stays
+ * the caller's); false after logging (out of memory), c then freed. */
+bool engine_cells_from_lists(engine_cells *c, int count, int buckets, const uint32_t *heads,
+                             const uint32_t *next, size_t next_stride, uint32_t num_nodes,
+                             uint32_t end, const float (*depth)[2]);
 /* Frees the arrays of `c`. */
 void engine_cells_free(engine_cells *c);
 

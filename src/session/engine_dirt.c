@@ -163,27 +163,10 @@ static bool cells(engine *e, engine_cells *c)
     if (!dirt_ads_read(ads, &d))
         return false;
     c->set = dirt_ads_views(ads);
-    c->count = d.num_tiles;
-    c->buckets = d.buckets;
-    c->len = calloc((size_t)d.num_tiles + 1, sizeof(uint32_t));
-    c->used = calloc((size_t)d.num_tiles + 1, sizeof(uint32_t));
-    c->depth = malloc(((size_t)d.num_tiles + 1) * sizeof(*c->depth));
-    bool ok = c->len && c->used && c->depth;
-    for (int b = 0; ok && b < d.buckets; b++) {
-        for (int t = 0; t < d.num_tiles; t++) {
-            uint32_t steps = 0;
-            for (uint32_t n = d.heads[(size_t)b * d.num_tiles + t];
-                 n != DIRT_LIST_END && n < d.num_nodes && steps <= d.num_nodes; n = d.nodes[n][1])
-                steps++;
-            c->len[t] += steps;
-            c->used[t] += steps > 0;
-        }
-    }
-    if (ok)
-        memcpy(c->depth, d.depth, (size_t)d.num_tiles * sizeof(*c->depth));
+    bool ok = engine_cells_from_lists(c, d.num_tiles, d.buckets, d.heads,
+                                      d.nodes ? &d.nodes[0][1] : NULL, 2,
+                                      d.num_nodes, DIRT_LIST_END, (const float (*)[2])d.depth);
     dirt_ads_data_free(&d);
-    if (!ok)
-        DIRT_ERROR("out of memory");
     return ok;
 }
 

@@ -115,27 +115,11 @@ static bool cells(engine *e, engine_cells *c)
     if (!dirt_mmrt_read(mm, &d))
         return false;
     c->set = dirt_mmrt_views(mm);
-    c->count = d.num_pixels;
-    c->buckets = d.buckets;
-    c->len = calloc((size_t)d.num_pixels + 1, sizeof(uint32_t));
-    c->used = calloc((size_t)d.num_pixels + 1, sizeof(uint32_t));
-    c->depth = malloc(((size_t)d.num_pixels + 1) * sizeof(*c->depth));
-    bool ok = c->len && c->used && c->depth;
-    for (int b = 0; ok && b < d.buckets; b++) {
-        for (int p = 0; p < d.num_pixels; p++) {
-            uint32_t steps = 0;
-            for (uint32_t n = d.heads[(size_t)b * d.num_pixels + p];
-                 n != DIRT_MMRT_END && n < d.num_nodes && steps <= d.num_nodes; n = d.ids[n].next)
-                steps++;
-            c->len[p] += steps;
-            c->used[p] += steps > 0;
-        }
-    }
-    if (ok)
-        memcpy(c->depth, d.depth, (size_t)d.num_pixels * sizeof(*c->depth));
+    bool ok = engine_cells_from_lists(c, d.num_pixels, d.buckets, d.heads,
+                                      d.ids ? &d.ids[0].next : NULL,
+                                      sizeof(*d.ids) / sizeof(uint32_t), d.num_nodes,
+                                      DIRT_MMRT_END, (const float (*)[2])d.depth);
     dirt_mmrt_data_free(&d);
-    if (!ok)
-        DIRT_ERROR("out of memory");
     return ok;
 }
 
