@@ -10,7 +10,8 @@
 # whole sample a frame) the first frame completes the sample and this fails.
 # Then the automatic scale: on a software renderer (llvmpipe, lavapipe) a
 # 1280x720 window renders at window / N (N > 1) without --scale, says so,
-# and a sample spans several frames; --scale 1 renders 1:1.
+# and a sample spans several frames; --scale 1 renders 1:1. Embree's
+# sample spans frames too (pieces of tiles).
 # Last, a panel click acts in the frame that sees it: with the panels at
 # 1280x720 and frames 0.3 s slower, a real click (xdotool) on the Settings
 # panel's collapse arrow shows the panel collapsed in the first frame that
@@ -101,6 +102,22 @@ for m in bad:
 sys.exit(1 if bad else 0)
 PY
   fail "the automatic scale"
+
+# 2b. Embree slices too: with --slice-ms 0 (one 16 x 16 tile a frame) its
+# first sample at 160x120 (80 tiles) spans many frames, each logged with
+# a part in (0, 1) and 0 samples until it completes.
+printf 'wait-samples 1\nwait-frames 1\nquit\n' >"$tmp/embree.txt"
+DIRT_VIEW_FRAME_LOG="$tmp/embree.log" "$view" --window 160x120 --scale 1 --no-ui --spp 2 \
+  --engine embree --slice-ms 0 --script "$tmp/embree.txt" -q >"$tmp/embree.out" 2>&1 ||
+  { fail "embree run: exit $?"; cat "$tmp/embree.out" >&2; }
+python3 - "$tmp/embree.log" <<'PY' && ok ||
+import sys
+rows = [l.split() for l in open(sys.argv[1])]
+mid = [r for r in rows if int(r[2]) == 0 and 0 < float(r[3]) < 1]
+print("embree: %d frames in its first sample's midst, %d frames" % (len(mid), len(rows)))
+sys.exit(0 if len(mid) >= 20 and any(int(r[2]) == 1 for r in rows) else 1)
+PY
+  fail "embree's first sample did not span frames"
 
 # 3. A panel click shown in the frame that saw it.
 printf 'wait-frames 3\nreport %s\nwait-file %s\nwait-frames 3\nquit\n' \
