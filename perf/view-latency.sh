@@ -5,7 +5,8 @@
 # scene (or SCENE), and the time from each input to the first frame shown
 # with its effect, read from the viewer's frame log (test hook
 # DIRT_VIEW_FRAME_LOG: wall-clock time after each swap, samples, the part of
-# the sample in progress, the buffer, the Settings panel's height):
+# the sample in progress, the buffer, the Settings panel's height, the
+# mouse button releases read so far):
 #   key     keys 2 and 1 in turn (buffer albedo / beauty)
 #   click   a left click on the Settings panel's collapse arrow (its height
 #           changes: collapsed / open)
@@ -86,6 +87,7 @@ def wait_for(t0, pred, limit=30.0):
 
 lat = {"key": [], "click": []}
 mid = []  # inputs that acted within a sample (the sample in progress before and after)
+at_once = []  # clicks shown in the frame that read their release
 for i in range(repeats):
     # key: the buffer toggles between albedo (2) and beauty (1)
     xdo("mousemove", "--window", wid, "900", "400")
@@ -99,13 +101,15 @@ for i in range(repeats):
         mid.append(int(r[2]) == int(before[2]) and float(r[3]) > 0)
     time.sleep(0.7)
     # click: the Settings panel's collapse arrow (top left, 8 px in)
-    h0 = rows()[-1][6]
+    h0, rel0 = rows()[-1][6], int(rows()[-1][7])
     xdo("mousemove", "--window", wid, "17", "17")
     time.sleep(0.05)
     t0 = time.time()
     xdo("click", "1")
     dt, r = wait_for(t0, lambda r: r[6] != h0)
     lat["click"].append(dt)
+    seen = next((r for r in rows() if int(r[7]) > rel0), None)
+    at_once.append(bool(seen) and seen[6] != h0)
     time.sleep(0.7)
 open(os.path.join(tmp, "stop"), "w").close()
 for _ in range(600):
@@ -135,6 +139,7 @@ for k, v in lat.items():
         print("| %s | %d | 0 | - | - | - |" % (k, len(v)))
 print()
 print("keys that acted within the sample in progress: %d of %d" % (sum(mid), len(mid)))
+print("clicks shown in the frame that read their release: %d of %d" % (sum(at_once), len(at_once)))
 PY
 wait "$vpid" || true
 vpid=

@@ -172,11 +172,13 @@ static bool advance(viewer *v, int have, int target)
 
 /* A bounded amount of work: a slice of the path tracer (advance), or the
  * raster preview while input moves the camera; no tracing in a frame whose
- * image a script output took, nor in the quick frames after a click. False
- * when rendering fails. */
-static bool sample(viewer *v, bool *preview)
+ * image a script output took, nor in one where input arrived (`input`: it
+ * is answered at once). *traced says whether a slice ran. False when
+ * rendering fails. */
+static bool sample(viewer *v, bool input, bool *preview, bool *traced)
 {
     int have = dirt_session_samples(v->s);
+    *traced = false;
     *preview = v->moving && v->pre;
     if (*preview && !dirt_session_add_samples(v->pre, 1, NULL, NULL)) {
         view_status(v, "the raster preview failed (see the log); off");
@@ -184,10 +186,8 @@ static bool sample(viewer *v, bool *preview)
         *preview = false;
     }
     int target = view_target(v, v->s);
-    if (v->quick_frames > 0) {
-        v->quick_frames--;
+    if (input)
         return true;
-    }
     if (!*preview && !v->hold && (target == 0 || have < target)) {
         dirt_session_stats before = *dirt_session_get_stats(v->s);
         if (!advance(v, have, target)) {
@@ -195,43 +195,78 @@ static bool sample(viewer *v, bool *preview)
             return false;
         }
         record_passes(v, &before, have == 0);
+        *traced = true;
     }
-    if (!*preview && !v->hold)
+    if (!*preview && !v->hold) {
         view_sample_compare(v);
+        *traced = true;
+    }
     return true;
 }
 
+/* Whether `in` holds events to answer at once: a mouse button went down
+ * or up, a key went down, the wheel turned, a double click, a drop. */
+static bool input_arrived(const dirt_window_input *in)
+{
+    for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++)
+        if (in->button_pressed[b] || in->button_released[b])
+            return true;
+    for (int k = 0; k < DIRT_NUM_KEYS; k++)
+        if (in->key_pressed[k])
+            return true;
+    return in->scroll != 0 || in->ctrl_scroll != 0 || in->double_clicks > 0 || in->num_drops > 0;
+}
+
+/* The window's input of the last poll into the viewer's cursor and size. */
+static void take_input(viewer *v, dirt_window_input *in)
+{
+    dirt_gpu_window_input(v->gpu, in);
+    if (in->close_requested || dirt_gpu_window_should_close(v->gpu))
+        v->quit = true;
+    v->win_w = in->width;
+    v->win_h = in->height;
+    v->cursor_x = in->mouse_x;
+    v->cursor_y = in->mouse_y;
+    for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++)
+        v->releases += in->button_released[b];
+}
+
+/* At most this many passes of the panels' logic before the drawn one (a
+ * click needs two: its press and its release; what it defers applies in
+ * the drawn pass). */
+#define MAX_LOGIC_PASSES 4
+
 /* Test hook DIRT_VIEW_FRAME_LOG: after each frame is shown, its wall-clock
  * time, number, the main session's samples and part of the one in
- * progress, the buffer, whether the panels are shown and the Settings
- * panel's height (collapsed or open). */
+ * progress, the buffer, whether the panels are shown, the Settings
+ * panel's height (collapsed or open), the mouse button releases seen so
+ * far and the panels' logic-only passes so far (dirt_ui_end_pass). */
 static void log_frame(viewer *v)
 {
     if (!v->frame_log)
         return;
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
-    fprintf(v->frame_log, "%lld.%06ld %ld %d %.4f %s %d %.0f\n", (long long)ts.tv_sec,
+    fprintf(v->frame_log, "%lld.%06ld %ld %d %.4f %s %d %.0f %ld %ld\n", (long long)ts.tv_sec,
             ts.tv_nsec / 1000, v->frame, dirt_session_samples(v->s),
             dirt_session_sample_part(v->s), app_buffer_names[v->o.buffer], !v->o.no_ui,
-            v->num_panels > 0 ? v->panels[0][3] : 0.0f);
+            v->num_panels > 0 ? v->panels[0][3] : 0.0f, v->releases, v->ui_passes);
     fflush(v->frame_log);
 }
 
 /* One displayed frame: input, the script, the sessions, samples, drawing,
- * panels, screenshots. False when rendering fails. */
+ * panels, screenshots. Input is answered in the frame that sees it: a
+ * frame where it arrived traces nothing; the events that arrive during the
+ * trace slice are polled after it; and the panels' logic runs again
+ * (dirt_ui_end_pass) while a mouse button went down or up in the last
+ * pass, so that a click and what it defers show in this frame's drawing.
+ * False when rendering fails. */
 static bool frame(viewer *v, double dt)
 {
     double t0 = dirt_clock_ms();
     dirt_gpu_window_poll(v->gpu);
     dirt_window_input in;
-    dirt_gpu_window_input(v->gpu, &in);
-    if (in.close_requested || dirt_gpu_window_should_close(v->gpu))
-        v->quit = true;
-    v->win_w = in.width;
-    v->win_h = in.height;
-    v->cursor_x = in.mouse_x;
-    v->cursor_y = in.mouse_y;
+    take_input(v, &in);
     if (!view_open_drops(v, &in))
         return false;
     dirt_ui_begin_frame(v->ui);
@@ -243,12 +278,7 @@ static bool frame(viewer *v, double dt)
         v->quit = true;
     }
     view_handle_input(v, &in, dt, ui_mouse, ui_keys);
-    /* A mouse button went down or up: this frame and the next trace
-     * nothing, so that a click (which the panels see over two frames,
-     * press then release) shows at once. */
-    for (int b = 0; b < DIRT_MOUSE_BUTTONS; b++)
-        if (in.button_pressed[b] || in.button_released[b])
-            v->quick_frames = 2;
+    bool input = input_arrived(&in);
     for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         if (v->held[k] > 0)
             v->held[k]--;
@@ -262,11 +292,34 @@ static bool frame(viewer *v, double dt)
     if (v->click_pending)
         view_focus_at(v);
     double s0 = dirt_clock_ms();
-    bool preview;
-    if (!sample(v, &preview))
+    bool preview, traced;
+    if (!sample(v, input, &preview, &traced))
         return false;
     double s1 = dirt_clock_ms();
+    bool late = false;
+    if (traced) {
+        /* What arrived during the slice: answered in this frame (the
+         * motion too, so that a drag keeps its whole length; held keys
+         * fly in the next frame's time step). */
+        dirt_gpu_window_poll(v->gpu);
+        take_input(v, &in);
+        if (!view_open_drops(v, &in))
+            return false;
+        view_handle_input(v, &in, 0, ui_mouse, ui_keys);
+        late = input_arrived(&in);
+    }
     v->hold = false;
+    /* The panels' logic until a pass sees no button change (the first
+     * pass opened before the late poll: its events need one more). */
+    for (int pass = 0; !v->o.no_ui && pass < MAX_LOGIC_PASSES &&
+                       (late || dirt_ui_buttons_changed(v->ui));
+         pass++) {
+        late = false;
+        view_panels(v);
+        dirt_ui_end_pass(v->ui);
+        dirt_ui_begin_frame(v->ui);
+        v->ui_passes++;
+    }
     view_draw(v, preview);
     view_panels(v);
     dirt_ui_end_frame(v->ui);

@@ -124,7 +124,8 @@ typedef struct viewer {
     /* a sample in pieces over frames (--slice-ms) */
     double sample_work_ms;      /* time in the sample in progress so far */
     double last_sample_ms;      /* the last completed sample's (0: none yet) */
-    int quick_frames;           /* frames left that trace nothing (a click is answered) */
+    long ui_passes;             /* passes of the panels' logic only, all frames (frame log) */
+    long releases;              /* mouse button releases seen, all frames (frame log) */
     /* the automatic --scale on a software renderer (o.scale 0 at start) */
     bool auto_scale;            /* o.scale is the automatic choice */
     double pace_ms;             /* a sample's milliseconds per pixel (measured, or assumed) */

@@ -51,6 +51,10 @@ struct dirt_ui {
     int num_frame;
     Rect last[kMaxRects];       /* the panels of the last completed frame */
     int num_last;
+    /* The wheel steps the open frame's NewFrame applied: steps beyond them
+     * came from a poll within the frame and are kept for the next one
+     * (ImGui's EndFrame clears the wheel). */
+    float wheel, wheel_h;
 };
 
 namespace {
@@ -200,7 +204,14 @@ void dirt_ui_begin_frame(dirt_ui *ui)
     ImGui::SetCurrentContext(ui->ctx);
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    ImGuiIO &io = ImGui::GetIO();
+    /* Passes run back to back (dirt_ui_end_pass) may read the same clock;
+     * ImGui needs time to move forward. */
+    if (!(io.DeltaTime > 0.0f))
+        io.DeltaTime = 1e-6f;
     ImGui::NewFrame();
+    ui->wheel = io.MouseWheel;
+    ui->wheel_h = io.MouseWheelH;
     ui->in_frame = true;
     ui->depth = 0;
     ui->tables = 0;
@@ -208,26 +219,57 @@ void dirt_ui_begin_frame(dirt_ui *ui)
     g_ui = ui;
 }
 
-void dirt_ui_end_frame(dirt_ui *ui)
+/* Closes the open frame of `ui` (`fn` for the log); draws its panels when
+ * `shown`. */
+static void end_frame(dirt_ui *ui, bool shown, const char *fn)
 {
     if (!ui || !ui->in_frame || g_ui != ui) {
-        DIRT_ERROR("dirt_ui_end_frame: no frame of this UI is open");
+        DIRT_ERROR("%s: no frame of this UI is open", fn);
         return;
     }
     while (ui->tables > 0) {
-        DIRT_ERROR("dirt_ui_end_frame: a table was left open");
+        DIRT_ERROR("%s: a table was left open", fn);
         dirt_ui_table_end();
     }
     while (ui->depth > 0) {
-        DIRT_ERROR("dirt_ui_end_frame: a panel was left open (dirt_ui_end)");
+        DIRT_ERROR("%s: a panel was left open (dirt_ui_end)", fn);
         dirt_ui_end();
     }
-    ImGui::Render();
-    draw();
+    ImGuiIO &io = ImGui::GetIO();
+    float wheel = io.MouseWheel - ui->wheel, wheel_h = io.MouseWheelH - ui->wheel_h;
+    if (shown) {
+        ImGui::Render();
+        draw();
+    } else {
+        ImGui::EndFrame();
+    }
+    io.MouseWheel += wheel;
+    io.MouseWheelH += wheel_h;
     ui->in_frame = false;
     memcpy(ui->last, ui->frame, sizeof(ui->frame));
     ui->num_last = ui->num_frame;
     g_ui = nullptr;
+}
+
+void dirt_ui_end_frame(dirt_ui *ui)
+{
+    end_frame(ui, true, "dirt_ui_end_frame");
+}
+
+void dirt_ui_end_pass(dirt_ui *ui)
+{
+    end_frame(ui, false, "dirt_ui_end_pass");
+}
+
+bool dirt_ui_buttons_changed(const dirt_ui *ui)
+{
+    if (!ui || !ui->in_frame)
+        return false;
+    const ImGuiIO &io = io_of(ui);
+    for (int i = 0; i < IM_ARRAYSIZE(io.MouseDown); i++)
+        if (io.MouseClicked[i] || io.MouseReleased[i])
+            return true;
+    return false;
 }
 
 bool dirt_ui_wants_mouse(const dirt_ui *ui)

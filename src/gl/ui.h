@@ -31,6 +31,18 @@ void dirt_ui_destroy(dirt_ui *ui);
 void dirt_ui_begin_frame(dirt_ui *ui);
 /* Closes the frame and draws its panels over the window's back buffer. */
 void dirt_ui_end_frame(dirt_ui *ui);
+/* Closes the frame without drawing: a pass of the panels' logic only.
+ * The program runs such passes (begin, its panels, end_pass) before the
+ * drawn one so that input takes effect in the frame it is shown in: the
+ * panels see a mouse button go down in one pass and up in the next (a
+ * click acts on the release), and what a click defers (a panel's collapse,
+ * a popup opening) applies in the pass after it. Wheel steps that arrive
+ * while a frame is open (a poll within it) go to the next pass. */
+void dirt_ui_end_pass(dirt_ui *ui);
+/* Whether the open frame saw a mouse button go down or up: its widgets act
+ * on that (or defer an effect to the next frame), so another pass of the
+ * panels is needed before they are shown as they now are. */
+bool dirt_ui_buttons_changed(const dirt_ui *ui);
 /* Whether the panels take the mouse / keyboard (the cursor is over a panel,
  * a widget is active or a text field has focus): the program then leaves
  * those events alone. Valid after dirt_ui_begin_frame. */

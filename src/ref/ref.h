@@ -189,7 +189,25 @@ typedef struct dirt_ref_opts {
                                     one (and report its build time) */
     dirt_ref_progress_fn progress;
     void *progress_user;
+    /* A part of the image: the tiles [first_tile, first_tile + num_tiles)
+     * of DIRT_REF_TILE x DIRT_REF_TILE pixels in row-major order
+     * (dirt_ref_num_tiles; the last row and column may be smaller);
+     * num_tiles 0 = every tile from first_tile on. A pixel's values depend
+     * on the seed, the pixel and the sample index only, so parts add up
+     * to the whole image bit for bit. */
+    size_t first_tile, num_tiles;
+    /* With a part: the image to write its pixels into, made by an earlier
+     * call of the same size (its channels are found by name); the pixels
+     * of other tiles are left as they are, and the call returns `into`
+     * (the caller keeps owning it; on failure it is not destroyed). NULL =
+     * a new image whose other pixels are 0. */
+    dirt_image *into;
 } dirt_ref_opts;
+
+/* The tile size of dirt_ref_opts.first_tile / num_tiles, in pixels. */
+#define DIRT_REF_TILE 16
+/* Tiles of a width x height image (0 for a size below 1). */
+size_t dirt_ref_num_tiles(int width, int height);
 
 typedef struct dirt_ref_stats {
     double build_ms;        /* BVH build (0 when opts->accel was given) */

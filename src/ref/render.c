@@ -18,7 +18,7 @@
 #include "core/vec3.h"
 #include "ref/parallel.h"
 
-#define TILE 16
+#define TILE DIRT_REF_TILE
 #define DEFAULT_WIDTH 640
 #define DEFAULT_HEIGHT 480
 #define DEFAULT_SPP 16
@@ -40,6 +40,7 @@ typedef struct render_ctx {
     const dirt_env *env;  /* NULL: nothing beyond the scene */
     dirt_env *own_env;    /* the background's constant map */
     int tiles_x, tiles_y;
+    size_t first_tile;    /* the part rendered: tiles first_tile + [0, count) */
 
     float *rgba, *albedo[3], *normal[3], *depth, *ids;
 
@@ -504,7 +505,8 @@ static void render_tiles(void *ctx, size_t begin, size_t end, int worker)
 {
     render_ctx *c = ctx;
     (void)worker;
-    for (size_t t = begin; t < end; t++) {
+    for (size_t i = begin; i < end; i++) {
+        size_t t = c->first_tile + i;
         int tx = (int)(t % (size_t)c->tiles_x), ty = (int)(t / (size_t)c->tiles_x);
         int x0 = tx * TILE, y0 = ty * TILE;
         int x1 = x0 + TILE < c->width ? x0 + TILE : c->width;
@@ -557,6 +559,26 @@ static bool check_opts(const dirt_ref_opts *o)
         }
     }
     return true;
+}
+
+size_t dirt_ref_num_tiles(int width, int height)
+{
+    if (width < 1 || height < 1)
+        return 0;
+    return (size_t)((width + TILE - 1) / TILE) * (size_t)((height + TILE - 1) / TILE);
+}
+
+/* Pixels of the tiles [first, first + count) of a c->width x c->height image. */
+static uint64_t part_pixels(const render_ctx *c, size_t first, size_t count)
+{
+    uint64_t n = 0;
+    for (size_t t = first; t < first + count; t++) {
+        int tx = (int)(t % (size_t)c->tiles_x), ty = (int)(t / (size_t)c->tiles_x);
+        int w = c->width - tx * TILE < TILE ? c->width - tx * TILE : TILE;
+        int h = c->height - ty * TILE < TILE ? c->height - ty * TILE : TILE;
+        n += (uint64_t)w * (uint64_t)h;
+    }
+    return n;
 }
 
 dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
@@ -625,9 +647,18 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     }
     c.tiles_x = (o.width + TILE - 1) / TILE;
     c.tiles_y = (o.height + TILE - 1) / TILE;
+    size_t all_tiles = (size_t)c.tiles_x * (size_t)c.tiles_y;
+    if (o.first_tile >= all_tiles || o.num_tiles > all_tiles - o.first_tile) {
+        DIRT_ERROR("reference render: tiles %zu + %zu of %zu", o.first_tile, o.num_tiles,
+                   all_tiles);
+        dirt_env_destroy(c.own_env);
+        return NULL;
+    }
+    size_t count = o.num_tiles ? o.num_tiles : all_tiles - o.first_tile;
+    c.first_tile = o.first_tile;
     c.progress = o.progress;
     c.progress_user = o.progress_user;
-    c.total = (uint64_t)o.width * (uint64_t)o.height * (uint64_t)o.spp;
+    c.total = part_pixels(&c, o.first_tile, count) * (uint64_t)o.spp;
     atomic_init(&c.rays, 0);
     atomic_init(&c.invalid, 0);
     for (int k = 0; k < DIRT_PT_MAX_EVENTS; k++)
@@ -671,19 +702,41 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
                                               dirt_env_samples(c.env));
     }
 
-    img = dirt_image_create(o.width, o.height);
-    if (!img)
-        goto error;
-    for (int k = 0; k < 3; k++) {
-        c.albedo[k] = dirt_image_add_channel(img, albedo_names[k]);
-        c.normal[k] = dirt_image_add_channel(img, normal_names[k]);
-        if (!c.albedo[k] || !c.normal[k])
+    if (o.into) {
+        img = o.into;
+        if (img->width != o.width || img->height != o.height) {
+            DIRT_ERROR("reference render: the image to render into is %dx%d, not %dx%d",
+                       img->width, img->height, o.width, o.height);
+            img = NULL;
+            goto error;
+        }
+        for (int k = 0; k < 3; k++) {
+            c.albedo[k] = dirt_image_find_channel(img, albedo_names[k]);
+            c.normal[k] = dirt_image_find_channel(img, normal_names[k]);
+        }
+        c.depth = dirt_image_find_channel(img, "Z");
+        c.ids = dirt_image_find_channel(img, "ID");
+        if (!c.albedo[0] || !c.albedo[1] || !c.albedo[2] || !c.normal[0] || !c.normal[1] ||
+            !c.normal[2] || !c.depth || !c.ids) {
+            DIRT_ERROR("reference render: the image to render into lacks a channel of a render");
+            img = NULL;
+            goto error;
+        }
+    } else {
+        img = dirt_image_create(o.width, o.height);
+        if (!img)
+            goto error;
+        for (int k = 0; k < 3; k++) {
+            c.albedo[k] = dirt_image_add_channel(img, albedo_names[k]);
+            c.normal[k] = dirt_image_add_channel(img, normal_names[k]);
+            if (!c.albedo[k] || !c.normal[k])
+                goto error;
+        }
+        c.depth = dirt_image_add_channel(img, "Z");
+        c.ids = dirt_image_add_channel(img, "ID");
+        if (!c.depth || !c.ids)
             goto error;
     }
-    c.depth = dirt_image_add_channel(img, "Z");
-    c.ids = dirt_image_add_channel(img, "ID");
-    if (!c.depth || !c.ids)
-        goto error;
     c.rgba = img->rgba;
     if (pthread_mutex_init(&c.progress_lock, NULL) != 0) {
         DIRT_ERROR("reference render: pthread_mutex_init failed");
@@ -692,7 +745,7 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
     lock_ready = true;
 
     double t0 = dirt_clock_ms();
-    int used = ref_parallel_for((size_t)c.tiles_x * (size_t)c.tiles_y, 1, o.threads, render_tiles, &c);
+    int used = ref_parallel_for(count, 1, o.threads, render_tiles, &c);
     double t1 = dirt_clock_ms();
 
     uint64_t invalid = atomic_load(&c.invalid);
@@ -718,7 +771,8 @@ dirt_image *dirt_ref_render_materials(const dirt_ref_materials *materials,
 error:
     if (lock_ready)
         pthread_mutex_destroy(&c.progress_lock);
-    dirt_image_destroy(img);
+    if (img != o.into)
+        dirt_image_destroy(img);
     dirt_area_lights_free(&c.area);
     dirt_ref_accel_destroy(own);
     dirt_env_destroy(c.own_env);

@@ -10,7 +10,15 @@
 # whole sample a frame) the first frame completes the sample and this fails.
 # Then the automatic scale: on a software renderer (llvmpipe, lavapipe) a
 # 1280x720 window renders at window / N (N > 1) without --scale, says so,
-# and a sample spans several frames; --scale 1 renders 1:1.
+# and a sample spans several frames; --scale 1 renders 1:1. Embree's
+# sample spans frames too (pieces of tiles).
+# Last, a panel click acts in the frame that sees it: with the panels at
+# 1280x720 and frames 0.3 s slower, a real click (xdotool) on the Settings
+# panel's collapse arrow shows the panel collapsed in the first frame that
+# saw the button's release (the frame log's releases column), open in every
+# frame before and collapsed in every one after (it toggled once). Without
+# the panels' logic-only passes (dirt_ui_end_pass) the collapse shows two
+# frames later and this fails.
 #   test_view_slice.sh DIRT-VIEW
 set -u
 view=$1
@@ -23,7 +31,7 @@ fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
 . "$(dirname "$0")/view_xvfb.sh"
 
 # 1. A key between the slices of one sample.
-printf 'wait-frames 3\nreport %s\nwait-file %s\nwait-frames 1\nreport %s\nquit\n' \
+printf 'wait-frames 3\nreport %s\nwait-file %s\nwait-frames 3\nreport %s\nquit\n' \
   "$tmp/before.json" "$tmp/sent" "$tmp/after.json" >"$tmp/key.txt"
 DIRT_VIEW_SLOW_FRAME_MS=300 DIRT_VIEW_FRAME_LOG="$tmp/frames.log" "$view" --window 320x240 \
   --scale 1 --no-ui --spp 1 --bounces 1 --slice-ms 0 --script "$tmp/key.txt" -q \
@@ -94,6 +102,64 @@ for m in bad:
 sys.exit(1 if bad else 0)
 PY
   fail "the automatic scale"
+
+# 2b. Embree slices too: with --slice-ms 0 (one 16 x 16 tile a frame) its
+# first sample at 160x120 (80 tiles) spans many frames, each logged with
+# a part in (0, 1) and 0 samples until it completes.
+printf 'wait-samples 1\nwait-frames 1\nquit\n' >"$tmp/embree.txt"
+DIRT_VIEW_FRAME_LOG="$tmp/embree.log" "$view" --window 160x120 --scale 1 --no-ui --spp 2 \
+  --engine embree --slice-ms 0 --script "$tmp/embree.txt" -q >"$tmp/embree.out" 2>&1 ||
+  { fail "embree run: exit $?"; cat "$tmp/embree.out" >&2; }
+python3 - "$tmp/embree.log" <<'PY' && ok ||
+import sys
+rows = [l.split() for l in open(sys.argv[1])]
+mid = [r for r in rows if int(r[2]) == 0 and 0 < float(r[3]) < 1]
+print("embree: %d frames in its first sample's midst, %d frames" % (len(mid), len(rows)))
+sys.exit(0 if len(mid) >= 20 and any(int(r[2]) == 1 for r in rows) else 1)
+PY
+  fail "embree's first sample did not span frames"
+
+# 3. A panel click shown in the frame that saw it.
+printf 'wait-frames 3\nreport %s\nwait-file %s\nwait-frames 3\nquit\n' \
+  "$tmp/click-before.json" "$tmp/clicked" >"$tmp/click.txt"
+DIRT_VIEW_SLOW_FRAME_MS=300 DIRT_VIEW_FRAME_LOG="$tmp/click.log" "$view" --window 1280x720 \
+  --spp 1048576 --slice-ms 0 --script "$tmp/click.txt" -q >"$tmp/click.out" 2>&1 &
+vpid=$!
+for _ in $(seq 300); do [ -s "$tmp/click-before.json" ] && break; sleep 0.1; done
+wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
+if [ -z "$wid" ] || [ ! -s "$tmp/click-before.json" ]; then fail "click run: no window or no report"; else
+  xdotool mousemove --window "$wid" 17 17
+  sleep 0.7
+  xdotool click 1
+  sleep 0.7
+fi
+touch "$tmp/clicked"
+wait "$vpid" || { fail "click run: exit $?"; cat "$tmp/click.out" >&2; }
+python3 - "$tmp/click.log" <<'PY' && ok ||
+import sys
+# time frame samples part buffer panels settings-height releases logic-passes
+rows = [l.split() for l in open(sys.argv[1])]
+i = next((k for k, r in enumerate(rows) if int(r[7]) > 0), None)
+bad = []
+if i is None or i == 0:
+    bad.append("no frame saw the click's release (or the first one did)")
+else:
+    open_h, h = float(rows[0][6]), float(rows[i][6])
+    print("Settings %.0f px high before the click; the frame that saw its release (%d of %d): "
+          "%.0f px, %s logic-only passes so far" % (open_h, i, len(rows), h, rows[i][8]))
+    if any(float(r[6]) != open_h for r in rows[:i]):
+        bad.append("the panel changed before the click was seen")
+    if not h < open_h / 4:
+        bad.append("the frame that saw the click does not show the panel collapsed")
+    if any(float(r[6]) != h for r in rows[i:]):
+        bad.append("the panel did not stay collapsed after the click (toggled more than once?)")
+    if len(rows) - i < 3:
+        bad.append("too few frames after the click")
+for m in bad:
+    print(m)
+sys.exit(1 if bad else 0)
+PY
+  fail "a panel click did not show in the frame that saw it"
 
 echo "test_view_slice: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -1,7 +1,9 @@
 /* dirt_session_advance (dirt/session.h): a sample split into pieces over
  * many calls gives the pixels of dirt_session_add_samples bit for bit, in
- * the path tracers (embree adds a whole sample a call: its image equals
- * 1 + 1 + 1 samples of add_samples), with the image in chunks too; while a sample is in progress the
+ * the path tracers and in embree (pieces of tiles; its progressive image
+ * is a mean of means, so it equals 1 + 1 + 1 samples of add_samples), with
+ * the image in chunks too, and embree at a size whose last tiles are
+ * partial; while a sample is in progress the
  * image, the display texture and the sample count are those of the
  * completed samples; add_samples completes the sample in progress; a
  * restart drops it; a bad budget is refused. */
@@ -52,9 +54,12 @@ static dirt_image *copy_image(const dirt_image *img)
 static bool display_is(dirt_session *s, const dirt_image *img)
 {
     GLuint tex = dirt_session_display_texture(s);
-    float *px = malloc(sizeof(float) * 4 * W * H);
-    bool ok = tex && px && img && gl_texture_read_rgba32f(tex, W, H, px) &&
-              memcmp(px, img->rgba, sizeof(float) * 4 * W * H) == 0;
+    if (!img)
+        return false;
+    size_t n = (size_t)img->width * img->height;
+    float *px = malloc(sizeof(float) * 4 * n);
+    bool ok = tex && px && gl_texture_read_rgba32f(tex, img->width, img->height, px) &&
+              memcmp(px, img->rgba, sizeof(float) * 4 * n) == 0;
     free(px);
     return ok;
 }
@@ -127,9 +132,10 @@ static void check_pieces(dirt_gpu *gpu, const dirt_scene *scene, const dirt_sess
 
 /* Mixed: pieces, then add_samples(2) completes the one in progress and adds
  * one; then 5 ms slices to SPP. A restart (set_camera) in a sample's midst
- * drops it: 0 samples, no part, then SPP at once equal `ref` again. */
+ * drops it: 0 samples, no part, then SPP at once (`one_by_one`: 1 + 1 + 1)
+ * equal `ref` again. */
 static void check_mixed(dirt_gpu *gpu, const dirt_scene *scene, const dirt_session_opts *o,
-                        const dirt_image *ref, const char *what)
+                        const dirt_image *ref, bool one_by_one, const char *what)
 {
     dirt_session *s = dirt_session_create(gpu, scene, o);
     CHECK(s != NULL);
@@ -151,7 +157,8 @@ static void check_mixed(dirt_gpu *gpu, const dirt_scene *scene, const dirt_sessi
     CHECK(dirt_session_sample_part(s) > 0);
     CHECK(dirt_session_set_camera(s, DIRT_CAMERA_DEFAULT, 0, NULL));
     CHECK(dirt_session_samples(s) == 0 && dirt_session_sample_part(s) == 0);
-    CHECK(dirt_session_add_samples(s, SPP, NULL, NULL));
+    for (int i = 0; i < (one_by_one ? SPP : 1); i++)
+        CHECK(dirt_session_add_samples(s, one_by_one ? 1 : SPP, NULL, NULL));
     CHECK_MSG(same_image(ref, dirt_session_image(s)), "%s: after a restart in a sample's midst",
               what);
     dirt_session_destroy(s);
@@ -160,10 +167,11 @@ static void check_mixed(dirt_gpu *gpu, const dirt_scene *scene, const dirt_sessi
 static void check_engine(dirt_gpu *gpu, const dirt_scene *scene, dirt_session_opts o, bool split,
                          const char *what)
 {
-    dirt_image *ref = reference(gpu, scene, &o, o.engine == DIRT_ENGINE_EMBREE);
+    bool embree = o.engine == DIRT_ENGINE_EMBREE;
+    dirt_image *ref = reference(gpu, scene, &o, embree);
     check_pieces(gpu, scene, &o, ref, split, what);
     if (split)
-        check_mixed(gpu, scene, &o, ref, what);
+        check_mixed(gpu, scene, &o, ref, embree, what);
     dirt_image_destroy(ref);
 }
 
@@ -188,9 +196,14 @@ int main(void)
     dirt_session_opts vis = dirt;
     vis.direct_visibility = true;
     check_engine(gpu, scene, vis, false, "dirt, direct visibility");
-    check_engine(gpu, scene, (dirt_session_opts){.engine = DIRT_ENGINE_EMBREE, .width = W,
-                                                 .height = H, .bounces = 2, .seed = 3},
-                 false, "embree");
+    /* Embree in pieces of 16 x 16 tiles: 48 x 36 is 3 x 3 tiles, the last
+     * row 4 pixels high; 53 x 36 has a partial last column too. */
+    dirt_session_opts embree = {.engine = DIRT_ENGINE_EMBREE, .width = W, .height = H,
+                                .bounces = 2, .seed = 3};
+    check_engine(gpu, scene, embree, true, "embree");
+    embree.width = 53;
+    embree.seed = 9;
+    check_engine(gpu, scene, embree, true, "embree, 53 x 36");
     /* A bad budget. */
     dirt_session *s = dirt_session_create(gpu, scene, &dirt);
     CHECK(s && !dirt_session_advance(s, -1, NULL) &&
