@@ -195,34 +195,34 @@ static void test_hits(dirt_gpu *gpu, const char *label, dirt_scene *scene, const
                     CHECK(ts[k].aborted == 0);
                 }
                 for (int k = 1; k < 3; k++) {
-                size_t differ = 0, hit = 0, on_large = 0;
-                for (size_t i = 0; i < cnt; i++) {
-                    const dirt_hit *a = &hits[0][i], *b = &hits[k][i];
-                    bool same = a->prim == b->prim;
-                    /* any-hit rays: the same answer (occluded or not) */
-                    if (t != DIRT_RAY_VISIBILITY && a->prim != DIRT_HIT_NONE)
-                        same = same && !memcmp(&a->t, &b->t, sizeof(float)) &&
-                               !memcmp(&a->u, &b->u, sizeof(float)) &&
-                               !memcmp(&a->v, &b->v, sizeof(float));
-                    if (t == DIRT_RAY_VISIBILITY)
-                        same = (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
-                    differ += !same;
-                    hit += b->prim != DIRT_HIT_NONE;
-                    const dirt_ads_stats *st = dirt_ads_get_stats(ads[1]);
-                    for (int j = 0; j < st->num_large; j++)
-                        on_large += b->prim == st->large[j];
-                    if (!same && getenv("DIRT_TEST_VERBOSE"))
-                        fprintf(stderr, "\n  ray %zu: listed prim %u t %.9g, large prim %u t %.9g",
-                                i, a->prim, a->t, b->prim, b->t);
-                }
-                fprintf(stderr, " | %s%s %zu/%zu hit (%zu on large), %zu differ",
-                        dirt_ray_type_names[t], k == 2 ? " (grid)" : "", hit, cnt, on_large,
-                        differ);
-                CHECK_MSG(differ == 0, "%s %s S=%d %s%s: %zu of %zu rays differ", label,
-                          mode ? "single" : "cube+camera", s, dirt_ray_type_names[t],
-                          k == 2 ? " through the large primitives' grid" : "", differ, cnt);
-                if (t != DIRT_RAY_VISIBILITY)
-                    CHECK(on_large > 0);
+                    size_t differ = 0, hit = 0, on_large = 0;
+                    for (size_t i = 0; i < cnt; i++) {
+                        const dirt_hit *a = &hits[0][i], *b = &hits[k][i];
+                        bool same = a->prim == b->prim;
+                        /* any-hit rays: the same answer (occluded or not) */
+                        if (t != DIRT_RAY_VISIBILITY && a->prim != DIRT_HIT_NONE)
+                            same = same && !memcmp(&a->t, &b->t, sizeof(float)) &&
+                                   !memcmp(&a->u, &b->u, sizeof(float)) &&
+                                   !memcmp(&a->v, &b->v, sizeof(float));
+                        if (t == DIRT_RAY_VISIBILITY)
+                            same = (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
+                        differ += !same;
+                        hit += b->prim != DIRT_HIT_NONE;
+                        const dirt_ads_stats *st = dirt_ads_get_stats(ads[1]);
+                        for (int j = 0; j < st->num_large; j++)
+                            on_large += b->prim == st->large[j];
+                        if (!same && getenv("DIRT_TEST_VERBOSE"))
+                            fprintf(stderr, "\n  ray %zu: listed prim %u t %.9g, large prim "
+                                    "%u t %.9g", i, a->prim, a->t, b->prim, b->t);
+                    }
+                    fprintf(stderr, " | %s%s %zu/%zu hit (%zu on large), %zu differ",
+                            dirt_ray_type_names[t], k == 2 ? " (grid)" : "", hit, cnt, on_large,
+                            differ);
+                    CHECK_MSG(differ == 0, "%s %s S=%d %s%s: %zu of %zu rays differ", label,
+                              mode ? "single" : "cube+camera", s, dirt_ray_type_names[t],
+                              k == 2 ? " through the large primitives' grid" : "", differ, cnt);
+                    if (t != DIRT_RAY_VISIBILITY)
+                        CHECK(on_large > 0);
                 }
             }
             fprintf(stderr, "\n");

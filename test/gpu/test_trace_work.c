@@ -460,7 +460,8 @@ static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *
                 tests += w[i].triangle_tests;
             }
             CHECK_MSG(differ == 0, "%s large %s %s: %zu of %zu hits differ with counting",
-                      k & 1 ? "single" : "cube+camera", k >> 1 == 1 ? "off" : k >> 1 ? "grid" : "on",
+                      k & 1 ? "single" : "cube+camera",
+                      k >> 1 == 1 ? "off" : k >> 1 ? "grid" : "on",
                       dirt_ray_type_names[t], differ, cnt);
             CHECK(tests > 0);
         }
