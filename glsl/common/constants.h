@@ -175,9 +175,16 @@
 #define DIRT_BIND_SORT 40              /* uint offset[DIRT_SORT_BUCKETS], uint key[rays] */
 #define DIRT_BIND_SORT_LAST 40
 
+/* The DIRT structure's grid of large primitives (common/layout.h; only with
+ * dirt_ads_opts.large_grid; the ADS range is full). */
+#define DIRT_BIND_LARGE_FIRST 41
+#define DIRT_BIND_LARGE_CELLS 41       /* uvec2[entries]: float bits of (zmin, zmax) per large
+                                          primitive and grid cell */
+#define DIRT_BIND_LARGE_LAST 41
+
 /* Every binding point lies in [0, DIRT_BIND_LAST]; the GPU test checks it
  * against GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the context. */
-#define DIRT_BIND_LAST DIRT_BIND_SORT_LAST
+#define DIRT_BIND_LAST DIRT_BIND_LARGE_LAST
 
 /* The ranges are non-empty, ascending and disjoint. */
 #if DIRT_BIND_SHARED_FIRST != 0 || DIRT_BIND_SHARED_LAST < DIRT_BIND_SHARED_FIRST || \
@@ -193,7 +200,8 @@
     DIRT_BIND_PREVIEW_LAST < DIRT_BIND_PREVIEW_FIRST || \
     DIRT_BIND_TEST_FIRST <= DIRT_BIND_PREVIEW_LAST || DIRT_BIND_TEST_LAST < DIRT_BIND_TEST_FIRST || \
     DIRT_BIND_WORK_FIRST <= DIRT_BIND_TEST_LAST || DIRT_BIND_WORK_LAST < DIRT_BIND_WORK_FIRST || \
-    DIRT_BIND_SORT_FIRST <= DIRT_BIND_WORK_LAST || DIRT_BIND_SORT_LAST < DIRT_BIND_SORT_FIRST
+    DIRT_BIND_SORT_FIRST <= DIRT_BIND_WORK_LAST || DIRT_BIND_SORT_LAST < DIRT_BIND_SORT_FIRST || \
+    DIRT_BIND_LARGE_FIRST <= DIRT_BIND_SORT_LAST || DIRT_BIND_LARGE_LAST < DIRT_BIND_LARGE_FIRST
 #error "common/constants.h: storage-buffer binding ranges overlap or are out of order"
 #endif
 

@@ -88,10 +88,30 @@ struct dirt_gpu_view {
 
 /* Large primitives (doc/dirt-trace.md, "Large primitives"): at most this
  * many primitives are kept out of the tiles' lists and tested by every ray
- * instead. */
+ * instead, or through the large primitives' grid (below) where the
+ * structure has one (dirt_ads_opts.large_grid). */
 #define DIRT_GPU_MAX_LARGE 16
 
-/* Build parameters (112 bytes). */
+/* The large primitives' grid (doc/dirt-trace.md, "The large primitives'
+ * grid"; only with dirt_ads_opts.large_grid, else large_grid[] is zero and
+ * nothing is bound), at DIRT_BIND_LARGE_CELLS: per view v, the cells of pyramid level
+ * L = params.large_grid[v].x & 0xFFFF (the first level with at most
+ * DIRT_LARGE_GRID cells per side; cell (cx, cy) is the level-0 tiles
+ * [cx 2^L, (cx + 1) 2^L) x [cy 2^L, (cy + 1) 2^L)), zw cells per side
+ * (ceil(tiles / 2^L)); entry large_grid[v].y + (cy zx + cx) nl + k (nl =
+ * params.cand.w) holds the float bits of (zmin, zmax): a conservative
+ * eye-depth range of large primitive k in the cell's frustum (the clipped
+ * triangle's, its planes moved out by DIRT_LARGE_CELL_EPS cell widths and
+ * the range widened by DIRT_LARGE_DEPTH_EPS times the view's far depth),
+ * (DIRT_DEPTH_CLEAR_MIN, _MAX) where it misses the cell; bit 16 + k of
+ * large_grid[v].x is set when primitive k meets some cell of the view. The
+ * trace tests a
+ * large primitive only in cells whose range the ray's depth span meets. */
+#define DIRT_LARGE_GRID 8
+#define DIRT_LARGE_CELL_EPS 1e-2
+#define DIRT_LARGE_DEPTH_EPS 1e-5
+
+/* Build parameters (224 bytes). */
 struct dirt_gpu_ads_params {
     DIRT_IV4 config;     /* views, tile size S, buckets B, tiles */
     DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas width, atlas height */
@@ -100,6 +120,9 @@ struct dirt_gpu_ads_params {
                             primitives, w large primitives */
     DIRT_UV4 large[DIRT_GPU_MAX_LARGE / 4]; /* the large primitives' ids, ascending,
                             cand.w of them; DIRT_LIST_END in the unused slots */
+    DIRT_IV4 large_grid[DIRT_GPU_MAX_VIEWS]; /* per view: x grid level | primitives
+                            met << 16, y first entry at DIRT_BIND_LARGE_CELLS,
+                            zw cells per side */
 };
 
 /* Counters of the build and the trace (48 bytes). */

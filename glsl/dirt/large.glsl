@@ -1,5 +1,6 @@
 // Large primitives (doc/dirt-trace.md, "Large primitives"): the build leaves
-// them out of the tiles' lists and the trace tests them with every ray.
+// them out of the tiles' lists and the trace tests them with every ray, or
+// through their grid (common/layout.h) where the structure has one.
 // Needs the build parameters bound as `params` (dirt_gpu_ads_params), whose
 // unused slots hold DIRT_LIST_END, never a primitive id.
 #ifndef DIRT_LARGE_GLSL

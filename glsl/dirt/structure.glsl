@@ -7,7 +7,9 @@
 // part (RGBA32UI, RG32UI, R32UI). A shader that only reads or only writes an
 // array defines DIRT_<ARRAY>_READONLY or _WRITEONLY first (the storage
 // block's qualifier, as it always was; only the accessors it may use are
-// declared). Accessors by record index: dirt_candidate(i),
+// declared); one that does not use an array at all defines DIRT_<ARRAY>_NONE
+// (candidates only: a shader's storage blocks are limited, 16 on llvmpipe).
+// Accessors by record index: dirt_candidate(i),
 // dirt_candidate_store(i, c), dirt_candidate_store_zw(i, zw); dirt_node(i),
 // dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v) (atomic).
 // Needs common/layout.h.
@@ -49,6 +51,7 @@
 #endif
 
 // ---- candidates ----
+#ifndef DIRT_CANDIDATES_NONE
 #if DIRT_SPLIT_CANDIDATES == 0
 layout(std430, binding = DIRT_BIND_CANDIDATES) DIRT_CANDIDATES_QUAL buffer Candidates {
     uvec4 candidates[];
@@ -96,6 +99,8 @@ void dirt_candidate_store_zw(uint i, uvec2 zw)
 }
 #endif
 #endif
+
+#endif // DIRT_CANDIDATES_NONE
 
 // ---- id nodes ----
 #if DIRT_SPLIT_NODES == 0

@@ -20,6 +20,12 @@
 // some; dirt/large.glsl: in no list) are tested first, with the ray's whole
 // segment; such a hit counts where the ray is inside a view (where a listed
 // primitive's hit would be found), and the march then runs up to it.
+// With their grid (built with DIRT_TRACE_LARGE_GRID as well, when the
+// structure has one: dirt_ads_opts.large_grid) they are tested per piece
+// instead, before its march: a march over the view's large primitives' grid
+// (common/layout.h) tests each one at most once per ray, in the first cell
+// whose depth range for it the ray's depth span meets; the acceptance rule
+// is the same, so the hits are the same bit for bit.
 // Alpha (built with DIRT_TRACE_ALPHA, for scenes with MASK or BLEND
 // materials: integrator/alpha.glsl, u_alpha): a candidate of such a material
 // that the alpha test rejects is not a hit, and the walk goes on as if it
@@ -28,6 +34,9 @@
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
 // work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
 // tests, large primitives' included) of ray i.
+#if defined(DIRT_TRACE_LARGE_GRID) && !defined(DIRT_TRACE_LARGE)
+#define DIRT_TRACE_LARGE 1 // (the grid is the large primitives')
+#endif
 #include "common/layout.h"
 #include "common/ray_batch.glsl"
 #ifdef DIRT_TRACE_ALPHA
@@ -47,7 +56,11 @@ layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
 #include "common/depth.glsl"
 #define DIRT_HEADS_READONLY
 #define DIRT_NODES_READONLY
+#ifdef DIRT_TRACE_LARGE_GRID
+#define DIRT_CANDIDATES_NONE // (not read: a storage block fewer for the grid's)
+#else
 #define DIRT_CANDIDATES_READONLY
+#endif
 #include "dirt/structure.glsl"
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
@@ -61,6 +74,11 @@ layout(std430, binding = DIRT_BIND_HITS) writeonly buffer Hits {
 layout(std430, binding = DIRT_BIND_HIT_HEADS) buffer HitHeads {
     uint hit_heads[];
 };
+#ifdef DIRT_TRACE_LARGE_GRID
+layout(std430, binding = DIRT_BIND_LARGE_CELLS) readonly buffer LargeCells {
+    uvec2 large_cells[];
+};
+#endif
 #ifdef DIRT_TRACE_COUNT
 layout(std430, binding = DIRT_BIND_WORK) writeonly buffer Work {
     uvec4 work[];
@@ -414,6 +432,119 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
     return false;
 }
 
+// The grid's trace (DIRT_TRACE_LARGE_GRID): the views the ray passes
+// through are globals here (main; locals without the grid): camera view
+// first, then by entry parameter; enter / leave: the clipped segment in
+// view order[j]; g_views of them.
+#ifdef DIRT_TRACE_LARGE_GRID
+int g_views = 0;
+int order[DIRT_GPU_MAX_VIEWS];
+float enter[DIRT_GPU_MAX_VIEWS];
+float leave[DIRT_GPU_MAX_VIEWS];
+
+// The large primitives tested so far (bit k: params.large slot k). One test
+// per ray is enough: a miss stays a miss, a hit outside every view's segment
+// stays outside, and one at or beyond tmax stays beyond it (tmax only
+// shrinks; see g_never).
+uint g_large_tested = 0u;
+
+// Tests large primitive k (slot) with the ray's whole segment; a hit counts
+// when it lies in some view's segment, its view the first of those in the
+// march order. True when it became the best hit.
+bool test_large(ray_setup rs, uint k, float tmin, inout best_hit best)
+{
+    g_large_tested |= 1u << k;
+    uint p = params.large[k >> 2u][k & 3u];
+    float tmax = best.prim != DIRT_NO_HIT && p < best.prim
+                     ? uintBitsToFloat(floatBitsToUint(best.t) + 1u) : best.t;
+    float th, u, w;
+    COUNT_WORK(w);
+    if (!intersect(rs, dirt_vertex_pos_at(3u * p), dirt_vertex_pos_at(3u * p + 1u),
+                   dirt_vertex_pos_at(3u * p + 2u), tmin, tmax, th, u, w))
+        return false;
+    int hv = -1;
+    for (int j = 0; j < g_views && hv < 0; j++) {
+        if (enter[j] <= th && th <= leave[j])
+            hv = order[j];
+    }
+    if (hv < 0 || !alpha_accept(p, u, w))
+        return false;
+    best.t = th;
+    best.u = u;
+    best.v = w;
+    best.prim = p;
+    best.view = hv;
+    return true;
+}
+
+// Marches the ray through view `view`'s large primitives' grid over
+// [t0, t1] (a piece of the ray, before its march through the tiles) and
+// tests every large primitive not tested yet whose depth range in a cell
+// the ray's depth span there meets. Any hit of a large primitive in this
+// piece lies in one of the cells the march passes, inside that cell's
+// range (the build widened both), so it is found here; hits beyond the
+// piece are found by later pieces or lie outside every view. The cells are
+// walked the way trace_view walks a level: exits solved in clip space, no
+// gaps, a tile bound per axis.
+void large_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0, float t1,
+                inout best_hit best)
+{
+    uint nl = params.cand.w;
+    ivec4 g = params.large_grid[view];
+    int L = g.x & 0xFFFF;
+    uint met = uint(g.x) >> 16u; // the large primitives this view's cells hold
+    dirt_gpu_view v = views[view];
+    mat4 vp = view_matrix(v);
+    vec4 co = vp * vec4(org, 1.0), cd = vp * vec4(dir, 0.0);
+    int S = params.config.y;
+    vec2 tiles = vec2(v.size.xy) / float(S);
+    vec2 motion = cd.xy * co.w - co.xy * cd.w;
+    bvec2 back = lessThan(motion, vec2(0.0));
+    ivec2 bound = mix(ivec2(-1), v.size.zw, back);
+    bool tail = false;
+    float t = t0;
+    for (int steps = 0; steps < MAX_STEPS; steps++) {
+        if (t > best.t || (met & ~g_large_tested) == 0u ||
+            (u_any_hit != 0 && best.prim != DIRT_NO_HIT))
+            return;
+        COUNT_WORK(y);
+        vec4 c = co + t * cd;
+        vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
+        ivec2 tile = ivec2(mix(floor(tc), ceil(tc) - 1.0, back));
+        tile = mix(max(tile, bound), min(tile, bound), back);
+        tail = tail || any(mix(greaterThanEqual(bound, v.size.zw), lessThan(bound, ivec2(0)), back));
+        tile = clamp(tile, ivec2(0), v.size.zw - 1);
+        bound = tile;
+        ivec2 cell = clamp(tile >> L, ivec2(0), g.zw - 1);
+        ivec2 plo = (cell << L) * S, phi = min(((cell + 1) << L) * S, v.size.xy);
+        vec2 sz = vec2(v.size.xy);
+        vec2 nlo = -1.0 + 2.0 * vec2(plo) / sz, nhi = -1.0 + 2.0 * vec2(phi) / sz;
+        float tx = exit_t(co, cd, 0, t, motion.x, nlo.x, nhi.x);
+        float ty = exit_t(co, cd, 1, t, motion.y, nlo.y, nhi.y);
+        float texit = tail ? t1 : max(min(min(tx, ty), t1), t);
+        float wa = co.w + t * cd.w, wb = co.w + texit * cd.w;
+        float wlo = min(wa, wb), whi = max(wa, wb);
+        uint e = uint(g.y) + uint(cell.y * g.z + cell.x) * nl;
+        for (uint k = 0u; k < nl; k++) {
+            if ((g_large_tested & (1u << k)) != 0u)
+                continue;
+            uvec2 r = large_cells[e + k];
+            if (whi < uintBitsToFloat(r.x) || wlo > uintBitsToFloat(r.y))
+                continue;
+            if (test_large(rs, k, tmin, best) && u_any_hit != 0)
+                return;
+        }
+        if (texit >= t1)
+            return;
+        ivec2 past = mix((cell + 1) << L, (cell << L) - 1, back);
+        bvec2 left = bvec2(tx <= texit, ty <= texit);
+        bound = mix(bound, past, left);
+        t = texit;
+    }
+    g_cut = true;
+}
+#endif
+
 void main()
 {
     uint i = gl_GlobalInvocationID.x;
@@ -441,9 +572,11 @@ void main()
     // Views and their entry parameters; camera view (index 0 when present)
     // first, the rest by entry parameter (insertion sort, at most 7).
     int n = params.config.x;
+#ifndef DIRT_TRACE_LARGE_GRID
     int order[DIRT_GPU_MAX_VIEWS];
     float enter[DIRT_GPU_MAX_VIEWS];
     float leave[DIRT_GPU_MAX_VIEWS];
+#endif
     int m = 0;
     for (int k = 0; k < n; k++) {
         dirt_gpu_view v = views[k];
@@ -464,7 +597,9 @@ void main()
         enter[j] = t0;
         leave[j] = t1;
     }
-#ifdef DIRT_TRACE_LARGE
+#ifdef DIRT_TRACE_LARGE_GRID
+    g_views = m;
+#elif defined(DIRT_TRACE_LARGE)
     // The large primitives; a hit's view is the first in the order above
     // whose segment holds it.
     uint nl = params.cand.w;
@@ -520,6 +655,16 @@ void main()
             if ((cur < 0 || j < cur) && enter[j] > t)
                 end = min(end, enter[j]);
         }
+#ifdef DIRT_TRACE_LARGE_GRID
+        // The large primitives this piece meets first (the march then stops
+        // at their hit).
+        if (cur >= 0)
+            large_view(rs, org, dir, order[cur], tmin, t, min(end, best.t), best);
+        if (u_any_hit != 0 && best.prim != DIRT_NO_HIT) {
+            done = true;
+            break;
+        }
+#endif
         if (cur >= 0 && !trace_view(rs, org, dir, order[cur], tmin, t, min(end, best.t), best))
             aborted = true;
         if (!(end > t) || end >= 1e30) {

@@ -39,6 +39,7 @@ typedef struct options {
     dbl_list thickness, time;   /* thickness < 0: a fraction of the diagonal */
     int warmup, repeat, agree_w, agree_h, face;
     int large;                  /* --large: 0 none, else up to that many */
+    bool large_grid;            /* --large-grid: DIRT's large primitives through their grid */
     bool quality, images, quiet;
     bool count_work;            /* --count-work: each row's work per ray type */
     uint32_t seed;
@@ -108,6 +109,7 @@ static bool from_app(const app_opts *a, options *o)
     o->agree_h = a->agree_res[1];
     o->face = a->s.face_size;
     o->large = (int)a->large;
+    o->large_grid = a->s.large_grid;
     o->quality = !a->no_quality;
     o->count_work = a->s.count_work;
     o->images = a->images;
@@ -167,6 +169,7 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
 
 static int g_face; /* --face: one value for the whole sweep */
 static int g_large; /* --dirt-large: one value for the whole sweep */
+static bool g_large_grid; /* --large-grid: likewise */
 
 /* The library's messages, printed as its default sink prints them; the
  * first error since the configuration began is kept for the row's reason. */
@@ -282,7 +285,7 @@ static dirt_session_opts session_opts(const scene_info *si, const config *c, enu
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
-        .large = g_large ? g_large : -1,
+        .large = g_large ? g_large : -1, .large_grid = g_large_grid,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
         .bounces = c->bounces, .seed = seed, .env = si->env,
@@ -493,6 +496,8 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
              si->path, c->w, c->h, o->face, view_names[c->views], c->time, c->spp, c->bounces, c->tile,
              c->dbuckets, o->large, c->mbuckets, c->thickness, march, o->warmup,
              o->repeat, o->quality ? 1 : 0, o->seed, si->key);
+    if (o->large_grid) /* (ids without it as before: earlier runs' rows still match) */
+        snprintf(buf + strlen(buf), n - strlen(buf), "|G1");
 }
 
 static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
@@ -569,6 +574,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "dirt_tile_size", c->tile);
     cJSON_AddNumberToObject(set, "dirt_buckets", c->dbuckets);
     cJSON_AddNumberToObject(set, "dirt_large", o->large);
+    cJSON_AddBoolToObject(set, "dirt_large_grid", o->large_grid);
     cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
     cJSON_AddBoolToObject(set, "mmrt_thickness_default", th == 0);
@@ -696,6 +702,7 @@ int main(int argc, char **argv)
     }
     g_face = o.face;
     g_large = o.large;
+    g_large_grid = o.large_grid;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");

@@ -194,8 +194,14 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "doc/dirt-build.md): raster, compute, or auto: compute on a software renderer, raster "
         "on a GPU, as measured", "auto", NULL},
     [APP_OPT_LARGE] = {APP_OPT_LARGE, NULL, "--large", "--dirt-large", "N", 'l', OFF(large), 0,
-        16, NULL, "at most N of the largest triangles are tested by every ray instead of "
-        "listed in DIRT's tiles (doc/dirt-trace.md; 0 = none)", "16", NULL},
+        16, NULL, "at most N of the largest triangles are kept out of DIRT's tiles and "
+        "tested by every ray (doc/dirt-trace.md; 0 = none)", "16", NULL},
+    [APP_OPT_LARGE_GRID] = {APP_OPT_LARGE_GRID, NULL, "--large-grid", NULL, NULL, 'F',
+        OFF(s.large_grid), 0, 0, NULL, "test the large primitives through a coarse grid of "
+        "their own (per view at most 8x8 cells, each with their depth ranges there; "
+        "doc/dirt-trace.md): far fewer exact triangle tests per ray (default scene 12.8 -> 2.9 "
+        "per camera ray), more march steps; on llvmpipe the trace was 1.6-1.9x slower, as "
+        "every lane pays for the cells' walk. The same hits and image", NULL, NULL},
     [APP_OPT_HIZ_TOP] = {APP_OPT_HIZ_TOP, NULL, "--hiz-top", NULL, "L", 'l', OFF(hiz_top), -1, 15,
         NULL, "highest Hi-Z level the march starts from; 0 = tiles only, no Hi-Z; -1 = the "
         "pyramid's top", "-1", NULL},

@@ -165,6 +165,8 @@ void view_render_args(const viewer *v, char *buf, size_t size)
         ADD(" --build %s", app_build_names[o->build]);
     if (o->engine == DIRT_ENGINE_DIRT && o->large && o->large != DIRT_ADS_MAX_LARGE)
         ADD(" --large %d", o->large < 0 ? 0 : o->large);
+    if (o->engine == DIRT_ENGINE_DIRT && o->large_grid)
+        ADD(" --large-grid");
     if (o->hiz_levels)
         ADD(" --hiz-top %d", o->hiz_levels - 1);
     if (o->fetch)

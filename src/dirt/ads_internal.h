@@ -62,14 +62,24 @@ struct dirt_ads {
     struct dirt_gpu_vertex *staging;
     size_t staging_cap;
     dirt_ads_stats stats;
+    /* the large primitives' grid (common/layout.h, DIRT_BIND_LARGE_CELLS;
+     * only with opts.large_grid, else all zero, no entries, no buffer):
+     * per view (level, first entry, cells x, cells y), the entries' staging
+     * copy and the GL buffer */
+    struct dirt_i4 large_grid[DIRT_GPU_MAX_VIEWS];
+    uint32_t (*large_staging)[2];
+    size_t large_entries, large_staging_cap;
+    GLuint large_cells;
+    size_t large_cells_size;
     /* trace */
-    /* The trace's builds, [alpha | large << 1 | count << 2]: DIRT_TRACE_ALPHA
-     * (alpha tests), DIRT_TRACE_LARGE (large primitives; llvmpipe runs a
-     * loop's body once even when no invocation enters it, so the build
-     * without them is kept for structures that have none), DIRT_TRACE_COUNT
-     * (work counters). [0] made at creation (and for each build's layouts),
-     * the others on first use. */
-    gl_split_program prog_trace[8];
+    /* The trace's builds, [alpha | large << 1 | count << 2 | grid << 3]:
+     * DIRT_TRACE_ALPHA (alpha tests), DIRT_TRACE_LARGE (large primitives;
+     * llvmpipe runs a loop's body once even when no invocation enters it, so
+     * the build without them is kept for structures that have none),
+     * DIRT_TRACE_COUNT (work counters), DIRT_TRACE_LARGE_GRID (with large:
+     * through their grid, opts.large_grid). [0] made at creation (and for
+     * each build's layouts), the others on first use. */
+    gl_split_program prog_trace[16];
     GLuint rays, hits, work;
     size_t rays_size, hits_size, work_size;
     gl_timer trace_timer;

@@ -264,7 +264,7 @@ void dirt_ads_destroy(dirt_ads *a)
                                  &a->prog_vis_resolve};
     for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
         gl_split_program_destroy(progs[i]);
-    for (int k = 0; k < 8; k++)
+    for (size_t k = 0; k < sizeof(a->prog_trace) / sizeof(a->prog_trace[0]); k++)
         gl_split_program_destroy(&a->prog_trace[k]);
     gl_split_program_destroy(&a->prog_mip);
     if (a->vis_vao)
@@ -287,6 +287,8 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_buffer_destroy(&a->rays);
     gl_buffer_destroy(&a->hits);
     gl_buffer_destroy(&a->work);
+    gl_buffer_destroy(&a->large_cells);
+    free(a->large_staging);
     gl_timer_release(&a->trace_timer);
     fg_destroy(a->graph);
     fg_destroy(a->fill);
@@ -350,12 +352,104 @@ static void upload_params(dirt_ads *a)
         .cand = {(unsigned)a->cand_capacity, (unsigned)a->rec_capacity,
                  (unsigned)a->num_primitives, (unsigned)a->stats.num_large},
     };
+    for (int v = 0; v < DIRT_GPU_MAX_VIEWS; v++)
+        p.large_grid[v] = a->large_grid[v];
     uint32_t large[DIRT_GPU_MAX_LARGE];
     for (int k = 0; k < DIRT_GPU_MAX_LARGE; k++)
         large[k] = k < a->stats.num_large ? a->stats.large[k] : DIRT_LIST_END;
     for (int q = 0; q < DIRT_GPU_MAX_LARGE / 4; q++)
         p.large[q] = (dirt_u4){large[4 * q], large[4 * q + 1], large[4 * q + 2], large[4 * q + 3]};
     glNamedBufferSubData(a->params, 0, sizeof(p), &p);
+}
+
+/* The float nearest below / above the double x (a range rounded outwards). */
+static float float_below(double x)
+{
+    float f = (float)x;
+    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+static float float_above(double x)
+{
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* The large primitives' grid (common/layout.h, "large primitives' grid"):
+ * per view the first pyramid level of at most DIRT_LARGE_GRID cells per
+ * side, and per cell and large primitive the depth range of the triangle
+ * clipped to the cell's frustum (double precision, planes moved out by
+ * DIRT_LARGE_CELL_EPS cell widths), widened by DIRT_LARGE_DEPTH_EPS times
+ * the view's far depth and rounded outwards, so that any hit of the
+ * primitive the trace can accept lies in the range of the cell its march is
+ * in. Computed on the CPU from the frame's positions (at most 16
+ * primitives) and uploaded; false (logged) on failure. */
+static bool build_large_grid(dirt_ads *a, const dirt_frame *f)
+{
+    int nl = a->stats.num_large;
+    size_t entries = 0;
+    memset(a->large_grid, 0, sizeof(a->large_grid));
+    a->large_entries = 0;
+    if (!a->opts.large_grid || nl == 0)
+        return true; /* (no grid: no entries, no buffer; the trace has none) */
+    for (int v = 0; nl > 0 && v < a->set.count; v++) {
+        const dirt_view *vw = &a->set.views[v];
+        int L = 0;
+        while (((vw->tiles_x + (1 << L) - 1) >> L) > DIRT_LARGE_GRID ||
+               ((vw->tiles_y + (1 << L) - 1) >> L) > DIRT_LARGE_GRID)
+            L++;
+        int nx = (vw->tiles_x + (1 << L) - 1) >> L, ny = (vw->tiles_y + (1 << L) - 1) >> L;
+        a->large_grid[v] = (struct dirt_i4){L, (int)entries, nx, ny};
+        entries += (size_t)nx * (size_t)ny * (size_t)nl;
+    }
+    a->large_entries = entries;
+    if (entries + 1 > a->large_staging_cap) {
+        uint32_t(*s)[2] = realloc(a->large_staging, (entries + 1) * sizeof(*s));
+        if (!s) {
+            DIRT_ERROR("out of memory for the large primitives' grid");
+            return false;
+        }
+        a->large_staging = s;
+        a->large_staging_cap = entries + 1;
+    }
+    for (size_t i = 0; i <= entries; i++) {
+        a->large_staging[i][0] = DIRT_DEPTH_CLEAR_MIN;
+        a->large_staging[i][1] = DIRT_DEPTH_CLEAR_MAX;
+    }
+    for (int v = 0; nl > 0 && v < a->set.count; v++) {
+        const dirt_view *vw = &a->set.views[v];
+        struct dirt_i4 g = a->large_grid[v];
+        int cs = a->set.tile_size << (g.x & 0xFFFF); /* a cell's pixels per side */
+        double margin = DIRT_LARGE_DEPTH_EPS * vw->zfar;
+        for (int k = 0; k < nl; k++) {
+            float p[3][3];
+            for (int c = 0; c < 3; c++)
+                memcpy(p[c], f->position[3 * (size_t)a->stats.large[k] + c], sizeof(p[c]));
+            int r[4];
+            if (!dirt_triangle_tile_rect(vw, cs, p, 1.0, r))
+                continue;
+            for (int cy = r[2]; cy <= r[3] && cy < g.w; cy++) {
+                for (int cx = r[0]; cx <= r[1] && cx < g.z; cx++) {
+                    double lo, hi;
+                    if (!dirt_clip_triangle_tile(vw, cs, cx, cy, p, DIRT_LARGE_CELL_EPS, &lo, &hi))
+                        continue;
+                    float flo = float_below(lo - margin), fhi = float_above(hi + margin);
+                    uint32_t *e = a->large_staging[(size_t)g.y + ((size_t)cy * (size_t)g.z +
+                                                                  (size_t)cx) * (size_t)nl + (size_t)k];
+                    memcpy(&e[0], &flo, 4);
+                    memcpy(&e[1], &fhi, 4);
+                    a->large_grid[v].x = (int)((unsigned)a->large_grid[v].x | 1u << (16 + k));
+                }
+            }
+        }
+    }
+    /* (one entry more: never an empty buffer) */
+    size_t bytes = (entries + 1) * sizeof(*a->large_staging);
+    if (!gl_buffer_ensure(a->gpu, &a->large_cells, &a->large_cells_size, bytes, false,
+                          "dirt large primitives' grid"))
+        return false;
+    glNamedBufferSubData(a->large_cells, 0, (GLsizeiptr)bytes, a->large_staging);
+    return true;
 }
 
 static bool ensure_nodes(dirt_ads *a, size_t nodes)
@@ -464,6 +558,7 @@ void ads_bind_all(dirt_ads *a)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_VIEWS, a->views);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_PARAMS, a->params);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_COUNTERS, a->counters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_LARGE_CELLS, a->large_cells);
 }
 
 /* ---- passes (bodies run by the frame graph) ---- */
@@ -807,6 +902,8 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
                   : dirt_ads_select_large(f, a->opts.large ? a->opts.large : DIRT_ADS_MAX_LARGE,
                                           a->opts.large_area, st->large);
     upload_views(a);
+    if (!build_large_grid(a, f))
+        goto done;
     if (!refresh(a))
         goto done;
     /* The candidate buffer: from the bound pass when its size is unknown
@@ -890,10 +987,14 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
     st->bytes_candidates_allocated = cands_bytes(a);
     st->bytes_candidates_used = (st->samples + st->work_records) * DIRT_CANDIDATE_BYTES;
+    st->bytes_large_grid = a->large_entries * sizeof(*a->large_staging);
+    st->bytes_large_grid_allocated = a->large_cells_size;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
-                                st->bytes_nodes_allocated + st->bytes_candidates_allocated;
+                                st->bytes_nodes_allocated + st->bytes_candidates_allocated +
+                                st->bytes_large_grid_allocated;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
-                           st->bytes_nodes_used + st->bytes_candidates_used;
+                           st->bytes_nodes_used + st->bytes_candidates_used +
+                           st->bytes_large_grid;
     st->bytes_table3 = (double)a->set.num_tiles * (8.0 * 1.33 + 4.0 * a->opts.buckets) +
                        8.0 * st->buckets_per_sample * (double)st->samples;
     st->clock = clock;

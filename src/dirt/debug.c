@@ -139,11 +139,12 @@ void dirt_ads_print_stats(const dirt_ads *ads, void *out_)
             s->buckets_per_sample, (unsigned long long)s->nodes, s->depth_runs, s->fill_runs,
             s->bound_pass ? 1 : 0);
     fprintf(out, "  MB: vertices %.3f, depth+mips %.3f, heads %.3f, nodes %.3f used / %.3f "
-            "allocated, candidates %.3f used / %.3f allocated; total %.3f used / %.3f "
-            "allocated\n", s->bytes_vertices / 1e6,
+            "allocated, candidates %.3f used / %.3f allocated, large primitives' grid %.3f; "
+            "total %.3f used / %.3f allocated\n", s->bytes_vertices / 1e6,
             s->bytes_depth / 1e6, s->bytes_heads / 1e6, s->bytes_nodes_used / 1e6,
             s->bytes_nodes_allocated / 1e6, s->bytes_candidates_used / 1e6,
-            s->bytes_candidates_allocated / 1e6, s->bytes_total_used / 1e6,
+            s->bytes_candidates_allocated / 1e6, s->bytes_large_grid / 1e6,
+            s->bytes_total_used / 1e6,
             s->bytes_total_allocated / 1e6);
     double ads_used = (double)(s->bytes_depth + s->bytes_heads + s->bytes_nodes_used);
     fprintf(out, "  Table 3 formula %.3f MB vs measured %.3f MB (depth+heads+nodes; mip "

@@ -40,9 +40,10 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
      * primitives, keep the trace without). */
     const dirt_trace_alpha *al = &opts.alpha;
     bool large = a->stats.num_large > 0;
-    gl_split_program *prog =
-        &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) | (opts.work ? 4 : 0)];
-    glsl_define defs[3];
+    bool grid = large && a->opts.large_grid;
+    gl_split_program *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) |
+                                            (opts.work ? 4 : 0) | (grid ? 8 : 0)];
+    glsl_define defs[4];
     int n = 0;
     if (al->materials)
         defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
@@ -50,6 +51,8 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         defs[n++] = (glsl_define){"DIRT_TRACE_LARGE", "1"};
     if (opts.work)
         defs[n++] = (glsl_define){"DIRT_TRACE_COUNT", "1"};
+    if (grid)
+        defs[n++] = (glsl_define){"DIRT_TRACE_LARGE_GRID", "1"};
     const char *paths[] = {"dirt/trace.comp", NULL};
     if (!ads_program_extra(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
                            ADS_TRACE_ARRAYS, al->materials ? al->texels : NULL)) {

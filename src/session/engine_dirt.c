@@ -88,7 +88,8 @@ static bool reshape(engine *e, const engine_env *env)
                                                                           : dirt_session_auto_build(env->gpu);
     d->ads = dirt_ads_create(env->gpu, &(dirt_ads_opts){.views = vo, .buckets = buckets,
                                                         .force_emulation = o->force_emulation,
-                                                        .large = o->large, .build = build});
+                                                        .large = o->large, .build = build,
+                                                        .large_grid = o->large_grid});
     return d->ads != NULL;
 }
 
@@ -149,6 +150,8 @@ static void build_stats(engine *e, dirt_session_stats *st)
     engine_add_buffer(st, "list heads", a->bytes_heads, a->bytes_heads);
     engine_add_buffer(st, "id nodes", a->bytes_nodes_used, a->bytes_nodes_allocated);
     engine_add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
+    engine_add_buffer(st, "large primitives' grid", a->bytes_large_grid,
+                      a->bytes_large_grid_allocated);
 }
 
 static dirt_ads *ads_of(engine *e)

@@ -43,6 +43,7 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
         cJSON_AddNumberToObject(b, "id nodes allocated", (double)a->bytes_nodes_allocated);
         cJSON_AddNumberToObject(b, "candidates", (double)a->bytes_candidates_used);
         cJSON_AddNumberToObject(b, "candidates allocated", (double)a->bytes_candidates_allocated);
+        cJSON_AddNumberToObject(b, "large grid", (double)a->bytes_large_grid);
         cJSON_AddNumberToObject(o, "samples_np", (double)a->samples);
         cJSON_AddNumberToObject(o, "nodes", (double)a->nodes);
         cJSON_AddNumberToObject(o, "buckets_per_sample", a->buckets_per_sample);

@@ -56,11 +56,12 @@ AT(dirt_gpu_view, size, 6);
 AT(dirt_gpu_view, placement, 7);
 AT(dirt_gpu_view, level_base, 8); /* [4] */
 
-RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4);
+RECORD(dirt_gpu_ads_params, 3 + DIRT_GPU_MAX_LARGE / 4 + DIRT_GPU_MAX_VIEWS);
 AT(dirt_gpu_ads_params, config, 0);
 AT(dirt_gpu_ads_params, pool, 1);
 AT(dirt_gpu_ads_params, cand, 2);
 AT(dirt_gpu_ads_params, large, 3);
+AT(dirt_gpu_ads_params, large_grid, 3 + DIRT_GPU_MAX_LARGE / 4);
 
 RECORD(dirt_gpu_ads_counters, 3);
 AT(dirt_gpu_ads_counters, fill, 0);
@@ -227,6 +228,7 @@ const dirt_layout_binding dirt_layout_bindings[] = {
     B(DIRT_BIND_TEST_OUT, "TEST"),
     B(DIRT_BIND_WORK, "WORK"),
     B(DIRT_BIND_SORT, "SORT"),
+    B(DIRT_BIND_LARGE_CELLS, "LARGE"),
 };
 #undef B
 const size_t dirt_layout_num_bindings =
@@ -235,7 +237,7 @@ const size_t dirt_layout_num_bindings =
 #define R(name) {#name, DIRT_BIND_##name##_FIRST, DIRT_BIND_##name##_LAST}
 const dirt_layout_range dirt_layout_ranges[] = {
     R(SHARED), R(ADS), R(TRACE), R(INTEGRATOR), R(MMRT), R(MMRT_PT), R(MODEL), R(PREVIEW), R(TEST), R(WORK),
-    R(SORT),
+    R(SORT), R(LARGE),
 };
 #undef R
 const size_t dirt_layout_num_ranges = sizeof(dirt_layout_ranges) / sizeof(dirt_layout_ranges[0]);
@@ -252,7 +254,8 @@ _Static_assert(DIRT_BIND_SHARED_FIRST == 0 && DIRT_BIND_ADS_FIRST == DIRT_BIND_S
                    DIRT_BIND_TEST_FIRST == DIRT_BIND_PREVIEW_LAST + 1 &&
                    DIRT_BIND_WORK_FIRST == DIRT_BIND_TEST_LAST + 1 &&
                    DIRT_BIND_SORT_FIRST == DIRT_BIND_WORK_LAST + 1 &&
-                   DIRT_BIND_LAST == DIRT_BIND_SORT_LAST,
+                   DIRT_BIND_LARGE_FIRST == DIRT_BIND_SORT_LAST + 1 &&
+                   DIRT_BIND_LAST == DIRT_BIND_LARGE_LAST,
                "binding ranges tile [0, DIRT_BIND_LAST]");
 /* As many names as binding points: with the distinct values checked by
  * dirt_layout_binding_name, every point of every range is named once. */
@@ -306,6 +309,7 @@ const char *dirt_layout_binding_name(int binding)
         CASE(DIRT_BIND_TEST_OUT);
         CASE(DIRT_BIND_WORK);
         CASE(DIRT_BIND_SORT);
+        CASE(DIRT_BIND_LARGE_CELLS);
     default:
         return NULL;
     }
@@ -488,6 +492,10 @@ const dirt_layout_program dirt_layout_programs[] = {
     /* The traces' alpha-tested builds read the model's materials and texels. */
     {{"dirt/trace.comp", NULL, NULL}, "DIRT_TRACE_ALPHA",
      SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE | DIRT_RANGE_MODEL, u_trace,
+     sizeof(u_trace) / sizeof(u_trace[0])},
+    /* The large primitives' grid (DIRT_TRACE_LARGE_GRID implies _LARGE). */
+    {{"dirt/trace.comp", NULL, NULL}, "DIRT_TRACE_LARGE_GRID",
+     SH | DIRT_RANGE_ADS | DIRT_RANGE_TRACE | DIRT_RANGE_LARGE, u_trace,
      sizeof(u_trace) / sizeof(u_trace[0])},
     P("views/hiz.comp", NULL, SH, u_mip),
     P("integrator/display.comp", NULL, SH | DIRT_RANGE_INTEGRATOR, u_display),

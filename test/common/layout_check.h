@@ -45,7 +45,7 @@ enum {
     DIRT_RANGE_SHARED = 1u << 0, DIRT_RANGE_ADS = 1u << 1, DIRT_RANGE_TRACE = 1u << 2,
     DIRT_RANGE_INTEGRATOR = 1u << 3, DIRT_RANGE_MMRT = 1u << 4, DIRT_RANGE_MMRT_PT = 1u << 5,
     DIRT_RANGE_MODEL = 1u << 6, DIRT_RANGE_PREVIEW = 1u << 7, DIRT_RANGE_TEST = 1u << 8,
-    DIRT_RANGE_WORK = 1u << 9, DIRT_RANGE_SORT = 1u << 10,
+    DIRT_RANGE_WORK = 1u << 9, DIRT_RANGE_SORT = 1u << 10, DIRT_RANGE_LARGE = 1u << 11,
 };
 extern const dirt_layout_range dirt_layout_ranges[];
 extern const size_t dirt_layout_num_ranges;

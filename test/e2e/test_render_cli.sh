@@ -185,7 +185,7 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'd["paths_per_event"][0] == 32 * 24 * 2 and len(d["paths_per_event"]) == 5' \
   'all(a >= b for a, b in zip(d["paths_per_event"], d["paths_per_event"][1:]))' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
-  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
+  'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates", "large grid")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model tangents"] == [(16, 16)]' \
   '[b["used"] for b in d["buffers"] if b["name"] == "pt environment"] == [36]' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model texels"] == [(16, 16)]' \
@@ -214,6 +214,29 @@ expect_rc 0 "count work, embree" -- --engine embree -o "$out/we.png" -W 32 -H 24
   'all(w["bvh_nodes"] > 0 and w["triangle_tests"] > 0 and "embree" not in w for w in d["frames"][0]["work"].values())' \
   && ok || fail "we.json work counts"
 expect_rc 2 "count work with the raster engine" -- --engine raster --count-work -o "$out/r3.png"
+# The large primitives' grid (--large-grid): the same image bit for bit;
+# its bytes in the stats (none without it); fewer triangle tests than the
+# default (every ray tests every large primitive) and more Hi-Z steps (its
+# cells) on every ray type; the same tiles and list nodes on closest-hit
+# rays (an any-hit ray stops at the first hit it meets, which depends on
+# the order of a list's entries: a build's, not fixed).
+expect_rc 0 "large primitives' grid" -- -o "$out/lg.exr" -W 32 -H 24 --spp 2 --large-grid --count-work --stats "$out/lg.json"
+"$exr" --exact "$out/lg.exr" "$out/d.exr" && ok || fail "--large-grid changed the image"
+"$json" "$out/lg.json" \
+  'd["bytes"]["large grid"] > 0 and d["bytes"]["large grid"] % 8 == 0' \
+  'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
+  '[b["used"] for b in d["buffers"] if b["name"] == "large primitives\x27 grid"] == [d["bytes"]["large grid"]]' \
+  && ok || fail "lg.json: the grid's bytes"
+"$json" "$out/d.json" 'd["bytes"]["large grid"] == 0' && ok || fail "d.json: a grid without --large-grid"
+python3 - "$out/w.json" "$out/lg.json" <<'PY' && ok || fail "--large-grid's work counts"
+import json, sys
+off, on = (json.load(open(p))["frames"][0]["work"] for p in sys.argv[1:])
+for t in off:
+    a, b = off[t], on[t]
+    assert a["rays"] == b["rays"], t
+    assert t == "visibility" or (a["tiles"] == b["tiles"] and a["list_nodes"] == b["list_nodes"]), t
+    assert b["triangle_tests"] < a["triangle_tests"] and b["hiz_steps"] > a["hiz_steps"], (t, a, b)
+PY
 # The ray sort (--sort-rays): the same image bit for bit, its passes ran, its
 # buffers counted (unsorted rays and batch: 36 B per pixel and a 16-byte
 # header; scratch: a counter per bucket and a key per pixel).

@@ -209,6 +209,18 @@ if [ -r "$anim" ]; then
     fail "turning and dimming the map changed nothing"; else ok; fi
 fi
 
+# 4d. The large primitives' grid turned on while the window is open: the
+#     structure is rebuilt, the image is the one without it bit for bit
+#     (section 1's), and the reported options carry it.
+printf 'wait-samples 1\nset large-grid on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/grid.exr" "$tmp/grid.json" >"$tmp/s.txt"
+run_view grid --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
+  fail "large-grid run failed"
+args=$(json_field "$tmp/grid.json" render_args)
+case "$args" in *"--large-grid"*) ok ;; *) fail "render_args lack --large-grid: $args" ;; esac
+if "$check" same "$tmp/grid.exr" "$tmp/v-dirt.exr"; then ok; else
+  fail "the image with the large primitives' grid is not the one without"; fi
+
 # 5. Bad input exits 2 with a one-line reason, before any window.
 expect2() {
   local what=$1; shift

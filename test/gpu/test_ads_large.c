@@ -11,7 +11,12 @@
  *    (camera G-buffer rays) on the default scene and the Cornell box, views
  *    single and cube+camera, S = 1 and 2, raster and compute build: the same
  *    primitive, t, u and v bits for every ray (a large primitive's hit counts
- *    only where the ray is inside a view, as a listed one's). */
+ *    only where the ray is inside a view, as a listed one's); and the same
+ *    with the large primitives' grid (opts.large_grid: the trace tests one
+ *    only in cells of the grid whose depth range for it the ray's span
+ *    meets, so a range or a cell march that misses a hit shows here:
+ *    testing only the span's entry depth made 200-687 rays of a type
+ *    differ); the grid's bytes only with it. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,68 +162,77 @@ static void test_hits(dirt_gpu *gpu, const char *label, dirt_scene *scene, const
         return;
     size_t n = 48 * 36; /* camera rays: one per pixel */
     dirt_ray *rays = malloc(n * sizeof(*rays));
-    dirt_hit *hits[2] = {malloc(n * sizeof(dirt_hit)), malloc(n * sizeof(dirt_hit))};
+    dirt_hit *hits[3] = {malloc(n * sizeof(dirt_hit)), malloc(n * sizeof(dirt_hit)),
+                         malloc(n * sizeof(dirt_hit))};
     for (int mode = 0; mode < 2; mode++) {
         for (int s = 1; s <= 2; s++) {
-            dirt_ads *ads[2];
+            /* [0] none large, [1] large tested by every ray, [2] through their grid */
+            dirt_ads *ads[3];
             int num_large = 0;
-            for (int k = 0; k < 2; k++) {
+            for (int k = 0; k < 3; k++) {
                 dirt_ads_opts o = {
                     .views = {.mode = mode ? DIRT_VIEWS_SINGLE : DIRT_VIEWS_CUBE_CAMERA,
                               .width = 64, .height = 48, .face_size = 32, .tile_size = s},
                     .buckets = 8, .force_emulation = true, .large = k ? 0 : -1,
+                    .large_grid = k == 2,
                     .build = s == 1 ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER};
                 ads[k] = dirt_ads_create(gpu, &o);
                 CHECK(ads[k] && dirt_ads_build(ads[k], f, cam));
                 if (ads[k] && k)
                     num_large = dirt_ads_get_stats(ads[k])->num_large;
+                if (ads[k]) /* the grid's bytes: with it only */
+                    CHECK((dirt_ads_get_stats(ads[k])->bytes_large_grid > 0) == (k == 2));
             }
-            CHECK(num_large > 0);
+            CHECK(num_large > 0 && dirt_ads_get_stats(ads[2])->num_large == num_large);
             fprintf(stderr, "%-10s %-11s S=%d, %d large:", label, mode ? "single" : "cube+camera",
                     s, num_large);
-            for (int t = DIRT_RAY_PRIMARY; t < DIRT_RAY_TYPES && ads[0] && ads[1]; t++) {
+            for (int t = DIRT_RAY_PRIMARY; t < DIRT_RAY_TYPES && ads[0] && ads[1] && ads[2]; t++) {
                 size_t cnt = dirt_rays_generate(&g, cam, t, 5, rays);
                 dirt_trace_opts to = {.any_hit = t == DIRT_RAY_VISIBILITY};
-                dirt_trace_stats ts[2];
-                for (int k = 0; k < 2; k++) {
+                dirt_trace_stats ts[3];
+                for (int k = 0; k < 3; k++) {
                     CHECK(dirt_ads_trace(ads[k], rays, cnt, hits[k], &to, &ts[k]));
                     CHECK(ts[k].aborted == 0);
                 }
-                size_t differ = 0, hit = 0, on_large = 0;
-                for (size_t i = 0; i < cnt; i++) {
-                    const dirt_hit *a = &hits[0][i], *b = &hits[1][i];
-                    bool same = a->prim == b->prim;
-                    /* any-hit rays: the same answer (occluded or not) */
-                    if (t != DIRT_RAY_VISIBILITY && a->prim != DIRT_HIT_NONE)
-                        same = same && !memcmp(&a->t, &b->t, sizeof(float)) &&
-                               !memcmp(&a->u, &b->u, sizeof(float)) &&
-                               !memcmp(&a->v, &b->v, sizeof(float));
-                    if (t == DIRT_RAY_VISIBILITY)
-                        same = (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
-                    differ += !same;
-                    hit += b->prim != DIRT_HIT_NONE;
-                    const dirt_ads_stats *st = dirt_ads_get_stats(ads[1]);
-                    for (int j = 0; j < st->num_large; j++)
-                        on_large += b->prim == st->large[j];
-                    if (!same && getenv("DIRT_TEST_VERBOSE"))
-                        fprintf(stderr, "\n  ray %zu: listed prim %u t %.9g, large prim %u t %.9g",
-                                i, a->prim, a->t, b->prim, b->t);
+                for (int k = 1; k < 3; k++) {
+                    size_t differ = 0, hit = 0, on_large = 0;
+                    for (size_t i = 0; i < cnt; i++) {
+                        const dirt_hit *a = &hits[0][i], *b = &hits[k][i];
+                        bool same = a->prim == b->prim;
+                        /* any-hit rays: the same answer (occluded or not) */
+                        if (t != DIRT_RAY_VISIBILITY && a->prim != DIRT_HIT_NONE)
+                            same = same && !memcmp(&a->t, &b->t, sizeof(float)) &&
+                                   !memcmp(&a->u, &b->u, sizeof(float)) &&
+                                   !memcmp(&a->v, &b->v, sizeof(float));
+                        if (t == DIRT_RAY_VISIBILITY)
+                            same = (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
+                        differ += !same;
+                        hit += b->prim != DIRT_HIT_NONE;
+                        const dirt_ads_stats *st = dirt_ads_get_stats(ads[1]);
+                        for (int j = 0; j < st->num_large; j++)
+                            on_large += b->prim == st->large[j];
+                        if (!same && getenv("DIRT_TEST_VERBOSE"))
+                            fprintf(stderr, "\n  ray %zu: listed prim %u t %.9g, large prim "
+                                    "%u t %.9g", i, a->prim, a->t, b->prim, b->t);
+                    }
+                    fprintf(stderr, " | %s%s %zu/%zu hit (%zu on large), %zu differ",
+                            dirt_ray_type_names[t], k == 2 ? " (grid)" : "", hit, cnt, on_large,
+                            differ);
+                    CHECK_MSG(differ == 0, "%s %s S=%d %s%s: %zu of %zu rays differ", label,
+                              mode ? "single" : "cube+camera", s, dirt_ray_type_names[t],
+                              k == 2 ? " through the large primitives' grid" : "", differ, cnt);
+                    if (t != DIRT_RAY_VISIBILITY)
+                        CHECK(on_large > 0);
                 }
-                fprintf(stderr, " | %s %zu/%zu hit (%zu on large), %zu differ",
-                        dirt_ray_type_names[t], hit, cnt, on_large, differ);
-                CHECK_MSG(differ == 0, "%s %s S=%d %s: %zu of %zu rays differ", label,
-                          mode ? "single" : "cube+camera", s, dirt_ray_type_names[t], differ, cnt);
-                if (t != DIRT_RAY_VISIBILITY)
-                    CHECK(on_large > 0);
             }
             fprintf(stderr, "\n");
-            dirt_ads_destroy(ads[0]);
-            dirt_ads_destroy(ads[1]);
+            for (int k = 0; k < 3; k++)
+                dirt_ads_destroy(ads[k]);
         }
     }
     free(rays);
-    free(hits[0]);
-    free(hits[1]);
+    for (int k = 0; k < 3; k++)
+        free(hits[k]);
     dirt_gbuffer_free(&g);
     dirt_ref_accel_destroy(accel);
 }

@@ -4,7 +4,9 @@
  *  - DIRT (default scene, 64x48 camera + six 32x32 faces, S = 2, B = 8):
  *    used = 96 B x primitives (vertices) + 8 B x pyramid entries (depth
  *    bounds and mips) + 4 B x B x tiles (list heads) + 8 B x nodes + 16 B x
- *    n_p (the build's candidates), with the nodes and the (primitive, tile)
+ *    n_p (the build's candidates) + with opts.large_grid 8 B x large
+ *    primitives x cells of their grid (per view, the first pyramid level of
+ *    at most DIRT_LARGE_GRID cells per side; none without), with the nodes and the (primitive, tile)
  *    pairs n_p counted by walking every list of the structure read back (not
  *    the GPU's counters); the DIRT paper's Table 3 (8 B x 1.33 + 4 B x B per tile
  *    + 8 B x c x n_p) then differs from the structure's bytes only by the
@@ -48,12 +50,12 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam)
+static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam, bool grid)
 {
     const int B = 8;
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 64, .height = 48,
                                  .face_size = 32, .tile_size = 2},
-                       .buckets = B, .force_emulation = true};
+                       .buckets = B, .force_emulation = true, .large_grid = grid};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(ads && dirt_ads_build(ads, f, cam));
     if (!ads)
@@ -86,8 +88,22 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
               (unsigned long long)walked, (unsigned long long)st->nodes);
     uint64_t tiles = (uint64_t)set->num_tiles, pyramid = (uint64_t)set->pyramid_size;
     /* (the compute build's work records, 16 B each, follow the candidates) */
+    /* the large primitives' grid (only with opts.large_grid): 8 B per
+     * large primitive and cell, the cells of the first pyramid level of at
+     * most DIRT_LARGE_GRID per side */
+    uint64_t cells = 0;
+    for (int v = 0; grid && v < set->count; v++) {
+        int L = 0, tx = set->views[v].tiles_x, ty = set->views[v].tiles_y;
+        while ((tx + (1 << L) - 1) >> L > DIRT_LARGE_GRID || (ty + (1 << L) - 1) >> L > DIRT_LARGE_GRID)
+            L++;
+        cells += (uint64_t)((tx + (1 << L) - 1) >> L) * (uint64_t)((ty + (1 << L) - 1) >> L);
+    }
+    CHECK(st->num_large > 0);
+    CHECK(st->bytes_large_grid == 8 * cells * (uint64_t)st->num_large);
+    CHECK(ads->large_cells_size >= st->bytes_large_grid &&
+          st->bytes_large_grid_allocated == ads->large_cells_size);
     uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + 8 * walked +
-                       16 * pairs + 16 * st->work_records;
+                       16 * pairs + 16 * st->work_records + 8 * cells * (uint64_t)st->num_large;
     CHECK_MSG(st->bytes_total_used == formula, "DIRT used %llu B, formula %llu B",
               (unsigned long long)st->bytes_total_used, (unsigned long long)formula);
     double per_tile = (double)pyramid / (double)tiles;
@@ -103,9 +119,10 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK(split_size(&ads->nodes) == st->bytes_nodes_allocated);
     CHECK(split_size(&ads->cands) == st->bytes_candidates_allocated);
     CHECK(split_size(&ads->vertices) >= st->bytes_vertices);
-    fprintf(stderr, "DIRT: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
+    fprintf(stderr, "DIRT%s: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
                     "(walked): used %llu B = formula; Table 3 %.0f B vs structure %.0f B\n",
-            (unsigned long long)st->primitives, (unsigned long long)tiles,
+            grid ? " (large primitives' grid)" : "", (unsigned long long)st->primitives,
+            (unsigned long long)tiles,
             (unsigned long long)pyramid, (unsigned long long)walked,
             (unsigned long long)st->bytes_total_used, table3, ads_bytes);
     dirt_ads_destroy(ads);
@@ -156,7 +173,8 @@ int main(void)
     CHECK(f != NULL);
     if (f) {
         dirt_camera cam = f->cameras[0];
-        check_dirt(gpu, f, &cam);
+        check_dirt(gpu, f, &cam, false);
+        check_dirt(gpu, f, &cam, true);
         check_mmrt(gpu, f, &cam);
     }
     CHECK(dirt_gpu_error_count(gpu) == 0);

@@ -1,8 +1,8 @@
 /* Work counters (doc/dirt-trace.md, "Work counters"):
  *  - the counting build of DIRT's trace finds the same hits as the plain
  *    build, bit for bit (primitive, view, t, u, v), for every ray type on
- *    the default scene (views single and cube+camera, large primitives on
- *    and off);
+ *    the default scene (views single and cube+camera, large primitives on,
+ *    off, and on through their grid);
  *  - its counts equal a CPU count made another way: for rays that hit
  *    nothing (tmax half-way to Embree's hit, or leaving the scene), on a
  *    level-0 march of one view, the CPU cuts the ray at every tile line it
@@ -14,6 +14,12 @@
  *    are met, the trace's rejection cache; else between that and the
  *    nodes). Rays within rounding of a tile line, a depth bound or a bucket
  *    edge are left out (counted, at most 15 %);
+ *  - the same on the default scene with its large primitives tested by
+ *    every ray (one test each per ray more) and through their grid (the
+ *    CPU cuts the ray at the grid's cell lines too: each cell the walk
+ *    enters is a march step, and each large primitive is tested once, in
+ *    the first cell whose depth range (read back) the span meets; the walk
+ *    stops once every primitive the view's cells hold was tested);
  *  - the full pyramid walks the same tiles, nodes and triangle tests as
  *    the level-0 march (rays within rounding left out as above);
  *  - Embree's BVH walk (ref/bvh_work.c) finds Embree's closest hits and
@@ -28,6 +34,7 @@
 #include "check.h"
 #include "common/layout.h"
 #include "dirt/ads.h"
+#include "dirt/ads_internal.h"
 #include "dirt/scene.h"
 #include "gpu.h"
 #include "ref/raytypes.h"
@@ -61,7 +68,13 @@ static bool g_verbose; /* print the CPU count's pieces (DIRT_TEST_VERBOSE, rays 
 typedef struct cpu_count {
     bool ambiguous;
     uint32_t steps, tiles, nodes, distinct;
+    uint32_t large_steps, large_tests; /* the large primitives' (count_large) */
 } cpu_count;
+
+/* How the large primitives are traced in check_counts. */
+enum large_mode { LARGE_NONE, LARGE_ALL, LARGE_GRID, LARGE_MODES };
+static const char *const large_mode_names[] = {"no large", "large tested by every ray",
+                                               "large through their grid"};
 
 static int cmp_d(const void *a, const void *b)
 {
@@ -187,10 +200,112 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
     return c;
 }
 
+/* The large primitives' counts of one ray over view 0 of `a` (built with
+ * large primitives): without the grid every ray tests each of them once;
+ * with it, the CPU cuts the ray at the grid's cell lines (the level's
+ * tile lines and the view's edges, double precision) and walks the cells
+ * in order of t: each cell is a march step, and there each large primitive
+ * not tested yet whose cell range (the grid read back from the build's
+ * staging copy) the piece's depth span meets is tested; the walk stops
+ * before a cell once every primitive the view's cells hold was tested.
+ * Ranges and cuts within rounding make the ray ambiguous. */
+static void count_large(const dirt_ads *a, const dirt_ray *r, enum large_mode mode, cpu_count *c)
+{
+    int nl = a->stats.num_large;
+    if (mode == LARGE_ALL)
+        c->large_tests = (uint32_t)nl;
+    if (mode != LARGE_GRID)
+        return;
+    const dirt_view *v = &a->set.views[0];
+    struct dirt_i4 g = a->large_grid[0];
+    int L = g.x & 0xFFFF;
+    uint32_t met = (uint32_t)g.x >> 16, tested = 0;
+    int cs = a->set.tile_size << L; /* a cell's pixels per side */
+    double co[4] = {0}, cd[4] = {0};
+    for (int i = 0; i < 4; i++) {
+        for (int k = 0; k < 3; k++) {
+            co[i] += (double)v->view_proj[4 * k + i] * r->org[k];
+            cd[i] += (double)v->view_proj[4 * k + i] * r->dir[k];
+        }
+        co[i] += v->view_proj[12 + i];
+    }
+    double t0 = r->tmin, t1 = r->tmax;
+    for (int p = 0; p < 6; p++) {
+        double s = p & 1 ? -1 : 1;
+        double aa = co[3] + s * co[p >> 1], b = cd[3] + s * cd[p >> 1];
+        if (b == 0) {
+            if (aa < 0)
+                return;
+        } else if (b > 0) {
+            t0 = fmax(t0, -aa / b);
+        } else {
+            t1 = fmin(t1, -aa / b);
+        }
+    }
+    if (!(t0 < t1))
+        return;
+    double len = t1 - t0, eps = 1e-5 * len;
+    double cuts[2 * (DIRT_LARGE_GRID + 2) + 2];
+    int n = 0;
+    cuts[n++] = t0;
+    for (int axis = 0; axis < 2; axis++) {
+        int lines = (axis ? g.w : g.z) + 1, size = axis ? v->height : v->width;
+        for (int k = 0; k < lines; k++) {
+            double X = -1.0 + 2.0 * fmin((double)k * cs, size) / size;
+            double den = cd[axis] - X * cd[3];
+            if (den == 0)
+                continue;
+            double t = -(co[axis] - X * co[3]) / den;
+            if (t > t0 - eps && t < t1 + eps)
+                cuts[n++] = t;
+        }
+    }
+    cuts[n++] = t1;
+    qsort(cuts, (size_t)n, sizeof(double), cmp_d);
+    for (int i = 0; i + 1 < n; i++) {
+        double ta = cuts[i], tb = cuts[i + 1];
+        if (tb - ta < eps) {
+            if (!(i == 0 && ta == t0 && tb == t0) && !(i + 2 == n && tb == t1 && ta == t1))
+                c->ambiguous = true;
+            continue;
+        }
+        if ((met & ~tested) == 0)
+            return;
+        double tm = 0.5 * (ta + tb), w = co[3] + tm * cd[3];
+        double fx = ((co[0] + tm * cd[0]) / w * 0.5 + 0.5) * v->width / cs;
+        double fy = ((co[1] + tm * cd[1]) / w * 0.5 + 0.5) * v->height / cs;
+        int cx = (int)floor(fx), cy = (int)floor(fy);
+        if (cx < 0 || cy < 0 || cx >= g.z || cy >= g.w) {
+            c->ambiguous = true;
+            continue;
+        }
+        c->large_steps++;
+        double wa = co[3] + ta * cd[3], wb = co[3] + tb * cd[3];
+        double lo = fmin(wa, wb), hi = fmax(wa, wb);
+        const uint32_t(*e)[2] = &a->large_staging[(size_t)g.y + ((size_t)cy * (size_t)g.z +
+                                                                 (size_t)cx) * (size_t)nl];
+        for (int k = 0; k < nl; k++) {
+            if (tested & 1u << k)
+                continue;
+            float zlo, zhi;
+            memcpy(&zlo, &e[k][0], 4);
+            memcpy(&zhi, &e[k][1], 4);
+            if (zlo <= zhi && (fabs(hi - zlo) < 1e-5 * fabs(zlo) + 1e-7 ||
+                               fabs(lo - zhi) < 1e-5 * fabs(zhi) + 1e-7))
+                c->ambiguous = true;
+            if (!(zlo <= zhi) || hi < zlo || lo > zhi)
+                continue;
+            tested |= 1u << k;
+            c->large_tests++;
+        }
+    }
+}
+
 /* The CPU count against the counting trace on missing rays, and the full
  * pyramid against the level-0 march on `rays`. */
 static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
-                         const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets)
+                         const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets,
+                         enum large_mode mode)
 {
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     dirt_ref_hit *ref = malloc(n * sizeof(*ref));
@@ -199,9 +314,12 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     dirt_ray *miss = malloc(n * sizeof(*miss));
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = 64, .height = 48,
                                  .tile_size = 2},
-                       .buckets = buckets, .force_emulation = true, .large = -1};
+                       .buckets = buckets, .force_emulation = true,
+                       .large = mode == LARGE_NONE ? -1 : 0, .large_grid = mode == LARGE_GRID};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(accel && ads && dirt_ads_build(ads, f, cam));
+    if (ads && mode != LARGE_NONE)
+        CHECK_MSG(ads->stats.num_large > 0, "%s: no large primitives", label);
     dirt_ads_data d;
     bool have = ads && dirt_ads_read(ads, &d);
     CHECK(have);
@@ -219,6 +337,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     CHECK(dirt_ads_trace_work(ads, miss, n, hits, &level0, &ts, w0));
     CHECK(ts.aborted == 0);
     size_t checked = 0, ambiguous = 0, hit = 0, exact_tests = 0, walked = 0;
+    size_t large_steps = 0, large_tests = 0;
     size_t bad[4] = {0};
     for (size_t i = 0; i < n; i++) {
         if (hits[i].prim != DIRT_HIT_NONE) {
@@ -226,17 +345,21 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
             continue;
         }
         cpu_count c = count_ray(dirt_ads_views(ads), &d, &miss[i]);
+        count_large(ads, &miss[i], mode, &c);
         if (c.ambiguous) {
             ambiguous++;
             continue;
         }
         checked++;
         walked += c.tiles;
-        bool b[4] = {w0[i].hiz_steps != c.steps, w0[i].tiles != c.tiles,
+        large_steps += c.large_steps;
+        large_tests += c.large_tests;
+        uint32_t tests = w0[i].triangle_tests - c.large_tests;
+        bool b[4] = {w0[i].hiz_steps != c.steps + c.large_steps, w0[i].tiles != c.tiles,
                      w0[i].list_nodes != c.nodes,
-                     c.distinct <= 4 ? w0[i].triangle_tests != c.distinct
-                                     : w0[i].triangle_tests < c.distinct ||
-                                           w0[i].triangle_tests > c.nodes};
+                     w0[i].triangle_tests < c.large_tests ||
+                         (c.distinct <= 4 ? tests != c.distinct
+                                          : tests < c.distinct || tests > c.nodes)};
         exact_tests += c.distinct <= 4;
         for (int k = 0; k < 4; k++) {
             bad[k] += b[k];
@@ -250,18 +373,25 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
             }
             if (b[k] && bad[k] <= 3)
                 fprintf(stderr, "  %s ray %zu: GPU (%u steps, %u tiles, %u nodes, %u tests), CPU "
-                        "(%u steps, %u tiles, %u nodes, %u distinct)\n", label, i,
-                        w0[i].hiz_steps, w0[i].tiles, w0[i].list_nodes, w0[i].triangle_tests,
-                        c.steps, c.tiles, c.nodes, c.distinct);
+                        "(%u + %u large steps, %u tiles, %u nodes, %u distinct + %u large "
+                        "tests)\n", label, i, w0[i].hiz_steps, w0[i].tiles, w0[i].list_nodes,
+                        w0[i].triangle_tests, c.steps, c.large_steps, c.tiles, c.nodes,
+                        c.distinct, c.large_tests);
         }
     }
-    fprintf(stderr, "%s B=%d: %zu missing rays checked (%zu tiles walked, %zu with exact "
-            "triangle tests), %zu within rounding left out, %zu found a hit; differ: steps %zu, "
-            "tiles %zu, nodes %zu, tests %zu\n", label, buckets, checked, walked, exact_tests,
-            ambiguous, hit, bad[0], bad[1], bad[2], bad[3]);
+    fprintf(stderr, "%s B=%d, %s: %zu missing rays checked (%zu tiles walked, %zu with exact "
+            "triangle tests; large primitives: %zu grid steps, %zu tests), %zu within rounding "
+            "left out, %zu found a hit; differ: steps %zu, tiles %zu, nodes %zu, tests %zu\n",
+            label, buckets, large_mode_names[mode], checked, walked, exact_tests, large_steps,
+            large_tests, ambiguous, hit, bad[0], bad[1], bad[2], bad[3]);
     CHECK_MSG(hit <= n / 100, "%s: %zu of %zu shortened rays found a hit", label, hit, n);
     CHECK_MSG(ambiguous <= n * 15 / 100, "%s: %zu of %zu rays left out", label, ambiguous, n);
-    CHECK(walked > checked && exact_tests > checked / 5);
+    /* (the large primitives out of the lists leave the walls' tiles empty) */
+    CHECK(walked > (mode == LARGE_NONE ? checked : checked / 4) && exact_tests > checked / 5);
+    /* the grid's walk counted on most rays, and it tests fewer than all */
+    if (mode == LARGE_GRID)
+        CHECK(large_steps > checked / 2 && large_tests > 0 &&
+              large_tests < checked * (size_t)ads->stats.num_large);
     for (int k = 0; k < 4; k++)
         CHECK_MSG(bad[k] == 0, "%s: count %d differs on %zu rays", label, k, bad[k]);
     /* The full pyramid walks the same tiles and lists in fewer steps. */
@@ -272,7 +402,9 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         size_t differ = 0, left_out = 0;
         uint64_t s0 = 0, sf = 0;
         for (size_t i = 0; i < n; i++) {
-            if (count_ray(dirt_ads_views(ads), &d, &rs[i]).ambiguous) {
+            cpu_count c = count_ray(dirt_ads_views(ads), &d, &rs[i]);
+            count_large(ads, &rs[i], mode, &c);
+            if (c.ambiguous) {
                 left_out++;
                 continue;
             }
@@ -309,10 +441,11 @@ static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *
     dirt_ray *rays = malloc(n * sizeof(*rays));
     dirt_hit *a = malloc(n * sizeof(*a)), *b = malloc(n * sizeof(*b));
     dirt_trace_work *w = malloc(n * sizeof(*w));
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < 6; k++) { /* k >> 1: large on, off, on through their grid */
         dirt_ads_opts o = {.views = {.mode = k & 1 ? DIRT_VIEWS_SINGLE : DIRT_VIEWS_CUBE_CAMERA,
                                      .width = 64, .height = 48, .face_size = 32, .tile_size = 2},
-                           .buckets = 8, .force_emulation = true, .large = k & 2 ? -1 : 0};
+                           .buckets = 8, .force_emulation = true, .large = k >> 1 == 1 ? -1 : 0,
+                           .large_grid = k >> 1 == 2};
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         CHECK(ads && dirt_ads_build(ads, f, cam));
         for (int t = 0; ads && t < DIRT_RAY_TYPES; t++) {
@@ -327,7 +460,8 @@ static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *
                 tests += w[i].triangle_tests;
             }
             CHECK_MSG(differ == 0, "%s large %s %s: %zu of %zu hits differ with counting",
-                      k & 1 ? "single" : "cube+camera", k & 2 ? "off" : "on",
+                      k & 1 ? "single" : "cube+camera",
+                      k >> 1 == 1 ? "off" : k >> 1 ? "grid" : "on",
                       dirt_ray_type_names[t], differ, cnt);
             CHECK(tests > 0);
         }
@@ -429,10 +563,12 @@ int main(void)
         size_t n = 40 * 30;
         dirt_ray *rays = malloc(n * sizeof(*rays));
         size_t cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_DIFFUSE, 9, rays);
-        check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8);
+        for (int m = 0; m < LARGE_MODES; m++)
+            check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, (enum large_mode)m);
         check_bvh("default diffuse", f, rays, cnt);
         cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_SPECULAR, 9, rays);
-        check_counts(gpu, "default specular", f, &cam, rays, cnt, 4);
+        for (int m = 0; m < LARGE_MODES; m++)
+            check_counts(gpu, "default specular", f, &cam, rays, cnt, 4, (enum large_mode)m);
         free(rays);
         dirt_gbuffer_free(&g);
         dirt_ref_accel_destroy(accel);
@@ -444,7 +580,7 @@ int main(void)
     dirt_camera cam;
     dirt_camera_default(s, &cam);
     dirt_ray *rays = random_rays(s, 3000);
-    check_counts(gpu, "soup", s, &cam, rays, 3000, 8);
+    check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE);
     check_bvh("soup", s, rays, 3000);
     free(rays);
     frame_free(s);

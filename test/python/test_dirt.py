@@ -112,6 +112,31 @@ def test_structure_stats(scene):
         assert st["aborted"] == 0
 
 
+def test_large_grid_option(scene):
+    """large_grid (dirt_session_opts): the same image bit for bit, the
+    grid's bytes only with it, fewer triangle tests per ray."""
+    images, stats = {}, {}
+    for grid in (False, True):
+        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, large_grid=grid,
+                          count_work=True, **SIZE) as s:
+            assert s.options["large_grid"] == grid
+            s.add_samples(2)
+            images[grid], stats[grid] = s.image(), s.stats()
+    assert np.array_equal(images[False], images[True])
+    assert stats[False]["ads"]["bytes_large_grid"] == 0 < stats[True]["ads"]["bytes_large_grid"]
+    work = [stats[g]["work"][0] for g in (False, True)]  # primary rays
+    assert work[0]["rays"] == work[1]["rays"] > 0
+    assert work[1]["triangle_tests"] < work[0]["triangle_tests"]
+    # A change of the option rebuilds the structure (and restarts the image).
+    with dirt.Session(scene, engine="dirt", seed=2, bounces=2, **SIZE) as s:
+        s.add_samples(2)
+        s.set_options(large_grid=True)
+        assert s.samples == 0 and s.options["large_grid"]
+        s.add_samples(2)
+        assert np.array_equal(images[True], s.image())
+        assert s.stats()["ads"]["bytes_large_grid"] > 0
+
+
 def test_bad_scenes_raise_with_the_loaders_id(tmp_path):
     with pytest.raises(dirt.Error) as e:
         dirt.Scene(tmp_path / "missing.glb")

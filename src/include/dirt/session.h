@@ -137,6 +137,11 @@ typedef struct dirt_session_opts {
     int large;                  /* dirt: large primitives tested by every ray instead of
                                    listed (doc/dirt-trace.md): 0 = up to 16, < 0 = none,
                                    n = up to n (at most 16) */
+    bool large_grid;            /* dirt: the large primitives are tested through a grid
+                                   of their own (doc/dirt-trace.md, "The large
+                                   primitives' grid"): far fewer triangle tests per ray,
+                                   more march steps; the same hits and image. false
+                                   (default): every ray tests every large primitive */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
     bool direct_visibility;     /* dirt: first hits from a visibility buffer */

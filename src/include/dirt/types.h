@@ -105,6 +105,9 @@ typedef struct dirt_ads_stats {
      * clock, dirt_gpu_clock); all -1 and DIRT_CLOCK_NONE when not measured. */
     double ms[DIRT_ADS_NUM_PASSES];
     enum dirt_clock clock;
+    uint64_t bytes_large_grid; /* the large primitives' grid: 8 B per large primitive
+                                 and grid cell (in the totals; not in Table 3) */
+    uint64_t bytes_large_grid_allocated; /* its GL buffer */
 } dirt_ads_stats;
 
 /* ---- MMRT: the A-buffer (doc/mmrt.md) ---- */
