@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "app/view.h"
+#include "app/view_camera.h"
 
 static const char *const buffer_labels[NUM_BUFFERS] = {
     "beauty", "albedo", "normal", "depth (Z)", "primitive id (first hit)",
@@ -15,7 +16,7 @@ static const char *const buffer_labels[NUM_BUFFERS] = {
 
 static void note_panel(viewer *v)
 {
-    if (v->num_panels < 4)
+    if (v->num_panels < 5)
         dirt_ui_panel_rect(v->panels[v->num_panels++]);
 }
 
@@ -304,6 +305,53 @@ static void panel_numbers(viewer *v)
     dirt_ui_end();
 }
 
+/* The camera bookmarks: a row per slot with go / save / delete, and where
+ * they are kept. */
+static void panel_bookmarks(viewer *v)
+{
+    bool small = v->win_w < SMALL_W || v->win_h < SMALL_H;
+    float w = 360, x = (float)v->win_w - w - 8;
+    if (x < 346)
+        x = 346;
+    float y = small ? 34 : 436, h = (float)v->win_h - y - 8;
+    collapse_if_small(v);
+    if (dirt_ui_begin("Bookmarks", NULL, x, y, w, h < 80 ? 80 : h > 300 ? 300 : h)) {
+        dirt_ui_text_disabled("Ctrl + N saves, Shift + N goes to N");
+        dirt_ui_text_disabled("%s", v->bm_note);
+        for (int i = 0; i < NUM_BOOKMARKS; i++) {
+            const struct view_bookmark *m = &v->bookmarks[i];
+            char id[32];
+            if (m->set)
+                dirt_ui_text("%d: eye %.3g, %.3g, %.3g; fov %.3g", i + 1, (double)m->look.eye[0],
+                             (double)m->look.eye[1], (double)m->look.eye[2],
+                             (double)(m->look.fov_deg > 0 ? m->look.fov_deg : 45.0f));
+            else
+                dirt_ui_text_disabled("%d: empty", i + 1);
+            if (m->set) {
+                char args[1024];
+                vcam_format(&m->look, args, sizeof(args));
+                dirt_ui_tooltip(args);
+                dirt_ui_same_line();
+                snprintf(id, sizeof(id), "go##bm%d", i + 1);
+                if (dirt_ui_button(id))
+                    view_bookmark_go(v, i + 1);
+            }
+            dirt_ui_same_line();
+            snprintf(id, sizeof(id), "save##bm%d", i + 1);
+            if (dirt_ui_button(id))
+                view_bookmark_save(v, i + 1);
+            if (m->set) {
+                dirt_ui_same_line();
+                snprintf(id, sizeof(id), "delete##bm%d", i + 1);
+                if (dirt_ui_button(id))
+                    view_bookmark_delete(v, i + 1);
+            }
+        }
+    }
+    note_panel(v);
+    dirt_ui_end();
+}
+
 static void panel_help(viewer *v)
 {
     bool open = true;
@@ -414,6 +462,7 @@ void view_panels(viewer *v)
     overlay(v);
     panel_settings(v);
     panel_numbers(v);
+    panel_bookmarks(v);
     if (v->show_help)
         panel_help(v);
 }

@@ -73,6 +73,7 @@ bool view_load_scene(viewer *v, dirt_scene *sc, const char *path)
         return false;
     v->diag = scene_diagonal(dirt_session_frame(v->s));
     view_reset_camera(v);
+    view_bookmarks_open(v, path);
     char title[4200];
     snprintf(title, sizeof(title), "dirt-view: %s", v->scene_name);
     dirt_gpu_window_set_title(v->gpu, title);
