@@ -167,10 +167,16 @@ bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);
 /* Shader reload (F5): with the shaders read from a source tree
- * (DIRT_GLSL_DIR), remakes the sessions and the presentation program from
+ * (view_shader_source), remakes the sessions and the presentation program from
  * them; a shader that does not compile keeps the old programs (the status
  * line and the log say why). False when nothing was reloaded. */
 bool view_reload_shaders(viewer *v);
+/* Where F5 reads the shaders from, into `dir`: "DIRT_GLSL_DIR" (that
+ * folder); "build tree" when this dirt-view runs from its build tree
+ * (/proc/self/exe under the build root meson recorded) and that build's
+ * source glsl/ is there; NULL when there is none (why in `why`: an
+ * installed program uses the library's embedded shaders). */
+const char *view_shader_source(char *dir, size_t size, char *why, size_t why_size);
 
 /* view_split.c */
 /* Reads --compare-image (before the window): exit 2's reasons printed,

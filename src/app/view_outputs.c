@@ -40,7 +40,8 @@ const char *const view_bindings[][2] = {
     {"Ctrl + Left drag", "pan the image (zoomed or not)"},
     {"Z", "zoom 1:1 about the cursor / back to fitted"},
     {"H", "hide / show the panels"},
-    {"F5", "reload the shaders from DIRT_GLSL_DIR (a broken one keeps the old programs)"},
+    {"F5", "reload the shaders from DIRT_GLSL_DIR or, run from its build tree, the source "
+           "tree's glsl/ (a broken one keeps the old programs)"},
     {"F1", "this help"},
     {"Escape", "quit"},
 };
@@ -236,6 +237,13 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "shader_reloads", v->shader_reloads);
     cJSON_AddNumberToObject(r, "shader_reload_failures", v->shader_reload_failures);
     cJSON_AddStringToObject(r, "shader_reload_status", v->reload_status);
+    {
+        /* Where F5 would read the shaders from now ("" and "embedded": none). */
+        char dir[4096], why[4400];
+        const char *from = view_shader_source(dir, sizeof(dir), why, sizeof(why));
+        cJSON_AddStringToObject(r, "shader_source", from ? from : "embedded");
+        cJSON_AddStringToObject(r, "shader_source_dir", dir);
+    }
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
     cJSON_AddStringToObject(r, "camera_args", cam);

@@ -1,12 +1,17 @@
 /* dirt-view's render sessions (view.h): the main one and the raster
  * preview shown while the camera moves, kept in step with the settings
  * (options, time, camera), and the scene they render. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "app/setup.h"
 #include "app/view.h"
+#include "app/view_build.h"
 
 /* The session options the viewer's settings ask for, for `engine`. */
 dirt_session_opts view_wanted_opts(const viewer *v, int engine)
@@ -212,22 +217,68 @@ static bool sync_all(viewer *v)
 
 /* A new main session from the shader sources, proven by one sample, then
  * the presentation program; on any failure the old ones stay. */
+const char *view_shader_source(char *dir, size_t size, char *why, size_t why_size)
+{
+    dir[0] = why[0] = '\0';
+    const char *env = getenv("DIRT_GLSL_DIR");
+    if (env && *env) {
+        snprintf(dir, size, "%s", env);
+        return "DIRT_GLSL_DIR";
+    }
+    /* The program's path (the kernel's, links resolved) has the build root
+     * (the same folder, however it is named) as one of its parents. */
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+    struct stat st, rt;
+    bool inside = false;
+    if (n > 0 && stat(DIRT_VIEW_BUILD_ROOT, &rt) == 0) {
+        exe[n] = '\0';
+        for (char *slash = strrchr(exe, '/'); slash && slash > exe && !inside;
+             slash = strrchr(exe, '/')) {
+            *slash = '\0';
+            inside = stat(exe, &st) == 0 && st.st_dev == rt.st_dev && st.st_ino == rt.st_ino;
+        }
+    }
+    if (!inside) {
+        snprintf(why, why_size, "this dirt-view is not run from its build tree (%s), so its "
+                 "shaders are the library's embedded ones; run it with DIRT_GLSL_DIR=a source "
+                 "tree's glsl/ folder", DIRT_VIEW_BUILD_ROOT);
+        return NULL;
+    }
+    if (stat(DIRT_VIEW_SOURCE_GLSL "/present/present.frag", &st) || !S_ISREG(st.st_mode)) {
+        snprintf(why, why_size, "the source tree's shaders (%s) are not there; run it with "
+                 "DIRT_GLSL_DIR=a source tree's glsl/ folder", DIRT_VIEW_SOURCE_GLSL);
+        return NULL;
+    }
+    snprintf(dir, size, "%s", DIRT_VIEW_SOURCE_GLSL);
+    return "build tree";
+}
+
 bool view_reload_shaders(viewer *v)
 {
-    const char *dir = dirt_gpu_glsl_dir();
-    if (!dir) {
+    char dir[4096], why[4400];
+    const char *from = view_shader_source(dir, sizeof(dir), why, sizeof(why));
+    if (!from) {
         v->shader_reload_failures++;
-        view_status(v, "shader reload: unavailable, the shaders are the library's embedded ones "
-                    "(run with DIRT_GLSL_DIR=a source tree's glsl/ folder)");
+        view_status(v, "shader reload: unavailable: %s", why);
         snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
         return false;
     }
+    /* From the build tree: the source tree's shaders from now on (back to
+     * the ones in use if they do not compile). */
+    const char *was = dirt_gpu_glsl_dir();
+    char before[4096];
+    snprintf(before, sizeof(before), "%s", was ? was : "");
+    if (strcmp(from, "DIRT_GLSL_DIR"))
+        dirt_gpu_set_glsl_dir(dir);
     dirt_eval_opts eval = {.clip = v->applied_clip, .loop = v->applied_loop};
     dirt_session *ns = dirt_session_create(v->gpu, v->scene, &v->applied);
     bool ok = ns && dirt_session_set_time(ns, v->applied_time, &eval) && view_apply_camera(v, ns) &&
               dirt_session_add_samples(ns, 1, NULL, NULL) && dirt_gpu_present_reload(v->gpu);
     if (!ok) {
         dirt_session_destroy(ns);
+        if (strcmp(from, "DIRT_GLSL_DIR"))
+            dirt_gpu_set_glsl_dir(before[0] ? before : NULL);
         v->shader_reload_failures++;
         view_status(v, "shader reload from %s failed (the compiler's errors are in the log); "
                     "kept the old programs", dir);
@@ -245,7 +296,7 @@ bool view_reload_shaders(viewer *v)
     v->generation++;
     v->last = *dirt_session_get_stats(v->s);
     v->shader_reloads++;
-    view_status(v, "shaders reloaded from %s", dir);
+    view_status(v, "shaders reloaded from %s (%s)", dir, from);
     snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
     return true;
 }

@@ -132,9 +132,13 @@ typedef struct dirt_present_opts {
 bool dirt_gpu_present(dirt_gpu *gpu, const dirt_present_opts *opts);
 
 /* The folder the shaders are read from at each compile: $DIRT_GLSL_DIR (a
- * source tree's glsl/), or NULL when they are the library's embedded ones
- * (nothing to reload). */
+ * source tree's glsl/), or dirt_gpu_set_glsl_dir's, or NULL when they are
+ * the library's embedded ones (nothing to reload). */
 const char *dirt_gpu_glsl_dir(void);
+/* Reads the shaders from `dir` (a source tree's glsl/) from the next
+ * compile on when $DIRT_GLSL_DIR is not set; NULL: the embedded ones
+ * again. Programs already made stay as they are. */
+void dirt_gpu_set_glsl_dir(const char *dir);
 /* Compiles the presentation program again from the shader sources; when
  * that fails (logged), the old one stays in use. False then. */
 bool dirt_gpu_present_reload(dirt_gpu *gpu);
