@@ -97,8 +97,9 @@ static bool parse(const char *text, struct view_bookmark bm[NUM_BOOKMARKS], char
         memset(m, 0, sizeof(*m));
         dirt_camera_look *l = &m->look;
         if (!vec3(b, "eye", l->eye) || !vec3(b, "look_at", l->target) || !vec3(b, "up", l->up) ||
-            !number(b, "fov", 1e-3, 179.9, &l->fov_deg) || !number(b, "znear", 0, 3e38, &l->znear) ||
-            !number(b, "zfar", 0, 3e38, &l->zfar) || !number(b, "aperture", 0, 3e38, &m->aperture) ||
+            !number(b, "fov", 1e-3, 179.9, &l->fov_deg) ||
+            !number(b, "znear", 0, 3e38, &l->znear) || !number(b, "zfar", 0, 3e38, &l->zfar) ||
+            !number(b, "aperture", 0, 3e38, &m->aperture) ||
             !number(b, "focus", 0, 3e38, &m->focus)) {
             snprintf(why, size, "bookmark %d: eye, look_at, up (3 numbers each), fov (0 .. 180), "
                      "znear, zfar, aperture, focus (>= 0) are not all there", i);

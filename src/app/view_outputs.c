@@ -354,6 +354,8 @@ bool view_write_report(viewer *v, const char *path)
     for (int i = 0; i < NUM_BOOKMARKS; i++)
         if (v->bookmarks[i].set)
             cJSON_AddItemToArray(slots, cJSON_CreateNumber(i + 1));
+    /* Labels of the last frame's panels cut off by their panel's width. */
+    cJSON_AddNumberToObject(r, "clipped_labels", v->o.no_ui ? 0 : dirt_ui_clipped_labels(v->ui));
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)
         cJSON_AddItemToArray(panels, cJSON_CreateFloatArray(v->panels[i], 4));
