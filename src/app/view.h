@@ -172,10 +172,11 @@ bool view_sync_sessions(viewer *v);
  * line and the log say why). False when nothing was reloaded. */
 bool view_reload_shaders(viewer *v);
 /* Where F5 reads the shaders from, into `dir`: "DIRT_GLSL_DIR" (that
- * folder); "build tree" when this dirt-view runs from its build tree
- * (/proc/self/exe under the build root meson recorded) and that build's
- * source glsl/ is there; NULL when there is none (why in `why`: an
- * installed program uses the library's embedded shaders). */
+ * folder); "build tree" when this dirt-view runs from a meson build tree
+ * (a parent folder of /proc/self/exe holds meson-info/meson-info.json
+ * naming that folder as the build) and its source tree's glsl/ is there;
+ * NULL when there is none (why in `why`: an installed program uses the
+ * library's embedded shaders). */
 const char *view_shader_source(char *dir, size_t size, char *why, size_t why_size);
 
 /* view_split.c */

@@ -1,6 +1,7 @@
 /* dirt-view's render sessions (view.h): the main one and the raster
  * preview shown while the camera moves, kept in step with the settings
  * (options, time, camera), and the scene they render. */
+#include <cjson/cJSON.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,7 +12,7 @@
 
 #include "app/setup.h"
 #include "app/view.h"
-#include "app/view_build.h"
+#include "dirt/input.h"
 
 /* The session options the viewer's settings ask for, for `engine`. */
 dirt_session_opts view_wanted_opts(const viewer *v, int engine)
@@ -217,6 +218,31 @@ static bool sync_all(viewer *v)
 
 /* A new main session from the shader sources, proven by one sample, then
  * the presentation program; on any failure the old ones stay. */
+/* The source tree of the meson build tree `dir` (the folder holding
+ * meson-info/meson-info.json, whose directories.build is `dir` itself),
+ * into `src`; false when `dir` is not a build tree. */
+static bool build_tree_source(const char *dir, const struct stat *dir_st, char *src, size_t size)
+{
+    char info[PATH_MAX + 32];
+    snprintf(info, sizeof(info), "%s/meson-info/meson-info.json", dir);
+    enum dirt_input_error e;
+    size_t len = 0;
+    char *text = dirt_input_read(info, (size_t)1 << 20, &len, &e);
+    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    const cJSON *dirs = cJSON_GetObjectItemCaseSensitive(root, "directories");
+    const cJSON *source = cJSON_GetObjectItemCaseSensitive(dirs, "source");
+    const cJSON *build = cJSON_GetObjectItemCaseSensitive(dirs, "build");
+    struct stat st;
+    bool ok = cJSON_IsString(source) && cJSON_IsString(build) &&
+              stat(build->valuestring, &st) == 0 && st.st_dev == dir_st->st_dev &&
+              st.st_ino == dir_st->st_ino;
+    if (ok)
+        snprintf(src, size, "%s", source->valuestring);
+    cJSON_Delete(root);
+    return ok;
+}
+
 const char *view_shader_source(char *dir, size_t size, char *why, size_t why_size)
 {
     dir[0] = why[0] = '\0';
@@ -225,32 +251,37 @@ const char *view_shader_source(char *dir, size_t size, char *why, size_t why_siz
         snprintf(dir, size, "%s", env);
         return "DIRT_GLSL_DIR";
     }
-    /* The program's path (the kernel's, links resolved) has the build root
-     * (the same folder, however it is named) as one of its parents. */
-    char exe[PATH_MAX];
+    /* A parent folder of the program's file (the kernel's path, links
+     * resolved) that is a meson build tree: meson-info names its source
+     * tree. Nothing of the build's paths is stored in the program, so an
+     * installed one names no source tree. */
+    char exe[PATH_MAX], src[PATH_MAX];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
-    struct stat st, rt;
     bool inside = false;
-    if (n > 0 && stat(DIRT_VIEW_BUILD_ROOT, &rt) == 0) {
+    if (n > 0) {
         exe[n] = '\0';
         for (char *slash = strrchr(exe, '/'); slash && slash > exe && !inside;
              slash = strrchr(exe, '/')) {
             *slash = '\0';
-            inside = stat(exe, &st) == 0 && st.st_dev == rt.st_dev && st.st_ino == rt.st_ino;
+            struct stat st;
+            inside = stat(exe, &st) == 0 && build_tree_source(exe, &st, src, sizeof(src));
         }
     }
     if (!inside) {
-        snprintf(why, why_size, "this dirt-view is not run from its build tree (%s), so its "
+        snprintf(why, why_size, "this dirt-view is not run from a meson build tree, so its "
                  "shaders are the library's embedded ones; run it with DIRT_GLSL_DIR=a source "
-                 "tree's glsl/ folder", DIRT_VIEW_BUILD_ROOT);
+                 "tree's glsl/ folder");
         return NULL;
     }
-    if (stat(DIRT_VIEW_SOURCE_GLSL "/present/present.frag", &st) || !S_ISREG(st.st_mode)) {
-        snprintf(why, why_size, "the source tree's shaders (%s) are not there; run it with "
-                 "DIRT_GLSL_DIR=a source tree's glsl/ folder", DIRT_VIEW_SOURCE_GLSL);
+    char glsl[PATH_MAX + 64];
+    snprintf(glsl, sizeof(glsl), "%s/glsl/present/present.frag", src);
+    struct stat st;
+    if (stat(glsl, &st) || !S_ISREG(st.st_mode)) {
+        snprintf(why, why_size, "the source tree's shaders (%s/glsl) are not there; run it with "
+                 "DIRT_GLSL_DIR=a source tree's glsl/ folder", src);
         return NULL;
     }
-    snprintf(dir, size, "%s", DIRT_VIEW_SOURCE_GLSL);
+    snprintf(dir, size, "%s/glsl", src);
     return "build tree";
 }
 
