@@ -150,10 +150,15 @@ cp "$scene" "$tmp/ro/r.gltf"
 printf 'wait-samples 1\nbookmark save 2\nreport %s\nquit\n' "$tmp/ro.json" >"$tmp/ro.txt"
 chmod 0555 "$tmp/ro"
 chmod 0777 "$tmp"
-as=()
-# root writes anywhere: run the viewer as nobody there.
-[ "$(id -u)" = 0 ] && as=(setpriv --reuid=65534 --regid=65534 --clear-groups --)
-"${as[@]}" "$view" "$tmp/ro/r.gltf" --window 160x120 --no-ui --spp 1 --script "$tmp/ro.txt" \
+as=() ro_view=$view
+# root writes anywhere: run the viewer as nobody there (a copy of it in
+# $tmp, which nobody may read whatever the build folder's permissions).
+if [ "$(id -u)" = 0 ]; then
+  as=(setpriv --reuid=65534 --regid=65534 --clear-groups --)
+  mkdir -p "$tmp/bin" && cp "$view" "$tmp/bin/dirt-view" && chmod 0755 "$tmp/bin" "$tmp/bin/dirt-view"
+  ro_view=$tmp/bin/dirt-view
+fi
+"${as[@]}" "$ro_view" "$tmp/ro/r.gltf" --window 160x120 --no-ui --spp 1 --script "$tmp/ro.txt" \
   >"$tmp/ro.out" 2>&1 || fail "unwritable folder: exit $?"
 if [ ! -e "$tmp/ro/r.gltf.bookmarks.json" ] &&
    grep -q "bookmark 2 saved in memory only: cannot write" "$tmp/ro.out" &&
