@@ -185,7 +185,11 @@ const app_program app_view_program = {
         "OBJ (.obj) scene (without SCENE, or with 'default', the embedded default scene)\n"
         "through DIRT, the MMRT A-buffer, Embree or the raster preview, with panels for\n"
         "every setting, the structure's heat maps, per-pass timings and memory. F1 in\n"
-        "the window lists the key bindings (also doc/viewer.md, --bindings).\n",
+        "the window lists the key bindings (also doc/viewer.md, --bindings).\n"
+        "Camera bookmarks (Ctrl + 1..9 saves, Shift + 1..9 goes to one; the Bookmarks\n"
+        "panel; the script's `bookmark`) are kept in SCENE.bookmarks.json beside the\n"
+        "scene, read when the scene opens and rewritten on each change (the default\n"
+        "scene's in memory only). F5 reloads the shaders from a source tree.\n",
     .sections = view_sections,
     .epilogue =
         "Exit status: 0 done, 1 a write failed, 2 bad option, scene or script (or an\n"

@@ -8,6 +8,7 @@
  *   view_display.c     what the window shows: the image, the buffers
  *   view_panels.c      the panels
  *   view_script_run.c  the script's actions as the frames pass
+ *   view_bookmarks.c   camera bookmarks, kept beside the scene
  *   view_outputs.c     screenshots, saved renders, reports, dirt-render
  *                      command lines
  * (view_camera.c: the free camera's maths; view_script.c: the script's
@@ -40,6 +41,7 @@ enum buffer {
 enum cam_mode { CAM_DEFAULT, CAM_AUTO, CAM_SCENE, CAM_LOOK };
 
 #define RING 240
+#define NUM_BOOKMARKS 9
 #define INSPECT_CHANNELS 20
 
 typedef struct viewer {
@@ -91,6 +93,16 @@ typedef struct viewer {
     /* input and script */
     int held[DIRT_NUM_KEYS];    /* frames a script key stays held */
     bool pressed[DIRT_NUM_KEYS]; /* a script key went down in this frame */
+    unsigned char pressed_mods[DIRT_NUM_KEYS]; /* with these DIRT_MOD_* ("key Ctrl+1") */
+    /* camera bookmarks (view_bookmarks.c), slot i is key i + 1 */
+    struct view_bookmark {
+        bool set;
+        dirt_camera_look look;  /* the free camera */
+        float aperture, focus;  /* the thin lens */
+    } bookmarks[NUM_BOOKMARKS];
+    char bm_path[4200];         /* <scene>.bookmarks.json; "" for the default scene (memory) */
+    bool bm_keep_file;          /* the file could not be read: it is never written */
+    char bm_note[4800];         /* what the Bookmarks panel says of the file */
     view_script script;
     size_t next_action;
     long wait_frames;
@@ -109,7 +121,7 @@ typedef struct viewer {
     int shader_reloads;         /* F5 reloads that took */
     int shader_reload_failures; /* F5 reloads refused (the old programs kept) */
     char reload_status[512];    /* what the last F5 did */
-    float panels[4][4];
+    float panels[5][4];
     int num_panels;
     int win_w, win_h;
     /* drawn over the image with the panels: the split's labels, the colour
@@ -156,10 +168,17 @@ bool view_load_scene(viewer *v, dirt_scene *sc, const char *path);
 void view_render_size(viewer *v, int win_w, int win_h);
 bool view_sync_sessions(viewer *v);
 /* Shader reload (F5): with the shaders read from a source tree
- * (DIRT_GLSL_DIR), remakes the sessions and the presentation program from
+ * (view_shader_source), remakes the sessions and the presentation program from
  * them; a shader that does not compile keeps the old programs (the status
  * line and the log say why). False when nothing was reloaded. */
 bool view_reload_shaders(viewer *v);
+/* Where F5 reads the shaders from, into `dir`: "DIRT_GLSL_DIR" (that
+ * folder); "build tree" when this dirt-view runs from a meson build tree
+ * (a parent folder of /proc/self/exe holds meson-info/meson-info.json
+ * naming that folder as the build) and its source tree's glsl/ is there;
+ * NULL when there is none (why in `why`: an installed program uses the
+ * library's embedded shaders). */
+const char *view_shader_source(char *dir, size_t size, char *why, size_t why_size);
 
 /* view_split.c */
 /* Reads --compare-image (before the window): exit 2's reasons printed,
@@ -179,6 +198,9 @@ void view_present_split(const viewer *v, dirt_present_opts *p);
 /* view_look.c */
 bool view_apply_camera(viewer *v, dirt_session *s);
 void view_to_look(viewer *v);
+/* The free camera of what is shown now (the current look, or one made from
+ * the scene's / automatic camera), without switching to it. */
+void view_current_look(const viewer *v, dirt_camera_look *look);
 void view_reset_camera(viewer *v);
 void view_cycle_camera(viewer *v);
 void view_camera_args(const viewer *v, char *buf, size_t size);
@@ -188,6 +210,9 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
                        bool ui_keys);
 bool view_open_drops(viewer *v, const dirt_window_input *in);
 void view_focus_at(viewer *v);
+/* A key name with modifiers ("Ctrl+1", "Shift+F5", "W"): the key, its
+ * DIRT_MOD_* bits in *mods; DIRT_KEY_NONE when unknown. */
+enum dirt_key view_key_parse(const char *name, unsigned char *mods);
 
 /* view_display.c */
 void view_fit(const viewer *v, int w, int h, int r[4]);
@@ -203,6 +228,26 @@ void view_draw(viewer *v, bool preview);
 /* The values of every channel (R, G, B, A, then the AOVs) of both images
  * at the render pixel under the cursor (reads the images back). */
 void view_inspect(viewer *v);
+
+/* view_bookmarks.c */
+/* The bookmarks file of a scene: "<scene path>.bookmarks.json" into `buf`;
+ * "" for the default scene (NULL or "default": its bookmarks live in
+ * memory only). */
+void view_bookmarks_path(const char *scene_path, char *buf, size_t size);
+/* Forgets the bookmarks and reads those of the scene at `scene_path`
+ * (view_bookmarks_path). A missing file: no bookmarks. An unreadable or
+ * malformed one: a log line, no bookmarks, and the file is never written
+ * in this scene's session (bm_keep_file). */
+void view_bookmarks_open(viewer *v, const char *scene_path);
+/* Slot 1 .. 9: stores the camera shown now (and the lens) / shows the
+ * stored one (the free camera, the lens) / forgets it. A change is
+ * written to the file at once, atomically; when it cannot be (the default
+ * scene, an unreadable file, a folder not writable) the bookmark is kept
+ * in memory and the status line says so. False for an empty slot (go,
+ * delete) or a slot out of range. */
+bool view_bookmark_save(viewer *v, int slot);
+bool view_bookmark_go(viewer *v, int slot);
+bool view_bookmark_delete(viewer *v, int slot);
 
 /* view_panels.c */
 void view_panels(viewer *v);

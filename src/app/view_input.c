@@ -3,6 +3,8 @@
  * double click's focus. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
+#include <strings.h>
 
 #include "app/cli.h"
 #include "app/view.h"
@@ -69,8 +71,12 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         v->cam_dirty = v->moving = true;
     }
     bool p[DIRT_NUM_KEYS];
-    for (int k = 0; k < DIRT_NUM_KEYS; k++)
+    unsigned char mods[DIRT_NUM_KEYS];
+    for (int k = 0; k < DIRT_NUM_KEYS; k++) {
         p[k] = in->key_pressed[k] || v->pressed[k];
+        mods[k] = (unsigned char)((in->key_pressed[k] ? in->key_mods[k] : 0) |
+                                  (v->pressed[k] ? v->pressed_mods[k] : 0));
+    }
     if (p[DIRT_KEY_ESCAPE])
         v->quit = true;
     if (p[DIRT_KEY_F1])
@@ -85,9 +91,18 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
     }
     if (p[DIRT_KEY_C])
         view_cycle_camera(v);
-    for (int k = 0; k < 9; k++)
-        if (p[DIRT_KEY_1 + k])
+    /* 1 .. 9: the buffer; Ctrl + N saves bookmark N, Shift + N goes to it. */
+    for (int k = 0; k < 9; k++) {
+        if (!p[DIRT_KEY_1 + k])
+            continue;
+        unsigned char m = mods[DIRT_KEY_1 + k];
+        if (m & DIRT_MOD_CTRL)
+            view_bookmark_save(v, k + 1);
+        else if (m & DIRT_MOD_SHIFT)
+            view_bookmark_go(v, k + 1);
+        else if (!m)
             v->o.buffer = k;
+    }
     if (p[DIRT_KEY_TAB])
         v->o.s.engine = (enum dirt_engine)((v->o.s.engine + 1) % DIRT_NUM_ENGINES);
     if (p[DIRT_KEY_V] && v->ref)
@@ -122,6 +137,25 @@ void view_handle_input(viewer *v, const dirt_window_input *in, double dt, bool u
         else
             view_screenshot(v, path); /* taken after the frame is drawn: see the loop */
     }
+}
+
+enum dirt_key view_key_parse(const char *name, unsigned char *mods)
+{
+    static const struct { const char *prefix; unsigned char bit; } pre[] = {
+        {"ctrl+", DIRT_MOD_CTRL}, {"shift+", DIRT_MOD_SHIFT}, {"alt+", DIRT_MOD_ALT}};
+    *mods = 0;
+    for (bool more = true; more;) {
+        more = false;
+        for (size_t i = 0; i < sizeof(pre) / sizeof(pre[0]); i++) {
+            size_t n = strlen(pre[i].prefix);
+            if (!strncasecmp(name, pre[i].prefix, n) && name[n]) {
+                *mods |= pre[i].bit;
+                name += n;
+                more = true;
+            }
+        }
+    }
+    return dirt_key_from_name(name);
 }
 
 /* Focus on the surface under the cursor: the Z AOV at that pixel. */

@@ -19,17 +19,26 @@ bool view_apply_camera(viewer *v, dirt_session *s)
     return dirt_session_set_camera(s, ch, v->cam_index, NULL);
 }
 
-/* Switches to the free camera, starting from what is shown now. */
-void view_to_look(viewer *v)
+void view_current_look(const viewer *v, dirt_camera_look *look)
 {
-    if (v->cam_mode == CAM_LOOK)
+    if (v->cam_mode == CAM_LOOK) {
+        *look = v->look;
         return;
+    }
     const dirt_camera *c = dirt_session_camera(v->s);
     const dirt_frame *f = dirt_session_frame(v->s);
     float d = 0;
     for (int k = 0; k < 3; k++)
         d += (0.5f * (f->bounds_min[k] + f->bounds_max[k]) - c->eye[k]) * c->forward[k];
-    vcam_from_camera(&v->look, c, d > 0 ? d : 0.5f * v->diag);
+    vcam_from_camera(look, c, d > 0 ? d : 0.5f * v->diag);
+}
+
+/* Switches to the free camera, starting from what is shown now. */
+void view_to_look(viewer *v)
+{
+    if (v->cam_mode == CAM_LOOK)
+        return;
+    view_current_look(v, &v->look);
     v->cam_mode = CAM_LOOK;
 }
 

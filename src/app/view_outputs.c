@@ -26,6 +26,8 @@ const char *const view_bindings[][2] = {
     {"R", "reset the camera (the scene's, or the automatic one)"},
     {"C", "next scene camera"},
     {"1 .. 9", "buffer: beauty, albedo, normal, depth, id, lists, buckets, zmin, zmax"},
+    {"Ctrl + 1 .. 9", "save the camera (and lens) as bookmark N (SCENE.bookmarks.json)"},
+    {"Shift + 1 .. 9", "go to camera bookmark N"},
     {"Tab", "next engine (dirt, mmrt, embree, raster)"},
     {"V", "split view against the comparison engine (or --compare-image) on / off"},
     {"X", "difference heat map of the split on / off"},
@@ -38,7 +40,8 @@ const char *const view_bindings[][2] = {
     {"Ctrl + Left drag", "pan the image (zoomed or not)"},
     {"Z", "zoom 1:1 about the cursor / back to fitted"},
     {"H", "hide / show the panels"},
-    {"F5", "reload the shaders from DIRT_GLSL_DIR (a broken one keeps the old programs)"},
+    {"F5", "reload the shaders from DIRT_GLSL_DIR or, run from its build tree, the source "
+           "tree's glsl/ (a broken one keeps the old programs)"},
     {"F1", "this help"},
     {"Escape", "quit"},
 };
@@ -69,7 +72,7 @@ bool view_save_render(viewer *v, const char *path)
 
 int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *scene)
 {
-    enum { SCRIPT_OUTS = CLI_IO_MAX - 4 };
+    enum { SCRIPT_OUTS = CLI_IO_MAX - 5 };
     const char *souts[SCRIPT_OUTS] = {0};
     static char spng[SCRIPT_OUTS][4200];
     vs_outputs(&v->script, souts, spng, SCRIPT_OUTS);
@@ -77,15 +80,19 @@ int view_check_io(const viewer *v, const char *scene_path, const dirt_scene *sce
     if (v->o.save_image && cli_has_ext(v->o.save_image, ".exr"))
         cli_png_beside(v->o.save_image, save_png, sizeof(save_png));
     bool env_file = v->o.env_path && strcmp(v->o.env_path, "sky");
+    /* The scene's bookmarks file is written whenever a bookmark changes. */
+    char bm[4200];
+    view_bookmarks_path(scene_path, bm, sizeof(bm));
     cli_io io = {.scene_path = scene_path,
                  .scene = scene,
                  .in = {{env_file ? v->o.env_path : NULL, "--env"}, {v->o.script, "--script"},
                         {v->o.compare_image, "--compare-image"}},
                  .out = {{v->o.screenshot, "--screenshot"}, {v->o.save_image, "--save-image"},
                          {save_png[0] ? save_png : NULL, "--save-image"},
-                         {v->o.report, "--report"}}};
+                         {v->o.report, "--report"},
+                         {bm[0] ? bm : NULL, "the scene's camera bookmarks"}}};
     for (size_t i = 0; i < SCRIPT_OUTS; i++)
-        io.out[4 + i][0] = souts[i], io.out[4 + i][1] = "the script";
+        io.out[5 + i][0] = souts[i], io.out[5 + i][1] = "the script";
     return cli_check_io(PROG, &io);
 }
 
@@ -232,6 +239,13 @@ bool view_write_report(viewer *v, const char *path)
     cJSON_AddNumberToObject(r, "shader_reloads", v->shader_reloads);
     cJSON_AddNumberToObject(r, "shader_reload_failures", v->shader_reload_failures);
     cJSON_AddStringToObject(r, "shader_reload_status", v->reload_status);
+    {
+        /* Where F5 would read the shaders from now ("" and "embedded": none). */
+        char dir[4096], why[4400];
+        const char *from = view_shader_source(dir, sizeof(dir), why, sizeof(why));
+        cJSON_AddStringToObject(r, "shader_source", from ? from : "embedded");
+        cJSON_AddStringToObject(r, "shader_source_dir", dir);
+    }
     cJSON_AddNumberToObject(r, "time", v->applied_time);
     cJSON_AddStringToObject(r, "camera_mode", modes_[v->cam_mode]);
     cJSON_AddStringToObject(r, "camera_args", cam);
@@ -333,6 +347,17 @@ bool view_write_report(viewer *v, const char *path)
         cJSON_AddItemToObject(r, "image_rect", cJSON_CreateIntArray(ir, 4));
         cJSON_AddNumberToObject(r, "zoom", v->zoom);
     }
+    /* The camera bookmarks: the slots set, and where they are kept ("" for
+     * memory only). */
+    cJSON *bms = cJSON_AddObjectToObject(r, "bookmarks");
+    cJSON_AddStringToObject(bms, "file", v->bm_path);
+    cJSON_AddBoolToObject(bms, "file_kept", v->bm_keep_file);
+    cJSON *slots = cJSON_AddArrayToObject(bms, "slots");
+    for (int i = 0; i < NUM_BOOKMARKS; i++)
+        if (v->bookmarks[i].set)
+            cJSON_AddItemToArray(slots, cJSON_CreateNumber(i + 1));
+    /* Labels of the last frame's panels cut off by their panel's width. */
+    cJSON_AddNumberToObject(r, "clipped_labels", v->o.no_ui ? 0 : dirt_ui_clipped_labels(v->ui));
     cJSON *panels = cJSON_AddArrayToObject(r, "panels");
     for (int i = 0; !v->o.no_ui && i < v->num_panels; i++)
         cJSON_AddItemToArray(panels, cJSON_CreateFloatArray(v->panels[i], 4));

@@ -4,9 +4,11 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app/view.h"
+#include "app/view_camera.h"
 
 static const char *const buffer_labels[NUM_BUFFERS] = {
     "beauty", "albedo", "normal", "depth (Z)", "primitive id (first hit)",
@@ -15,7 +17,7 @@ static const char *const buffer_labels[NUM_BUFFERS] = {
 
 static void note_panel(viewer *v)
 {
-    if (v->num_panels < 4)
+    if (v->num_panels < 5)
         dirt_ui_panel_rect(v->panels[v->num_panels++]);
 }
 
@@ -24,17 +26,53 @@ static void note_panel(viewer *v)
 #define SMALL_W 800
 #define SMALL_H 600
 
+static bool small_window(const viewer *v)
+{
+    return v->win_w < SMALL_W || v->win_h < SMALL_H;
+}
+
 static void collapse_if_small(const viewer *v)
 {
-    if (v->win_w < SMALL_W || v->win_h < SMALL_H)
+    if (small_window(v))
         dirt_ui_next_collapsed();
+}
+
+/* A panel's width: `w`, or in a small window at most 3/5 of it (so the
+ * panels, each whole inside the window, leave the image visible). */
+static float panel_width(const viewer *v, float w)
+{
+    float cap = small_window(v) ? floorf(0.6f * (float)v->win_w) : (float)v->win_w - 16;
+    return w < cap ? w : cap > 120 ? cap : 120;
+}
+
+/* Right-hand panels: against the window's right edge, not left of Settings
+ * in a large window. */
+static float right_x(const viewer *v, float w)
+{
+    float x = (float)v->win_w - w - 8;
+    if (!small_window(v) && x < 346)
+        x = 346;
+    return x > 8 ? x : 8;
+}
+
+/* Test hook DIRT_VIEW_OPEN_HEADERS=1: every section starts open (for a
+ * look at every label). */
+static bool header(const char *label, bool default_open)
+{
+    static int all = -1;
+    if (all < 0) {
+        const char *e = getenv("DIRT_VIEW_OPEN_HEADERS");
+        all = e && *e == '1';
+    }
+    return dirt_ui_header(label, default_open || all);
 }
 
 static void panel_settings(viewer *v)
 {
     app_opts *o = &v->o;
     collapse_if_small(v);
-    if (dirt_ui_begin("Settings", NULL, 8, 8, 330, (float)(v->win_h - 16 > 200 ? v->win_h - 16 : 200))) {
+    if (dirt_ui_begin("Settings", NULL, 8, 8, panel_width(v, 330),
+                      (float)(v->win_h - 16 > 200 ? v->win_h - 16 : 200))) {
         int samples = dirt_session_samples(v->s);
         dirt_ui_text("%s", v->scene_name);
         dirt_ui_text("%zu triangles, %d x %d", dirt_scene_num_triangles(v->scene), v->rw, v->rh);
@@ -49,7 +87,7 @@ static void panel_settings(viewer *v)
             dirt_ui_text_disabled("%s", v->scale_note);
         if (v->status[0])
             dirt_ui_text_disabled("%s", v->status);
-        if (dirt_ui_header("Render", true)) {
+        if (header("Render", true)) {
             int eng = (int)o->s.engine;
             if (dirt_ui_combo("engine", &eng, app_engine_names, DIRT_NUM_ENGINES))
                 o->s.engine = (enum dirt_engine)eng;
@@ -104,7 +142,7 @@ static void panel_settings(viewer *v)
                     o->s.height = h;
             }
         }
-        if (dirt_ui_header("Structure", false)) {
+        if (header("Structure", false)) {
             int vm = (int)o->s.views;
             const char *vnames[] = {"cube+camera (default)", "single", "cube", "cube+camera"};
             if (dirt_ui_combo("views", &vm, vnames, 4))
@@ -138,7 +176,7 @@ static void panel_settings(viewer *v)
             dirt_ui_slider_float("MMRT thickness (0 = auto)", &o->s.thickness, 0.0f,
                                  0.05f * v->diag, "%.4f", false);
         }
-        if (dirt_ui_header("Camera", false)) {
+        if (header("Camera", false)) {
             char cam[1024];
             view_camera_args(v, cam, sizeof(cam));
             dirt_ui_text("%s", cam[0] ? cam : "(the scene's default camera)");
@@ -163,13 +201,13 @@ static void panel_settings(viewer *v)
             dirt_ui_slider_float("focus distance", &o->s.focus, 0.0f, 2.0f * v->diag, "%.3f",
                                  false);
         }
-        if (dirt_ui_header("Display", true)) {
+        if (header("Display", true)) {
             dirt_ui_combo("buffer", &o->buffer, buffer_labels, NUM_BUFFERS);
             dirt_ui_slider_float("exposure", &o->exposure, -10.0f, 10.0f, "%.1f", false);
             dirt_ui_combo("tone map", &o->tonemap, app_tonemap_names, 3);
         }
         size_t clips = dirt_scene_num_clips(v->scene);
-        if (dirt_ui_header("Animation", clips > 0)) {
+        if (header("Animation", clips > 0)) {
             if (!clips) {
                 dirt_ui_text_disabled("the scene has no animation");
             } else {
@@ -196,7 +234,7 @@ static void panel_settings(viewer *v)
                     o->speed = sp;
             }
         }
-        if (dirt_ui_header("Files", false)) {
+        if (header("Files", false)) {
             if (dirt_ui_button("screenshot (P)")) {
                 char path[64];
                 view_shot_name(v, "png", path, sizeof(path));
@@ -217,17 +255,16 @@ static void panel_settings(viewer *v)
 
 static void panel_numbers(viewer *v)
 {
-    float w = 360, x = (float)v->win_w - w - 8;
-    if (x < 346)
-        x = 346;
+    float w = panel_width(v, 360), x = right_x(v, w), y = small_window(v) ? 34 : 8;
+    float h = (float)v->win_h - y - 8;
     collapse_if_small(v);
-    if (dirt_ui_begin("Numbers", NULL, x, 8, w, 420)) {
+    if (dirt_ui_begin("Numbers", NULL, x, y, w, h < 420 ? (h > 100 ? h : 100) : 420)) {
         const dirt_session_stats *st = &v->last;
         /* Memory first, where it is always in view. */
         dirt_ui_text("memory: %.2f MB used / %.2f MB allocated",
                      st->bytes_total_used / 1048576.0, st->bytes_total_allocated / 1048576.0);
         dirt_ui_item_rect(v->memory_rect);
-        if (dirt_ui_header("Inspector (under the cursor)", true)) {
+        if (header("Inspector (under the cursor)", true)) {
             view_inspect(v);
             const struct view_probe *a = &v->probe[0], *b = &v->probe[1];
             if (!a->valid) {
@@ -299,6 +336,51 @@ static void panel_numbers(viewer *v)
             dirt_ui_table_cell("%.3f", st->bytes_total_used / 1048576.0);
             dirt_ui_table_cell("%.3f", st->bytes_total_allocated / 1048576.0);
             dirt_ui_table_end();
+        }
+    }
+    note_panel(v);
+    dirt_ui_end();
+}
+
+/* The camera bookmarks: a row per slot with go / save / delete, and where
+ * they are kept. */
+static void panel_bookmarks(viewer *v)
+{
+    /* Starts collapsed to its title bar under Numbers (a click opens it). */
+    float w = panel_width(v, 360), x = right_x(v, w), y = small_window(v) ? 60 : 436;
+    float h = (float)v->win_h - y - 8;
+    dirt_ui_next_collapsed();
+    if (dirt_ui_begin("Bookmarks", NULL, x, y, w, h < 120 ? 120 : h > 300 ? 300 : h)) {
+        dirt_ui_text_disabled("Ctrl + N saves, Shift + N goes to N");
+        dirt_ui_text_disabled("%s", v->bm_note);
+        for (int i = 0; i < NUM_BOOKMARKS; i++) {
+            const struct view_bookmark *m = &v->bookmarks[i];
+            char id[32];
+            if (m->set)
+                dirt_ui_text("%d: eye %.3g, %.3g, %.3g; fov %.3g", i + 1, (double)m->look.eye[0],
+                             (double)m->look.eye[1], (double)m->look.eye[2],
+                             (double)(m->look.fov_deg > 0 ? m->look.fov_deg : 45.0f));
+            else
+                dirt_ui_text_disabled("%d: empty", i + 1);
+            if (m->set) {
+                char args[1024];
+                vcam_format(&m->look, args, sizeof(args));
+                dirt_ui_tooltip(args);
+                dirt_ui_same_line();
+                snprintf(id, sizeof(id), "go##bm%d", i + 1);
+                if (dirt_ui_button(id))
+                    view_bookmark_go(v, i + 1);
+            }
+            dirt_ui_same_line();
+            snprintf(id, sizeof(id), "save##bm%d", i + 1);
+            if (dirt_ui_button(id))
+                view_bookmark_save(v, i + 1);
+            if (m->set) {
+                dirt_ui_same_line();
+                snprintf(id, sizeof(id), "delete##bm%d", i + 1);
+                if (dirt_ui_button(id))
+                    view_bookmark_delete(v, i + 1);
+            }
         }
     }
     note_panel(v);
@@ -415,6 +497,7 @@ void view_panels(viewer *v)
     overlay(v);
     panel_settings(v);
     panel_numbers(v);
+    panel_bookmarks(v);
     if (v->show_help)
         panel_help(v);
 }

@@ -27,6 +27,7 @@ static const struct {
     {"save-image", VS_SAVE_IMAGE, 0, 0, true}, {"report", VS_REPORT, 0, 0, true},
     {"print-camera", VS_PRINT_CAMERA, 0, 0, false}, {"quit", VS_QUIT, 0, 0, false},
     {"zoom", VS_ZOOM, 3, 1, false}, {"pan-image", VS_PAN_IMAGE, 2, 2, false},
+    {"bookmark", VS_BOOKMARK, 0, 0, false},
 };
 
 static bool number(const char *tok, double *out)
@@ -120,6 +121,15 @@ static bool parse_line(char *line, int no, vs_action *a, char *why, size_t size)
                 return false;
             }
         }
+        return true;
+    case VS_BOOKMARK:
+        if (args != 2 || (strcmp(w[1], "save") && strcmp(w[1], "go") && strcmp(w[1], "delete")) ||
+            !number(w[2], &a->num[0]) || a->num[0] < 1 || a->num[0] > 9 ||
+            a->num[0] != floor(a->num[0])) {
+            snprintf(why, size, "line %d: bookmark takes save, go or delete and a slot 1 .. 9", no);
+            return false;
+        }
+        snprintf(a->name, sizeof(a->name), "%s", w[1]);
         return true;
     case VS_SET:
         if (args != 2) {

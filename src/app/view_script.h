@@ -10,11 +10,13 @@
  *   dolly FACTOR                    distance to the target times FACTOR
  *   fly FORWARD RIGHT UP            scene units
  *   camera I | auto | default       the scene's camera I, the automatic one
- *   key NAME [FRAMES]               hold a key (gl/window.h names) N frames (1)
+ *   key NAME [FRAMES]               hold a key (gl/window.h names, with Ctrl+,
+ *                                   Shift+ or Alt+ before it) N frames (1)
  *   click X Y                       left click at window pixel X, Y
  *   zoom Z [X Y] | zoom fit         Z window pixels per image pixel, keeping the
  *                                   image point at window pixel X, Y (the centre)
  *   pan-image DX DY                 move the image by window pixels
+ *   bookmark save|go|delete N       camera bookmark N (1 .. 9)
  *   set OPTION VALUE                a command-line option without "--"
  *                                   (flags take on/off)
  *   resize W H                      the window's size
@@ -34,7 +36,7 @@
 enum vs_kind {
     VS_WAIT_FRAMES, VS_WAIT_SAMPLES, VS_WAIT_FILE, VS_ORBIT, VS_PAN, VS_DOLLY, VS_FLY, VS_CAMERA,
     VS_KEY, VS_CLICK, VS_SET, VS_RESIZE, VS_SCREENSHOT, VS_SAVE_IMAGE, VS_REPORT,
-    VS_PRINT_CAMERA, VS_QUIT, VS_ZOOM, VS_PAN_IMAGE,
+    VS_PRINT_CAMERA, VS_QUIT, VS_ZOOM, VS_PAN_IMAGE, VS_BOOKMARK,
 };
 
 typedef struct vs_action {
@@ -42,7 +44,7 @@ typedef struct vs_action {
     int line;            /* 1-based line in the file */
     double num[3];       /* numbers of the action */
     char name[64];       /* set: option; key: key name; camera: "auto"/"default"/"";
-                            zoom: "fit" or "" */
+                            zoom: "fit" or ""; bookmark: save, go, delete */
     char text[4096];     /* set: value; wait-file, screenshot, save-image, report: path */
 } vs_action;
 

@@ -85,11 +85,22 @@ bool view_run_script(viewer *v)
             break;
         case VS_KEY: {
             /* Down in this frame (the toggles act), held for num[0] frames. */
-            enum dirt_key k = dirt_key_from_name(a->name);
+            unsigned char mods;
+            enum dirt_key k = view_key_parse(a->name, &mods);
             v->held[k] = (int)a->num[0];
             v->pressed[k] = true;
+            v->pressed_mods[k] = mods;
             break;
         }
+        case VS_BOOKMARK:
+            if (!strcmp(a->name, "save"))
+                view_bookmark_save(v, (int)a->num[0]);
+            else if (!strcmp(a->name, "go") && !view_bookmark_go(v, (int)a->num[0])) {
+                cli_error(PROG, "script line %d: bookmark %d is empty", a->line, (int)a->num[0]);
+                return false;
+            } else if (!strcmp(a->name, "delete"))
+                view_bookmark_delete(v, (int)a->num[0]);
+            break;
         case VS_ZOOM:
             view_zoom_at(v, a->name[0] ? 0 : a->num[0], a->num[1] >= 0 ? a->num[1] : v->win_w / 2.0,
                          a->num[2] >= 0 ? a->num[2] : v->win_h / 2.0);
@@ -170,7 +181,8 @@ bool view_check_script(const view_script *sc, const app_opts *o)
     scratch = *o;
     for (size_t i = 0; i < sc->count; i++) {
         const vs_action *a = &sc->actions[i];
-        if (a->kind == VS_KEY && dirt_key_from_name(a->name) == DIRT_KEY_NONE) {
+        unsigned char mods;
+        if (a->kind == VS_KEY && view_key_parse(a->name, &mods) == DIRT_KEY_NONE) {
             cli_error(PROG, "script line %d: unknown key '%s'", a->line, a->name);
             return false;
         }

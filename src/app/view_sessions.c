@@ -1,12 +1,18 @@
 /* dirt-view's render sessions (view.h): the main one and the raster
  * preview shown while the camera moves, kept in step with the settings
  * (options, time, camera), and the scene they render. */
+#include <cjson/cJSON.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "app/setup.h"
 #include "app/view.h"
+#include "dirt/input.h"
 
 /* The session options the viewer's settings ask for, for `engine`. */
 dirt_session_opts view_wanted_opts(const viewer *v, int engine)
@@ -73,6 +79,7 @@ bool view_load_scene(viewer *v, dirt_scene *sc, const char *path)
         return false;
     v->diag = scene_diagonal(dirt_session_frame(v->s));
     view_reset_camera(v);
+    view_bookmarks_open(v, path);
     char title[4200];
     snprintf(title, sizeof(title), "dirt-view: %s", v->scene_name);
     dirt_gpu_window_set_title(v->gpu, title);
@@ -211,22 +218,98 @@ static bool sync_all(viewer *v)
 
 /* A new main session from the shader sources, proven by one sample, then
  * the presentation program; on any failure the old ones stay. */
+/* The source tree of the meson build tree `dir` (the folder holding
+ * meson-info/meson-info.json, whose directories.build is `dir` itself),
+ * into `src`; false when `dir` is not a build tree. */
+static bool build_tree_source(const char *dir, const struct stat *dir_st, char *src, size_t size)
+{
+    char info[PATH_MAX + 32];
+    snprintf(info, sizeof(info), "%s/meson-info/meson-info.json", dir);
+    enum dirt_input_error e;
+    size_t len = 0;
+    char *text = dirt_input_read(info, (size_t)1 << 20, &len, &e);
+    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    const cJSON *dirs = cJSON_GetObjectItemCaseSensitive(root, "directories");
+    const cJSON *source = cJSON_GetObjectItemCaseSensitive(dirs, "source");
+    const cJSON *build = cJSON_GetObjectItemCaseSensitive(dirs, "build");
+    struct stat st;
+    bool ok = cJSON_IsString(source) && cJSON_IsString(build) &&
+              stat(build->valuestring, &st) == 0 && st.st_dev == dir_st->st_dev &&
+              st.st_ino == dir_st->st_ino;
+    if (ok)
+        snprintf(src, size, "%s", source->valuestring);
+    cJSON_Delete(root);
+    return ok;
+}
+
+const char *view_shader_source(char *dir, size_t size, char *why, size_t why_size)
+{
+    dir[0] = why[0] = '\0';
+    const char *env = getenv("DIRT_GLSL_DIR");
+    if (env && *env) {
+        snprintf(dir, size, "%s", env);
+        return "DIRT_GLSL_DIR";
+    }
+    /* A parent folder of the program's file (the kernel's path, links
+     * resolved) that is a meson build tree: meson-info names its source
+     * tree. Nothing of the build's paths is stored in the program, so an
+     * installed one names no source tree. */
+    char exe[PATH_MAX], src[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+    bool inside = false;
+    if (n > 0) {
+        exe[n] = '\0';
+        for (char *slash = strrchr(exe, '/'); slash && slash > exe && !inside;
+             slash = strrchr(exe, '/')) {
+            *slash = '\0';
+            struct stat st;
+            inside = stat(exe, &st) == 0 && build_tree_source(exe, &st, src, sizeof(src));
+        }
+    }
+    if (!inside) {
+        snprintf(why, why_size, "this dirt-view is not run from a meson build tree, so its "
+                 "shaders are the library's embedded ones; run it with DIRT_GLSL_DIR=a source "
+                 "tree's glsl/ folder");
+        return NULL;
+    }
+    char glsl[PATH_MAX + 64];
+    snprintf(glsl, sizeof(glsl), "%s/glsl/present/present.frag", src);
+    struct stat st;
+    if (stat(glsl, &st) || !S_ISREG(st.st_mode)) {
+        snprintf(why, why_size, "the source tree's shaders (%s/glsl) are not there; run it with "
+                 "DIRT_GLSL_DIR=a source tree's glsl/ folder", src);
+        return NULL;
+    }
+    snprintf(dir, size, "%s/glsl", src);
+    return "build tree";
+}
+
 bool view_reload_shaders(viewer *v)
 {
-    const char *dir = dirt_gpu_glsl_dir();
-    if (!dir) {
+    char dir[4096], why[4400];
+    const char *from = view_shader_source(dir, sizeof(dir), why, sizeof(why));
+    if (!from) {
         v->shader_reload_failures++;
-        view_status(v, "shader reload: unavailable, the shaders are the library's embedded ones "
-                    "(run with DIRT_GLSL_DIR=a source tree's glsl/ folder)");
+        view_status(v, "shader reload: unavailable: %s", why);
         snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
         return false;
     }
+    /* From the build tree: the source tree's shaders from now on (back to
+     * the ones in use if they do not compile). */
+    const char *was = dirt_gpu_glsl_dir();
+    char before[4096];
+    snprintf(before, sizeof(before), "%s", was ? was : "");
+    if (strcmp(from, "DIRT_GLSL_DIR"))
+        dirt_gpu_set_glsl_dir(dir);
     dirt_eval_opts eval = {.clip = v->applied_clip, .loop = v->applied_loop};
     dirt_session *ns = dirt_session_create(v->gpu, v->scene, &v->applied);
     bool ok = ns && dirt_session_set_time(ns, v->applied_time, &eval) && view_apply_camera(v, ns) &&
               dirt_session_add_samples(ns, 1, NULL, NULL) && dirt_gpu_present_reload(v->gpu);
     if (!ok) {
         dirt_session_destroy(ns);
+        if (strcmp(from, "DIRT_GLSL_DIR"))
+            dirt_gpu_set_glsl_dir(before[0] ? before : NULL);
         v->shader_reload_failures++;
         view_status(v, "shader reload from %s failed (the compiler's errors are in the log); "
                     "kept the old programs", dir);
@@ -244,7 +327,7 @@ bool view_reload_shaders(viewer *v)
     v->generation++;
     v->last = *dirt_session_get_stats(v->s);
     v->shader_reloads++;
-    view_status(v, "shaders reloaded from %s", dir);
+    view_status(v, "shaders reloaded from %s (%s)", dir, from);
     snprintf(v->reload_status, sizeof(v->reload_status), "%s", v->status);
     return true;
 }

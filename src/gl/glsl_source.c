@@ -9,10 +9,17 @@
 
 #include "dirt/log.h"
 
+static char set_root[4096];
+
 const char *glsl_root(void)
 {
     const char *env = getenv("DIRT_GLSL_DIR");
-    return env && *env ? env : NULL;
+    return env && *env ? env : set_root[0] ? set_root : NULL;
+}
+
+void glsl_set_root(const char *dir)
+{
+    snprintf(set_root, sizeof(set_root), "%s", dir && strlen(dir) < sizeof(set_root) ? dir : "");
 }
 
 const glsl_embedded_file *glsl_embedded_find(const char *rel)

@@ -25,9 +25,13 @@ typedef struct glsl_files {
 
 /* Directory of the shader sources when they are not the library's own:
  * $DIRT_GLSL_DIR when set and not empty (development: edited shaders are
- * read at every program compile), else NULL, which glsl_assemble takes as
+ * read at every program compile), else the folder of glsl_set_root, else NULL, which glsl_assemble takes as
  * the sources embedded into the library at build time (glsl/embed.py). */
 const char *glsl_root(void);
+/* The folder glsl_root() gives when $DIRT_GLSL_DIR is not set (copied;
+ * NULL or "": the embedded sources again). For the program, not the
+ * library: a viewer run from its build tree reads its source tree. */
+void glsl_set_root(const char *dir);
 
 struct glsl_embedded_file;
 /* The embedded file `rel` (relative to glsl/), NULL when there is none. */

@@ -107,6 +107,11 @@ const char *dirt_gpu_glsl_dir(void)
     return glsl_root();
 }
 
+void dirt_gpu_set_glsl_dir(const char *dir)
+{
+    glsl_set_root(dir);
+}
+
 bool dirt_gpu_present_reload(dirt_gpu *gpu)
 {
     if (!has_window(gpu, "dirt_gpu_present_reload"))

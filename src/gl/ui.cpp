@@ -19,7 +19,9 @@ extern "C" {
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdlib>
@@ -55,6 +57,7 @@ struct dirt_ui {
      * came from a poll within the frame and are kept for the next one
      * (ImGui's EndFrame clears the wheel). */
     float wheel, wheel_h;
+    int clipped, clipped_last;  /* labels cut off in the open / last frame */
 };
 
 namespace {
@@ -107,6 +110,44 @@ void draw(void)
         glEnable(GL_FRAMEBUFFER_SRGB);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)draw_fb);
     gl_group_pop();
+}
+
+/* Counts the last item (a widget with its label) when it reaches past the
+ * panel's right edge: cut off. */
+void check_fits()
+{
+    float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x > right + 0.5f)
+        g_ui->clipped++;
+}
+
+/* Draws a widget (`draw` returns ImGui's answer) and checks that it fits. */
+template <typename F> bool fitted(F draw)
+{
+    bool r = draw();
+    check_fits();
+    return r;
+}
+
+/* A labelled widget whose label does not fit beside it at the panel's
+ * item width gets the label on its own line above and the whole width
+ * (so no label is cut off, whatever the panel's width). Returns the label
+ * to give ImGui ("##" + label then, the same id every frame); `buf` holds
+ * it. A label wider than the panel itself is still cut off (check_fits). */
+const char *fit_label(const char *label, char *buf, size_t size)
+{
+    if (!label)
+        return label;
+    float lw = ImGui::CalcTextSize(label, nullptr, true).x;
+    float avail = ImGui::GetContentRegionAvail().x;
+    if (lw <= 0 ||
+        ImGui::CalcItemWidth() + ImGui::GetStyle().ItemInnerSpacing.x + lw <= avail)
+        return label;
+    ImGui::TextUnformatted(label, strstr(label, "##"));
+    check_fits();
+    ImGui::SetNextItemWidth(-FLT_MIN);
+    snprintf(buf, size, "##%s", label);
+    return buf;
 }
 
 } // namespace
@@ -216,6 +257,7 @@ void dirt_ui_begin_frame(dirt_ui *ui)
     ui->depth = 0;
     ui->tables = 0;
     ui->num_frame = 0;
+    ui->clipped = 0;
     g_ui = ui;
 }
 
@@ -248,6 +290,7 @@ static void end_frame(dirt_ui *ui, bool shown, const char *fn)
     ui->in_frame = false;
     memcpy(ui->last, ui->frame, sizeof(ui->frame));
     ui->num_last = ui->num_frame;
+    ui->clipped_last = ui->clipped;
     g_ui = nullptr;
 }
 
@@ -270,6 +313,11 @@ bool dirt_ui_buttons_changed(const dirt_ui *ui)
         if (io.MouseClicked[i] || io.MouseReleased[i])
             return true;
     return false;
+}
+
+int dirt_ui_clipped_labels(const dirt_ui *ui)
+{
+    return ui ? ui->clipped_last : 0;
 }
 
 bool dirt_ui_wants_mouse(const dirt_ui *ui)
@@ -419,7 +467,9 @@ void dirt_ui_text(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
+    ImGui::PushTextWrapPos(0.0f); /* wrapped at the panel's edge, never cut off */
     ImGui::TextV(fmt, ap);
+    ImGui::PopTextWrapPos();
     va_end(ap);
 }
 
@@ -429,7 +479,9 @@ void dirt_ui_text_disabled(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabledV(fmt, ap);
+    ImGui::PopTextWrapPos();
     va_end(ap);
 }
 
@@ -459,12 +511,20 @@ void dirt_ui_same_line(void)
 
 bool dirt_ui_button(const char *label)
 {
-    return in_frame("dirt_ui_button") && ImGui::Button(label);
+    if (!in_frame("dirt_ui_button"))
+        return false;
+    bool pressed = ImGui::Button(label);
+    check_fits();
+    return pressed;
 }
 
 bool dirt_ui_checkbox(const char *label, bool *value)
 {
-    return in_frame("dirt_ui_checkbox") && value && ImGui::Checkbox(label, value);
+    if (!in_frame("dirt_ui_checkbox") || !value)
+        return false;
+    bool changed = ImGui::Checkbox(label, value);
+    check_fits();
+    return changed;
 }
 
 bool dirt_ui_radio(const char *label, int *value, int button_value)
@@ -480,42 +540,64 @@ bool dirt_ui_combo(const char *label, int *current, const char *const *items, in
         DIRT_ERROR("dirt_ui_combo '%s': no items", label ? label : "");
         return false;
     }
-    return ImGui::Combo(label, current, items, count);
+    char buf[256];
+    return fitted(
+        [&] { return ImGui::Combo(fit_label(label, buf, sizeof(buf)), current, items, count); });
 }
 
 bool dirt_ui_slider_int(const char *label, int *value, int lo, int hi)
 {
-    return in_frame("dirt_ui_slider_int") && value && ImGui::SliderInt(label, value, lo, hi);
+    char buf[256];
+    return in_frame("dirt_ui_slider_int") && value &&
+           fitted([&] {
+               return ImGui::SliderInt(fit_label(label, buf, sizeof(buf)), value, lo, hi);
+           });
 }
 
 bool dirt_ui_slider_float(const char *label, float *value, float lo, float hi,
                           const char *format, bool logarithmic)
 {
+    char buf[256];
     return in_frame("dirt_ui_slider_float") && value &&
-           ImGui::SliderFloat(label, value, lo, hi, format ? format : "%.3f",
-                              logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+           fitted([&] {
+               return ImGui::SliderFloat(fit_label(label, buf, sizeof(buf)), value, lo, hi,
+                                         format ? format : "%.3f",
+                                         logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+           });
 }
 
 bool dirt_ui_input_int(const char *label, int *value, int step)
 {
-    return in_frame("dirt_ui_input_int") && value && ImGui::InputInt(label, value, step);
+    char buf[256];
+    return in_frame("dirt_ui_input_int") && value &&
+           fitted([&] { return ImGui::InputInt(fit_label(label, buf, sizeof(buf)), value, step); });
 }
 
 bool dirt_ui_input_float(const char *label, float *value, const char *format)
 {
+    char buf[256];
     return in_frame("dirt_ui_input_float") && value &&
-           ImGui::InputFloat(label, value, 0.0f, 0.0f, format ? format : "%.3f");
+           fitted([&] {
+               return ImGui::InputFloat(fit_label(label, buf, sizeof(buf)), value, 0.0f, 0.0f,
+                                        format ? format : "%.3f");
+           });
 }
 
 bool dirt_ui_input_float3(const char *label, float value[3], const char *format)
 {
+    char buf[256];
     return in_frame("dirt_ui_input_float3") && value &&
-           ImGui::InputFloat3(label, value, format ? format : "%.3f");
+           fitted([&] {
+               return ImGui::InputFloat3(fit_label(label, buf, sizeof(buf)), value,
+                                         format ? format : "%.3f");
+           });
 }
 
 bool dirt_ui_color3(const char *label, float rgb[3])
 {
-    return in_frame("dirt_ui_color3") && rgb && ImGui::ColorEdit3(label, rgb);
+    char buf[256];
+    return in_frame("dirt_ui_color3") && rgb &&
+           fitted([&] { return ImGui::ColorEdit3(fit_label(label, buf, sizeof(buf)), rgb); });
 }
 
 bool dirt_ui_input_text(const char *label, char *buf, int size)
@@ -526,7 +608,9 @@ bool dirt_ui_input_text(const char *label, char *buf, int size)
         DIRT_ERROR("dirt_ui_input_text '%s': no buffer", label ? label : "");
         return false;
     }
-    return ImGui::InputText(label, buf, (size_t)size);
+    char lb[256];
+    return fitted(
+        [&] { return ImGui::InputText(fit_label(label, lb, sizeof(lb)), buf, (size_t)size); });
 }
 
 void dirt_ui_plot_lines(const char *label, const float *values, int count, int offset,

@@ -64,6 +64,11 @@ void dirt_ui_panel_rect(float rect[4]);
 /* The last widget's rectangle in window pixels (x, y, w, h); zeros outside
  * a shown panel. */
 void dirt_ui_item_rect(float rect[4]);
+/* Labels (and checkboxes, buttons) of the last frame that did not fit in
+ * their panel's width. A label that does not fit beside its widget goes
+ * on its own line above it, and text wraps at the panel's edge, so only
+ * one wider than the whole panel counts. */
+int dirt_ui_clipped_labels(const dirt_ui *ui);
 /* Whether any panel is shown at window pixel (x, y) in the last frame. */
 bool dirt_ui_covers(const dirt_ui *ui, float x, float y);
 

@@ -125,7 +125,7 @@ static struct gl_window_state *state_of(GLFWwindow *win)
 
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 {
-    (void)scancode, (void)mods;
+    (void)scancode;
     struct gl_window_state *st = state_of(win);
     if (!st)
         return;
@@ -145,8 +145,12 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     if (k == DIRT_KEY_NONE)
         return;
     st->in.key[k] = down;
-    if (down)
+    if (down) {
         st->in.key_pressed[k] = true;
+        st->in.key_mods[k] = (unsigned char)(((mods & GLFW_MOD_SHIFT) ? DIRT_MOD_SHIFT : 0) |
+                                             ((mods & GLFW_MOD_CONTROL) ? DIRT_MOD_CTRL : 0) |
+                                             ((mods & GLFW_MOD_ALT) ? DIRT_MOD_ALT : 0));
+    }
 }
 
 static void on_cursor(GLFWwindow *win, double x, double y)
@@ -315,6 +319,7 @@ void gl_window_poll_begin(dirt_gpu *gpu)
     memset(st->in.button_pressed, 0, sizeof(st->in.button_pressed));
     memset(st->in.button_released, 0, sizeof(st->in.button_released));
     memset(st->in.key_pressed, 0, sizeof(st->in.key_pressed));
+    memset(st->in.key_mods, 0, sizeof(st->in.key_mods));
     memset(st->in.drag_dx, 0, sizeof(st->in.drag_dx));
     memset(st->in.drag_dy, 0, sizeof(st->in.drag_dy));
     st->in.double_clicks = 0;

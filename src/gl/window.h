@@ -41,6 +41,9 @@ extern const char *const dirt_key_names[DIRT_NUM_KEYS];
 /* The key of a name (case-insensitive), DIRT_KEY_NONE when unknown. */
 enum dirt_key dirt_key_from_name(const char *name);
 
+/* Modifier bits of dirt_window_input.key_mods. */
+enum { DIRT_MOD_SHIFT = 1, DIRT_MOD_CTRL = 2, DIRT_MOD_ALT = 4 };
+
 enum dirt_mouse_button { DIRT_MOUSE_LEFT = 0, DIRT_MOUSE_RIGHT, DIRT_MOUSE_MIDDLE, DIRT_MOUSE_BUTTONS };
 
 /* What happened in the window up to the last dirt_gpu_window_poll. "Held"
@@ -65,6 +68,9 @@ typedef struct dirt_window_input {
                                           in this poll (not in drag_dx/dy[DIRT_MOUSE_LEFT]) */
     bool key[DIRT_NUM_KEYS];           /* held */
     bool key_pressed[DIRT_NUM_KEYS];   /* went down (or repeated) in this poll */
+    unsigned char key_mods[DIRT_NUM_KEYS]; /* DIRT_MOD_* held when it last went down in
+                                          this poll (so Ctrl + 1 pressed and released
+                                          within one slow frame still reads as such) */
     int num_drops;                     /* paths dropped on the window in this poll */
     const char *drops[8];              /* owned by the GPU, valid until the next poll */
     bool close_requested;              /* the window's close button (stays true once
@@ -126,9 +132,13 @@ typedef struct dirt_present_opts {
 bool dirt_gpu_present(dirt_gpu *gpu, const dirt_present_opts *opts);
 
 /* The folder the shaders are read from at each compile: $DIRT_GLSL_DIR (a
- * source tree's glsl/), or NULL when they are the library's embedded ones
- * (nothing to reload). */
+ * source tree's glsl/), or dirt_gpu_set_glsl_dir's, or NULL when they are
+ * the library's embedded ones (nothing to reload). */
 const char *dirt_gpu_glsl_dir(void);
+/* Reads the shaders from `dir` (a source tree's glsl/) from the next
+ * compile on when $DIRT_GLSL_DIR is not set; NULL: the embedded ones
+ * again. Programs already made stay as they are. */
+void dirt_gpu_set_glsl_dir(const char *dir);
 /* Compiles the presentation program again from the shader sources; when
  * that fails (logged), the old one stays in use. False then. */
 bool dirt_gpu_present_reload(dirt_gpu *gpu);

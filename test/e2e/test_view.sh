@@ -82,10 +82,47 @@ if "$check" window "$tmp/small.png" "$tmp/small-alone.png" "$tmp/small.json" col
 python3 - "$tmp/small.json" <<'PY' && ok || fail "at 480x360 the panels cover the image"
 import json, sys
 r = json.load(open(sys.argv[1]))
-area = sum(p[2] * p[3] for p in r["panels"])
+# the part of each panel inside the window (a panel may reach past its edge)
+clip = lambda a, w, lim: max(0, min(a + w, lim) - max(a, 0))
+area = sum(clip(p[0], p[2], 480) * clip(p[1], p[3], 360) for p in r["panels"])
 print("panels", r["panels"], "cover %.1f%% of 480x360" % (100 * area / (480 * 360)))
 sys.exit(0 if r["panels"] and area < 0.1 * 480 * 360 else 1)
 PY
+
+# 2c. No label is cut off: at 1280x720 with every section of every panel
+# open (test hook DIRT_VIEW_OPEN_HEADERS) and the bookmarks panel open (a
+# real click on its title bar), and at 480x360 with the Numbers panel open
+# (a real click), no widget with its label, checkbox, button or label line
+# reaches past its panel's edge (labels that do not fit beside their widget
+# go above it; text wraps), and the panels lie inside the window.
+for case in "1280x720 924 445 3" "480x360 196 43 1"; do
+  set -- $case
+  rm -f "$tmp/lgo"
+  printf 'wait-samples 1\nwait-file %s\nwait-frames 3\nscreenshot %s\nreport %s\nquit\n' \
+    "$tmp/lgo" "$tmp/labels-$1.png" "$tmp/labels-$1.json" >"$tmp/s.txt"
+  DIRT_VIEW_OPEN_HEADERS=1 "$view" --window "$1" --scale 8 --spp 1 --bounces 1 \
+    --script "$tmp/s.txt" -q >"$tmp/labels.out" 2>&1 &
+  vpid=$!
+  wid=
+  for _ in $(seq 100); do
+    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
+    [ -n "$wid" ] && break; sleep 0.1
+  done
+  sleep 2
+  [ -n "$wid" ] && xdotool mousemove --window "$wid" "$2" "$3" click 1
+  sleep 1; touch "$tmp/lgo"
+  wait "$vpid" || { fail "labels run at $1: exit $?"; cat "$tmp/labels.out" >&2; }
+  python3 - "$tmp/labels-$1.json" "$4" <<'PY' && ok || fail "labels cut off at $1"
+import json, sys
+r = json.load(open(sys.argv[1]))
+w, h = r["window"]
+opened = [p for p in r["panels"] if p[3] > 60]
+print(r["window"], "clipped labels", r["clipped_labels"], "panels", r["panels"])
+bad = r["clipped_labels"] != 0 or len(opened) != int(sys.argv[2])
+bad |= any(p[0] < 0 or p[1] < 0 or p[0] + p[2] > w or p[1] + p[3] > h for p in r["panels"])
+sys.exit(1 if bad else 0)
+PY
+done
 
 # 2b. The depth buffer shown as a heat map is the image's Z through the ramp.
 printf 'wait-samples 1\nset buffer depth\nwait-frames 1\nscreenshot %s\nsave-image %s\nquit\n' \

@@ -17,7 +17,9 @@
 #    are the present shader's ramp, column by column, in the screenshot;
 #  - --compare-image: the split and difference against an EXR from disk,
 #    the inspector's reference values, and its up-front refusals;
-#  - shader reload (F5) from DIRT_GLSL_DIR, and a broken shader kept out.
+#  - shader reload (F5) from DIRT_GLSL_DIR, and a broken shader kept out;
+#    from the source tree when run from the build tree; unavailable to a
+#    copy outside it (as installed).
 #   test_view_inspect.sh DIRT-VIEW DIRT-RENDER VIEW_CHECK
 set -u
 view=$1 render=$2 check=$3
@@ -247,7 +249,7 @@ done
 # negative of what it was, exactly. Then a path tracer shader that does not
 # compile, F5: the compiler's error in the log, the old programs kept (the
 # same window, the reload count unchanged); then a broken present shader,
-# F5: the same. Without DIRT_GLSL_DIR, F5 says it is unavailable.
+# F5: the same.
 glsl_src=$(dirname "$0")/../../glsl
 cp -r "$glsl_src" "$tmp/glsl"
 cat >"$tmp/s.txt" <<EOF
@@ -301,10 +303,46 @@ sys.exit(1 if bad else 0)
 PY
 grep -q 'raygen' "$tmp/sh.out" && grep -q 'present' "$tmp/sh.out" && ok ||
   { fail "the compiler's errors of the broken shaders are not in the log"; cat "$tmp/sh.out" >&2; }
+# Without DIRT_GLSL_DIR, the build's dirt-view (run from its build tree)
+# reads the source tree's glsl/ on F5: the report names that folder, and a
+# real F5 reloads from it (the source tree is only read: the window stays
+# the same). A copy of the program outside the build tree (as installed)
+# keeps the embedded shaders and F5 says it is unavailable.
+cat >"$tmp/s.txt" <<EOF
+wait-samples 1
+wait-frames 1
+screenshot $tmp/sh-f.png
+report $tmp/sh-f.json
+wait-file $tmp/go8
+wait-frames 2
+screenshot $tmp/sh-g.png
+report $tmp/sh-g.json
+quit
+EOF
+env -u DIRT_GLSL_DIR "$view" --window 96x72 --no-ui --seed 5 --bounces 2 --spp 1 \
+  --script "$tmp/s.txt" >"$tmp/shf.out" 2>&1 &
+vpid=$!
+wid=$(window_id)
+[ -n "$wid" ] && xdotool mousemove --window "$wid" 10 10
+for _ in $(seq 600); do [ -s "$tmp/sh-f.json" ] && break; sleep 0.1; done
+xdotool key F5; sleep 0.5; touch "$tmp/go8"
+wait "$vpid" || { fail "build tree run: exit $?"; cat "$tmp/shf.out" >&2; }
+python3 - "$tmp" "$(cd "$glsl_src" && pwd -P)" <<'PY' && ok || fail "run from the build tree, F5 does not read the source tree's glsl/"
+import json, os, sys
+rf, rg = (json.load(open("%s/sh-%s.json" % (sys.argv[1], k))) for k in "fg")
+print("before F5:", rf["shader_source"], rf["shader_source_dir"], "| after:", rg["shader_reloads"],
+      rg["shader_reload_status"])
+bad = rf["shader_source"] != "build tree" or os.path.realpath(rf["shader_source_dir"]) != sys.argv[2]
+bad |= rg["shader_reloads"] != 1 or rf["shader_source_dir"] not in rg["shader_reload_status"]
+sys.exit(1 if bad else 0)
+PY
+"$check" pngs "$tmp/sh-f.png" "$tmp/sh-g.png" same && ok || fail "F5 from the source tree changed the window"
+mkdir -p "$tmp/bin"
+cp "$view" "$tmp/bin/dirt-view"
 printf 'wait-samples 1\nkey F5\nwait-frames 1\nreport %s\nquit\n' "$tmp/sh-e.json" >"$tmp/s.txt"
-env -u DIRT_GLSL_DIR "$view" --window 96x72 --no-ui --spp 1 --script "$tmp/s.txt" -q >"$tmp/she.out" 2>&1 ||
-  fail "embedded shaders run: exit $?"
-python3 -c "import json,sys; r=json.load(open(sys.argv[1])); s=r['shader_reload_status']; print(s); sys.exit(0 if 'unavailable' in s and r['shader_reloads'] == 0 else 1)" \
+env -u DIRT_GLSL_DIR "$tmp/bin/dirt-view" --window 96x72 --no-ui --spp 1 --script "$tmp/s.txt" -q \
+  >"$tmp/she.out" 2>&1 || fail "embedded shaders run: exit $?"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); s=r['shader_reload_status']; print(s); sys.exit(0 if 'unavailable: this dirt-view is not run from a meson build tree' in s and r['shader_reloads'] == 0 and r['shader_source'] == 'embedded' else 1)" \
   "$tmp/sh-e.json" && ok || fail "F5 with embedded shaders does not say it is unavailable"
 
 echo "test_view_inspect: $passes passed, $fails failed"
