@@ -279,6 +279,11 @@ static void end_frame(dirt_ui *ui, bool shown, const char *fn)
     }
     ImGuiIO &io = ImGui::GetIO();
     float wheel = io.MouseWheel - ui->wheel, wheel_h = io.MouseWheelH - ui->wheel_h;
+    /* A poll within the frame (dirt-view's after its trace slice) may have
+     * changed the modifier keys since NewFrame merged them; EndFrame checks
+     * that they agree. */
+    io.KeyMods = (io.KeyCtrl ? ImGuiKeyModFlags_Ctrl : 0) | (io.KeyShift ? ImGuiKeyModFlags_Shift : 0) |
+                 (io.KeyAlt ? ImGuiKeyModFlags_Alt : 0) | (io.KeySuper ? ImGuiKeyModFlags_Super : 0);
     if (shown) {
         ImGui::Render();
         draw();
