@@ -54,6 +54,8 @@ typedef struct dirt_ads_opts {
     double large_area;        /* the smallest large triangle's area, as a fraction of the
                                  squared diagonal of the frame's bounds (0 =
                                  DIRT_ADS_LARGE_AREA) */
+    enum dirt_depth_buckets depth_buckets; /* uniform (default) or adaptive
+                                 (doc/dirt-build.md; B at most DIRT_ADAPT_MAX_BUCKETS) */
 } dirt_ads_opts;
 
 /* The large primitives of `frame`: of the triangles whose area is at least
@@ -85,6 +87,10 @@ typedef struct dirt_ads_data {
     int pyramid_size;
     float (*depth)[2];        /* pyramid: (zmin, zmax); +inf/0 for empty tiles */
     uint32_t *heads;          /* buckets * tiles, bucket-major */
+    int fine_bins;            /* adaptive buckets: H fine bins per tile; 0 = uniform */
+    uint16_t *edges;          /* adaptive buckets: (buckets + 1) per tile, e(0) = 0 ..
+                                 e(B) = H (common/constants.h, DIRT_ADAPT_*); NULL
+                                 when uniform */
     uint32_t (*nodes)[2];     /* (primitive, next) */
     uint32_t num_nodes;
     int num_large;            /* the large primitives, left out of the lists */

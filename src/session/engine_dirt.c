@@ -88,7 +88,8 @@ static bool reshape(engine *e, const engine_env *env)
                                                                           : dirt_session_auto_build(env->gpu);
     d->ads = dirt_ads_create(env->gpu, &(dirt_ads_opts){.views = vo, .buckets = buckets,
                                                         .force_emulation = o->force_emulation,
-                                                        .large = o->large, .build = build});
+                                                        .large = o->large, .build = build,
+                                                        .depth_buckets = o->depth_buckets});
     return d->ads != NULL;
 }
 
