@@ -16,7 +16,9 @@
  *    for bit (primitive, view, t, u, v) for every ray type (camera G-buffer
  *    rays, closest and any hit), default scene and Cornell box, single and
  *    cube+camera, S = 1 and 2, B = 8, and agrees with Embree as the uniform
- *    trace does (cube+camera: 99.9 % of the rays);
+ *    trace does (cube+camera: 99.9 % of the rays); and on a dense soup with
+ *    random rays from inside it (B = 4 and 16), bit for bit with the
+ *    uniform trace and Embree's hit for every ray;
  *  - the memory figures (edges B/2 uints per tile, histogram 4 B uints per
  *    tile, in the totals), B above 1024 refused, and a session switched to
  *    adaptive buckets remakes the structure and renders the uniform one's
@@ -389,6 +391,73 @@ static void compare_hits(dirt_gpu *gpu, const char *label, dirt_scene *scene)
     dirt_scene_destroy(scene);
 }
 
+/* A dense soup and random rays from inside it: adaptive against uniform
+ * hits (bit for bit) and against Embree (every ray), where one primitive
+ * spans several buckets and the early stop after a bucket matters. */
+static void soup_hits(dirt_gpu *gpu)
+{
+    dirt_frame *f = soup(3000);
+    dirt_camera cam;
+    dirt_camera_default(f, &cam);
+    enum { N = 4000 };
+    dirt_ray *rays = malloc(N * sizeof(*rays));
+    for (size_t i = 0; i < N; i++) {
+        float d[3], l = 0;
+        for (int k = 0; k < 3; k++) {
+            rays[i].org[k] = f->bounds_min[k] + frand() * (f->bounds_max[k] - f->bounds_min[k]);
+            d[k] = frand() - 0.5f;
+            l += d[k] * d[k];
+        }
+        for (int k = 0; k < 3; k++)
+            rays[i].dir[k] = d[k] / sqrtf(l);
+        rays[i].tmin = 1e-4f;
+        rays[i].tmax = INFINITY;
+    }
+    dirt_hit *h[2] = {malloc(N * sizeof(dirt_hit)), malloc(N * sizeof(dirt_hit))};
+    dirt_ref_hit *ref = malloc(N * sizeof(*ref));
+    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+    CHECK(accel != NULL);
+    if (accel)
+        dirt_ref_intersect(accel, (const dirt_ref_ray *)rays, ref, N, 0);
+    for (int k = 0; accel && k < 4; k++) {
+        for (int a = 0; a < 2; a++) {
+            dirt_ads_opts o = {
+                .views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 64, .height = 48,
+                          .face_size = 48, .tile_size = k & 1 ? 2 : 1},
+                .buckets = k & 2 ? 16 : 4, .force_emulation = true,
+                .depth_buckets = a ? DIRT_DEPTH_BUCKETS_ADAPTIVE : DIRT_DEPTH_BUCKETS_UNIFORM};
+            dirt_ads *ads = dirt_ads_create(gpu, &o);
+            dirt_trace_stats ts = {0};
+            CHECK(ads && dirt_ads_build(ads, f, &cam) &&
+                  dirt_ads_trace(ads, rays, N, h[a], NULL, &ts));
+            CHECK(ts.aborted == 0);
+            dirt_ads_destroy(ads);
+        }
+        size_t differ = 0, wrong = 0, found = 0;
+        for (size_t i = 0; i < N; i++) {
+            differ += h[0][i].prim != h[1][i].prim || h[0][i].view != h[1][i].view ||
+                      memcmp(&h[0][i].u, &h[1][i].u, 3 * sizeof(float)) != 0;
+            bool dh = h[1][i].prim != DIRT_HIT_NONE, eh = ref[i].prim != DIRT_REF_MISS;
+            found += dh;
+            wrong += dh != eh || (dh && h[1][i].prim != ref[i].prim &&
+                                  fabs(h[1][i].t - ref[i].t) > 1e-4 * fmax(ref[i].t, 1e-3));
+        }
+        fprintf(stderr, "soup cube+camera S=%d B=%d: %d rays, %zu hits, %zu differ from the "
+                "uniform trace, %zu from Embree\n", k & 1 ? 2 : 1, k & 2 ? 16 : 4, N, found,
+                differ, wrong);
+        CHECK_MSG(differ == 0, "soup k=%d: %zu of %d hits differ from uniform buckets'", k,
+                  differ, N);
+        CHECK_MSG(wrong == 0, "soup k=%d: %zu of %d hits differ from Embree's", k, wrong, N);
+        CHECK(found > N / 4);
+    }
+    dirt_ref_accel_destroy(accel);
+    free(rays);
+    free(h[0]);
+    free(h[1]);
+    free(ref);
+    frame_free(f);
+}
+
 /* Options: more than 1024 buckets refused; a session switched to adaptive
  * buckets renders the uniform image bit for bit. */
 static void test_session(dirt_gpu *gpu)
@@ -465,6 +534,7 @@ int main(void)
         snprintf(path, sizeof(path), "%s/scenes/cornell/CornellBox-Original.obj", shared);
         compare_hits(gpu, "cornell", dirt_scene_load(path, NULL));
     }
+    soup_hits(gpu);
     test_session(gpu);
     CHECK(dirt_gpu_error_count(gpu) == 0);
     dirt_gpu_destroy(gpu);
