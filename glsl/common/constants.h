@@ -65,8 +65,8 @@
  * e(b) <= f < e(b+1). The list-heads array (DIRT_BIND_HEADS) then holds,
  * after the B * tiles heads, DIRT_ADAPT_EDGE_WORDS(B) uints per tile of
  * edges (e(b), b in 1..B-1, 16 bits each: the low half of word (b - 1) / 2
- * for odd b, the high half for even b), then the build's coverage
- * histogram, H uints per tile (tile-major; counting up from the heads'
+ * for odd b, the high half for even b), then the build's histogram
+ * of its candidates' range ends, H uints per tile (tile-major; counting up from the heads'
  * clear value DIRT_LIST_END, so a bin holds its count - 1). B is at most
  * DIRT_ADAPT_MAX_BUCKETS (an edge fits 16 bits). */
 #define DIRT_ADAPT_FINE 4

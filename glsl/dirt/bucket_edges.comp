@@ -1,11 +1,11 @@
 #version 450 core
 // DIRT build, adaptive depth buckets (common/constants.h, DIRT_ADAPT_*;
 // doc/dirt-build.md, "Adaptive depth buckets"), second half: one
-// invocation per tile turns its coverage histogram (bucket_hist.comp; C
-// in all) into its bucket edges at equal-coverage quantiles: e(b), b in
-// 1..B-1, is the smallest fine-bin index k whose bins below it hold at
-// least ceil(b C / B) of the coverage (0 for an empty tile), so each
-// bucket holds about C / B (primitive, fine bin) pairs. Writes the packed
+// invocation per tile turns its histogram of range ends (bucket_hist.comp;
+// C = 2 x its candidates in all) into its bucket edges at equal-count
+// quantiles: e(b), b in 1..B-1, is the smallest fine-bin index k whose bins
+// below it hold at least ceil(b C / B) of the ends (0 for an empty tile),
+// so about C / B range ends lie in each bucket. Writes the packed
 // edges; the histogram is left as it is (the next build's clear resets it).
 #include "common/layout.h"
 #include "common/rows.glsl"

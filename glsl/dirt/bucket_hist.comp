@@ -1,11 +1,11 @@
 #version 450 core
 // DIRT build, adaptive depth buckets (common/constants.h, DIRT_ADAPT_*;
 // doc/dirt-build.md, "Adaptive depth buckets"), first half, before the
-// count pass: one invocation per stored candidate adds 1 to every fine bin
-// of its tile that its depth range overlaps (the tile's coverage
-// histogram, after the heads and edges in the list-heads array; counted up
-// from the clear value). Order-independent: the sums are the same whatever
-// the atomics' order.
+// count pass: one invocation per stored candidate adds 1 to the fine bin
+// of each end of its depth range in its tile (twice to one bin when both
+// ends lie in it): the tile's histogram of range ends, after the heads and
+// edges in the list-heads array, counted up from the clear value.
+// Order-independent: the sums are the same whatever the atomics' order.
 #include "common/layout.h"
 #include "common/rows.glsl"
 
@@ -35,6 +35,6 @@ void main()
     int f0 = dirt_fine_bin(uintBitsToFloat(c.z), zlo, range, H);
     int f1 = dirt_fine_bin(uintBitsToFloat(c.w), zlo, range, H);
     uint base = uint(B + DIRT_ADAPT_EDGE_WORDS(B)) * T + c.y * uint(H);
-    for (int f = f0; f <= f1; f++)
-        dirt_head_add(base + uint(f), 1u);
+    dirt_head_add(base + uint(f0), 1u);
+    dirt_head_add(base + uint(f1), 1u);
 }

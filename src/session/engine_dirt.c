@@ -150,6 +150,11 @@ static void build_stats(engine *e, dirt_session_stats *st)
     engine_add_buffer(st, "list heads", a->bytes_heads, a->bytes_heads);
     engine_add_buffer(st, "id nodes", a->bytes_nodes_used, a->bytes_nodes_allocated);
     engine_add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
+    if (a->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+        engine_add_buffer(st, "bucket edges", a->bytes_bucket_edges, a->bytes_bucket_edges);
+        engine_add_buffer(st, "bucket histogram", a->bytes_bucket_histogram,
+                          a->bytes_bucket_histogram);
+    }
 }
 
 static dirt_ads *ads_of(engine *e)

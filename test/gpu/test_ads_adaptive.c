@@ -4,9 +4,10 @@
  *    build that learns the edges on its own: it reads each (tile,
  *    primitive)'s fine bins from a uniform build of B' = 4 B buckets (the
  *    fine bins are that build's buckets; that build is checked against the
- *    exact CPU clip by ads_check), sorts the tile's covered fine bins, takes
- *    the quantiles (edge b = 1 + the ceil(b C / B)-th smallest of the C
- *    covered bins, 0 for an empty tile) and puts each primitive in the
+ *    exact CPU clip by ads_check), sorts the fine bins of the tile's range
+ *    ends (two per primitive), takes the quantiles (edge b = 1 + the
+ *    ceil(b C / B)-th smallest of the C ends, 0 for an empty tile) and puts
+ *    each primitive in the
  *    buckets of its end bins (binary search over the edges); the depth
  *    bounds and pyramid equal the uniform build's bit for bit; default
  *    scene, a random soup, CesiumMilkTruck (t = 0.5; in CI a missing
@@ -105,7 +106,7 @@ static bool cpu_adaptive(const dirt_ads_data *u, int B, uint64_t **entries, size
     uint64_t *out = malloc((n_u + 1) * (size_t)B * sizeof(*out));
     /* per tile: (prim, bin) pairs sorted by prim */
     uint64_t *pb = malloc((n_u + 1) * sizeof(*pb));
-    int *covered = malloc((n_u + 1) * sizeof(int));
+    int *ends = malloc(2 * (n_u + 1) * sizeof(int));
     size_t n = 0, i = 0;
     bool ok = true;
     for (int t = 0; t < T; t++) {
@@ -115,20 +116,28 @@ static bool cpu_adaptive(const dirt_ads_data *u, int B, uint64_t **entries, size
         size_t m = 0;
         for (size_t k = i; k < j; k++) {
             int bin = (int)((fine[k] >> 32) & 0xFF);
-            covered[m] = bin;
             pb[m++] = ((uint64_t)(uint32_t)fine[k] << 32) | (uint32_t)bin;
         }
-        /* the quantiles of the sorted covered bins */
-        qsort(covered, m, sizeof(int), cmp_int);
+        /* each primitive's first and last bin: its range's ends */
+        qsort(pb, m, sizeof(*pb), cmp_u64);
+        size_t nends = 0;
+        for (size_t k = 0; k < m; k++) {
+            uint32_t prim = (uint32_t)(pb[k] >> 32);
+            if (k == 0 || (uint32_t)(pb[k - 1] >> 32) != prim)
+                ends[nends++] = (int)(uint32_t)pb[k];
+            if (k + 1 == m || (uint32_t)(pb[k + 1] >> 32) != prim)
+                ends[nends++] = (int)(uint32_t)pb[k];
+        }
+        /* the quantiles of the sorted ends */
+        qsort(ends, nends, sizeof(int), cmp_int);
         int *e = edges + (size_t)(B + 1) * (size_t)t;
         e[0] = 0;
         e[B] = H;
         for (int b = 1; b < B; b++) {
-            uint64_t q = ((uint64_t)b * m + (uint64_t)B - 1) / (uint64_t)B;
-            e[b] = q == 0 ? 0 : covered[q - 1] + 1;
+            uint64_t q = ((uint64_t)b * nends + (uint64_t)B - 1) / (uint64_t)B;
+            e[b] = q == 0 ? 0 : ends[q - 1] + 1;
         }
         /* each primitive's bins: one contiguous run; its buckets */
-        qsort(pb, m, sizeof(*pb), cmp_u64);
         for (size_t k = 0; k < m;) {
             size_t l = k;
             uint32_t prim = (uint32_t)(pb[k] >> 32);
@@ -148,7 +157,7 @@ static bool cpu_adaptive(const dirt_ads_data *u, int B, uint64_t **entries, size
     qsort(out, n, sizeof(*out), cmp_u64);
     free(fine);
     free(pb);
-    free(covered);
+    free(ends);
     *entries = out;
     *count = n;
     *edges_out = edges;
@@ -484,6 +493,18 @@ static void test_session(dirt_gpu *gpu)
         CHECK(st->has_ads && st->aborted == 0 &&
               st->ads.depth_buckets ==
                   (i ? DIRT_DEPTH_BUCKETS_ADAPTIVE : DIRT_DEPTH_BUCKETS_UNIFORM));
+        /* the session's buffer list (its bytes_total) names the two arrays */
+        uint64_t edges = 0, hist = 0, sum = 0;
+        for (int k = 0; k < st->num_buffers; k++) {
+            sum += st->buffers[k].used;
+            if (!strcmp(st->buffers[k].name, "bucket edges"))
+                edges += st->buffers[k].used;
+            if (!strcmp(st->buffers[k].name, "bucket histogram"))
+                hist += st->buffers[k].used;
+        }
+        CHECK(edges == st->ads.bytes_bucket_edges && hist == st->ads.bytes_bucket_histogram);
+        CHECK(i == 0 || (edges > 0 && hist > 0));
+        CHECK(sum == st->bytes_total_used);
         const dirt_image *im = dirt_session_image(s);
         CHECK(im && im->width == W && im->height == H);
         if (im) {
