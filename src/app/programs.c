@@ -85,6 +85,7 @@ static const app_use compare_sweep_opts[] = {
     {APP_OPT_NONE}};
 static const app_use compare_measure_opts[] = {
     {APP_OPT_WARMUP}, {APP_OPT_REPEAT}, {APP_OPT_FACE_SIZE}, {APP_OPT_LARGE},
+    {APP_OPT_DEPTH_BUCKETS},
     {APP_OPT_AGREE_RES}, {APP_OPT_NO_QUALITY}, {APP_OPT_COUNT_WORK}, {APP_OPT_IMAGES},
     {APP_OPT_SEED, 0, "7"}, {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT},
     {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_GPU}, {APP_OPT_PRESET}, {APP_OPT_NONE}};
