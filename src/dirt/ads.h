@@ -4,7 +4,8 @@
  *     triangles clipped exactly to the tile frustum;
  *   2 mip: a min/max (Hi-Z) pyramid of those bounds, any size;
  *   3 fill primitives: per (view, bucket, tile) a linked list of the ids of
- *     the triangles whose clipped depth range overlaps the bucket (eq. 1a/1b).
+ *     the triangles whose clipped depth range overlaps the bucket (eq. 1a/1b;
+ *     or, with adaptive depth buckets, between the tile's own edges).
  * Complete by construction: a (primitive, tile) pair whose exact clip is
  * non-empty is always stored, in every bucket its range overlaps. Node pools
  * grow and the fill pass reruns in the same frame when they overflow. */
