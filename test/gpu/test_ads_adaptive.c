@@ -23,13 +23,16 @@
  *  - the memory figures (edges B/2 uints per tile, histogram 4 B uints per
  *    tile, in the totals), B above 1024 refused, and a session switched to
  *    adaptive buckets remakes the structure and renders the uniform one's
- *    image bit for bit. */
+ *    image bit for bit; so does the alpha planes' scene (trace builds with
+ *    alpha tests and large primitives, and with large primitives and work
+ *    counters). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ads_common.h"
+#include "alpha_scene.h"
 #include "common/layout.h"
 #include "dirt/scene.h"
 #include "dirt/session.h"
@@ -522,6 +525,41 @@ static void test_session(dirt_gpu *gpu)
     dirt_scene_destroy(scene);
 }
 
+/* The trace's fuller builds with adaptive buckets link (they add no storage
+ * block; llvmpipe allows 16): on the alpha planes' scene the path tracer's
+ * trace with alpha tests and large primitives, and the work counters' trace
+ * with large primitives; the image is the uniform one's bit for bit. */
+static void test_alpha_large_count(dirt_gpu *gpu)
+{
+    dirt_scene *scene = alpha_scene_load(false);
+    CHECK(scene != NULL);
+    if (!scene)
+        return;
+    enum { W = 48, H = 36 };
+    float *img[2] = {NULL, NULL};
+    for (int i = 0; i < 2; i++) {
+        dirt_session_opts o = {.width = W, .height = H, .bounces = 2, .buckets = 8,
+                               .count_work = true,
+                               .depth_buckets = i ? DIRT_DEPTH_BUCKETS_ADAPTIVE
+                                                  : DIRT_DEPTH_BUCKETS_UNIFORM};
+        dirt_session *s = dirt_session_create(gpu, scene, &o);
+        CHECK(s && dirt_session_add_samples(s, 1, NULL, NULL));
+        const dirt_session_stats *st = s ? dirt_session_get_stats(s) : NULL;
+        CHECK(st && st->has_ads && st->has_work && st->ads.num_large > 0 && st->aborted == 0);
+        const dirt_image *im = s ? dirt_session_image(s) : NULL;
+        if (im) {
+            img[i] = malloc(sizeof(float) * 4 * W * H);
+            memcpy(img[i], im->rgba, sizeof(float) * 4 * W * H);
+        }
+        dirt_session_destroy(s);
+    }
+    CHECK_MSG(img[0] && img[1] && memcmp(img[0], img[1], sizeof(float) * 4 * W * H) == 0,
+              "alpha scene: the adaptive buckets' image differs from the uniform one's");
+    free(img[0]);
+    free(img[1]);
+    dirt_scene_destroy(scene);
+}
+
 int main(void)
 {
     dirt_gpu *gpu = test_gpu();
@@ -557,6 +595,7 @@ int main(void)
     }
     soup_hits(gpu);
     test_session(gpu);
+    test_alpha_large_count(gpu);
     CHECK(dirt_gpu_error_count(gpu) == 0);
     dirt_gpu_destroy(gpu);
     return check_finish();
