@@ -57,6 +57,26 @@
 #define DIRT_MMRT_ID_NODE_BYTES 12     /* = 4 * DIRT_MMRT_ID_UINTS (the MMRT paper's size) */
 #define DIRT_MMRT_DATA_NODE_BYTES 32   /* dirt_mmrt_gpu_data */
 
+/* Adaptive depth buckets (dirt_ads_opts.depth_buckets = DIRT_DEPTH_BUCKETS_ADAPTIVE;
+ * doc/dirt-build.md, "Adaptive depth buckets"). A tile of B buckets has
+ * H = DIRT_ADAPT_FINE * B fine bins, uniform over its depth bounds (eq.
+ * 1a/1b with H for B); its bucket edges are fine-bin indices 0 = e0 <= e1
+ * <= ... <= e(B-1) <= eB = H, and depth of fine bin f lies in bucket b when
+ * e(b) <= f < e(b+1). The list-heads array (DIRT_BIND_HEADS) then holds,
+ * after the B * tiles heads, DIRT_ADAPT_EDGE_WORDS(B) uints per tile of
+ * edges (e(b), b in 1..B-1, 16 bits each: the low half of word (b - 1) / 2
+ * for odd b, the high half for even b), then the build's histogram
+ * of its candidates' range ends, H uints per tile (tile-major; counting up from the heads'
+ * clear value DIRT_LIST_END, so a bin holds its count - 1). B is at most
+ * DIRT_ADAPT_MAX_BUCKETS (an edge fits 16 bits). */
+#define DIRT_ADAPT_FINE 4
+#define DIRT_ADAPT_MAX_BUCKETS 1024
+#define DIRT_ADAPT_EDGE_WORDS(B) ((B) / 2)
+#define DIRT_ADAPT_TILE_UINTS(B) ((B) + DIRT_ADAPT_EDGE_WORDS(B) + DIRT_ADAPT_FINE * (B))
+#if DIRT_ADAPT_FINE * DIRT_ADAPT_MAX_BUCKETS > 65535
+#error "common/constants.h: an adaptive bucket edge must fit 16 bits"
+#endif
+
 /* Path events of one sample the GPU path tracer can run: K = 64
  * scattering events (dirt_pt_opts.bounces) and the emission-only event
  * after them. */

@@ -7,6 +7,9 @@
 // pass needs: the host sizes the node pool from it before the fill pass
 // runs. The depth range is the one the depth
 // pass min/maxed into the tile's bounds, so it lies inside them.
+// DIRT_ADAPTIVE (adaptive depth buckets): the buckets of the fine bins of
+// the range's ends through the tile's edges (dirt/structure.glsl), which
+// bucket_edges.comp wrote before this pass.
 #include "common/layout.h"
 #include "common/rows.glsl"
 
@@ -33,10 +36,17 @@ void main()
     float trange = uintBitsToFloat(dirt_depth(c.y).y) - tmin;
     int B = params.config.z;
     int b0 = 0, b1 = 0;
+#ifdef DIRT_ADAPTIVE
+    int H = DIRT_ADAPT_FINE * B;
+    uint T = uint(params.config.w);
+    b0 = dirt_adapt_bucket(c.y, dirt_fine_bin(zmin, tmin, trange, H), B, T);
+    b1 = dirt_adapt_bucket(c.y, dirt_fine_bin(zmax, tmin, trange, H), B, T);
+#else
     if (trange > 0.0) {
         b0 = clamp(int(floor(float(B) * (zmin - tmin) / trange)), 0, B - 1);
         b1 = clamp(int(floor(float(B) * (zmax - tmin) / trange)), 0, B - 1);
     }
+#endif
     uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
     dirt_candidate_store_zw(i, uvec2(first, uint(b0) | (uint(b1) << 16)));
 }

@@ -11,7 +11,8 @@
 // (candidates only: a shader's storage blocks are limited, 16 on llvmpipe).
 // Accessors by record index: dirt_candidate(i),
 // dirt_candidate_store(i, c), dirt_candidate_store_zw(i, zw); dirt_node(i),
-// dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v) (atomic).
+// dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v), dirt_head_add(i, v)
+// (atomic).
 // Needs common/layout.h.
 
 
@@ -156,6 +157,11 @@ uint dirt_head_exchange(uint i, uint v)
 {
     return atomicExchange(heads[i], v);
 }
+
+uint dirt_head_add(uint i, uint v)
+{
+    return atomicAdd(heads[i], v);
+}
 #endif
 #else
 DIRT_SPLIT_IMAGES(DIRT_SPLIT_HEADS, DIRT_IMAGE_SPLIT_HEADS, r32ui,
@@ -177,5 +183,50 @@ uint dirt_head_exchange(uint i, uint v)
     DIRT_SPLIT_ATOMIC(DIRT_SPLIT_HEADS, r, imageAtomicExchange, dirt_heads, v)
     return r;
 }
+
+uint dirt_head_add(uint i, uint v)
+{
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_HEADS_SHIFT, 1u)
+    uint r = 0u;
+    DIRT_SPLIT_ATOMIC(DIRT_SPLIT_HEADS, r, imageAtomicAdd, dirt_heads, v)
+    return r;
+}
 #endif
+#endif
+
+// ---- adaptive depth buckets (common/constants.h, DIRT_ADAPT_*) ----
+// dirt_fine_bin(z, zlo, range, H): the fine bin of depth z in a tile of
+// bounds [zlo, zlo + range] (eq. 1a/1b with H bins); dirt_adapt_edge(gt, b,
+// B, T): edge e(b) of tile gt (0 for b = 0, H for b = B); dirt_adapt_bucket:
+// the bucket of fine bin f (the number of edges e(1..B-1) at or below f).
+int dirt_fine_bin(float z, float zlo, float range, int H)
+{
+    if (!(range > 0.0))
+        return 0;
+    return clamp(int(floor(float(H) * (z - zlo) / range)), 0, H - 1);
+}
+
+#ifndef DIRT_HEADS_WRITEONLY
+int dirt_adapt_edge(uint gt, int b, int B, uint T)
+{
+    if (b <= 0)
+        return 0;
+    if (b >= B)
+        return DIRT_ADAPT_FINE * B;
+    uint w = dirt_head(uint(B) * T + gt * uint(DIRT_ADAPT_EDGE_WORDS(B)) + uint(b - 1) / 2u);
+    return int((b & 1) != 0 ? w & 0xFFFFu : w >> 16);
+}
+
+int dirt_adapt_bucket(uint gt, int f, int B, uint T)
+{
+    int b = 0;
+    uint base = uint(B) * T + gt * uint(DIRT_ADAPT_EDGE_WORDS(B));
+    for (int k = 1; k < B; k += 2) {
+        uint w = dirt_head(base + uint(k - 1) / 2u);
+        b += int(w & 0xFFFFu) <= f ? 1 : 0;
+        if (k + 1 < B)
+            b += int(w >> 16) <= f ? 1 : 0;
+    }
+    return b;
+}
 #endif

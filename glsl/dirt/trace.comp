@@ -31,6 +31,10 @@
 // that the alpha test rejects is not a hit, and the walk goes on as if it
 // were not in the list. The variant without it is the opaque scenes' trace,
 // untouched (the unused test in the inner loop cost llvmpipe 3x).
+// Adaptive depth buckets (built with DIRT_ADAPTIVE, for a structure built
+// so; common/constants.h, DIRT_ADAPT_*): a depth's bucket comes from its
+// fine bin through the tile's edges, as in the build's count pass, and a
+// bucket's depth slab ends at its edges' fine-bin boundaries.
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
 // work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
 // tests, large primitives' included) of ray i.
@@ -280,10 +284,16 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     float zlo = uintBitsToFloat(e.x), zhi = uintBitsToFloat(e.y);
     float range = zhi - zlo;
     int ba = 0, bb = 0;
+#ifdef DIRT_ADAPTIVE
+    int H = DIRT_ADAPT_FINE * B;
+    ba = dirt_adapt_bucket(gt, dirt_fine_bin(wa, zlo, range, H), B, T);
+    bb = dirt_adapt_bucket(gt, dirt_fine_bin(wb, zlo, range, H), B, T);
+#else
     if (range > 0.0) {
         ba = clamp(int(floor(float(B) * (wa - zlo) / range)), 0, B - 1);
         bb = clamp(int(floor(float(B) * (wb - zlo) / range)), 0, B - 1);
     }
+#endif
     int step = bb >= ba ? 1 : -1;
     // The tile's NDC rectangle, moved out like the build's clip.
     ivec2 lo = tile * S, hi = min(lo + S, v.size.xy);
@@ -330,10 +340,20 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             g_cut = true;
         if (found) {
             float wh = co.w + best.t * cd.w;
+#ifdef DIRT_ADAPTIVE
+            // (the bucket's depth edges: its first and past-last fine bins')
+            if (step > 0 && (b == B - 1 ||
+                             wh <= zlo + float(dirt_adapt_edge(gt, b + 1, B, T)) * range / float(H)))
+                break;
+            if (step < 0 &&
+                (b == 0 || wh >= zlo + float(dirt_adapt_edge(gt, b, B, T)) * range / float(H)))
+                break;
+#else
             if (step > 0 && (b == B - 1 || wh <= zlo + float(b + 1) * range / float(B)))
                 break;
             if (step < 0 && (b == 0 || wh >= zlo + float(b) * range / float(B)))
                 break;
+#endif
         }
         if (b == bb)
             break;

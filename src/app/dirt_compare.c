@@ -170,6 +170,7 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
 static int g_face; /* --face: one value for the whole sweep */
 static int g_large; /* --dirt-large: one value for the whole sweep */
 static bool g_large_grid; /* --large-grid: likewise */
+static enum dirt_depth_buckets g_depth_buckets; /* --depth-buckets: DIRT's, the whole sweep */
 
 /* The library's messages, printed as its default sink prints them; the
  * first error since the configuration began is kept for the row's reason. */
@@ -286,6 +287,7 @@ static dirt_session_opts session_opts(const scene_info *si, const config *c, enu
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
         .large = g_large ? g_large : -1, .large_grid = g_large_grid,
+        .depth_buckets = e == DIRT_ENGINE_DIRT ? g_depth_buckets : DIRT_DEPTH_BUCKETS_UNIFORM,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
         .bounces = c->bounces, .seed = seed, .env = si->env,
@@ -575,6 +577,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "dirt_buckets", c->dbuckets);
     cJSON_AddNumberToObject(set, "dirt_large", o->large);
     cJSON_AddBoolToObject(set, "dirt_large_grid", o->large_grid);
+    cJSON_AddStringToObject(set, "dirt_depth_buckets", app_depth_buckets_names[g_depth_buckets]);
     cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
     cJSON_AddBoolToObject(set, "mmrt_thickness_default", th == 0);
@@ -703,6 +706,7 @@ int main(int argc, char **argv)
     g_face = o.face;
     g_large = o.large;
     g_large_grid = o.large_grid;
+    g_depth_buckets = ao.s.depth_buckets;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {
         cli_error(PROG, "%s (see --help)", !o.num_scenes ? "no SCENE given" : "-o DIR is needed");

@@ -19,6 +19,7 @@ const char *const app_mode_names[] = {"pt", "ao", NULL};
 const char *const app_views_names[] = {"", "single", "cube", "cube+camera", NULL};
 const char *const app_fetch_names[] = {"compute", "raster", NULL};
 const char *const app_build_names[] = {"auto", "raster", "compute", NULL};
+const char *const app_depth_buckets_names[] = {"uniform", "adaptive", NULL};
 const char *const app_march_names[] = {"hiz", "linear", NULL};
 const char *const app_tonemap_names[] = {"clamp", "reinhard", "aces", NULL};
 const char *const app_buffer_names[] = {"beauty", "albedo", "normal", "depth", "id", "lists",
@@ -193,6 +194,11 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         app_build_names, "how DIRT's structure is built (the same structure either way; "
         "doc/dirt-build.md): raster, compute, or auto: compute on a software renderer, raster "
         "on a GPU, as measured", "auto", NULL},
+    [APP_OPT_DEPTH_BUCKETS] = {APP_OPT_DEPTH_BUCKETS, NULL, "--depth-buckets", NULL, "KIND", 'c',
+        OFF(s.depth_buckets), 0, 0, app_depth_buckets_names, "where DIRT's depth buckets lie "
+        "in each tile (doc/dirt-build.md): uniform (B equal slabs of the tile's depth bounds) "
+        "or adaptive (edges at the depths where the tile's primitives are; -B at most 1024)",
+        "uniform", NULL},
     [APP_OPT_LARGE] = {APP_OPT_LARGE, NULL, "--large", "--dirt-large", "N", 'l', OFF(large), 0,
         16, NULL, "at most N of the largest triangles are kept out of DIRT's tiles and "
         "tested by every ray (doc/dirt-trace.md; 0 = none)", "16", NULL},

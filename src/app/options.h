@@ -35,7 +35,8 @@ enum app_opt {
     APP_OPT_GPU, APP_OPT_CPU_TIMING, APP_OPT_COUNT_WORK, APP_OPT_SORT_RAYS,
     /* the structure: DIRT and MMRT */
     APP_OPT_VIEWS, APP_OPT_TILE, APP_OPT_BUCKETS, APP_OPT_FACE_SIZE, APP_OPT_NO_CONSERVATIVE,
-    APP_OPT_BUILD, APP_OPT_LARGE, APP_OPT_LARGE_GRID, APP_OPT_HIZ_TOP, APP_OPT_FETCH, APP_OPT_DIRECT_VISIBILITY,
+    APP_OPT_BUILD, APP_OPT_DEPTH_BUCKETS, APP_OPT_LARGE, APP_OPT_LARGE_GRID, APP_OPT_HIZ_TOP,
+    APP_OPT_FETCH, APP_OPT_DIRECT_VISIBILITY,
     APP_OPT_MARCH, APP_OPT_SAMPLES, APP_OPT_THICKNESS,
     /* sequences and farms (dirt-render) */
     APP_OPT_SKIP_EXISTING, APP_OPT_PLACEHOLDERS, APP_OPT_CLAIM_TIMEOUT, APP_OPT_CHUNK,
@@ -191,6 +192,7 @@ extern const char *const app_mode_names[];
 extern const char *const app_views_names[];
 extern const char *const app_fetch_names[];
 extern const char *const app_build_names[];
+extern const char *const app_depth_buckets_names[];
 extern const char *const app_march_names[];
 extern const char *const app_tonemap_names[];
 extern const char *const app_engine_names[];

@@ -170,6 +170,8 @@ void view_render_args(const viewer *v, char *buf, size_t size)
         ADD(" --face-size %d", o->face_size);
     if (o->engine == DIRT_ENGINE_DIRT && o->build)
         ADD(" --build %s", app_build_names[o->build]);
+    if (o->engine == DIRT_ENGINE_DIRT && o->depth_buckets)
+        ADD(" --depth-buckets %s", app_depth_buckets_names[o->depth_buckets]);
     if (o->engine == DIRT_ENGINE_DIRT && o->large && o->large != DIRT_ADS_MAX_LARGE)
         ADD(" --large %d", o->large < 0 ? 0 : o->large);
     if (o->engine == DIRT_ENGINE_DIRT && o->large_grid)

@@ -4,7 +4,8 @@
  *     triangles clipped exactly to the tile frustum;
  *   2 mip: a min/max (Hi-Z) pyramid of those bounds, any size;
  *   3 fill primitives: per (view, bucket, tile) a linked list of the ids of
- *     the triangles whose clipped depth range overlaps the bucket (eq. 1a/1b).
+ *     the triangles whose clipped depth range overlaps the bucket (eq. 1a/1b;
+ *     or, with adaptive depth buckets, between the tile's own edges).
  * Complete by construction: a (primitive, tile) pair whose exact clip is
  * non-empty is always stored, in every bucket its range overlaps. Node pools
  * grow and the fill pass reruns in the same frame when they overflow. */
@@ -61,6 +62,8 @@ typedef struct dirt_ads_opts {
                                  range the ray meets (fewer triangle tests, more
                                  march steps; the same hits); false: every ray
                                  tests every large primitive */
+    enum dirt_depth_buckets depth_buckets; /* uniform (default) or adaptive
+                                 (doc/dirt-build.md; B at most DIRT_ADAPT_MAX_BUCKETS) */
 } dirt_ads_opts;
 
 /* The large primitives of `frame`: of the triangles whose area is at least
@@ -92,6 +95,10 @@ typedef struct dirt_ads_data {
     int pyramid_size;
     float (*depth)[2];        /* pyramid: (zmin, zmax); +inf/0 for empty tiles */
     uint32_t *heads;          /* buckets * tiles, bucket-major */
+    int fine_bins;            /* adaptive buckets: H fine bins per tile; 0 = uniform */
+    uint16_t *edges;          /* adaptive buckets: (buckets + 1) per tile, e(0) = 0 ..
+                                 e(B) = H (common/constants.h, DIRT_ADAPT_*); NULL
+                                 when uniform */
     uint32_t (*nodes)[2];     /* (primitive, next) */
     uint32_t num_nodes;
     int num_large;            /* the large primitives, left out of the lists */

@@ -29,6 +29,7 @@ struct dirt_ads {
     /* programs, each built for the layouts of the split arrays it reads
      * (ads_programs) */
     gl_split_program prog_depth, prog_bound, prog_count, prog_fill;
+    gl_split_program prog_hist, prog_edges; /* adaptive depth buckets */
     gl_split_program prog_tiles, prog_range; /* the compute build's (unmade for the raster build) */
     gl_split_program prog_mip;
     /* the defines of the raster build's passes (DIRT_NUM_VIEWS, pass, ...) */

@@ -155,12 +155,22 @@ bool ads_programs(dirt_ads *a)
     }
     defs[1].name = "DIRT_PASS_FETCH";
     const char *vis[] = {"dirt/visibility.vert", "dirt/visibility.frag", NULL};
-    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"), NULL, 0,
-                       C | D) &&
+    /* adaptive depth buckets: their passes, and the count pass and the trace
+     * through the edges */
+    bool adapt = a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE;
+    glsl_define ad = {"DIRT_ADAPTIVE", "1"};
+    if (adapt &&
+        (!ads_program(a, &a->prog_hist, "dirt/bucket_hist.comp", COMP("dirt/bucket_hist.comp"),
+                      NULL, 0, C | D | H) ||
+         !ads_program(a, &a->prog_edges, "dirt/bucket_edges.comp",
+                      COMP("dirt/bucket_edges.comp"), NULL, 0, H)))
+        return false;
+    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"), &ad,
+                       adapt ? 1 : 0, adapt ? C | D | H : C | D) &&
            ads_program(a, &a->prog_fill, "dirt/fill.comp", COMP("dirt/fill.comp"), NULL, 0,
                        C | N | H) &&
-           ads_program(a, &a->prog_trace[0], "dirt/trace.comp", COMP("dirt/trace.comp"), NULL, 0,
-                       ADS_TRACE_ARRAYS) &&
+           ads_program(a, &a->prog_trace[0], "dirt/trace.comp", COMP("dirt/trace.comp"), &ad,
+                       adapt ? 1 : 0, ADS_TRACE_ARRAYS) &&
            ads_program(a, &a->prog_fetch, "dirt/fetch.comp", COMP("dirt/fetch.comp"), NULL, 0,
                        V | M) &&
            ads_program(a, &a->prog_fetch_miss, "dirt/fetch_miss.comp",
@@ -202,6 +212,17 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         a->opts.buckets = 16;
     if (a->opts.buckets > 65535) { /* a candidate packs two bucket indices in 32 bits */
         DIRT_ERROR("%d buckets: at most 65535", a->opts.buckets);
+        goto error;
+    }
+    if (a->opts.depth_buckets != DIRT_DEPTH_BUCKETS_UNIFORM &&
+        a->opts.depth_buckets != DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+        DIRT_ERROR("unknown depth bucket mode %d", (int)a->opts.depth_buckets);
+        goto error;
+    }
+    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE &&
+        a->opts.buckets > DIRT_ADAPT_MAX_BUCKETS) {
+        DIRT_ERROR("%d buckets: adaptive depth buckets take at most %d", a->opts.buckets,
+                   DIRT_ADAPT_MAX_BUCKETS);
         goto error;
     }
     if (a->opts.views.mode < DIRT_VIEWS_SINGLE || a->opts.views.mode > DIRT_VIEWS_CUBE_CAMERA) {
@@ -261,7 +282,7 @@ void dirt_ads_destroy(dirt_ads *a)
     gl_split_program *progs[] = {&a->prog_depth, &a->prog_bound, &a->prog_tiles, &a->prog_range,
                                  &a->prog_count, &a->prog_fill, &a->prog_fetch,
                                  &a->prog_fetch_miss, &a->prog_fetch_raster, &a->prog_vis,
-                                 &a->prog_vis_resolve};
+                                 &a->prog_vis_resolve, &a->prog_hist, &a->prog_edges};
     for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
         gl_split_program_destroy(progs[i]);
     for (size_t k = 0; k < sizeof(a->prog_trace) / sizeof(a->prog_trace[0]); k++)
@@ -501,13 +522,23 @@ static size_t grown(const dirt_ads *a, size_t need, size_t bytes_each)
     return g;
 }
 
+/* Records of the list-heads array: the heads, and with adaptive depth
+ * buckets each tile's edges and histogram after them (common/constants.h). */
+static size_t heads_records(const dirt_ads *a, size_t tiles)
+{
+    size_t per_tile = a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE
+                          ? (size_t)DIRT_ADAPT_TILE_UINTS(a->opts.buckets)
+                          : (size_t)a->opts.buckets;
+    return per_tile * tiles;
+}
+
 /* The size checks that need no pass: the scene's arrays and the views'
  * (before any upload or pass; the candidates and the nodes are sized by
  * the passes that count them). False after logging what to change. */
 static bool check_sizes(dirt_ads *a, const dirt_frame *f)
 {
     gl_split_layout l;
-    size_t heads = (size_t)a->opts.buckets * (size_t)a->set.num_tiles;
+    size_t heads = heads_records(a, (size_t)a->set.num_tiles);
     return gl_split_plan(a->gpu, ads_array_desc[ADS_VERTICES], f->num_triangles, &l) &&
            gl_split_plan(a->gpu, ads_array_desc[ADS_PRIM_MATERIAL], f->num_triangles + 1, &l) &&
            gl_split_plan(a->gpu, ads_array_desc[ADS_DEPTH], (size_t)a->set.pyramid_size, &l) &&
@@ -517,7 +548,7 @@ static bool check_sizes(dirt_ads *a, const dirt_frame *f)
 static bool ensure_targets(dirt_ads *a)
 {
     const dirt_view_set *s = &a->set;
-    size_t heads = (size_t)a->opts.buckets * (size_t)s->num_tiles;
+    size_t heads = heads_records(a, (size_t)s->num_tiles);
     if (!gl_split_ensure(a->gpu, &a->depth, ads_array_desc[ADS_DEPTH], s->pyramid_size) ||
         !gl_split_ensure(a->gpu, &a->heads, ads_array_desc[ADS_HEADS], heads))
         return false;
@@ -656,6 +687,17 @@ static bool exec_count(fg_ctx *ctx, void *user)
     (void)ctx;
     dirt_ads *a = user;
     ads_bind_split(a);
+    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+        /* adaptive depth buckets: each tile's coverage histogram, then its
+         * edges, which the count pass reads (timed with it) */
+        GLbitfield bar = GL_SHADER_STORAGE_BARRIER_BIT | ads_split_barriers(a);
+        glUseProgram(a->prog_hist.id);
+        gl_dispatch_rows(a->cand_capacity);
+        glMemoryBarrier(bar);
+        glUseProgram(a->prog_edges.id);
+        gl_dispatch_rows((size_t)a->set.num_tiles);
+        glMemoryBarrier(bar);
+    }
     glUseProgram(a->prog_count.id);
     gl_dispatch_rows(a->cand_capacity);
     glUseProgram(0);
@@ -803,6 +845,12 @@ static bool make_graphs(dirt_ads *a)
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
     gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
     gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
+    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+        /* (the histogram and edges after the heads) */
+        use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
+        gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_READ);
+        gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_WRITE);
+    }
     add_read_counters(a, g);
     /* fill: the lists, from the counted candidates */
     g = a->fill;
@@ -983,6 +1031,15 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_vertices = a->num_primitives * 3 * sizeof(struct dirt_gpu_vertex);
     st->bytes_depth = (uint64_t)a->set.pyramid_size * DIRT_DEPTH_ENTRY_BYTES;
     st->bytes_heads = (uint64_t)a->opts.buckets * (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES;
+    st->depth_buckets = a->opts.depth_buckets;
+    bool adapt = a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE;
+    st->bytes_bucket_edges = adapt ? (uint64_t)DIRT_ADAPT_EDGE_WORDS(a->opts.buckets) *
+                                         (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES
+                                   : 0;
+    st->bytes_bucket_histogram = adapt ? (uint64_t)DIRT_ADAPT_FINE * (uint64_t)a->opts.buckets *
+                                             (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES
+                                       : 0;
+    uint64_t adapt_bytes = st->bytes_bucket_edges + st->bytes_bucket_histogram;
     st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
     st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
     st->bytes_candidates_allocated = cands_bytes(a);
@@ -991,10 +1048,10 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_large_grid_allocated = a->large_cells_size;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                                 st->bytes_nodes_allocated + st->bytes_candidates_allocated +
-                                st->bytes_large_grid_allocated;
+                                st->bytes_large_grid_allocated + adapt_bytes;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                            st->bytes_nodes_used + st->bytes_candidates_used +
-                           st->bytes_large_grid;
+                           st->bytes_large_grid + adapt_bytes;
     st->bytes_table3 = (double)a->set.num_tiles * (8.0 * 1.33 + 4.0 * a->opts.buckets) +
                        8.0 * st->buckets_per_sample * (double)st->samples;
     st->clock = clock;
@@ -1050,6 +1107,30 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
         dirt_ads_data_free(out);
         return false;
     }
+    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+        int B = out->buckets, T = out->num_tiles;
+        size_t words = (size_t)DIRT_ADAPT_EDGE_WORDS(B) * (size_t)T;
+        uint32_t *w = malloc(words * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);
+        out->fine_bins = DIRT_ADAPT_FINE * B;
+        out->edges = malloc((size_t)(B + 1) * (size_t)T * sizeof(*out->edges));
+        if (!w || !out->edges || (words && !gl_split_read(&a->heads, heads, words, w))) {
+            if (!w || !out->edges)
+                DIRT_ERROR("out of memory reading the structure back");
+            free(w);
+            dirt_ads_data_free(out);
+            return false;
+        }
+        for (int t = 0; t < T; t++) {
+            uint16_t *e = out->edges + (size_t)(B + 1) * (size_t)t;
+            e[0] = 0;
+            e[B] = (uint16_t)out->fine_bins;
+            for (int b = 1; b < B; b++) {
+                uint32_t x = w[(size_t)t * (size_t)DIRT_ADAPT_EDGE_WORDS(B) + (size_t)(b - 1) / 2];
+                e[b] = (uint16_t)(b & 1 ? x & 0xFFFFu : x >> 16);
+            }
+        }
+        free(w);
+    }
     return true;
 }
 
@@ -1060,5 +1141,6 @@ void dirt_ads_data_free(dirt_ads_data *d)
     free(d->depth);
     free(d->heads);
     free(d->nodes);
+    free(d->edges);
     memset(d, 0, sizeof(*d));
 }

@@ -43,8 +43,10 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     bool grid = large && a->opts.large_grid;
     gl_split_program *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) |
                                             (opts.work ? 4 : 0) | (grid ? 8 : 0)];
-    glsl_define defs[4];
+    glsl_define defs[5];
     int n = 0;
+    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE)
+        defs[n++] = (glsl_define){"DIRT_ADAPTIVE", "1"};
     if (al->materials)
         defs[n++] = (glsl_define){"DIRT_TRACE_ALPHA", "1"};
     if (large)

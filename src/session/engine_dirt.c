@@ -89,7 +89,8 @@ static bool reshape(engine *e, const engine_env *env)
     d->ads = dirt_ads_create(env->gpu, &(dirt_ads_opts){.views = vo, .buckets = buckets,
                                                         .force_emulation = o->force_emulation,
                                                         .large = o->large, .build = build,
-                                                        .large_grid = o->large_grid});
+                                                        .large_grid = o->large_grid,
+                                                        .depth_buckets = o->depth_buckets});
     return d->ads != NULL;
 }
 
@@ -152,6 +153,11 @@ static void build_stats(engine *e, dirt_session_stats *st)
     engine_add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
     engine_add_buffer(st, "large primitives' grid", a->bytes_large_grid,
                       a->bytes_large_grid_allocated);
+    if (a->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+        engine_add_buffer(st, "bucket edges", a->bytes_bucket_edges, a->bytes_bucket_edges);
+        engine_add_buffer(st, "bucket histogram", a->bytes_bucket_histogram,
+                          a->bytes_bucket_histogram);
+    }
 }
 
 static dirt_ads *ads_of(engine *e)

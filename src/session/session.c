@@ -4,6 +4,7 @@
  * every engine follows: what restarts the accumulation, what remakes or
  * rebuilds the engine, and the common figures. */
 #include "dirt/session.h"
+#include "common/constants.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -66,6 +67,12 @@ bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
     else if (o->build != DIRT_SESSION_BUILD_AUTO && o->build != DIRT_SESSION_BUILD_RASTER &&
              o->build != DIRT_SESSION_BUILD_COMPUTE)
         snprintf(why, size, "build mode %d unknown", (int)o->build);
+    else if (o->depth_buckets != DIRT_DEPTH_BUCKETS_UNIFORM &&
+             o->depth_buckets != DIRT_DEPTH_BUCKETS_ADAPTIVE)
+        snprintf(why, size, "depth bucket mode %d unknown", (int)o->depth_buckets);
+    else if (o->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE && o->buckets > DIRT_ADAPT_MAX_BUCKETS)
+        snprintf(why, size, "%d buckets: adaptive depth buckets take at most %d", o->buckets,
+                 DIRT_ADAPT_MAX_BUCKETS);
     else if (!session_engines[o->engine]->check_opts ||
              session_engines[o->engine]->check_opts(o, why, size))
         return true;
@@ -275,7 +282,8 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
                   old.views != n.views || old.face_size != n.face_size ||
                   old.tile_size != n.tile_size || old.buckets != n.buckets ||
                   old.force_emulation != n.force_emulation || old.build != n.build ||
-                  old.large != n.large || old.large_grid != n.large_grid;
+                  old.large != n.large || old.large_grid != n.large_grid ||
+                  old.depth_buckets != n.depth_buckets;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||

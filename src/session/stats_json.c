@@ -44,6 +44,13 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
         cJSON_AddNumberToObject(b, "candidates", (double)a->bytes_candidates_used);
         cJSON_AddNumberToObject(b, "candidates allocated", (double)a->bytes_candidates_allocated);
         cJSON_AddNumberToObject(b, "large grid", (double)a->bytes_large_grid);
+        if (a->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
+            cJSON_AddNumberToObject(b, "bucket edges", (double)a->bytes_bucket_edges);
+            cJSON_AddNumberToObject(b, "bucket histogram", (double)a->bytes_bucket_histogram);
+        }
+        cJSON_AddStringToObject(o, "depth_buckets",
+                                a->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE ? "adaptive"
+                                                                                : "uniform");
         cJSON_AddNumberToObject(o, "samples_np", (double)a->samples);
         cJSON_AddNumberToObject(o, "nodes", (double)a->nodes);
         cJSON_AddNumberToObject(o, "buckets_per_sample", a->buckets_per_sample);

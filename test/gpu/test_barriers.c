@@ -176,6 +176,9 @@ static void workload(void)
     o.build = DIRT_SESSION_BUILD_COMPUTE;
     session(o, NULL);                                /* the compute build */
     o = base;
+    o.depth_buckets = DIRT_DEPTH_BUCKETS_ADAPTIVE;
+    session(o, NULL);                                /* adaptive depth buckets */
+    o = base;
     o.engine = DIRT_ENGINE_MMRT;
     o.march = DIRT_MMRT_MARCH_LINEAR;
     session(o, "200");                               /* MMRT, chunked */

@@ -13,7 +13,9 @@
  *    distinct primitives among them (exact while at most four distinct ones
  *    are met, the trace's rejection cache; else between that and the
  *    nodes). Rays within rounding of a tile line, a depth bound or a bucket
- *    edge are left out (counted, at most 15 %);
+ *    edge are left out (counted, at most 15 %); the same with adaptive
+ *    depth buckets (the span's fine bins, then the buckets of the edges
+ *    read back), on the default scene's diffuse rays and the soup;
  *  - the same on the default scene with its large primitives tested by
  *    every ray (one test each per ray more) and through their grid (the
  *    CPU cuts the ray at the grid's cell lines too: each cell the walk
@@ -175,13 +177,25 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
         c.tiles++;
         double range = zhi - zlo;
         int ba = 0, bb = 0;
+        /* adaptive buckets: the fine bins (H of them), then the bucket whose
+         * edges (read back) hold the bin */
+        int H = d->edges ? d->fine_bins : B;
         if (range > 0) {
-            double fa = B * (wa - zlo) / range, fb = B * (wb - zlo) / range;
-            if ((fabs(fa - round(fa)) < 1e-3 && fa > 0.5 && fa < B - 0.5) ||
-                (fabs(fb - round(fb)) < 1e-3 && fb > 0.5 && fb < B - 0.5))
+            double fa = H * (wa - zlo) / range, fb = H * (wb - zlo) / range;
+            if ((fabs(fa - round(fa)) < 1e-3 && fa > 0.5 && fa < H - 0.5) ||
+                (fabs(fb - round(fb)) < 1e-3 && fb > 0.5 && fb < H - 0.5))
                 c.ambiguous = true;
-            ba = (int)fmin(fmax(floor(fa), 0), B - 1);
-            bb = (int)fmin(fmax(floor(fb), 0), B - 1);
+            ba = (int)fmin(fmax(floor(fa), 0), H - 1);
+            bb = (int)fmin(fmax(floor(fb), 0), H - 1);
+        }
+        if (d->edges) {
+            const uint16_t *e = d->edges + (size_t)(B + 1) * (size_t)gt;
+            int fa = ba, fb = bb;
+            ba = bb = 0;
+            for (int k = 1; k < B; k++) {
+                ba += e[k] <= fa;
+                bb += e[k] <= fb;
+            }
         }
         for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++) {
             for (uint32_t node = d->heads[(size_t)b * d->num_tiles + gt]; node != DIRT_LIST_END;
@@ -305,7 +319,7 @@ static void count_large(const dirt_ads *a, const dirt_ray *r, enum large_mode mo
  * pyramid against the level-0 march on `rays`. */
 static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                          const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets,
-                         enum large_mode mode)
+                         enum large_mode mode, enum dirt_depth_buckets depth_buckets)
 {
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     dirt_ref_hit *ref = malloc(n * sizeof(*ref));
@@ -315,7 +329,8 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = 64, .height = 48,
                                  .tile_size = 2},
                        .buckets = buckets, .force_emulation = true,
-                       .large = mode == LARGE_NONE ? -1 : 0, .large_grid = mode == LARGE_GRID};
+                       .large = mode == LARGE_NONE ? -1 : 0, .large_grid = mode == LARGE_GRID,
+                       .depth_buckets = depth_buckets};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(accel && ads && dirt_ads_build(ads, f, cam));
     if (ads && mode != LARGE_NONE)
@@ -564,11 +579,15 @@ int main(void)
         dirt_ray *rays = malloc(n * sizeof(*rays));
         size_t cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_DIFFUSE, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
-            check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, (enum large_mode)m);
+            check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, (enum large_mode)m,
+                         DIRT_DEPTH_BUCKETS_UNIFORM);
+        check_counts(gpu, "default diffuse adaptive", f, &cam, rays, cnt, 8, LARGE_NONE,
+                     DIRT_DEPTH_BUCKETS_ADAPTIVE);
         check_bvh("default diffuse", f, rays, cnt);
         cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_SPECULAR, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
-            check_counts(gpu, "default specular", f, &cam, rays, cnt, 4, (enum large_mode)m);
+            check_counts(gpu, "default specular", f, &cam, rays, cnt, 4, (enum large_mode)m,
+                         DIRT_DEPTH_BUCKETS_UNIFORM);
         free(rays);
         dirt_gbuffer_free(&g);
         dirt_ref_accel_destroy(accel);
@@ -580,7 +599,9 @@ int main(void)
     dirt_camera cam;
     dirt_camera_default(s, &cam);
     dirt_ray *rays = random_rays(s, 3000);
-    check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE);
+    check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM);
+    check_counts(gpu, "soup adaptive", s, &cam, rays, 3000, 16, LARGE_NONE,
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE);
     check_bvh("soup", s, rays, 3000);
     free(rays);
     frame_free(s);

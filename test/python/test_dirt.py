@@ -137,6 +137,23 @@ def test_large_grid_option(scene):
         assert s.stats()["ads"]["bytes_large_grid"] > 0
 
 
+def test_adaptive_depth_buckets_by_name(scene):
+    """depth_buckets mirrors the session option: adaptive buckets (by name)
+    give the uniform ones' image bit for bit, and their memory is counted."""
+    images = {}
+    for mode in ("uniform", "adaptive"):
+        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, buckets=8,
+                          depth_buckets=mode, **SIZE) as s:
+            s.add_samples(1)
+            assert s.options["depth_buckets"] == mode
+            images[mode] = s.image()
+            st = s.stats()["ads"]
+            assert (st["bytes_bucket_edges"] > 0) == (mode == "adaptive")
+    assert np.array_equal(images["uniform"], images["adaptive"])
+    with pytest.raises(Exception):
+        dirt.Session(scene, engine="dirt", depth_buckets="quantile", **SIZE)
+
+
 def test_bad_scenes_raise_with_the_loaders_id(tmp_path):
     with pytest.raises(dirt.Error) as e:
         dirt.Scene(tmp_path / "missing.glb")

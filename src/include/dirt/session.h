@@ -134,6 +134,8 @@ typedef struct dirt_session_opts {
                                    renderer, 16 on a GPU), 4 for mmrt (the MMRT paper's) */
     bool force_emulation;       /* dirt: ignore GL_NV_conservative_raster */
     enum dirt_session_build build; /* dirt: how the structure is built (same structure) */
+    enum dirt_depth_buckets depth_buckets; /* dirt: uniform (default) or adaptive bucket
+                                   edges per tile (doc/dirt-build.md; B <= 1024) */
     int large;                  /* dirt: large primitives tested by every ray instead of
                                    listed (doc/dirt-trace.md): 0 = up to 16, < 0 = none,
                                    n = up to n (at most 16) */

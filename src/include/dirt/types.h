@@ -49,6 +49,15 @@ enum dirt_build_mode {
                                view), the range per candidate tile */
 };
 
+/* Where a tile's depth buckets lie (doc/dirt-build.md, "Adaptive depth
+ * buckets"). */
+enum dirt_depth_buckets {
+    DIRT_DEPTH_BUCKETS_UNIFORM = 0, /* B equal slabs of the tile's depth bounds (the
+                                       DIRT paper's eq. 1a/1b) */
+    DIRT_DEPTH_BUCKETS_ADAPTIVE,    /* per tile, edges at equal-coverage quantiles of
+                                       its candidates' depth ranges (B <= 1024) */
+};
+
 /* Most large primitives a structure keeps (= DIRT_GPU_MAX_LARGE). */
 #define DIRT_ADS_MAX_LARGE 16
 /* A triangle is large when its area is at least this fraction of the squared
@@ -108,6 +117,12 @@ typedef struct dirt_ads_stats {
     uint64_t bytes_large_grid; /* the large primitives' grid: 8 B per large primitive
                                  and grid cell (in the totals; not in Table 3) */
     uint64_t bytes_large_grid_allocated; /* its GL buffer */
+    /* Adaptive depth buckets (0 with uniform ones; in both totals): the
+     * bucket edges the trace reads (2 B per edge, B / 2 uints per tile)
+     * and the build's coverage histogram (4 B per fine bin, 4 B uints per
+     * tile; build scratch). Their passes' time is in ms[DIRT_ADS_PASS_COUNT]. */
+    enum dirt_depth_buckets depth_buckets;
+    uint64_t bytes_bucket_edges, bytes_bucket_histogram;
 } dirt_ads_stats;
 
 /* ---- MMRT: the A-buffer (doc/mmrt.md) ---- */
