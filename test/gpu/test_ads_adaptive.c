@@ -40,43 +40,10 @@
 #include "ref/raytypes.h"
 #include "ref/ref.h"
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 static int cmp_int(const void *a, const void *b)
 {
     int x = *(const int *)a, y = *(const int *)b;
     return (x > y) - (x < y);
-}
-
-/* Sorted (tile << 40 | bucket << 32 | primitive) entries of a read-back
- * structure; NULL (failed check) when a list loops or links outside. */
-static uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
-{
-    uint64_t *out = malloc(((size_t)d->num_nodes + 1) * sizeof(*out));
-    size_t n = 0;
-    bool bad = false;
-    for (int b = 0; b < d->buckets && !bad; b++) {
-        for (int t = 0; t < d->num_tiles && !bad; t++) {
-            for (uint32_t node = d->heads[(size_t)b * d->num_tiles + t];
-                 node != DIRT_LIST_END && !bad; node = d->nodes[node][1]) {
-                bad = node >= d->num_nodes || n >= d->num_nodes;
-                if (!bad)
-                    out[n++] = ((uint64_t)t << 40) | ((uint64_t)b << 32) | d->nodes[node][0];
-            }
-        }
-    }
-    CHECK_MSG(!bad, "a list links outside the %u nodes or loops", d->num_nodes);
-    if (bad) {
-        free(out);
-        return NULL;
-    }
-    qsort(out, n, sizeof(*out), cmp_u64);
-    *count = n;
-    return out;
 }
 
 /* The bucket of fine bin f: how many of the edges e[1..B-1] are at or below

@@ -27,40 +27,6 @@
 #include "dirt/session.h"
 #include "gpu.h"
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return x < y ? -1 : x > y;
-}
-
-/* Sorted (tile, bucket, primitive) triples of a read-back structure; NULL
- * (and a failed check) when a list is longer than the node count (a cycle)
- * or links outside the nodes. */
-static uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
-{
-    uint64_t *out = malloc(((size_t)d->num_nodes + 1) * sizeof(*out));
-    size_t n = 0;
-    bool bad = false;
-    for (int b = 0; b < d->buckets && !bad; b++) {
-        for (int t = 0; t < d->num_tiles && !bad; t++) {
-            for (uint32_t node = d->heads[(size_t)b * d->num_tiles + t];
-                 node != DIRT_LIST_END && !bad; node = d->nodes[node][1]) {
-                bad = node >= d->num_nodes || n >= d->num_nodes;
-                if (!bad)
-                    out[n++] = ((uint64_t)t << 40) | ((uint64_t)b << 32) | d->nodes[node][0];
-            }
-        }
-    }
-    CHECK_MSG(!bad, "a list links outside the %u nodes or loops", d->num_nodes);
-    if (bad) {
-        free(out);
-        return NULL;
-    }
-    qsort(out, n, sizeof(*out), cmp_u64);
-    *count = n;
-    return out;
-}
-
 static dirt_ads *build(dirt_gpu *gpu, const dirt_ads_opts *o, const dirt_frame *f,
                        const dirt_camera *cam, dirt_ads_data *d)
 {

@@ -87,31 +87,6 @@ static void test_slivers(dirt_gpu *gpu)
     frame_free(f);
 }
 
-/* Sorted (tile, bucket, primitive) triples of a read-back structure. */
-static uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
-{
-    uint64_t *out = malloc(((size_t)d->num_nodes + 1) * sizeof(*out));
-    size_t n = 0;
-    for (int b = 0; b < d->buckets; b++) {
-        for (int t = 0; t < d->num_tiles; t++) {
-            for (uint32_t node = d->heads[(size_t)b * d->num_tiles + t];
-                 node != DIRT_LIST_END && n <= d->num_nodes; node = d->nodes[node][1])
-                out[n++] = ((uint64_t)t << 40) | ((uint64_t)b << 32) | d->nodes[node][0];
-        }
-    }
-    for (size_t i = 1; i < n; i++) { /* insertion sort is fine at this size */
-        uint64_t v = out[i];
-        size_t j = i;
-        while (j > 0 && out[j - 1] > v) {
-            out[j] = out[j - 1];
-            j--;
-        }
-        out[j] = v;
-    }
-    *count = n;
-    return out;
-}
-
 /* Pool sizing. A first build runs every pass once (the candidate buffer
  * from the bound pass, the node pool from the count pass), from a node
  * capacity of 1 too, and gives exactly the lists of a build with ample
