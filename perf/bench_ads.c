@@ -14,23 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_common.h"
 #include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
 #include "dirt/scene.h"
-
-static int parse_list(const char *s, int *out, int max)
-{
-    int n = 0;
-    while (*s && n < max) {
-        out[n++] = atoi(s);
-        const char *c = strchr(s, ',');
-        if (!c)
-            break;
-        s = c + 1;
-    }
-    return n;
-}
 
 static double total_ms(const dirt_ads_stats *st)
 {
@@ -51,14 +39,14 @@ int main(int argc, char **argv)
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
         if (!strcmp(a, "-W")) W = atoi(v), i++;
         else if (!strcmp(a, "-H")) H = atoi(v), i++;
-        else if (!strcmp(a, "-S")) nS = parse_list(v, S, 8), i++;
-        else if (!strcmp(a, "-B")) nB = parse_list(v, B, 8), i++;
+        else if (!strcmp(a, "-S")) nS = bench_parse_list(v, S, 8), i++;
+        else if (!strcmp(a, "-B")) nB = bench_parse_list(v, B, 8), i++;
         else if (!strcmp(a, "--repeat")) repeat = atoi(v), i++;
         else if (!strcmp(a, "--min")) use_min = true;
         else if (!strcmp(a, "--reference-clip")) reference = true;
         else if (!strcmp(a, "--views")) {
-            mode = !strcmp(v, "cube") ? DIRT_VIEWS_CUBE
-                 : !strcmp(v, "cube+camera") ? DIRT_VIEWS_CUBE_CAMERA : DIRT_VIEWS_SINGLE;
+            if (!bench_views("bench-ads", v, &mode))
+                return 2;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-ads [SCENE|default ...] [-W N -H N] [--views MODE] "
@@ -73,11 +61,10 @@ int main(int argc, char **argv)
     if (!nscenes)
         scenes[nscenes++] = "default";
     dirt_log_set_level(DIRT_LOG_WARN);
-    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.no_debug = true});
+    char desc[512];
+    dirt_gpu *gpu = bench_gpu(desc, sizeof(desc));
     if (!gpu)
         return 3;
-    char desc[512];
-    dirt_gpu_describe(gpu, desc, sizeof(desc));
     printf("GPU: %s\n\n", desc);
     printf("| scene | tris | views | S | B | n_p | c |");
     for (int p = 0; p < DIRT_ADS_NUM_PASSES; p++)
@@ -87,8 +74,7 @@ int main(int argc, char **argv)
         printf("---|");
     printf("\n");
     for (int si = 0; si < nscenes; si++) {
-        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], NULL)
-                                                          : dirt_scene_create_default();
+        dirt_scene *scene = bench_scene(scenes[si], NULL);
         if (!scene)
             return 2;
         dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);

@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_common.h"
 #include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
@@ -29,19 +30,6 @@
 #define MAX_S 4
 #define MAX_T (1 + 4 * MAX_S)
 #define MAX_PASSES 8
-
-static int parse_list(const char *s, int *out, int max)
-{
-    int n = 0;
-    while (*s && n < max) {
-        out[n++] = atoi(s);
-        const char *c = strchr(s, ',');
-        if (!c)
-            break;
-        s = c + 1;
-    }
-    return n;
-}
 
 typedef struct tech {
     char name[48];
@@ -106,7 +94,7 @@ int main(int argc, char **argv)
         if (!strcmp(a, "-W")) W = atoi(v), i++;
         else if (!strcmp(a, "-H")) H = atoi(v), i++;
         else if (!strcmp(a, "-F")) F = atoi(v), i++;
-        else if (!strcmp(a, "-S")) nS = parse_list(v, S, MAX_S), i++;
+        else if (!strcmp(a, "-S")) nS = bench_parse_list(v, S, MAX_S), i++;
         else if (!strcmp(a, "-B")) B = atoi(v), i++;
         else if (!strcmp(a, "--repeat")) repeat = atoi(v), i++;
         else if (!strcmp(a, "--reference-clip")) reference = true;
@@ -120,8 +108,8 @@ int main(int argc, char **argv)
             i++;
         }
         else if (!strcmp(a, "--views")) {
-            mode = !strcmp(v, "cube") ? DIRT_VIEWS_CUBE
-                 : !strcmp(v, "cube+camera") ? DIRT_VIEWS_CUBE_CAMERA : DIRT_VIEWS_SINGLE;
+            if (!bench_views("bench-build", v, &mode))
+                return 2;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-build [SCENE|default ...] [-W N -H N] [--views MODE] [-F face] "
@@ -147,11 +135,10 @@ int main(int argc, char **argv)
     if (!nscenes)
         scenes[nscenes++] = "default";
     dirt_log_set_level(DIRT_LOG_WARN);
-    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.no_debug = true});
+    char desc[512];
+    dirt_gpu *gpu = bench_gpu(desc, sizeof(desc));
     if (!gpu)
         return 3;
-    char desc[512];
-    dirt_gpu_describe(gpu, desc, sizeof(desc));
     const char *views = mode == DIRT_VIEWS_SINGLE ? "single"
                         : mode == DIRT_VIEWS_CUBE ? "cube" : "cube+camera";
     printf("GPU: %s\n\n", desc);
@@ -161,8 +148,7 @@ int main(int argc, char **argv)
     printf("| scene | tris | technique | records | MB | first ms | first runs | build ms "
            "(min) | passes (min round) | / MMRT |\n|---|---|---|---|---|---|---|---|---|---|\n");
     for (int si = 0; si < nscenes; si++) {
-        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], NULL)
-                                                          : dirt_scene_create_default();
+        dirt_scene *scene = bench_scene(scenes[si], NULL);
         if (!scene)
             return 2;
         dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);

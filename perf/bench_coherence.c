@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "common/layout.h"
+#include "bench_common.h"
 #include "dirt/ads.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
@@ -111,8 +112,8 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--group")) group = atoi(v), i++;
         else if (!strcmp(a, "--max-scene-memory")) load.max_bytes = (size_t)atoll(v) << 20, i++;
         else if (!strcmp(a, "--views")) {
-            mode = !strcmp(v, "single") ? DIRT_VIEWS_SINGLE
-                 : !strcmp(v, "cube") ? DIRT_VIEWS_CUBE : DIRT_VIEWS_CUBE_CAMERA;
+            if (!bench_views("bench-coherence", v, &mode))
+                return 2;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-coherence [SCENE|default ...] [-W N -H N] [--views MODE] "
@@ -130,7 +131,8 @@ int main(int argc, char **argv)
     if (!n)
         scenes[n++] = "default";
     dirt_log_set_level(DIRT_LOG_WARN);
-    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.no_debug = true});
+    char desc[512];
+    dirt_gpu *gpu = bench_gpu(desc, sizeof(desc));
     if (!gpu)
         return 3;
     dirt_ray_sort *rs = dirt_ray_sort_create();
@@ -140,8 +142,7 @@ int main(int argc, char **argv)
            "sorted | sorted / pixel order |\n|---|---|---|---|---|---|---|---|\n");
     int status = 0;
     for (int si = 0; si < n; si++) {
-        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], &load)
-                                                          : dirt_scene_create_default();
+        dirt_scene *scene = bench_scene(scenes[si], &load);
         if (!scene)
             return 2;
         dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);

@@ -26,25 +26,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_common.h"
 #include "dirt/gpu.h"
 #include "dirt/log.h"
 #include "mmrt/mmrt.h"
 #include "ref/raytypes.h"
 #include "ref/ref.h"
 #include "dirt/scene.h"
-
-static int parse_list(const char *s, int *out, int max)
-{
-    int n = 0;
-    while (*s && n < max) {
-        out[n++] = atoi(s);
-        const char *c = strchr(s, ',');
-        if (!c)
-            break;
-        s = c + 1;
-    }
-    return n;
-}
 
 /* The rays of every type for one scene, made MMRT-ready, with Embree's
  * closest hits. */
@@ -141,13 +129,13 @@ int main(int argc, char **argv)
         if (!strcmp(a, "-W")) W = atoi(v), i++;
         else if (!strcmp(a, "-H")) H = atoi(v), i++;
         else if (!strcmp(a, "-F")) F = atoi(v), i++;
-        else if (!strcmp(a, "-B")) nB = parse_list(v, B, 8), i++;
+        else if (!strcmp(a, "-B")) nB = bench_parse_list(v, B, 8), i++;
         else if (!strcmp(a, "--repeat")) repeat = atoi(v), i++;
         else if (!strcmp(a, "--trace")) trace = true;
         else if (!strcmp(a, "--thickness")) thick_rel = (float)atof(v), i++;
         else if (!strcmp(a, "--views")) {
-            mode = !strcmp(v, "cube") ? DIRT_VIEWS_CUBE
-                 : !strcmp(v, "cube+camera") ? DIRT_VIEWS_CUBE_CAMERA : DIRT_VIEWS_SINGLE;
+            if (!bench_views("bench-mmrt", v, &mode))
+                return 2;
             i++;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: bench-mmrt [SCENE|default ...] [-W N -H N] [--views MODE] [-F N] "
@@ -162,11 +150,10 @@ int main(int argc, char **argv)
     if (!nscenes)
         scenes[nscenes++] = "default";
     dirt_log_set_level(DIRT_LOG_WARN);
-    dirt_gpu *gpu = dirt_gpu_create(&(dirt_gpu_opts){.no_debug = true});
+    char desc[512];
+    dirt_gpu *gpu = bench_gpu(desc, sizeof(desc));
     if (!gpu)
         return 3;
-    char desc[512];
-    dirt_gpu_describe(gpu, desc, sizeof(desc));
     printf("GPU: %s\n\n", desc);
     printf("| scene | tris | views | B | fragments | layers avg/max | clear ms | depth ms | mip ms "
            "| store ms | reorder ms | total ms | MB used | MB alloc | paper MB |\n");
@@ -179,8 +166,7 @@ int main(int argc, char **argv)
     if (trace && (!tf || !hits))
         return 1;
     for (int si = 0; si < nscenes; si++) {
-        dirt_scene *scene = strcmp(scenes[si], "default") ? dirt_scene_load(scenes[si], NULL)
-                                                          : dirt_scene_create_default();
+        dirt_scene *scene = bench_scene(scenes[si], NULL);
         if (!scene)
             return 2;
         dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
