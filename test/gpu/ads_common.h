@@ -52,6 +52,25 @@ static inline uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
     return out;
 }
 
+/* A structure of `o` built for f and cam and read back into d; NULL (a
+ * failed check) when any step fails. */
+static inline dirt_ads *ads_build_read(dirt_gpu *gpu, const dirt_ads_opts *o,
+                                       const dirt_frame *f, const dirt_camera *cam,
+                                       dirt_ads_data *d)
+{
+    dirt_ads *ads = dirt_ads_create(gpu, o);
+    CHECK(ads != NULL);
+    if (!ads)
+        return NULL;
+    bool ok = dirt_ads_build(ads, f, cam) && dirt_ads_read(ads, d);
+    CHECK(ok);
+    if (!ok) {
+        dirt_ads_destroy(ads);
+        return NULL;
+    }
+    return ads;
+}
+
 static const char *mode_name(enum dirt_view_mode m)
 {
     return m == DIRT_VIEWS_SINGLE ? "single" : m == DIRT_VIEWS_CUBE ? "cube" : "cube+camera";

@@ -134,22 +134,6 @@ static bool cpu_adaptive(const dirt_ads_data *u, int B, uint64_t **entries, size
     return ok;
 }
 
-static dirt_ads *build(dirt_gpu *gpu, const dirt_ads_opts *o, const dirt_frame *f,
-                       const dirt_camera *cam, dirt_ads_data *d)
-{
-    dirt_ads *ads = dirt_ads_create(gpu, o);
-    CHECK(ads != NULL);
-    if (!ads)
-        return NULL;
-    bool ok = dirt_ads_build(ads, f, cam) && dirt_ads_read(ads, d);
-    CHECK(ok);
-    if (!ok) {
-        dirt_ads_destroy(ads);
-        return NULL;
-    }
-    return ads;
-}
-
 /* The adaptive build at `o` against the CPU's adaptive structure made from
  * the uniform build at 4 B. */
 static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
@@ -161,8 +145,8 @@ static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     ou.buckets = DIRT_ADAPT_FINE * B;
     ou.depth_buckets = DIRT_DEPTH_BUCKETS_UNIFORM;
     o.depth_buckets = DIRT_DEPTH_BUCKETS_ADAPTIVE;
-    dirt_ads *au = build(gpu, &ou, f, cam, &du);
-    dirt_ads *aa = build(gpu, &o, f, cam, &da);
+    dirt_ads *au = ads_build_read(gpu, &ou, f, cam, &du);
+    dirt_ads *aa = ads_build_read(gpu, &o, f, cam, &da);
     if (!au || !aa)
         goto done;
     const dirt_view_set *set = dirt_ads_views(aa);

@@ -27,22 +27,6 @@
 #include "dirt/session.h"
 #include "gpu.h"
 
-static dirt_ads *build(dirt_gpu *gpu, const dirt_ads_opts *o, const dirt_frame *f,
-                       const dirt_camera *cam, dirt_ads_data *d)
-{
-    dirt_ads *ads = dirt_ads_create(gpu, o);
-    CHECK(ads != NULL);
-    if (!ads)
-        return NULL;
-    bool ok = dirt_ads_build(ads, f, cam) && dirt_ads_read(ads, d);
-    CHECK(ok);
-    if (!ok) {
-        dirt_ads_destroy(ads);
-        return NULL;
-    }
-    return ads;
-}
-
 /* Compares the compute build with the raster build and the CPU reference;
  * returns true when everything agrees. */
 static bool compare(dirt_gpu *gpu, const char *label, const dirt_frame *f,
@@ -51,9 +35,9 @@ static bool compare(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     dirt_ads_data d[2];
     dirt_ads *ads[2];
     o.build = DIRT_BUILD_RASTER;
-    ads[0] = build(gpu, &o, f, cam, &d[0]);
+    ads[0] = ads_build_read(gpu, &o, f, cam, &d[0]);
     o.build = DIRT_BUILD_COMPUTE;
-    ads[1] = build(gpu, &o, f, cam, &d[1]);
+    ads[1] = ads_build_read(gpu, &o, f, cam, &d[1]);
     bool ok = ads[0] && ads[1];
     if (!ok)
         goto done;
@@ -176,7 +160,7 @@ static void test_pools(dirt_gpu *gpu)
     for (int i = 0; i < 2; i++) {
         o.initial_candidates = i == 1 ? 1 : 0;
         o.initial_nodes = 1;
-        dirt_ads *ads = build(gpu, &o, f, &f->cameras[0], &d[i]);
+        dirt_ads *ads = ads_build_read(gpu, &o, f, &f->cameras[0], &d[i]);
         if (!ads)
             continue;
         const dirt_ads_stats *st = dirt_ads_get_stats(ads);
