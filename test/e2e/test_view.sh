@@ -103,11 +103,7 @@ for case in "1280x720 924 445 3" "480x360 196 43 1"; do
   DIRT_VIEW_OPEN_HEADERS=1 "$view" --window "$1" --scale 8 --spp 1 --bounces 1 \
     --script "$tmp/s.txt" -q >"$tmp/labels.out" 2>&1 &
   vpid=$!
-  wid=
-  for _ in $(seq 100); do
-    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-    [ -n "$wid" ] && break; sleep 0.1
-  done
+  wid=$(window_id)
   sleep 2
   [ -n "$wid" ] && xdotool mousemove --window "$wid" "$2" "$3" click 1
   sleep 1; touch "$tmp/lgo"
@@ -137,11 +133,7 @@ printf 'wait-file %s\nwait-frames 3\nwait-samples 2\nsave-image %s\nreport %s\nq
 "$view" --window 200x150 --scale 1 --no-ui --seed 3 --bounces 2 --script "$tmp/s.txt" \
   >"$tmp/input.out" 2>"$tmp/input.err" &
 vpid=$!
-wid=
-for _ in $(seq 100); do
-  wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-  [ -n "$wid" ] && break; sleep 0.1
-done
+wid=$(window_id)
 if [ -z "$wid" ]; then fail "no dirt-view window appeared"; else
   sleep 1
   xdotool mousemove --window "$wid" 100 75; sleep 0.3

@@ -24,14 +24,6 @@ fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
 # shellcheck source=view_xvfb.sh
 . "$(dirname "$0")/view_xvfb.sh"
 
-window_id() {
-  local wid=
-  for _ in $(seq 100); do
-    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-    [ -n "$wid" ] && break; sleep 0.1
-  done
-  echo "$wid"
-}
 wait_for() { for _ in $(seq 600); do [ -s "$1" ] && return 0; sleep 0.1; done; return 1; }
 json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$3"; }
 

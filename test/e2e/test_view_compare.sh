@@ -58,10 +58,7 @@ printf 'wait-samples %d\nwait-file %s\nwait-frames 1\nreport %s\nquit\n' $SPP "$
 "$view" --window ${W}x$H --scale 1 --no-ui --engine mmrt --compare embree --seed 5 --bounces 2 --spp $SPP \
   --script "$tmp/s.txt" -q >"$tmp/insp.out" 2>&1 &
 vpid=$! wid=
-for _ in $(seq 100); do
-  wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-  [ -n "$wid" ] && break; sleep 0.1
-done
+wid=$(window_id)
 [ -n "$wid" ] && xdotool mousemove --window "$wid" 30 40 && sleep 0.5
 touch "$tmp/go"
 wait "$vpid" || { fail "inspector run: exit $?"; cat "$tmp/insp.out" >&2; }

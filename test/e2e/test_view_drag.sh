@@ -31,10 +31,7 @@ drag() {
   DIRT_VIEW_SLOW_FRAME_MS=1500 "$view" "${args[@]}" --script "$tmp/$name.txt" \
     >"$tmp/$name.out" 2>&1 &
   local vpid=$! wid=
-  for _ in $(seq 100); do
-    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-    [ -n "$wid" ] && break; sleep 0.1
-  done
+  wid=$(window_id)
   if [ -z "$wid" ]; then fail "$name: no window"; else
     sleep 2
     xdotool mousemove --window "$wid" 80 60

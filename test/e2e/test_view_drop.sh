@@ -53,10 +53,7 @@ EOF
 (cd "$tmp/cwd" && exec "$view" --window 160x120 --no-ui --spp 1 --scale 1 --script "$tmp/s.txt") \
   >"$tmp/view.out" 2>&1 &
 vpid=$! wid=
-for _ in $(seq 100); do
-  wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-  [ -n "$wid" ] && break; sleep 0.1
-done
+wid=$(window_id)
 if [ -z "$wid" ]; then
   fail "no window"; touch "$tmp/go1" "$tmp/go2"
 else

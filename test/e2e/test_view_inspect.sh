@@ -31,16 +31,6 @@ fail() { fails=$((fails + 1)); echo "FAIL: $*" >&2; }
 # shellcheck source=view_xvfb.sh
 . "$(dirname "$0")/view_xvfb.sh"
 
-# The viewer's window id, once it is mapped.
-window_id() {
-  local wid=
-  for _ in $(seq 100); do
-    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
-    [ -n "$wid" ] && break; sleep 0.1
-  done
-  echo "$wid"
-}
-
 # ---- pass times and memory ----
 # 4 frames of 1 sample each; the report after the last one.
 printf 'wait-samples 1\nreport %s\nwait-samples 4\nwait-frames 1\nreport %s\nquit\n' \

@@ -1,7 +1,7 @@
 # Sourced by the viewer's tests: skips (77) without xvfb-run, Xvfb and
 # xdotool (a failure when CI=true), else starts one Xvfb server for the
 # whole test (xdotool talks to it too), exports DISPLAY and sets xvfb_pid
-# (the caller's EXIT trap kills it). $tmp must exist.
+# (the caller's EXIT trap kills it), and defines window_id. $tmp must exist.
 for tool in xvfb-run Xvfb xdotool; do
   if ! command -v "$tool" >/dev/null 2>&1; then
     [ "${CI:-}" = true ] && { echo "CI=true: $tool missing is a failure"; exit 1; }
@@ -22,3 +22,13 @@ for n in $(seq "${XVFB_FIRST:-90}" 160); do
   kill "$xvfb_pid" 2>/dev/null; xvfb_pid=
 done
 [ -n "${xvfb_pid:-}" ] || { echo "could not start Xvfb"; exit 1; }
+
+# The viewer's window id, once it is mapped (empty after 10 s).
+window_id() {
+  local wid=
+  for _ in $(seq 100); do
+    wid=$(xdotool search --name '^dirt-view' 2>/dev/null | head -n 1)
+    [ -n "$wid" ] && break; sleep 0.1
+  done
+  echo "$wid"
+}
