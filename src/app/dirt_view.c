@@ -171,7 +171,8 @@ static bool advance(viewer *v, int have, int target)
 }
 
 /* A bounded amount of work: a slice of the path tracer (advance), or the
- * raster preview while input moves the camera; no tracing in a frame whose
+ * raster preview while input moves the camera (and once beside the slice
+ * until the accumulation's first sample completes); no tracing in a frame whose
  * image a script output took, nor in one where input arrived (`input`: it
  * is answered at once). *traced says whether a slice ran. False when
  * rendering fails. */
@@ -180,7 +181,12 @@ static bool sample(viewer *v, bool input, bool *preview, bool *traced)
     int have = dirt_session_samples(v->s);
     *traced = false;
     *preview = v->moving && v->pre;
-    if (*preview && !dirt_session_add_samples(v->pre, 1, NULL, NULL)) {
+    /* Until the accumulation's first sample completes, the raster preview
+     * of the camera (rendered once; a camera or setting change restarts
+     * it) fills the image while the sample is traced (view_draw). */
+    bool fill = !*preview && v->pre && !v->o.no_preview && have == 0 &&
+                dirt_session_samples(v->pre) == 0;
+    if ((*preview || fill) && !dirt_session_add_samples(v->pre, 1, NULL, NULL)) {
         view_status(v, "the raster preview failed (see the log); off");
         v->o.no_preview = true;
         *preview = false;

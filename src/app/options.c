@@ -280,8 +280,8 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "renderer, llvmpipe or lavapipe, the N that makes a sample take about 1 s, measured "
         "and said in the log and the Settings panel)", NULL, NULL},
     [APP_OPT_NO_PREVIEW] = {APP_OPT_NO_PREVIEW, NULL, "--no-preview", NULL, NULL, 'F',
-        OFF(no_preview), 0, 0, NULL, "path trace while the camera moves (without it: the raster "
-        "preview until it stops)", NULL, NULL},
+        OFF(no_preview), 0, 0, NULL, "no raster preview: path trace while the camera moves, and "
+        "show nothing until the first sample completes (without it: the raster preview then)", NULL, NULL},
     [APP_OPT_NO_UI] = {APP_OPT_NO_UI, NULL, "--no-ui", NULL, NULL, 'F', OFF(no_ui), 0, 0, NULL,
         "hide the panels (H toggles them)", NULL, NULL},
     [APP_OPT_SCRIPT] = {APP_OPT_SCRIPT, NULL, "--script", NULL, "FILE", 's', OFF(script), 0, 0,

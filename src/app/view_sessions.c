@@ -196,8 +196,10 @@ static bool sync_all(viewer *v)
     }
     if (!view_sync_compare(v))
         return false;
-    /* The raster preview, made the first time the camera moves. */
-    if (v->moving && !v->o.no_preview && v->applied.engine != DIRT_ENGINE_RASTER) {
+    /* The raster preview, made the first time the camera moves or an
+     * accumulation has no completed sample yet. */
+    if ((v->moving || dirt_session_samples(v->s) == 0) && !v->o.no_preview &&
+        v->applied.engine != DIRT_ENGINE_RASTER) {
         dirt_session_opts po = view_wanted_opts(v, DIRT_ENGINE_RASTER);
         dirt_eval_opts eval = {.clip = v->o.clip, .loop = v->o.loop};
         if (!v->pre) {

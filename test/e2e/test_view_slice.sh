@@ -19,9 +19,12 @@
 # frame before and collapsed in every one after (it toggled once). Without
 # the panels' logic-only passes (dirt_ui_end_pass) the collapse shows two
 # frames later and this fails.
-#   test_view_slice.sh DIRT-VIEW
+# Before that, the raster preview fills the image until the first sample
+# completes: a screenshot taken while the report says 0 samples is
+# dirt-render's raster image of the reported camera.
+#   test_view_slice.sh DIRT-VIEW DIRT-RENDER VIEW-CHECK
 set -u
-view=$1
+view=$1 render=$2 check=$3
 tmp=$(mktemp -d /tmp/dirt-view-slice-XXXXXX)
 trap 'rm -rf "$tmp"; [ -n "${xvfb_pid:-}" ] && kill "$xvfb_pid" 2>/dev/null' EXIT
 fails=0 passes=0
@@ -66,6 +69,18 @@ for m in bad:
 sys.exit(1 if bad else 0)
 PY
   fail "a key pressed in a sample's midst did not act before the sample completed"
+
+# 1b. The raster preview before the first sample completes.
+printf 'wait-frames 3\nscreenshot %s\nreport %s\nquit\n' "$tmp/pre.png" "$tmp/pre.json" >"$tmp/pre.txt"
+DIRT_VIEW_SLOW_FRAME_MS=300 "$view" --window 160x120 --scale 1 --no-ui --spp 1 --slice-ms 0 \
+  --script "$tmp/pre.txt" -q >"$tmp/pre.out" 2>&1 || { fail "preview run: exit $?"; cat "$tmp/pre.out" >&2; }
+samples=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["samples"])' "$tmp/pre.json" 2>/dev/null)
+args=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["render_args"])' "$tmp/pre.json" 2>/dev/null)
+# shellcheck disable=SC2086
+if [ "$samples" != 0 ]; then fail "the preview run's screenshot was not taken before the first sample ($samples)"
+elif ! "$render" $args --engine raster -q --png -o "$tmp/raster.exr"; then fail "dirt-render --engine raster"
+elif "$check" zoom "$tmp/pre.png" "$tmp/raster.png" 0 0 1; then ok
+else fail "before the first sample, the window is not the raster preview of the camera"; fi
 
 # 2. The automatic scale on a software renderer.
 printf 'wait-samples 1\nwait-frames 1\nreport %s\nquit\n' "$tmp/auto.json" >"$tmp/auto.txt"
