@@ -77,7 +77,7 @@
 #error "common/constants.h: an adaptive bucket edge must fit 16 bits"
 #endif
 
-/* Bucket occupancy masks (doc/dirt-build.md, "Bucket occupancy masks"):
+/* Bucket occupancy masks (doc/dirt-build.md, "Pass 3: count nodes"):
  * with B <= DIRT_BUCKET_MASK_MAX_BUCKETS, the list-heads array ends with
  * one uint per tile (tile-major, after the heads and, with adaptive depth
  * buckets, the edges and histogram: DIRT_BUCKET_MASK_INDEX(per_tile, T, t),

@@ -51,7 +51,8 @@ void main()
     }
 #endif
     if (B <= DIRT_BUCKET_MASK_MAX_BUCKETS)
-        dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)), ~dirt_bucket_bits(b0, b1));
+        dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)),
+                      ~dirt_bucket_bits(b0, b1));
     uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
     dirt_candidate_store_zw(i, uvec2(first, uint(b0) | (uint(b1) << 16)));
 }
