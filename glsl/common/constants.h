@@ -77,6 +77,18 @@
 #error "common/constants.h: an adaptive bucket edge must fit 16 bits"
 #endif
 
+/* Bucket occupancy masks (doc/dirt-build.md, "Pass 3: count nodes"):
+ * with B <= DIRT_BUCKET_MASK_MAX_BUCKETS, the list-heads array ends with
+ * one uint per tile (tile-major, after the heads and, with adaptive depth
+ * buckets, the edges and histogram: DIRT_BUCKET_MASK_INDEX(per_tile, T, t),
+ * per_tile = B or DIRT_ADAPT_TILE_UINTS(B)) whose bit b is clear when bucket
+ * b of the tile holds at least one node: it starts at the heads' clear value
+ * DIRT_LIST_END (every bit set) and the count pass clears the bits of each
+ * candidate's bucket range. The tile's occupancy is its complement (bits at
+ * and above B: 0). With more buckets there are no masks. */
+#define DIRT_BUCKET_MASK_MAX_BUCKETS 32
+#define DIRT_BUCKET_MASK_INDEX(per_tile, T, t) ((per_tile) * (T) + (t))
+
 /* Path events of one sample the GPU path tracer can run: K = 64
  * scattering events (dirt_pt_opts.bounces) and the emission-only event
  * after them. */

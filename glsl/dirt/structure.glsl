@@ -11,8 +11,9 @@
 // (candidates only: a shader's storage blocks are limited, 16 on llvmpipe).
 // Accessors by record index: dirt_candidate(i),
 // dirt_candidate_store(i, c), dirt_candidate_store_zw(i, zw); dirt_node(i),
-// dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v), dirt_head_add(i, v)
-// (atomic).
+// dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v), dirt_head_add(i, v),
+// dirt_head_and(i, v) (atomic). Bucket occupancy masks (common/constants.h,
+// DIRT_BUCKET_MASK_*): dirt_bucket_bits, dirt_bucket_occupancy.
 // Needs common/layout.h.
 
 
@@ -162,6 +163,11 @@ uint dirt_head_add(uint i, uint v)
 {
     return atomicAdd(heads[i], v);
 }
+
+uint dirt_head_and(uint i, uint v)
+{
+    return atomicAnd(heads[i], v);
+}
 #endif
 #else
 DIRT_SPLIT_IMAGES(DIRT_SPLIT_HEADS, DIRT_IMAGE_SPLIT_HEADS, r32ui,
@@ -189,6 +195,14 @@ uint dirt_head_add(uint i, uint v)
     DIRT_SPLIT_AT(i, DIRT_SPLIT_HEADS_SHIFT, 1u)
     uint r = 0u;
     DIRT_SPLIT_ATOMIC(DIRT_SPLIT_HEADS, r, imageAtomicAdd, dirt_heads, v)
+    return r;
+}
+
+uint dirt_head_and(uint i, uint v)
+{
+    DIRT_SPLIT_AT(i, DIRT_SPLIT_HEADS_SHIFT, 1u)
+    uint r = 0u;
+    DIRT_SPLIT_ATOMIC(DIRT_SPLIT_HEADS, r, imageAtomicAnd, dirt_heads, v)
     return r;
 }
 #endif
@@ -228,5 +242,36 @@ int dirt_adapt_bucket(uint gt, int f, int B, uint T)
             b += int(w >> 16) <= f ? 1 : 0;
     }
     return b;
+}
+#endif
+
+// ---- bucket occupancy masks (common/constants.h, DIRT_BUCKET_MASK_*) ----
+// dirt_bucket_bits(b0, b1): the bits of buckets min(b0, b1) .. max(b0, b1)
+// (both below DIRT_BUCKET_MASK_MAX_BUCKETS). dirt_bucket_mask_index(gt, B,
+// T): the word of tile gt's mask (B <= DIRT_BUCKET_MASK_MAX_BUCKETS; the
+// layout of the build's bucket kind: DIRT_ADAPTIVE or uniform).
+// dirt_bucket_occupancy(gt, B, T): bit b set when bucket b of tile gt holds
+// a node; every bit set (nothing known) when B has no masks.
+uint dirt_bucket_bits(int b0, int b1)
+{
+    uint lo = uint(min(b0, b1)), hi = uint(max(b0, b1));
+    return ((2u << hi) - 1u) & ~((1u << lo) - 1u);
+}
+
+uint dirt_bucket_mask_index(uint gt, int B, uint T)
+{
+#ifdef DIRT_ADAPTIVE
+    return uint(DIRT_BUCKET_MASK_INDEX(uint(DIRT_ADAPT_TILE_UINTS(B)), T, gt));
+#else
+    return uint(DIRT_BUCKET_MASK_INDEX(uint(B), T, gt));
+#endif
+}
+
+#ifndef DIRT_HEADS_WRITEONLY
+uint dirt_bucket_occupancy(uint gt, int B, uint T)
+{
+    if (B > DIRT_BUCKET_MASK_MAX_BUCKETS)
+        return ~0u;
+    return ~dirt_head(dirt_bucket_mask_index(gt, B, T));
 }
 #endif

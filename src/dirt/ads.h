@@ -99,6 +99,9 @@ typedef struct dirt_ads_data {
     uint16_t *edges;          /* adaptive buckets: (buckets + 1) per tile, e(0) = 0 ..
                                  e(B) = H (common/constants.h, DIRT_ADAPT_*); NULL
                                  when uniform */
+    uint32_t *masks;          /* bucket occupancy per tile (bit b: bucket b holds a
+                                 node; common/constants.h, DIRT_BUCKET_MASK_*); NULL
+                                 when buckets > DIRT_BUCKET_MASK_MAX_BUCKETS */
     uint32_t (*nodes)[2];     /* (primitive, next) */
     uint32_t num_nodes;
     int num_large;            /* the large primitives, left out of the lists */

@@ -172,6 +172,29 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
         qsort(gp, n, sizeof(*gp), cmp_gpu_pair);
         double tmin = d->depth[t][0], tmax = d->depth[t][1];
         double range = tmax - tmin;
+        /* The occupancy mask: the buckets of the GPU's lists exactly, those
+         * of every exact range (shrunk by tol), within those of the
+         * widened ones. */
+        uint32_t listed = 0, required = 0, allowed = 0;
+        double stol = tol * fmax(fabs(tmax), 1e-6);
+        for (size_t i = 0; i < n; i++)
+            listed |= 1u << (gp[i].bucket & 31);
+        for (uint32_t k = req.offsets[t]; d->masks && k < req.offsets[t + 1]; k++) {
+            const ads_ref_entry *r = &req.entries[k];
+            double lo = fmin(r->zmin + stol, r->zmax), hi = fmax(r->zmax - stol, lo);
+            for (int b = bucket_of(lo, tmin, range, B); b <= bucket_of(hi, tmin, range, B); b++)
+                required |= 1u << b;
+        }
+        for (uint32_t k = allow.offsets[t]; d->masks && k < allow.offsets[t + 1]; k++) {
+            const ads_ref_entry *a = &allow.entries[k];
+            int amin = bucket_of(a->zmin - stol, tmin, range, B);
+            int amax = bucket_of(a->zmax + stol, tmin, range, B);
+            for (int b = amin; b <= amax; b++)
+                allowed |= 1u << b;
+        }
+        if (d->masks && (d->masks[t] != listed || (required & ~d->masks[t]) ||
+                         (d->masks[t] & ~allowed)))
+            rep->bad_masks++;
         /* Walk the primitives found on the GPU. */
         for (size_t i = 0; i < n;) {
             size_t j = i;

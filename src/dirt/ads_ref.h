@@ -37,6 +37,10 @@ typedef struct ads_check_report {
     uint64_t bad_buckets;      /* buckets not exactly those the range overlaps */
     uint64_t bad_bounds;       /* tile depth bounds outside the reference sandwich */
     uint64_t bad_list_links;   /* node index out of range in a list */
+    uint64_t bad_masks;        /* tiles whose bucket occupancy mask is not exactly
+                                  the buckets with a node, or misses a bucket an
+                                  exact range overlaps, or has one no allowed
+                                  range overlaps; 0 when there are no masks */
 } ads_check_report;
 
 /* Checks `data` (read back from a build over `set`, `frame`, B buckets;

@@ -166,7 +166,7 @@ bool ads_programs(dirt_ads *a)
                       COMP("dirt/bucket_edges.comp"), NULL, 0, H)))
         return false;
     return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"), &ad,
-                       adapt ? 1 : 0, adapt ? C | D | H : C | D) &&
+                       adapt ? 1 : 0, C | D | H) &&
            ads_program(a, &a->prog_fill, "dirt/fill.comp", COMP("dirt/fill.comp"), NULL, 0,
                        C | N | H) &&
            ads_program(a, &a->prog_trace[0], "dirt/trace.comp", COMP("dirt/trace.comp"), &ad,
@@ -522,14 +522,27 @@ static size_t grown(const dirt_ads *a, size_t need, size_t bytes_each)
     return g;
 }
 
-/* Records of the list-heads array: the heads, and with adaptive depth
- * buckets each tile's edges and histogram after them (common/constants.h). */
+/* Records per tile before the bucket masks in the list-heads array: the
+ * heads, and with adaptive depth buckets each tile's edges and histogram
+ * (common/constants.h). */
+static size_t heads_per_tile(const dirt_ads *a)
+{
+    return a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE
+               ? (size_t)DIRT_ADAPT_TILE_UINTS(a->opts.buckets)
+               : (size_t)a->opts.buckets;
+}
+
+static bool has_masks(const dirt_ads *a)
+{
+    return a->opts.buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS;
+}
+
+/* Records of the list-heads array: heads_per_tile per tile, then one
+ * bucket occupancy mask per tile when B has them (common/constants.h,
+ * DIRT_BUCKET_MASK_*). */
 static size_t heads_records(const dirt_ads *a, size_t tiles)
 {
-    size_t per_tile = a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE
-                          ? (size_t)DIRT_ADAPT_TILE_UINTS(a->opts.buckets)
-                          : (size_t)a->opts.buckets;
-    return per_tile * tiles;
+    return (heads_per_tile(a) + (has_masks(a) ? 1 : 0)) * tiles;
 }
 
 /* The size checks that need no pass: the scene's arrays and the views'
@@ -845,12 +858,10 @@ static bool make_graphs(dirt_ads *a)
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
     gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
     gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
-    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
-        /* (the histogram and edges after the heads) */
-        use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
-        gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_READ);
-        gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_WRITE);
-    }
+    /* (the bucket masks after the heads; with adaptive depth buckets the
+     * histogram and edges before them) */
+    gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_READ);
+    gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_WRITE);
     add_read_counters(a, g);
     /* fill: the lists, from the counted candidates */
     g = a->fill;
@@ -1039,7 +1050,9 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_bucket_histogram = adapt ? (uint64_t)DIRT_ADAPT_FINE * (uint64_t)a->opts.buckets *
                                              (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES
                                        : 0;
-    uint64_t adapt_bytes = st->bytes_bucket_edges + st->bytes_bucket_histogram;
+    st->bytes_bucket_masks = has_masks(a) ? (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES : 0;
+    uint64_t extra_bytes = st->bytes_bucket_edges + st->bytes_bucket_histogram +
+                           st->bytes_bucket_masks;
     st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
     st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
     st->bytes_candidates_allocated = cands_bytes(a);
@@ -1048,10 +1061,10 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_large_grid_allocated = a->large_cells_size;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                                 st->bytes_nodes_allocated + st->bytes_candidates_allocated +
-                                st->bytes_large_grid_allocated + adapt_bytes;
+                                st->bytes_large_grid_allocated + extra_bytes;
     st->bytes_total_used = st->bytes_vertices + st->bytes_depth + st->bytes_heads +
                            st->bytes_nodes_used + st->bytes_candidates_used +
-                           st->bytes_large_grid + adapt_bytes;
+                           st->bytes_large_grid + extra_bytes;
     st->bytes_table3 = (double)a->set.num_tiles * (8.0 * 1.33 + 4.0 * a->opts.buckets) +
                        8.0 * st->buckets_per_sample * (double)st->samples;
     st->clock = clock;
@@ -1131,6 +1144,23 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
         }
         free(w);
     }
+    if (has_masks(a)) {
+        /* (stored as the empty buckets' bits: common/constants.h) */
+        size_t T = (size_t)out->num_tiles;
+        out->masks = malloc(T * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);
+        if (!out->masks) {
+            DIRT_ERROR("out of memory reading the structure back");
+            dirt_ads_data_free(out);
+            return false;
+        }
+        if (T && !gl_split_read(&a->heads, DIRT_BUCKET_MASK_INDEX(heads_per_tile(a), T, 0), T,
+                                   out->masks)) {
+            dirt_ads_data_free(out);
+            return false;
+        }
+        for (size_t t = 0; t < T; t++)
+            out->masks[t] = ~out->masks[t];
+    }
     return true;
 }
 
@@ -1140,6 +1170,7 @@ void dirt_ads_data_free(dirt_ads_data *d)
         return;
     free(d->depth);
     free(d->heads);
+    free(d->masks);
     free(d->nodes);
     free(d->edges);
     memset(d, 0, sizeof(*d));

@@ -153,6 +153,7 @@ static void build_stats(engine *e, dirt_session_stats *st)
     engine_add_buffer(st, "candidates", a->bytes_candidates_used, a->bytes_candidates_allocated);
     engine_add_buffer(st, "large primitives' grid", a->bytes_large_grid,
                       a->bytes_large_grid_allocated);
+    engine_add_buffer(st, "bucket masks", a->bytes_bucket_masks, a->bytes_bucket_masks);
     if (a->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
         engine_add_buffer(st, "bucket edges", a->bytes_bucket_edges, a->bytes_bucket_edges);
         engine_add_buffer(st, "bucket histogram", a->bytes_bucket_histogram,

@@ -44,6 +44,7 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
         cJSON_AddNumberToObject(b, "candidates", (double)a->bytes_candidates_used);
         cJSON_AddNumberToObject(b, "candidates allocated", (double)a->bytes_candidates_allocated);
         cJSON_AddNumberToObject(b, "large grid", (double)a->bytes_large_grid);
+        cJSON_AddNumberToObject(b, "bucket masks", (double)a->bytes_bucket_masks);
         if (a->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
             cJSON_AddNumberToObject(b, "bucket edges", (double)a->bytes_bucket_edges);
             cJSON_AddNumberToObject(b, "bucket histogram", (double)a->bytes_bucket_histogram);

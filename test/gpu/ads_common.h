@@ -140,14 +140,15 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         fprintf(stderr,
                 "%-14s %-11s S=%d B=%-2d: %6llu tiles, %7llu required pairs, %7llu on GPU, "
                 "%7llu allowed | missing %llu, beyond tol %llu, dup %llu, buckets %llu, "
-                "bounds %llu, links %llu, pyramid %llu | n_p %llu c %.2f runs %d/%d\n",
+                "bounds %llu, links %llu, masks %llu, pyramid %llu | n_p %llu c %.2f runs "
+                "%d/%d\n",
                 label, mode_name(opts->views.mode), set->tile_size, opts->buckets,
                 (unsigned long long)r.tiles, (unsigned long long)r.required_pairs,
                 (unsigned long long)r.gpu_pairs, (unsigned long long)r.allowed_pairs,
                 (unsigned long long)r.missing, (unsigned long long)r.beyond_tolerance,
                 (unsigned long long)r.duplicates, (unsigned long long)r.bad_buckets,
                 (unsigned long long)r.bad_bounds, (unsigned long long)r.bad_list_links,
-                (unsigned long long)pyr, (unsigned long long)st->samples,
+                (unsigned long long)r.bad_masks, (unsigned long long)pyr, (unsigned long long)st->samples,
                 st->buckets_per_sample, st->depth_runs, st->fill_runs);
         CHECK(r.missing == 0);
         CHECK(r.beyond_tolerance == 0);
@@ -155,6 +156,8 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         CHECK(r.bad_buckets == 0);
         CHECK(r.bad_bounds == 0);
         CHECK(r.bad_list_links == 0);
+        CHECK(r.bad_masks == 0);
+        CHECK((data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS));
         CHECK(pyr == 0);
         CHECK(st->samples == r.gpu_pairs);
         /* A first build runs each pass once (the bound pass sized the
@@ -164,7 +167,9 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
                   st->fill_runs, st->bound_pass);
         CHECK(r.required_pairs > 0);
         ok = r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
-             r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 && pyr == 0;
+             r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 &&
+             r.bad_masks == 0 &&
+             (data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS) && pyr == 0;
         dirt_ads_data_free(&data);
     }
     dirt_ads_destroy(ads);

@@ -155,7 +155,8 @@ static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     ads_check_report r = {0};
     CHECK(ads_check(dirt_ads_views(au), f, &du, ADS_DEPTH_TOL, &r));
     CHECK(r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
-          r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0);
+          r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 &&
+          r.bad_masks == 0);
     bool same_depth = du.pyramid_size == da.pyramid_size &&
                       memcmp(du.depth, da.depth, (size_t)da.pyramid_size * 8) == 0;
     CHECK_MSG(same_depth, "%s: adaptive depth bounds differ from uniform's", label);
@@ -178,6 +179,19 @@ static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         nonempty += c[B - (B > 1)] > 0 || B == 1;
         nonuniform += !uni && c[1] > 0;
     }
+    /* the bucket occupancy masks: exactly the CPU structure's buckets with
+     * an entry */
+    size_t bad_masks = 0;
+    CHECK_MSG((da.masks != NULL) == (B <= DIRT_BUCKET_MASK_MAX_BUCKETS),
+              "%s B=%d: bucket masks %s", label, B, da.masks ? "present" : "missing");
+    if (da.masks) {
+        uint32_t *m = calloc((size_t)T + 1, sizeof(*m));
+        for (size_t k = 0; k < nc; k++)
+            m[cpu[k] >> 40] |= 1u << ((cpu[k] >> 32) & 0xFFu);
+        for (int t = 0; t < T; t++)
+            bad_masks += m[t] != da.masks[t];
+        free(m);
+    }
     size_t differ = 0, i = 0, j = 0;
     while (i < nc || j < ng) {
         if (j == ng || (i < nc && cpu[i] < gpu_e[j]))
@@ -189,25 +203,31 @@ static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     }
     const dirt_ads_stats *su = dirt_ads_get_stats(au), *sa = dirt_ads_get_stats(aa);
     fprintf(stderr, "%-16s %-11s S=%d B=%-2d %s: %6d tiles (%zu with edges not uniform) | "
-            "entries CPU %7zu, GPU %7zu, differ %zu | edges differ in %zu tiles | c %.2f (the "
-            "fine-bin build's %.2f)\n", label, mode_name(o.views.mode), set->tile_size, B,
-            o.build == DIRT_BUILD_COMPUTE ? "compute" : "raster", T, nonuniform, nc, ng, differ,
-            bad_edges, sa->buckets_per_sample, su->buckets_per_sample);
+            "entries CPU %7zu, GPU %7zu, differ %zu | edges differ in %zu tiles, masks in %zu "
+            "| c %.2f (the fine-bin build's %.2f)\n", label, mode_name(o.views.mode),
+            set->tile_size, B, o.build == DIRT_BUILD_COMPUTE ? "compute" : "raster", T,
+            nonuniform, nc, ng, differ, bad_edges, bad_masks, sa->buckets_per_sample,
+            su->buckets_per_sample);
     CHECK(ng > 0 && nonempty > 0);
     CHECK_MSG(differ == 0 && nc == ng, "%s S=%d B=%d %s: %zu list entries differ from the CPU's",
               label, set->tile_size, B, mode_name(o.views.mode), differ);
     CHECK_MSG(bad_edges == 0, "%s S=%d B=%d %s: edges differ in %zu tiles", label,
               set->tile_size, B, mode_name(o.views.mode), bad_edges);
+    CHECK_MSG(bad_masks == 0, "%s S=%d B=%d %s: bucket masks differ from the CPU's in %zu tiles",
+              label, set->tile_size, B, mode_name(o.views.mode), bad_masks);
     CHECK(sa->samples == su->samples && sa->nodes == ng);
     CHECK(sa->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE &&
           su->depth_buckets == DIRT_DEPTH_BUCKETS_UNIFORM);
-    /* memory: B/2 edge words and 4 B histogram bins per tile, in the totals */
+    /* memory: B/2 edge words and 4 B histogram bins per tile, and a mask
+     * per tile when B has them, in the totals */
     CHECK(sa->bytes_bucket_edges == (uint64_t)(B / 2) * (uint64_t)T * 4);
     CHECK(sa->bytes_bucket_histogram == (uint64_t)DIRT_ADAPT_FINE * B * (uint64_t)T * 4);
     CHECK(su->bytes_bucket_edges == 0 && su->bytes_bucket_histogram == 0);
+    CHECK(sa->bytes_bucket_masks == (B <= DIRT_BUCKET_MASK_MAX_BUCKETS ? (uint64_t)T * 4 : 0));
     CHECK(sa->bytes_total_used == sa->bytes_vertices + sa->bytes_depth + sa->bytes_heads +
                                       sa->bytes_nodes_used + sa->bytes_candidates_used +
-                                      sa->bytes_bucket_edges + sa->bytes_bucket_histogram);
+                                      sa->bytes_bucket_edges + sa->bytes_bucket_histogram +
+                                      sa->bytes_bucket_masks);
     CHECK(sa->depth_runs == 1 && sa->fill_runs == 1);
 free_lists:
     free(cpu);

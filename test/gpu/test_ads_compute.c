@@ -71,15 +71,15 @@ static bool compare(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     fprintf(stderr,
             "%-16s %-11s S=%d B=%-2d%s: %6d tiles | raster %7zu entries, compute %7zu, "
             "differ %zu, dup %zu, depth %s | n_p %llu / %llu, records %llu | reference: "
-            "missing %llu, beyond %llu, buckets %llu, bounds %llu, pyramid %llu | runs "
-            "%d/%d%s\n",
+            "missing %llu, beyond %llu, buckets %llu, bounds %llu, masks %llu, pyramid %llu | "
+            "runs %d/%d%s\n",
             label, mode_name(o.views.mode), set->tile_size, o.buckets,
             o.reference_clip ? " SH" : "", set->num_tiles, n[0], n[1], differ, dup,
             same_depth ? "equal" : "DIFFER", (unsigned long long)rs->samples,
             (unsigned long long)cs->samples, (unsigned long long)cs->work_records,
             (unsigned long long)r.missing, (unsigned long long)r.beyond_tolerance,
             (unsigned long long)r.bad_buckets, (unsigned long long)r.bad_bounds,
-            (unsigned long long)pyr, cs->depth_runs, cs->fill_runs,
+            (unsigned long long)r.bad_masks, (unsigned long long)pyr, cs->depth_runs, cs->fill_runs,
             cs->bound_pass ? ", bound" : "");
     CHECK(n[0] > 0);
     CHECK_MSG(differ == 0 && n[0] == n[1], "%s S=%d %s: %zu list entries differ",
@@ -89,13 +89,18 @@ static bool compare(dirt_gpu *gpu, const char *label, const dirt_frame *f,
               mode_name(o.views.mode));
     CHECK(rs->samples == cs->samples && rs->nodes == cs->nodes);
     CHECK(r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
-          r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 && pyr == 0);
+          r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 &&
+          r.bad_masks == 0 && pyr == 0);
+    /* the raster build's masks are the compute build's (the same lists) */
+    CHECK(d[1].masks != NULL && d[0].masks != NULL &&
+          memcmp(d[0].masks, d[1].masks, (size_t)set->num_tiles * 4) == 0);
     CHECK(r.required_pairs > 0 && cs->samples == r.gpu_pairs);
     /* First build: the bound (candidate tiles) pass, then every pass once. */
     CHECK(cs->bound_pass && cs->depth_runs == 1 && cs->fill_runs == 1);
     CHECK(cs->ms[DIRT_ADS_PASS_TILES] != 0 && rs->ms[DIRT_ADS_PASS_TILES] <= 0);
     ok = ok && differ == 0 && n[0] == n[1] && dup == 0 && same_depth && r.missing == 0 &&
-         r.beyond_tolerance == 0 && r.bad_buckets == 0 && r.bad_bounds == 0 && pyr == 0;
+         r.beyond_tolerance == 0 && r.bad_buckets == 0 && r.bad_bounds == 0 &&
+         r.bad_masks == 0 && pyr == 0;
     free(tri[0]);
     free(tri[1]);
 done:

@@ -3,7 +3,8 @@
  * bytes reported as allocated are what GL really holds.
  *  - DIRT (default scene, 64x48 camera + six 32x32 faces, S = 2, B = 8):
  *    used = 96 B x primitives (vertices) + 8 B x pyramid entries (depth
- *    bounds and mips) + 4 B x B x tiles (list heads) + 8 B x nodes + 16 B x
+ *    bounds and mips) + 4 B x B x tiles (list heads) + 4 B x tiles (bucket
+ *    occupancy masks, B <= 32) + 8 B x nodes + 16 B x
  *    n_p (the build's candidates) + with opts.large_grid 8 B x large
  *    primitives x cells of their grid (per view, the first pyramid level of
  *    at most DIRT_LARGE_GRID cells per side; none without), with the nodes and the (primitive, tile)
@@ -102,7 +103,10 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK(st->bytes_large_grid == 8 * cells * (uint64_t)st->num_large);
     CHECK(ads->large_cells_size >= st->bytes_large_grid &&
           st->bytes_large_grid_allocated == ads->large_cells_size);
-    uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + 8 * walked +
+    /* the bucket occupancy masks (B <= 32): 4 B per tile, after the heads */
+    uint64_t masks = B <= DIRT_BUCKET_MASK_MAX_BUCKETS ? 4 * tiles : 0;
+    CHECK(st->bytes_bucket_masks == masks);
+    uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + masks + 8 * walked +
                        16 * pairs + 16 * st->work_records + 8 * cells * (uint64_t)st->num_large;
     CHECK_MSG(st->bytes_total_used == formula, "DIRT used %llu B, formula %llu B",
               (unsigned long long)st->bytes_total_used, (unsigned long long)formula);
@@ -114,7 +118,7 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK_NEAR(st->bytes_table3, table3, 1e-6 * table3);
     CHECK_NEAR(table3 - ads_bytes, 8.0 * (1.33 * (double)tiles - (double)pyramid), 1.0);
     /* What GL holds. */
-    CHECK(split_size(&ads->heads) == st->bytes_heads);
+    CHECK(split_size(&ads->heads) == st->bytes_heads + st->bytes_bucket_masks);
     CHECK(split_size(&ads->depth) == st->bytes_depth);
     CHECK(split_size(&ads->nodes) == st->bytes_nodes_allocated);
     CHECK(split_size(&ads->cands) == st->bytes_candidates_allocated);

@@ -7,7 +7,9 @@
  *    nothing (tmax half-way to Embree's hit, or leaving the scene), on a
  *    level-0 march of one view, the CPU cuts the ray at every tile line it
  *    crosses (double precision), so the Hi-Z steps are the pieces, the
- *    tiles walked are the pieces whose depth span meets the tile's bounds,
+ *    tiles walked are the pieces whose depth span meets the tile's bounds
+ *    and whose buckets in the span hold a node (the lists read back: the
+ *    trace skips the others by the tile's bucket occupancy mask),
  *    the list nodes are the lengths of the lists of the buckets the span
  *    overlaps (read back from the structure) and the triangle tests the
  *    distinct primitives among them (exact while at most four distinct ones
@@ -70,6 +72,7 @@ static bool g_verbose; /* print the CPU count's pieces (DIRT_TEST_VERBOSE, rays 
 typedef struct cpu_count {
     bool ambiguous;
     uint32_t steps, tiles, nodes, distinct;
+    uint32_t skipped; /* tiles met but not walked: no node in the span's buckets */
     uint32_t large_steps, large_tests; /* the large primitives' (count_large) */
 } cpu_count;
 
@@ -174,7 +177,6 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
         }
         if (fabs(hi - zlo) < 1e-5 * fabs(zlo) + 1e-7 || fabs(lo - zhi) < 1e-5 * fabs(zhi) + 1e-7)
             c.ambiguous = true;
-        c.tiles++;
         double range = zhi - zlo;
         int ba = 0, bb = 0;
         /* adaptive buckets: the fine bins (H of them), then the bucket whose
@@ -197,6 +199,16 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
                 bb += e[k] <= fb;
             }
         }
+        /* the bucket occupancy: a tile whose lists in the span's buckets
+         * are all empty is not walked (with B <= 32) */
+        bool any = B > DIRT_BUCKET_MASK_MAX_BUCKETS;
+        for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++)
+            any = any || d->heads[(size_t)b * d->num_tiles + gt] != DIRT_LIST_END;
+        if (!any) {
+            c.skipped++;
+            continue;
+        }
+        c.tiles++;
         for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++) {
             for (uint32_t node = d->heads[(size_t)b * d->num_tiles + gt]; node != DIRT_LIST_END;
                  node = d->nodes[node][1]) {
@@ -351,7 +363,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     dirt_trace_stats ts;
     CHECK(dirt_ads_trace_work(ads, miss, n, hits, &level0, &ts, w0));
     CHECK(ts.aborted == 0);
-    size_t checked = 0, ambiguous = 0, hit = 0, exact_tests = 0, walked = 0;
+    size_t checked = 0, ambiguous = 0, hit = 0, exact_tests = 0, walked = 0, skipped = 0;
     size_t large_steps = 0, large_tests = 0;
     size_t bad[4] = {0};
     for (size_t i = 0; i < n; i++) {
@@ -367,6 +379,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         }
         checked++;
         walked += c.tiles;
+        skipped += c.skipped;
         large_steps += c.large_steps;
         large_tests += c.large_tests;
         uint32_t tests = w0[i].triangle_tests - c.large_tests;
@@ -394,10 +407,12 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                         c.distinct, c.large_tests);
         }
     }
-    fprintf(stderr, "%s B=%d, %s: %zu missing rays checked (%zu tiles walked, %zu with exact "
-            "triangle tests; large primitives: %zu grid steps, %zu tests), %zu within rounding "
-            "left out, %zu found a hit; differ: steps %zu, tiles %zu, nodes %zu, tests %zu\n",
-            label, buckets, large_mode_names[mode], checked, walked, exact_tests, large_steps,
+    fprintf(stderr, "%s B=%d, %s: %zu missing rays checked (%zu tiles walked, %zu met but "
+            "empty in the span's buckets, %zu with exact triangle tests; large primitives: %zu "
+            "grid steps, %zu tests), %zu within rounding left out, %zu found a hit; differ: "
+            "steps %zu, tiles %zu, nodes %zu, tests %zu\n",
+            label, buckets, large_mode_names[mode], checked, walked, skipped, exact_tests,
+            large_steps,
             large_tests, ambiguous, hit, bad[0], bad[1], bad[2], bad[3]);
     CHECK_MSG(hit <= n / 100, "%s: %zu of %zu shortened rays found a hit", label, hit, n);
     CHECK_MSG(ambiguous <= n * 15 / 100, "%s: %zu of %zu rays left out", label, ambiguous, n);
