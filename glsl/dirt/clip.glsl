@@ -71,9 +71,13 @@ vec4 g_box = vec4(0.0);
 // The rectangle byte (common/layout.h) of g_box in tile t of view v: the
 // cells of the grid over the tile's NDC rectangle (not moved out) that the
 // box widened by DIRT_SUBTILE_MARGIN cells meets, clamped to the tile (the
-// eps band beyond the tile falls in its border cells).
+// eps band beyond the tile falls in its border cells). The whole tile (0)
+// when the box is empty or not a number (never so for a polygon in front of
+// the eye; kept conservative anyway).
 uint dirt_subtile_rect(dirt_gpu_view v, int S, ivec2 t)
 {
+    if (!all(greaterThanEqual(g_box.yw, g_box.xz)))
+        return 0u;
     vec4 r = dirt_tile_ndc(v, S, t);
     vec2 org = r.xz, cell = vec2(r.y - r.x, r.w - r.z) / float(DIRT_SUBTILE_GRID);
     float m = float(DIRT_SUBTILE_MARGIN), top = float(DIRT_SUBTILE_GRID - 1);
