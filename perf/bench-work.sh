@@ -8,6 +8,9 @@
 # (perf/results/work-llvmpipe.md).
 #
 #   perf/bench-work.sh [BUILD_DIR] [WxH] [SCENE...]
+#
+# EXTRA: more dirt-render options for DIRT's runs (MMRT's take none), e.g.
+#   EXTRA='--sub-tiles' perf/bench-work.sh build 128x96
 set -euo pipefail
 build=${1:-build}
 res=${2:-128x96}
@@ -20,10 +23,12 @@ scenes=(default "$tmp"/room69k.gltf "$tmp"/mirror69k.glb "$tmp"/slats69k.glb "$@
 W=${res%x*} H=${res#*x}
 echo "| scene | ray type | DIRT tri tests | tiles | Hi-Z steps | list nodes | MMRT fragments | MMRT Hi-Z steps | Embree tri tests | Embree BVH nodes | DIRT / Embree tri tests |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
+read -ra extra <<< "${EXTRA:-}"
 for s in "${scenes[@]}"; do
   for e in dirt mmrt; do
+    more=(); [ $e = dirt ] && more=("${extra[@]}")
     "$render" "$s" --engine $e -W "$W" -H "$H" --spp 1 --count-work -o "$tmp/$e.png" \
-      --stats "$tmp/$e.json" -q
+      --stats "$tmp/$e.json" -q "${more[@]}"
   done
   python3 - "$tmp/dirt.json" "$tmp/mmrt.json" "$(basename "$s")" <<'PY'
 import json, sys

@@ -69,6 +69,22 @@ struct dirt_gpu_light {
  * the pairs that must be present and 2 * DIRT_CLIP_EPS for those that may. */
 #define DIRT_CLIP_EPS 1e-3
 
+/* Sub-tile rectangles (dirt_ads_opts.sub_tiles; doc/dirt-build.md): a
+ * candidate's and an id node's primitive word is prim | rect << 24, rect
+ * the cells of a DIRT_SUBTILE_GRID x DIRT_SUBTILE_GRID grid over the tile
+ * that the primitive's clipped footprint may cover, as x0 | (3 - x1) << 2 |
+ * y0 << 4 | (3 - y1) << 6 (cells x0..x1, y0..y1; 0 = the whole tile).
+ * Primitive ids must then be below DIRT_SUBTILE_MAX_PRIMS (the build fails
+ * otherwise). DIRT_SUBTILE_MARGIN: how far (in cells) the build widens a
+ * footprint's box and the trace a ray segment's before taking cells, far
+ * above the eps band (DIRT_CLIP_EPS tile widths = 0.004 cells) and float
+ * rounding. */
+#define DIRT_SUBTILE_GRID 4
+#define DIRT_SUBTILE_SHIFT 24
+#define DIRT_SUBTILE_PRIM_MASK 0x00FFFFFFu
+#define DIRT_SUBTILE_MAX_PRIMS 0x01000000u
+#define DIRT_SUBTILE_MARGIN 0.05
+
 /* One vertex of the per-frame vertex buffer (32 bytes); vertex v of
  * primitive p is entry 3p + v. */
 struct dirt_gpu_vertex {

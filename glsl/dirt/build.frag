@@ -10,6 +10,9 @@
 //                   so never compute a range again. Candidates past the
 //                   buffer's capacity are counted, not written: the host
 //                   grows the buffer and runs the pass again.
+//                   DIRT_SUB_TILES: the candidate's primitive word carries
+//                   its sub-tile rectangle (dirt_subtile_rect,
+//                   common/layout.h).
 //  DIRT_PASS_BOUND: nothing (the geometry stage counts).
 //  DIRT_PASS_FETCH: the paper's raster Fetch: tiles with no hit record are
 //                   masked out; otherwise every record of the tile's hit list
@@ -84,11 +87,15 @@ void main()
         return;
 #endif
     uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
+    uint word = g_prim;
+#ifdef DIRT_SUB_TILES
+    word |= dirt_subtile_rect(v, S, tile) << DIRT_SUBTILE_SHIFT;
+#endif
     dirt_depth_min(t, floatBitsToUint(zmin));
     dirt_depth_max(t, floatBitsToUint(zmax));
     uint i = atomicAdd(counters.fill.y, 1u);
     if (i < params.cand.x)
-        dirt_candidate_store(i, uvec4(g_prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax)));
+        dirt_candidate_store(i, uvec4(word, t, floatBitsToUint(zmin), floatBitsToUint(zmax)));
 #endif
 #endif
 }

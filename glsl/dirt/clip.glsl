@@ -56,6 +56,38 @@ vec4 dirt_tile_rect(dirt_gpu_view v, int S, ivec2 t, float eps)
     return vec4(r.x - ex, r.y + ex, r.z - ey, r.w + ey);
 }
 
+#ifdef DIRT_SUB_TILES
+// Sub-tile rectangles (common/layout.h, DIRT_SUBTILE_*): the clip functions
+// also min/max the NDC (x / w, y / w) of the clipped polygon's vertices
+// into g_box = (xmin, xmax, ymin, ymax); dirt_subtile_rect turns it into
+// the candidate's rectangle. The vertices are those the range takes: the
+// ends of each edge's part inside the tile ((a) and (b)) and the tile's
+// corners where a corner ray pierces the triangle ((c)); every point of the
+// clipped polygon is a convex combination of them, so the box holds the
+// polygon's projection (up to float rounding, which DIRT_SUBTILE_MARGIN
+// covers many times over).
+vec4 g_box = vec4(0.0);
+
+// The rectangle byte (common/layout.h) of g_box in tile t of view v: the
+// cells of the grid over the tile's NDC rectangle (not moved out) that the
+// box widened by DIRT_SUBTILE_MARGIN cells meets, clamped to the tile (the
+// eps band beyond the tile falls in its border cells). The whole tile (0)
+// when the box is empty or not a number (never so for a polygon in front of
+// the eye; kept conservative anyway).
+uint dirt_subtile_rect(dirt_gpu_view v, int S, ivec2 t)
+{
+    if (!all(greaterThanEqual(g_box.yw, g_box.xz)))
+        return 0u;
+    vec4 r = dirt_tile_ndc(v, S, t);
+    vec2 org = r.xz, cell = vec2(r.y - r.x, r.w - r.z) / float(DIRT_SUBTILE_GRID);
+    float m = float(DIRT_SUBTILE_MARGIN), top = float(DIRT_SUBTILE_GRID - 1);
+    vec2 lo = clamp(floor((g_box.xz - org) / cell - m), vec2(0.0), vec2(top));
+    vec2 hi = clamp(floor((g_box.yw - org) / cell + m), vec2(0.0), vec2(top));
+    uvec2 a = uvec2(lo), b = uvec2(top - hi);
+    return a.x | (b.x << 2) | (a.y << 4) | (b.y << 6);
+}
+#endif
+
 // Clips triangle (c0, c1, c2) (clip space of view v) against tile t, every
 // plane moved out by eps (side planes: eps tile widths, near/far: eps/100 in
 // NDC). Returns false when nothing is left, else the eye-space depth range
@@ -96,9 +128,16 @@ bool dirt_clip_tile(dirt_gpu_view v, int S, ivec2 t, vec4 c0, vec4 c1, vec4 c2, 
     }
     zmin = 1.0 / 0.0;
     zmax = 0.0;
+#ifdef DIRT_SUB_TILES
+    g_box = vec4(1.0 / 0.0, -1.0 / 0.0, 1.0 / 0.0, -1.0 / 0.0);
+#endif
     for (int i = 0; i < n; i++) {
         zmin = min(zmin, a[i].w);
         zmax = max(zmax, a[i].w);
+#ifdef DIRT_SUB_TILES
+        vec2 q = a[i].xy / a[i].w;
+        g_box = vec4(min(g_box.x, q.x), max(g_box.y, q.x), min(g_box.z, q.y), max(g_box.w, q.y));
+#endif
     }
     return n > 0;
 }
@@ -179,9 +218,10 @@ vec3 dirt_edges_plane(vec3 d, inout vec3 t0, inout vec3 t1)
 // Where a y side plane (values p or q) changes sign along that segment is a
 // corner ray of the tile; it is cut there exactly as the clip cuts that edge
 // of its polygon, so the point stays on the triangle however oblique the
-// triangle is. The other two side planes hold there: w > 0.
-void dirt_range_corners(vec3 d, vec3 t, vec3 p, vec3 q, vec3 w, inout float lo,
-                        inout float hi)
+// triangle is. The other two side planes hold there: w > 0. Returns which
+// corner rays pierce it: (the p plane's, the q plane's).
+bvec2 dirt_range_corners(vec3 d, vec3 t, vec3 p, vec3 q, vec3 w, inout float lo,
+                         inout float hi)
 {
     bvec3 cut = notEqual(greaterThanEqual(d, vec3(0.0)), greaterThanEqual(d.yzx, vec3(0.0)));
     vec3 pt = p + t * (p.yzx - p), qt = q + t * (q.yzx - q), wt = w + t * (w.yzx - w);
@@ -195,6 +235,7 @@ void dirt_range_corners(vec3 d, vec3 t, vec3 p, vec3 q, vec3 w, inout float lo,
     bool kp = seg && sign_change.x, kq = seg && sign_change.y;
     lo = min(lo, min(kp ? wc.x : 1.0 / 0.0, kq ? wc.y : 1.0 / 0.0));
     hi = max(hi, max(kp ? wc.x : 0.0, kq ? wc.y : 0.0));
+    return bvec2(kp, kq);
 }
 
 // Widens [lo, hi] by the depth range of triangle (q0, q1, q2) (clip space,
@@ -220,8 +261,26 @@ void dirt_range_tri(vec4 q0, vec4 q1, vec4 q2, vec4 R, inout float lo, inout flo
     lo = min(lo, dirt_min3(mix(vec3(1.0 / 0.0), min(w0, w1), keep)));
     hi = max(hi, dirt_max3(mix(vec3(0.0), max(w0, w1), keep)));
     // (c) the corner rays
-    dirt_range_corners(a0, ta0, b0, b1, w, lo, hi);
-    dirt_range_corners(a1, ta1, b0, b1, w, lo, hi);
+    bvec2 k0 = dirt_range_corners(a0, ta0, b0, b1, w, lo, hi);
+    bvec2 k1 = dirt_range_corners(a1, ta1, b0, b1, w, lo, hi);
+#ifdef DIRT_SUB_TILES
+    // The same points' NDC: the edge parts' ends, and the corners (exactly
+    // R's: x = X0 w or X1 w, y = Y0 w or Y1 w there).
+    vec3 dx = x.yzx - x, dy = y.yzx - y;
+    vec3 x0 = x + t0 * dx, y0 = y + t0 * dy;
+    vec3 x1 = mix(x + t1 * dx, x.yzx, equal(t1, vec3(1.0)));
+    vec3 y1 = mix(y + t1 * dy, y.yzx, equal(t1, vec3(1.0)));
+    vec3 nx0 = x0 / w0, nx1 = x1 / w1, ny0 = y0 / w0, ny1 = y1 / w1;
+    const vec3 inf = vec3(1.0 / 0.0);
+    vec4 b = vec4(dirt_min3(mix(inf, min(nx0, nx1), keep)), dirt_max3(mix(-inf, max(nx0, nx1), keep)),
+                  dirt_min3(mix(inf, min(ny0, ny1), keep)), dirt_max3(mix(-inf, max(ny0, ny1), keep)));
+    bool kx0 = any(k0), kx1 = any(k1), ky0 = k0.x || k1.x, ky1 = k0.y || k1.y;
+    b.x = min(b.x, kx0 ? R.x : kx1 ? R.y : b.x);
+    b.y = max(b.y, kx1 ? R.y : kx0 ? R.x : b.y);
+    b.z = min(b.z, ky0 ? R.z : ky1 ? R.w : b.z);
+    b.w = max(b.w, ky1 ? R.w : ky0 ? R.z : b.w);
+    g_box = vec4(min(g_box.x, b.x), max(g_box.y, b.y), min(g_box.z, b.z), max(g_box.w, b.w));
+#endif
 }
 
 // Depth range of the near/far-clipped polygon (p0 .. p4, n vertices, from
@@ -233,6 +292,9 @@ bool dirt_range_tile(dirt_gpu_view v, int S, ivec2 t, vec4 p0, vec4 p1, vec4 p2,
     vec4 R = dirt_tile_rect(v, S, t, eps);
     zmin = 1.0 / 0.0;
     zmax = 0.0;
+#ifdef DIRT_SUB_TILES
+    g_box = vec4(1.0 / 0.0, -1.0 / 0.0, 1.0 / 0.0, -1.0 / 0.0);
+#endif
     // The fan (p0, pk, pk+1): one triangle unless the near/far clip cut it.
     for (int k = 1; k + 1 < n; k++) {
         vec4 qa = k == 1 ? p1 : k == 2 ? p2 : p3;

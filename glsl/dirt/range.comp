@@ -11,7 +11,8 @@
 // DIRT_CLIP_SH the triangle and dirt_clip_tile), so the ranges are the same
 // floats: drops tiles it misses, min/maxes the range into the tile's depth
 // bounds and appends the candidate (common/layout.h) at counters.fill.y;
-// past the capacity counted, not written.
+// past the capacity counted, not written. DIRT_SUB_TILES: the candidate's
+// primitive word carries its sub-tile rectangle (dirt_subtile_rect).
 #include "common/layout.h"
 #include "dirt/clip.glsl"
 #include "dirt/footprint.glsl"
@@ -77,10 +78,14 @@ void main()
             continue;
 #endif
         uint t = uint(v.placement.x + tile.y * v.size.z + tile.x);
+        uint word = prim;
+#ifdef DIRT_SUB_TILES
+        word |= dirt_subtile_rect(v, S, tile) << DIRT_SUBTILE_SHIFT;
+#endif
         dirt_depth_min(t, floatBitsToUint(zmin));
         dirt_depth_max(t, floatBitsToUint(zmax));
         uint i = atomicAdd(counters.fill.y, 1u);
         if (i < params.cand.x)
-            dirt_candidate_store(i, uvec4(prim, t, floatBitsToUint(zmin), floatBitsToUint(zmax)));
+            dirt_candidate_store(i, uvec4(word, t, floatBitsToUint(zmin), floatBitsToUint(zmax)));
     }
 }

@@ -37,6 +37,10 @@
 // so; common/constants.h, DIRT_ADAPT_*): a depth's bucket comes from its
 // fine bin through the tile's edges, as in the build's count pass, and a
 // bucket's depth slab ends at its edges' fine-bin boundaries.
+// Sub-tile rectangles (built with DIRT_SUB_TILES, for a structure built
+// with them: dirt_ads_opts.sub_tiles; common/layout.h): a node whose cells
+// the ray's segment in the tile misses is skipped before its vertices are
+// read (see g_seg_lim).
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
 // work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
 // tests, large primitives' included) of ray i.
@@ -122,6 +126,54 @@ uint g_alpha_key = 0u;
 // tmax). A candidate whose hit lies outside the tile is not kept: it counts
 // in the tile it lies in.
 uvec4 g_never = uvec4(DIRT_NO_HIT);
+
+#ifdef DIRT_SUB_TILES
+// The cells of the 4 x 4 grid over the tile being walked that the ray's
+// segment in it, [t, texit] of the march, may meet (the NDC box of its ends,
+// widened by DIRT_SUBTILE_MARGIN cells, clamped to the tile), as limits on a
+// node's rectangle fields (common/layout.h): (x1, 3 - x0, y1, 3 - y0) of the
+// segment's cells; a node is skipped when a field exceeds its limit (its
+// cells lie beside the segment's). Set by trace_view before walk_tile.
+//
+// Why the hits stay the same: a hit accepted in this tile at a parameter s
+// in [t, texit] lies on the segment, so its NDC lies in the segment's box
+// (NDC moves monotonically along a segment with w > 0), and on the
+// primitive's part inside the tile frustum (planes moved out by eps), so in
+// the box the build took the node's cells from; both boxes are widened by
+// far more than float rounding, so the cells meet and the node is tested.
+// A hit the plain walk would accept here at s outside [t, texit] (in the
+// tile's eps band, or before the near plane) may be skipped. If s lies in
+// some view's segment, the piece holding s is marched in a view whose
+// frustum holds the hit point, and the march is at s in a tile T' whose
+// frustum holds it (pieces and cells cover their parameter ranges without
+// gaps; a boundary parameter is in both cells), where the primitive is
+// listed with cells holding the point, and T''s segment holds s: found
+// there, unless the march stopped before s, which it does only for a hit
+// at or before s (t >= best.t; the bucket early stop, whose slabs hold every
+// nearer hit of the tile; any-hit, which wants any hit): the closest hit and
+// its tie-break by primitive id are the same. Any-hit rays may return
+// another hit than the plain trace, never a miss for a hit inside a view.
+// A hit outside every view's segment (in a border tile's eps band beyond
+// the view, or nearer than the near plane) is not in the structure: the
+// plain trace finds it only by chance, this one need not.
+uvec4 g_seg_lim = uvec4(3u);
+
+// g_seg_lim of the segment [ta, tb] of ray (co, cd) (clip space) in the
+// tile of NDC rectangle [nlo, nhi]. The whole tile where an end is not in
+// front of the eye (not so in a march, whose pieces lie in a view).
+uvec4 segment_cells(vec4 co, vec4 cd, float ta, float tb, vec2 nlo, vec2 nhi)
+{
+    vec4 a = co + ta * cd, b = co + tb * cd;
+    if (!(a.w > 0.0 && b.w > 0.0))
+        return uvec4(3u);
+    vec2 cell = (nhi - nlo) / float(DIRT_SUBTILE_GRID);
+    vec2 ua = (a.xy / a.w - nlo) / cell, ub = (b.xy / b.w - nlo) / cell;
+    float m = float(DIRT_SUBTILE_MARGIN), top = float(DIRT_SUBTILE_GRID - 1);
+    vec2 lo = clamp(floor(min(ua, ub) - m), vec2(0.0), vec2(top));
+    vec2 hi = clamp(floor(max(ua, ub) + m), vec2(0.0), vec2(top));
+    return uvec4(uint(hi.x), uint(top - lo.x), uint(hi.y), uint(top - lo.y));
+}
+#endif
 
 // Whether the ray sees primitive p at barycentrics (u, w) (alpha test).
 bool alpha_accept(uint p, float u, float w)
@@ -321,6 +373,14 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             COUNT_WORK(z);
             node = n.y;
             uint p = n.x;
+#ifdef DIRT_SUB_TILES
+            // (a read node, not a test; not kept in g_never: the primitive
+            // may meet the ray in another tile)
+            uint r = p >> DIRT_SUBTILE_SHIFT;
+            p &= DIRT_SUBTILE_PRIM_MASK;
+            if (any(greaterThan(uvec4(r, r >> 2, r >> 4, r >> 6) & 3u, g_seg_lim)))
+                continue;
+#endif
             float t, u, w;
             // Ties at the same t go to the lower primitive id: the lists'
             // order comes from the build's atomics and varies between runs.
@@ -449,6 +509,9 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
         if (!skip) {
             // (walk_tile counts the tile walked unless its occupancy skips it)
             uint gt = uint(v.placement.x + cell.y * v.size.z + cell.x);
+#ifdef DIRT_SUB_TILES
+            g_seg_lim = segment_cells(co, cd, t, texit, nlo, nhi);
+#endif
             if (walk_tile(rs, co, cd, v, view, cell, gt, wa, wb, tmin, best))
                 return true;
         }

@@ -40,6 +40,7 @@ typedef struct options {
     int warmup, repeat, agree_w, agree_h, face;
     int large;                  /* --large: 0 none, else up to that many */
     bool large_grid;            /* --large-grid: DIRT's large primitives through their grid */
+    bool sub_tiles;             /* --sub-tiles: DIRT's list nodes with sub-tile rectangles */
     bool quality, images, quiet;
     bool count_work;            /* --count-work: each row's work per ray type */
     uint32_t seed;
@@ -110,6 +111,7 @@ static bool from_app(const app_opts *a, options *o)
     o->face = a->s.face_size;
     o->large = (int)a->large;
     o->large_grid = a->s.large_grid;
+    o->sub_tiles = a->s.sub_tiles;
     o->quality = !a->no_quality;
     o->count_work = a->s.count_work;
     o->images = a->images;
@@ -170,6 +172,7 @@ static cJSON *stat_json(double *v, int n, enum dirt_clock clock)
 static int g_face; /* --face: one value for the whole sweep */
 static int g_large; /* --dirt-large: one value for the whole sweep */
 static bool g_large_grid; /* --large-grid: likewise */
+static bool g_sub_tiles;  /* --sub-tiles: likewise */
 static enum dirt_depth_buckets g_depth_buckets; /* --depth-buckets: DIRT's, the whole sweep */
 
 /* The library's messages, printed as its default sink prints them; the
@@ -286,7 +289,7 @@ static dirt_session_opts session_opts(const scene_info *si, const config *c, enu
         .engine = e, .width = c->w, .height = c->h, .views = (enum dirt_session_views)c->views,
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
-        .large = g_large ? g_large : -1, .large_grid = g_large_grid,
+        .large = g_large ? g_large : -1, .large_grid = g_large_grid, .sub_tiles = g_sub_tiles,
         .depth_buckets = e == DIRT_ENGINE_DIRT ? g_depth_buckets : DIRT_DEPTH_BUCKETS_UNIFORM,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
@@ -500,6 +503,8 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
              o->repeat, o->quality ? 1 : 0, o->seed, si->key);
     if (o->large_grid) /* (ids without it as before: earlier runs' rows still match) */
         snprintf(buf + strlen(buf), n - strlen(buf), "|G1");
+    if (o->sub_tiles) /* (likewise) */
+        snprintf(buf + strlen(buf), n - strlen(buf), "|T1");
 }
 
 static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
@@ -577,6 +582,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "dirt_buckets", c->dbuckets);
     cJSON_AddNumberToObject(set, "dirt_large", o->large);
     cJSON_AddBoolToObject(set, "dirt_large_grid", o->large_grid);
+    cJSON_AddBoolToObject(set, "dirt_sub_tiles", o->sub_tiles);
     cJSON_AddStringToObject(set, "dirt_depth_buckets", app_depth_buckets_names[g_depth_buckets]);
     cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
@@ -706,6 +712,7 @@ int main(int argc, char **argv)
     g_face = o.face;
     g_large = o.large;
     g_large_grid = o.large_grid;
+    g_sub_tiles = o.sub_tiles;
     g_depth_buckets = ao.s.depth_buckets;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {

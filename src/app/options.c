@@ -208,6 +208,12 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "doc/dirt-trace.md): far fewer exact triangle tests per ray (default scene 12.8 -> 2.9 "
         "per camera ray), more march steps; on llvmpipe the trace was 1.6-1.9x slower, as "
         "every lane pays for the cells' walk. The same hits and image", NULL, NULL},
+    [APP_OPT_SUB_TILES] = {APP_OPT_SUB_TILES, NULL, "--sub-tiles", NULL, NULL, 'F',
+        OFF(s.sub_tiles), 0, 0, NULL, "every DIRT list node also records which cells of a 4x4 "
+        "grid over its tile the primitive may cover, and a ray skips the nodes whose cells its "
+        "segment in the tile misses (doc/dirt-build.md, \"Sub-tile rectangles\"): fewer exact "
+        "triangle tests per ray where a tile lists many small primitives. The same hits and "
+        "image; scenes below 2^24 triangles (else the build fails)", NULL, NULL},
     [APP_OPT_HIZ_TOP] = {APP_OPT_HIZ_TOP, NULL, "--hiz-top", NULL, "L", 'l', OFF(hiz_top), -1, 15,
         NULL, "highest Hi-Z level the march starts from; 0 = tiles only, no Hi-Z; -1 = the "
         "pyramid's top", "-1", NULL},

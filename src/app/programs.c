@@ -21,7 +21,7 @@ static const app_use render_technique_opts[] = {
 static const app_use render_dirt_opts[] = {
     {APP_OPT_DEBUG_ADS}, {APP_OPT_VIEWS}, {APP_OPT_TILE}, {APP_OPT_BUCKETS}, {APP_OPT_FACE_SIZE},
     {APP_OPT_NO_CONSERVATIVE}, {APP_OPT_BUILD}, {APP_OPT_DEPTH_BUCKETS}, {APP_OPT_LARGE},
-    {APP_OPT_LARGE_GRID},
+    {APP_OPT_LARGE_GRID}, {APP_OPT_SUB_TILES},
     {APP_OPT_HIZ_TOP},
     {APP_OPT_FETCH}, {APP_OPT_DIRECT_VISIBILITY}, {APP_OPT_GRAPH_DOT}, {APP_OPT_NONE}};
 static const app_use render_mmrt_opts[] = {
@@ -86,7 +86,7 @@ static const app_use compare_sweep_opts[] = {
     {APP_OPT_NONE}};
 static const app_use compare_measure_opts[] = {
     {APP_OPT_WARMUP}, {APP_OPT_REPEAT}, {APP_OPT_FACE_SIZE}, {APP_OPT_LARGE}, {APP_OPT_LARGE_GRID},
-    {APP_OPT_DEPTH_BUCKETS},
+    {APP_OPT_SUB_TILES}, {APP_OPT_DEPTH_BUCKETS},
     {APP_OPT_AGREE_RES}, {APP_OPT_NO_QUALITY}, {APP_OPT_COUNT_WORK}, {APP_OPT_IMAGES},
     {APP_OPT_SEED, 0, "7"}, {APP_OPT_MAX_SCENE_MEMORY}, {APP_OPT_STRICT},
     {APP_OPT_ALLOW_OUTSIDE_PATHS}, {APP_OPT_GPU}, {APP_OPT_PRESET}, {APP_OPT_NONE}};
@@ -160,7 +160,7 @@ static const app_use view_technique_opts[] = {
     {APP_OPT_CPU_TIMING}, {APP_OPT_SORT_RAYS, RT}, {APP_OPT_VIEWS, RT}, {APP_OPT_TILE, RT}, {APP_OPT_BUCKETS, RT},
     {APP_OPT_FACE_SIZE, RT}, {APP_OPT_NO_CONSERVATIVE, RT}, {APP_OPT_BUILD, RT},
     {APP_OPT_DEPTH_BUCKETS, RT},
-    {APP_OPT_LARGE, RT}, {APP_OPT_LARGE_GRID, RT}, {APP_OPT_HIZ_TOP, RT}, {APP_OPT_FETCH, RT},
+    {APP_OPT_LARGE, RT}, {APP_OPT_LARGE_GRID, RT}, {APP_OPT_SUB_TILES, RT}, {APP_OPT_HIZ_TOP, RT}, {APP_OPT_FETCH, RT},
     {APP_OPT_DIRECT_VISIBILITY, RT}, {APP_OPT_MARCH, RT}, {APP_OPT_SAMPLES, RT},
     {APP_OPT_THICKNESS, RT}, {APP_OPT_NONE}};
 static const app_use view_script_opts[] = {

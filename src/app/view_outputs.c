@@ -176,6 +176,8 @@ void view_render_args(const viewer *v, char *buf, size_t size)
         ADD(" --large %d", o->large < 0 ? 0 : o->large);
     if (o->engine == DIRT_ENGINE_DIRT && o->large_grid)
         ADD(" --large-grid");
+    if (o->engine == DIRT_ENGINE_DIRT && o->sub_tiles)
+        ADD(" --sub-tiles");
     if (o->hiz_levels)
         ADD(" --hiz-top %d", o->hiz_levels - 1);
     if (o->fetch)

@@ -159,6 +159,7 @@ static void panel_settings(viewer *v)
             if (dirt_ui_slider_int("large primitives", &lg, 0, DIRT_ADS_MAX_LARGE))
                 o->large = lg;
             dirt_ui_checkbox("large primitives' grid", &o->s.large_grid);
+            dirt_ui_checkbox("sub-tile rectangles", &o->s.sub_tiles);
             int top = (int)o->hiz_top;
             if (dirt_ui_slider_int("Hi-Z top (-1 = all)", &top, -1, 15))
                 o->hiz_top = top;

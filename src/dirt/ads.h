@@ -64,6 +64,15 @@ typedef struct dirt_ads_opts {
                                  tests every large primitive */
     enum dirt_depth_buckets depth_buckets; /* uniform (default) or adaptive
                                  (doc/dirt-build.md; B at most DIRT_ADAPT_MAX_BUCKETS) */
+    bool sub_tiles;           /* every id node also carries the cells of a 4 x 4 grid
+                                 over its tile that the primitive's clipped
+                                 footprint may cover, and the trace skips a node
+                                 whose cells the ray's segment in the tile misses
+                                 (common/layout.h, DIRT_SUBTILE_*; fewer triangle
+                                 tests, the same hits); the build then fails
+                                 (logged) for frames of DIRT_SUBTILE_MAX_PRIMS or
+                                 more triangles. false: plain ids, the trace
+                                 without the test */
 } dirt_ads_opts;
 
 /* The large primitives of `frame`: of the triangles whose area is at least
@@ -102,7 +111,10 @@ typedef struct dirt_ads_data {
     uint32_t *masks;          /* bucket occupancy per tile (bit b: bucket b holds a
                                  node; common/constants.h, DIRT_BUCKET_MASK_*); NULL
                                  when buckets > DIRT_BUCKET_MASK_MAX_BUCKETS */
-    uint32_t (*nodes)[2];     /* (primitive, next) */
+    uint32_t (*nodes)[2];     /* (primitive, next); the primitive without its
+                                 rectangle (sub_tiles) */
+    uint8_t *rects;           /* sub_tiles: each node's rectangle byte
+                                 (common/layout.h); NULL without them */
     uint32_t num_nodes;
     int num_large;            /* the large primitives, left out of the lists */
     uint32_t large[DIRT_ADS_MAX_LARGE];

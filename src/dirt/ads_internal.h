@@ -73,14 +73,16 @@ struct dirt_ads {
     GLuint large_cells;
     size_t large_cells_size;
     /* trace */
-    /* The trace's builds, [alpha | large << 1 | count << 2 | grid << 3]:
+    /* The trace's builds, [alpha | large << 1 | count << 2 | grid << 3 |
+     * sub-tiles << 4]:
      * DIRT_TRACE_ALPHA (alpha tests), DIRT_TRACE_LARGE (large primitives;
      * llvmpipe runs a loop's body once even when no invocation enters it, so
      * the build without them is kept for structures that have none),
      * DIRT_TRACE_COUNT (work counters), DIRT_TRACE_LARGE_GRID (with large:
-     * through their grid, opts.large_grid). [0] made at creation (and for
+     * through their grid, opts.large_grid), DIRT_SUB_TILES (the nodes'
+     * rectangles, opts.sub_tiles). [0] made at creation (and for
      * each build's layouts), the others on first use. */
-    gl_split_program prog_trace[16];
+    gl_split_program prog_trace[32];
     GLuint rays, hits, work;
     size_t rays_size, hits_size, work_size;
     gl_timer trace_timer;

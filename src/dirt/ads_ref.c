@@ -44,7 +44,9 @@ bool ads_ref_build(const dirt_view_set *set, const dirt_frame *f, double eps,
             for (int ty = rect[2]; ty <= rect[3]; ty++) {
                 for (int tx = rect[0]; tx <= rect[1]; tx++) {
                     double lo, hi;
-                    if (!dirt_clip_triangle_tile(v, set->tile_size, tx, ty, tri, eps, &lo, &hi))
+                    double box[4];
+                    if (!dirt_clip_triangle_tile_box(v, set->tile_size, tx, ty, tri, eps, &lo,
+                                                     &hi, box))
                         continue;
                     if (n == cap) {
                         cap *= 2;
@@ -54,7 +56,7 @@ bool ads_ref_build(const dirt_view_set *set, const dirt_frame *f, double eps,
                         pairs = g;
                     }
                     pairs[n++] = (pair){(uint32_t)(v->tile_base + ty * v->tiles_x + tx),
-                                        {(uint32_t)p, lo, hi}};
+                                        {(uint32_t)p, lo, hi, {box[0], box[1], box[2], box[3]}}};
                 }
             }
         }
@@ -111,10 +113,50 @@ static int bucket_of(double z, double tmin, double range, int B)
     return b < 0 ? 0 : b > B - 1 ? B - 1 : (int)b;
 }
 
-/* A primitive's buckets in one tile, as found in the GPU lists. */
+void ads_ref_box_cells(const dirt_view *v, int S, int tx, int ty, const double b[4],
+                       double margin, int cells[4])
+{
+    double r[4];
+    dirt_view_tile_ndc(v, S, tx, ty, r);
+    const double top = DIRT_SUBTILE_GRID - 1;
+    for (int k = 0; k < 2; k++) {
+        double org = r[2 * k], cell = (r[2 * k + 1] - r[2 * k]) / DIRT_SUBTILE_GRID;
+        double lo = floor((b[2 * k] - org) / cell - margin);
+        double hi = floor((b[2 * k + 1] - org) / cell + margin);
+        cells[2 * k] = (int)fmin(fmax(lo, 0.0), top);
+        cells[2 * k + 1] = (int)fmin(fmax(hi, 0.0), top);
+    }
+}
+
+void ads_ref_rect_cells(uint8_t r, int cells[4])
+{
+    cells[0] = r & 3;
+    cells[1] = 3 - ((r >> 2) & 3);
+    cells[2] = (r >> 4) & 3;
+    cells[3] = 3 - (r >> 6);
+}
+
+/* View and tile (tx, ty) of global tile t. */
+static const dirt_view *tile_view(const dirt_view_set *set, int t, int *tx, int *ty)
+{
+    for (int vi = 0; vi < set->count; vi++) {
+        const dirt_view *v = &set->views[vi];
+        int k = t - v->tile_base;
+        if (k >= 0 && k < v->tiles_x * v->tiles_y) {
+            *tx = k % v->tiles_x;
+            *ty = k / v->tiles_x;
+            return v;
+        }
+    }
+    return NULL;
+}
+
+/* A primitive's buckets in one tile, as found in the GPU lists (and its
+ * sub-tile rectangle byte there; 0 without them). */
 typedef struct gpu_pair {
     uint32_t prim;
     int bucket;
+    uint8_t rect;
 } gpu_pair;
 
 static int cmp_gpu_pair(const void *a, const void *b)
@@ -163,7 +205,7 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
                     }
                     gp = g;
                 }
-                gp[n++] = (gpu_pair){d->nodes[node][0], b};
+                gp[n++] = (gpu_pair){d->nodes[node][0], b, d->rects ? d->rects[node] : 0};
                 node = d->nodes[node][1];
             }
         }
@@ -228,6 +270,28 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
                 }
                 if (bad)
                     rep->bad_buckets++;
+            }
+            if (d->rects) {
+                int tx, ty, g[4], need[4] = {3, 0, 3, 0}, may[4] = {0, 3, 0, 3};
+                const dirt_view *v = tile_view(set, t, &tx, &ty);
+                ads_ref_rect_cells(gp[i].rect, g);
+                bool bad = !v;
+                for (size_t k = i + 1; k < j; k++)
+                    bad = bad || gp[k].rect != gp[i].rect;
+                if (v && r)
+                    ads_ref_box_cells(v, set->tile_size, tx, ty, r->box, 0.0, need);
+                if (v && a)
+                    ads_ref_box_cells(v, set->tile_size, tx, ty, a->box,
+                                      DIRT_SUBTILE_MARGIN + 1e-3, may);
+                bad = bad || g[0] > need[0] || g[1] < need[1] || g[2] > need[2] ||
+                      g[3] < need[3] || g[0] < may[0] || g[1] > may[1] || g[2] < may[2] ||
+                      g[3] > may[3] || g[0] > g[1] || g[2] > g[3];
+                if (bad && rep->bad_rects < 5)
+                    DIRT_WARN("tile %d prim %u: rectangle x %d..%d y %d..%d, needs x %d..%d "
+                              "y %d..%d, may x %d..%d y %d..%d", t, prim, g[0], g[1], g[2],
+                              g[3], need[0], need[1], need[2], need[3], may[0], may[1],
+                              may[2], may[3]);
+                rep->bad_rects += bad;
             }
             i = j;
         }

@@ -11,6 +11,7 @@
 typedef struct ads_ref_entry {
     uint32_t prim;
     double zmin, zmax;
+    double box[4]; /* NDC bounding box of the clipped polygon (xmin, xmax, ymin, ymax) */
 } ads_ref_entry;
 
 /* Per global tile, the primitives whose clipped polygon is non-empty
@@ -41,13 +42,30 @@ typedef struct ads_check_report {
                                   the buckets with a node, or misses a bucket an
                                   exact range overlaps, or has one no allowed
                                   range overlaps; 0 when there are no masks */
+    uint64_t bad_rects;        /* sub-tile rectangles (dirt_ads_data.rects): a pair
+                                  whose rectangle misses a cell of its exact clip's
+                                  box, takes one beyond its widened clip's box
+                                  widened by DIRT_SUBTILE_MARGIN cells, or differs
+                                  between its buckets */
 } ads_check_report;
+
+/* The cells {x0, x1, y0, y1} of the DIRT_SUBTILE_GRID grid over tile
+ * (tx, ty) of view v (tile size S) that NDC box b = {xmin, xmax, ymin, ymax}
+ * widened by `margin` cells meets, clamped to the tile. */
+void ads_ref_box_cells(const dirt_view *v, int S, int tx, int ty, const double b[4],
+                       double margin, int cells[4]);
+
+/* The cells {x0, x1, y0, y1} of sub-tile rectangle byte r (common/layout.h). */
+void ads_ref_rect_cells(uint8_t r, int cells[4]);
 
 /* Checks `data` (read back from a build over `set`, `frame`, B buckets;
  * its large primitives left out) against the exact references at eps 0
  * (must be present) and
  * 2 * DIRT_CLIP_EPS (may be present). Depth bounds and bucket edges are
- * compared with relative tolerance `tol`. */
+ * compared with relative tolerance `tol`. With sub-tile rectangles
+ * (data->rects) every pair's rectangle holds the cells of the exact clip's
+ * NDC box (eps 0) and lies within those of the widened clip's box widened
+ * by DIRT_SUBTILE_MARGIN cells (bad_rects). */
 bool ads_check(const dirt_view_set *set, const dirt_frame *frame, const dirt_ads_data *data,
                double tol, ads_check_report *report);
 

@@ -129,25 +129,34 @@ bool ads_programs(dirt_ads *a)
     const unsigned D = ADS_ARR(ADS_DEPTH);
     if (!views_hiz_program(&a->prog_mip, a->depth.layout))
         return false;
-    glsl_define defs[4] = {{"DIRT_NUM_VIEWS", a->nviews}, {"DIRT_PASS_DEPTH", "1"}};
+    glsl_define defs[5] = {{"DIRT_NUM_VIEWS", a->nviews}, {"DIRT_PASS_DEPTH", "1"}};
     size_t ndefs = 2;
     if (a->use_nv)
         defs[ndefs++] = (glsl_define){"DIRT_CONSERVATIVE_NV", "1"};
     if (a->opts.reference_clip)
         defs[ndefs++] = (glsl_define){"DIRT_CLIP_SH", "1"};
+    /* sub-tile rectangles: the depth pass (raster) or the range pass
+     * (compute) only */
+    glsl_define sub = {"DIRT_SUB_TILES", "1"};
     const char *paths[] = {"dirt/build.vert", "dirt/build.geom", "dirt/build.frag", NULL};
 #define COMP(name) (const char *const[]){name, NULL}
     if (a->opts.build == DIRT_BUILD_COMPUTE) {
-        /* the compute build's passes take DIRT_CLIP_SH only */
-        glsl_define sh = {"DIRT_CLIP_SH", "1"};
+        /* the compute build's passes take DIRT_CLIP_SH (and the range pass
+         * DIRT_SUB_TILES) only */
+        glsl_define sh[2] = {{"DIRT_CLIP_SH", "1"}, sub};
         size_t nsh = a->opts.reference_clip ? 1 : 0;
-        if (!ads_program(a, &a->prog_tiles, "dirt/tiles.comp", COMP("dirt/tiles.comp"), &sh,
+        glsl_define *rd = a->opts.reference_clip ? sh : sh + 1;
+        size_t nrd = nsh + (a->opts.sub_tiles ? 1 : 0);
+        if (!ads_program(a, &a->prog_tiles, "dirt/tiles.comp", COMP("dirt/tiles.comp"), sh,
                          nsh, V | C) ||
-            !ads_program(a, &a->prog_range, "dirt/range.comp", COMP("dirt/range.comp"), &sh,
-                         nsh, V | C | D))
+            !ads_program(a, &a->prog_range, "dirt/range.comp", COMP("dirt/range.comp"), rd,
+                         nrd, V | C | D))
             return false;
     } else {
-        if (!ads_program(a, &a->prog_depth, "dirt depth bounds", paths, defs, ndefs, V | C | D))
+        if (a->opts.sub_tiles)
+            defs[ndefs] = sub;
+        if (!ads_program(a, &a->prog_depth, "dirt depth bounds", paths, defs,
+                         ndefs + (a->opts.sub_tiles ? 1 : 0), V | C | D))
             return false;
         defs[1].name = "DIRT_PASS_BOUND";
         if (!ads_program(a, &a->prog_bound, "dirt candidate bound", paths, defs, ndefs, V))
@@ -954,6 +963,12 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     a->built = false;
     gl_group_push("dirt build");
     bool ok = false;
+    if (a->opts.sub_tiles && f->num_triangles >= DIRT_SUBTILE_MAX_PRIMS) {
+        DIRT_ERROR("sub-tile rectangles need primitive ids below %u (they share a word with "
+                   "the rectangle); this frame has %zu triangles: build without them "
+                   "(--sub-tiles off)", DIRT_SUBTILE_MAX_PRIMS, f->num_triangles);
+        goto done;
+    }
     if (!check_sizes(a, f) || !upload_frame(a, f) || !ensure_targets(a))
         goto done;
     memset(st->large, 0, sizeof(st->large));
@@ -1120,6 +1135,19 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
         dirt_ads_data_free(out);
         return false;
     }
+    if (a->opts.sub_tiles) {
+        /* the rectangles apart, the ids plain */
+        out->rects = malloc((size_t)out->num_nodes + 1);
+        if (!out->rects) {
+            DIRT_ERROR("out of memory reading the structure back");
+            dirt_ads_data_free(out);
+            return false;
+        }
+        for (uint32_t i = 0; i < out->num_nodes; i++) {
+            out->rects[i] = (uint8_t)(out->nodes[i][0] >> DIRT_SUBTILE_SHIFT);
+            out->nodes[i][0] &= DIRT_SUBTILE_PRIM_MASK;
+        }
+    }
     if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
         int B = out->buckets, T = out->num_tiles;
         size_t words = (size_t)DIRT_ADAPT_EDGE_WORDS(B) * (size_t)T;
@@ -1172,6 +1200,7 @@ void dirt_ads_data_free(dirt_ads_data *d)
     free(d->heads);
     free(d->masks);
     free(d->nodes);
+    free(d->rects);
     free(d->edges);
     memset(d, 0, sizeof(*d));
 }

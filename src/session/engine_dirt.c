@@ -90,6 +90,7 @@ static bool reshape(engine *e, const engine_env *env)
                                                         .force_emulation = o->force_emulation,
                                                         .large = o->large, .build = build,
                                                         .large_grid = o->large_grid,
+                                                        .sub_tiles = o->sub_tiles,
                                                         .depth_buckets = o->depth_buckets});
     return d->ads != NULL;
 }

@@ -235,6 +235,13 @@ static int clip_plane(double in[][4], int n, double out[][4], const double plane
 bool dirt_clip_triangle_tile(const dirt_view *v, int S, int tx, int ty, const float p[3][3],
                              double eps, double *zmin, double *zmax)
 {
+    return dirt_clip_triangle_tile_box(v, S, tx, ty, p, eps, zmin, zmax, NULL);
+}
+
+bool dirt_clip_triangle_tile_box(const dirt_view *v, int S, int tx, int ty,
+                                 const float p[3][3], double eps, double *zmin, double *zmax,
+                                 double box[4])
+{
     double r[4];
     dirt_view_tile_ndc(v, S, tx, ty, r);
     double ex = eps * 2.0 * S / v->width, ey = eps * 2.0 * S / v->height, ez = eps * 1e-2;
@@ -261,6 +268,15 @@ bool dirt_clip_triangle_tile(const dirt_view *v, int S, int tx, int ty, const fl
     }
     *zmin = lo;
     *zmax = hi;
+    if (box) {
+        box[0] = box[2] = INFINITY;
+        box[1] = box[3] = -INFINITY;
+        for (int i = 0; i < n; i++) {
+            double x = a[i][0] / a[i][3], y = a[i][1] / a[i][3];
+            box[0] = fmin(box[0], x), box[1] = fmax(box[1], x);
+            box[2] = fmin(box[2], y), box[3] = fmax(box[3], y);
+        }
+    }
     return true;
 }
 

@@ -93,6 +93,12 @@ void dirt_view_tile_ndc(const dirt_view *v, int tile_size, int tx, int ty, doubl
 bool dirt_clip_triangle_tile(const dirt_view *v, int tile_size, int tx, int ty,
                              const float p[3][3], double eps, double *zmin, double *zmax);
 
+/* dirt_clip_triangle_tile, and also the NDC bounding box of the clipped
+ * polygon's projection in box = {xmin, xmax, ymin, ymax} (box may be NULL). */
+bool dirt_clip_triangle_tile_box(const dirt_view *v, int tile_size, int tx, int ty,
+                                 const float p[3][3], double eps, double *zmin, double *zmax,
+                                 double box[4]);
+
 /* Conservative tile rectangle of a triangle in view v: the tiles its
  * near-clipped projection's bounding box touches, widened by `margin` tiles,
  * clamped to the view. False when the triangle is entirely outside the view

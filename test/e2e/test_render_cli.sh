@@ -240,6 +240,24 @@ for t in off:
     assert t == "visibility" or (a["tiles"] == b["tiles"] and a["list_nodes"] == b["list_nodes"]), t
     assert b["triangle_tests"] < a["triangle_tests"] and b["hiz_steps"] > a["hiz_steps"], (t, a, b)
 PY
+# Sub-tile rectangles (--sub-tiles): the same image bit for bit, alone and
+# with the large primitives' grid and adaptive depth buckets; the same list
+# nodes read on closest-hit rays, no more triangle tests on any ray type and
+# fewer in all.
+expect_rc 0 "sub-tile rectangles" -- -o "$out/st.exr" -W 32 -H 24 --spp 2 --sub-tiles --count-work --stats "$out/st.json"
+"$exr" --exact "$out/st.exr" "$out/d.exr" && ok || fail "--sub-tiles changed the image"
+expect_rc 0 "sub-tile rectangles with the grid, adaptive buckets" -- -o "$out/st2.exr" -W 32 -H 24 --spp 2 --sub-tiles --large-grid --depth-buckets adaptive
+"$exr" --exact "$out/st2.exr" "$out/d.exr" && ok || fail "--sub-tiles --large-grid --depth-buckets adaptive changed the image"
+python3 - "$out/w.json" "$out/st.json" <<'PY' && ok || fail "--sub-tiles' work counts"
+import json, sys
+off, on = (json.load(open(p))["frames"][0]["work"] for p in sys.argv[1:])
+for t in off:
+    a, b = off[t], on[t]
+    assert a["rays"] == b["rays"] and a["tiles"] == b["tiles"], t
+    assert t == "visibility" or a["list_nodes"] == b["list_nodes"], t
+    assert t == "visibility" or b["triangle_tests"] <= a["triangle_tests"], (t, a, b)
+assert sum(on[t]["triangle_tests"] for t in on) < sum(off[t]["triangle_tests"] for t in off)
+PY
 # The ray sort (--sort-rays): the same image bit for bit, its passes ran, its
 # buffers counted (unsorted rays and batch: 36 B per pixel and a 16-byte
 # header; scratch: a counter per bucket and a key per pixel).

@@ -250,6 +250,17 @@ case "$args" in *"--large-grid"*) ok ;; *) fail "render_args lack --large-grid: 
 if "$check" same "$tmp/grid.exr" "$tmp/v-dirt.exr"; then ok; else
   fail "the image with the large primitives' grid is not the one without"; fi
 
+# 4e. Sub-tile rectangles turned on likewise: rebuilt, the same image, in
+#     the reported options.
+printf 'wait-samples 1\nset sub-tiles on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/sub.exr" "$tmp/sub.json" >"$tmp/s.txt"
+run_view sub --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
+  fail "sub-tiles run failed"
+args=$(json_field "$tmp/sub.json" render_args)
+case "$args" in *"--sub-tiles"*) ok ;; *) fail "render_args lack --sub-tiles: $args" ;; esac
+if "$check" same "$tmp/sub.exr" "$tmp/v-dirt.exr"; then ok; else
+  fail "the image with sub-tile rectangles is not the one without"; fi
+
 # 5. Bad input exits 2 with a one-line reason, before any window.
 expect2() {
   local what=$1; shift

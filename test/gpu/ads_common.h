@@ -23,7 +23,9 @@ static inline int cmp_u64(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-/* Sorted (tile, bucket, primitive) triples of a read-back structure; NULL
+/* Sorted (tile, bucket, primitive) triples of a read-back structure (with
+ * sub-tile rectangles, the primitive word is prim | rect << 24, as the GPU
+ * stores it, so the rectangles are compared too); NULL
  * (and a failed check) when a list is longer than the node count (a cycle)
  * or links outside the nodes. */
 static inline uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
@@ -37,7 +39,8 @@ static inline uint64_t *list_triples(const dirt_ads_data *d, size_t *count)
                  node != DIRT_LIST_END && !bad; node = d->nodes[node][1]) {
                 bad = node >= d->num_nodes || n >= d->num_nodes;
                 if (!bad)
-                    out[n++] = ((uint64_t)t << 40) | ((uint64_t)b << 32) | d->nodes[node][0];
+                    out[n++] = ((uint64_t)t << 40) | ((uint64_t)b << 32) | d->nodes[node][0] |
+                               (d->rects ? (uint64_t)d->rects[node] << DIRT_SUBTILE_SHIFT : 0);
             }
         }
     }
@@ -140,7 +143,8 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         fprintf(stderr,
                 "%-14s %-11s S=%d B=%-2d: %6llu tiles, %7llu required pairs, %7llu on GPU, "
                 "%7llu allowed | missing %llu, beyond tol %llu, dup %llu, buckets %llu, "
-                "bounds %llu, links %llu, masks %llu, pyramid %llu | n_p %llu c %.2f runs "
+                "bounds %llu, links %llu, masks %llu, rects %llu, pyramid %llu | n_p %llu c "
+                "%.2f runs "
                 "%d/%d\n",
                 label, mode_name(opts->views.mode), set->tile_size, opts->buckets,
                 (unsigned long long)r.tiles, (unsigned long long)r.required_pairs,
@@ -148,7 +152,8 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
                 (unsigned long long)r.missing, (unsigned long long)r.beyond_tolerance,
                 (unsigned long long)r.duplicates, (unsigned long long)r.bad_buckets,
                 (unsigned long long)r.bad_bounds, (unsigned long long)r.bad_list_links,
-                (unsigned long long)r.bad_masks, (unsigned long long)pyr, (unsigned long long)st->samples,
+                (unsigned long long)r.bad_masks, (unsigned long long)r.bad_rects,
+                (unsigned long long)pyr, (unsigned long long)st->samples,
                 st->buckets_per_sample, st->depth_runs, st->fill_runs);
         CHECK(r.missing == 0);
         CHECK(r.beyond_tolerance == 0);
@@ -158,6 +163,8 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         CHECK(r.bad_list_links == 0);
         CHECK(r.bad_masks == 0);
         CHECK((data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS));
+        CHECK(r.bad_rects == 0);
+        CHECK((data.rects != NULL) == opts->sub_tiles);
         CHECK(pyr == 0);
         CHECK(st->samples == r.gpu_pairs);
         /* A first build runs each pass once (the bound pass sized the
@@ -169,7 +176,8 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         ok = r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
              r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 &&
              r.bad_masks == 0 &&
-             (data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS) && pyr == 0;
+             (data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS) &&
+             r.bad_rects == 0 && (data.rects != NULL) == opts->sub_tiles && pyr == 0;
         dirt_ads_data_free(&data);
     }
     dirt_ads_destroy(ads);

@@ -5,7 +5,9 @@
  *    shadow rays, keyed DIRT_RNG_DIM_ALPHA_SHADOW, the others _PATH), traced
  *    by DIRT (cube+camera, S in {1, 4}, B in {1, 8}, and S = 1, B = 8 with
  *    every triangle a large primitive, dirt_ads_opts.large_area, tested by
- *    every ray and through the large primitives' grid; with the grid the
+ *    every ray and through the large primitives' grid, and S = 1, B = 8
+ *    with sub-tile rectangles: the same hits bit for bit as without (any-hit
+ *    rays: the same occlusion); with the grid and the rectangles the
  *    counting build too, bit for bit: the trace's largest build, alpha +
  *    large + grid + counters, within llvmpipe's 16 storage blocks) with the alpha tables
  *    against Embree with the same keys: the same primitive (or t within
@@ -142,25 +144,28 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
     static const int sizes[] = {1, 4}, buckets[] = {1, 8};
     /* (s = 2: every triangle large, the alpha-tested planes too, so every
      * hit comes from the large primitives' test; s = 3: the same through
-     * their grid) */
-    for (int s = 0; s < 4; s++) {
+     * their grid; s = 4: S = 1 with sub-tile rectangles, whose hits are
+     * those of S = 1 without, bit for bit) */
+    dirt_hit *plain_s1[DIRT_RAY_TYPES] = {0};
+    for (int s = 0; s < 5; s++) {
         for (int b = 0; b < 2; b++) {
             if (s >= 2 && b == 0)
                 continue;
             dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = W, .height = H,
-                                         .face_size = 32, .tile_size = sizes[s == 3 ? 0 : s % 2]},
+                                         .face_size = 32, .tile_size = sizes[s >= 3 ? 0 : s % 2]},
                                .buckets = buckets[b], .force_emulation = true,
-                               .large_area = s >= 2 ? 1e-9 : 0, .large_grid = s == 3};
+                               .large_area = s == 2 || s == 3 ? 1e-9 : 0, .large_grid = s == 3,
+                               .sub_tiles = s == 4};
             dirt_ads *ads = dirt_ads_create(gpu, &o);
             CHECK(ads && dirt_ads_build(ads, f, &cam));
             if (!ads)
                 continue;
             int nl = dirt_ads_get_stats(ads)->num_large;
-            if (s >= 2)
+            if (s == 2 || s == 3)
                 CHECK_MSG(nl == (int)f->num_triangles, "%d of %zu triangles large", nl,
                           f->num_triangles);
             fprintf(stderr, "DIRT S=%d B=%d, %d large%s", o.views.tile_size, buckets[b], nl,
-                    s == 3 ? " (grid)" : "");
+                    s == 3 ? " (grid)" : s == 4 ? ", sub-tile rectangles" : "");
             for (int t = DIRT_RAY_PRIMARY; t < DIRT_RAY_TYPES; t++) {
                 bool vis = t == DIRT_RAY_VISIBILITY;
                 dirt_trace_opts to = {.any_hit = vis};
@@ -182,13 +187,29 @@ static void hits(dirt_gpu *gpu, const dirt_scene *scene)
                         100.0 * same / (double)count[t]);
                 CHECK_MSG(same >= MIN_AGREEMENT * count[t], "DIRT %s: %zu of %zu agree",
                           dirt_ray_type_names[t], same, count[t]);
-                if (s == 3) { /* the counting build: links, the same hits */
+                if (s == 0 && b == 1) {
+                    plain_s1[t] = malloc(count[t] * sizeof(dirt_hit));
+                    memcpy(plain_s1[t], out, count[t] * sizeof(dirt_hit));
+                }
+                if (s == 4 && plain_s1[t]) { /* the rectangles change no hit */
+                    size_t sp = 0;
+                    for (size_t i = 0; i < count[t]; i++)
+                        sp += vis ? (out[i].prim == DIRT_HIT_NONE) ==
+                                        (plain_s1[t][i].prim == DIRT_HIT_NONE)
+                                  : same_hits(&out[i], &plain_s1[t][i], 1);
+                    CHECK_MSG(sp == count[t], "DIRT %s, sub-tile rectangles: %zu of %zu hits "
+                              "as without", dirt_ray_type_names[t], sp, count[t]);
+                    free(plain_s1[t]);
+                    plain_s1[t] = NULL;
+                }
+                if (s >= 3) { /* the counting build: links, the same hits */
                     dirt_hit *cw = malloc(count[t] * sizeof(dirt_hit));
                     dirt_trace_work *w = malloc(count[t] * sizeof(*w));
                     CHECK(cw && w && dirt_ads_trace_work(ads, rays[t], count[t], cw, &to, NULL, w));
                     size_t sw = cw && w ? same_hits(cw, out, count[t]) : 0;
-                    CHECK_MSG(sw == count[t], "DIRT %s, grid, counting: %zu of %zu hits as the "
-                              "plain build's", dirt_ray_type_names[t], sw, count[t]);
+                    CHECK_MSG(sw == count[t], "DIRT %s, %s, counting: %zu of %zu hits as the "
+                              "plain build's", dirt_ray_type_names[t],
+                              s == 3 ? "grid" : "sub-tiles", sw, count[t]);
                     free(cw);
                     free(w);
                 }

@@ -2,7 +2,7 @@
  *  - the counting build of DIRT's trace finds the same hits as the plain
  *    build, bit for bit (primitive, view, t, u, v), for every ray type on
  *    the default scene (views single and cube+camera, large primitives on,
- *    off, and on through their grid);
+ *    off, on through their grid, and on with sub-tile rectangles);
  *  - its counts equal a CPU count made another way: for rays that hit
  *    nothing (tmax half-way to Embree's hit, or leaving the scene), on a
  *    level-0 march of one view, the CPU cuts the ray at every tile line it
@@ -24,6 +24,11 @@
  *    enters is a march step, and each large primitive is tested once, in
  *    the first cell whose depth range (read back) the span meets; the walk
  *    stops once every primitive the view's cells hold was tested);
+ *  - with sub-tile rectangles (default scene's diffuse rays, the soup,
+ *    uniform and adaptive buckets) a node whose rectangle (read back) misses
+ *    the cells of the piece's NDC box widened by DIRT_SUBTILE_MARGIN cells
+ *    is a node read but no test (rays within rounding of a cell line left
+ *    out as above);
  *  - the full pyramid walks the same tiles, nodes and triangle tests as
  *    the level-0 march (rays within rounding left out as above);
  *  - Embree's BVH walk (ref/bvh_work.c) finds Embree's closest hits and
@@ -209,11 +214,37 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
             continue;
         }
         c.tiles++;
+        /* sub-tile rectangles (d->rects): the cells of the grid over the
+         * tile that the piece's NDC box widened by DIRT_SUBTILE_MARGIN
+         * cells meets; a node whose cells miss them is read, not tested */
+        int seg[4] = {0, DIRT_SUBTILE_GRID - 1, 0, DIRT_SUBTILE_GRID - 1};
+        if (d->rects) {
+            double wa2 = co[3] + ta * cd[3], wb2 = co[3] + tb * cd[3];
+            double ea[2] = {(co[0] + ta * cd[0]) / wa2, (co[1] + ta * cd[1]) / wa2};
+            double eb[2] = {(co[0] + tb * cd[0]) / wb2, (co[1] + tb * cd[1]) / wb2};
+            double box[4] = {fmin(ea[0], eb[0]), fmax(ea[0], eb[0]), fmin(ea[1], eb[1]),
+                             fmax(ea[1], eb[1])};
+            ads_ref_box_cells(v, S, tx, ty, box, DIRT_SUBTILE_MARGIN, seg);
+            double nd[4];
+            dirt_view_tile_ndc(v, S, tx, ty, nd);
+            for (int k = 0; k < 4; k++) {
+                double cell = (nd[(k & 2) + 1] - nd[k & 2]) / DIRT_SUBTILE_GRID;
+                double u = (box[k] - nd[k & 2]) / cell + (k & 1 ? 1 : -1) * DIRT_SUBTILE_MARGIN;
+                if (fabs(u - round(u)) < 1e-3 && u > 0.5 && u < DIRT_SUBTILE_GRID - 0.5)
+                    c.ambiguous = true;
+            }
+        }
         for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++) {
             for (uint32_t node = d->heads[(size_t)b * d->num_tiles + gt]; node != DIRT_LIST_END;
                  node = d->nodes[node][1]) {
                 uint32_t p = d->nodes[node][0];
                 c.nodes++;
+                if (d->rects) {
+                    int g[4];
+                    ads_ref_rect_cells(d->rects[node], g);
+                    if (g[0] > seg[1] || g[1] < seg[0] || g[2] > seg[3] || g[3] < seg[2])
+                        continue;
+                }
                 bool known = false;
                 for (uint32_t k = 0; k < c.distinct && !known; k++)
                     known = seen[k] == p;
@@ -331,7 +362,8 @@ static void count_large(const dirt_ads *a, const dirt_ray *r, enum large_mode mo
  * pyramid against the level-0 march on `rays`. */
 static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                          const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets,
-                         enum large_mode mode, enum dirt_depth_buckets depth_buckets)
+                         enum large_mode mode, enum dirt_depth_buckets depth_buckets,
+                         bool sub_tiles)
 {
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     dirt_ref_hit *ref = malloc(n * sizeof(*ref));
@@ -342,7 +374,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                                  .tile_size = 2},
                        .buckets = buckets, .force_emulation = true,
                        .large = mode == LARGE_NONE ? -1 : 0, .large_grid = mode == LARGE_GRID,
-                       .depth_buckets = depth_buckets};
+                       .depth_buckets = depth_buckets, .sub_tiles = sub_tiles};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(accel && ads && dirt_ads_build(ads, f, cam));
     if (ads && mode != LARGE_NONE)
@@ -471,11 +503,12 @@ static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *
     dirt_ray *rays = malloc(n * sizeof(*rays));
     dirt_hit *a = malloc(n * sizeof(*a)), *b = malloc(n * sizeof(*b));
     dirt_trace_work *w = malloc(n * sizeof(*w));
-    for (int k = 0; k < 6; k++) { /* k >> 1: large on, off, on through their grid */
+    for (int k = 0; k < 8; k++) { /* k >> 1: large on, off, on through their grid, on
+                                     with sub-tile rectangles */
         dirt_ads_opts o = {.views = {.mode = k & 1 ? DIRT_VIEWS_SINGLE : DIRT_VIEWS_CUBE_CAMERA,
                                      .width = 64, .height = 48, .face_size = 32, .tile_size = 2},
                            .buckets = 8, .force_emulation = true, .large = k >> 1 == 1 ? -1 : 0,
-                           .large_grid = k >> 1 == 2};
+                           .large_grid = k >> 1 == 2, .sub_tiles = k >> 1 == 3};
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         CHECK(ads && dirt_ads_build(ads, f, cam));
         for (int t = 0; ads && t < DIRT_RAY_TYPES; t++) {
@@ -595,14 +628,16 @@ int main(void)
         size_t cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_DIFFUSE, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
             check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, (enum large_mode)m,
-                         DIRT_DEPTH_BUCKETS_UNIFORM);
+                         DIRT_DEPTH_BUCKETS_UNIFORM, false);
         check_counts(gpu, "default diffuse adaptive", f, &cam, rays, cnt, 8, LARGE_NONE,
-                     DIRT_DEPTH_BUCKETS_ADAPTIVE);
+                     DIRT_DEPTH_BUCKETS_ADAPTIVE, false);
+        check_counts(gpu, "default diffuse sub-tiles", f, &cam, rays, cnt, 8, LARGE_ALL,
+                     DIRT_DEPTH_BUCKETS_UNIFORM, true);
         check_bvh("default diffuse", f, rays, cnt);
         cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_SPECULAR, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
             check_counts(gpu, "default specular", f, &cam, rays, cnt, 4, (enum large_mode)m,
-                         DIRT_DEPTH_BUCKETS_UNIFORM);
+                         DIRT_DEPTH_BUCKETS_UNIFORM, false);
         free(rays);
         dirt_gbuffer_free(&g);
         dirt_ref_accel_destroy(accel);
@@ -614,9 +649,14 @@ int main(void)
     dirt_camera cam;
     dirt_camera_default(s, &cam);
     dirt_ray *rays = random_rays(s, 3000);
-    check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM);
+    check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM,
+                 false);
     check_counts(gpu, "soup adaptive", s, &cam, rays, 3000, 16, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_ADAPTIVE);
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, false);
+    check_counts(gpu, "soup sub-tiles", s, &cam, rays, 3000, 8, LARGE_NONE,
+                 DIRT_DEPTH_BUCKETS_UNIFORM, true);
+    check_counts(gpu, "soup adaptive sub-tiles", s, &cam, rays, 3000, 16, LARGE_NONE,
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, true);
     check_bvh("soup", s, rays, 3000);
     free(rays);
     frame_free(s);

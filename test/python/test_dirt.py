@@ -137,6 +137,29 @@ def test_large_grid_option(scene):
         assert s.stats()["ads"]["bytes_large_grid"] > 0
 
 
+def test_sub_tiles_option(scene):
+    """sub_tiles (dirt_session_opts): the same image bit for bit, fewer
+    triangle tests per camera ray; a change rebuilds the structure."""
+    images, stats = {}, {}
+    for on in (False, True):
+        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, sub_tiles=on,
+                          count_work=True, **SIZE) as s:
+            assert s.options["sub_tiles"] == on
+            s.add_samples(2)
+            images[on], stats[on] = s.image(), s.stats()
+    assert np.array_equal(images[False], images[True])
+    work = [stats[on]["work"][0] for on in (False, True)]  # primary rays
+    assert work[0]["rays"] == work[1]["rays"] > 0
+    assert work[0]["list_nodes"] == work[1]["list_nodes"]
+    assert work[1]["triangle_tests"] < work[0]["triangle_tests"]
+    with dirt.Session(scene, engine="dirt", seed=2, bounces=2, **SIZE) as s:
+        s.add_samples(2)
+        s.set_options(sub_tiles=True)
+        assert s.samples == 0 and s.options["sub_tiles"]
+        s.add_samples(2)
+        assert np.array_equal(images[True], s.image())
+
+
 def test_adaptive_depth_buckets_by_name(scene):
     """depth_buckets mirrors the session option: adaptive buckets (by name)
     give the uniform ones' image bit for bit, and their memory is counted."""
