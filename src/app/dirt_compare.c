@@ -407,7 +407,8 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         note = "heads + id nodes equal 4 B x B x tiles + 8 B x c x n_p exactly; the depth "
                "bounds are the real pyramid levels (the formula estimates them as 1.33 x "
                "8 B per tile; depth_extra = measured - estimate); the vertex buffer and the "
-               "bucket occupancy masks (4 B per tile, B <= 32) are not in the formula";
+               "bucket occupancy masks (--bucket-masks: 4 B per tile, B <= 32) are not in the "
+               "formula";
         cJSON_AddStringToObject(j, "records_kind", "id_nodes");
         cJSON_AddNumberToObject(j, "records", (double)a->nodes);
         cJSON_AddNumberToObject(j, "samples_np", (double)a->samples);
