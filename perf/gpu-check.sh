@@ -16,7 +16,9 @@
 #      DIRT vs MMRT (dirt-compare, no quality, with the frame ratio), and
 #      Mrays/s per ray type, DIRT on the GPU vs Embree on the CPU's cores
 #      (bench-trace);
-#   4. the scaling benchmark (perf/bench-scale.py: 10^4..10^7 triangles at
+#   4. DIRT's trace options on and off (perf/bench-options.sh:
+#      --bucket-masks, --sub-tiles, --large-grid; counts and times);
+#   5. the scaling benchmark (perf/bench-scale.py: 10^4..10^7 triangles at
 #      1920x1080, 0.1..8 MP at 10^6, both DIRT builds, MMRT, Embree and the
 #      raster preview; the scenes are made there, which needs python3-numpy;
 #      SCALE_ARGS replaces its grid, and on a software renderer it is the
@@ -60,6 +62,7 @@ grep -qiE "llvmpipe|softpipe|lavapipe" "$out/part.log" && software=1
 say ""; say "### GPU tests"; say ""
 say "| test | result | seconds |"; say "|---|---|---|"
 for t in gl_context timing layout_gpu conservative_raster ads_complete ads_edge ads_clip ads_compute ads_large dirt_hits \
+         bucket_masks ads_sub_tiles trace_work \
          dirt_visibility dirt_fetch dirt_pt pt_compact mmrt_hits mmrt_store mmrt_trace mmrt_pt session memory; do
   exe=$build/test/gpu/test_$t
   [ -x "$exe" ] || { say "| $t | missing | |"; continue; }
@@ -87,6 +90,25 @@ part "DIRT vs MMRT, $res (dirt-compare, no quality)" 150 "$build/src/app/dirt-co
 [ -x "$build/perf/bench-trace" ] &&
   part "Mrays/s per ray type, $res: DIRT (GPU) vs Embree ($(nproc) CPU threads)" 90 \
     "$build/perf/bench-trace" "${scenes[@]}" -W "$W" -H "$H"
+# The trace options that are bets on a GPU (off by default; on llvmpipe
+# they cost time): --bucket-masks, --sub-tiles and --large-grid, each on
+# against all off, counts and times (the images checked bit for bit), on the
+# check's scenes and mirror69k (made here, as perf/gen-scenes.sh does; the
+# masks skip the most tiles there). OPT_REPS repeats (3; 1 on a software
+# renderer).
+py=${PYTHON:-$(if [ -x /usr/bin/python3 ]; then echo /usr/bin/python3; else echo python3; fi)}
+opt_scenes=("${scenes[@]}")
+mkdir -p "$out/scenes"
+timeout 60 "$py" "$root/perf/make-scale-scene.py" "$out/scenes/mirror69k.glb" 69000 --kind mirror \
+  >/dev/null 2>&1 && opt_scenes+=("$out/scenes/mirror69k.glb")
+part "DIRT options on/off, $res: --bucket-masks, --sub-tiles, --large-grid (bench-options)" 150 \
+  "$root/perf/bench-options.sh" "$build" "$res" 4 "${OPT_REPS:-$([ $software = 1 ] && echo 1 || echo 3)}" \
+  "${opt_scenes[@]}"
+# (the part shows the last 60 lines; the whole tables beside the report)
+cp "$out/part.log" "$out/bench-options.md"
+[ "$(wc -l <"$out/bench-options.md")" -le 60 ] ||
+  { say ""; say "(the whole output: bench-options.md)"; cat "$out/bench-options.md" >>"$report"; }
+rm -rf "$out/scenes"
 # The scaling benchmark: on a GPU its own grid; a software renderer's dry
 # run takes the --quick one.
 if [ -n "${SCALE_ARGS:-}" ]; then
@@ -98,8 +120,7 @@ else
               --res 368x276,1280x720,1920x1080,3840x2160 --frames 2
               --engines dirt-raster,dirt-compute,mmrt,embree,raster --timeout 60)
 fi
-# Debian's python3 (it has numpy) before another python3 on PATH.
-py=${PYTHON:-$(if [ -x /usr/bin/python3 ]; then echo /usr/bin/python3; else echo python3; fi)}
+# (py: Debian's python3, which has numpy, before another python3 on PATH)
 part "scaling (bench-scale)" 200 "$py" "$root/perf/bench-scale.py" "$out/scale" \
   --render "$build/src/app/dirt-render" "${scale_args[@]}"
 [ -f "$out/scale/table.md" ] && { say ""; cat "$out/scale/table.md" >>"$report"; }

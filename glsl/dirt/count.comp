@@ -10,9 +10,10 @@
 // DIRT_ADAPTIVE (adaptive depth buckets): the buckets of the fine bins of
 // the range's ends through the tile's edges (dirt/structure.glsl), which
 // bucket_edges.comp wrote before this pass.
-// The tile's bucket occupancy mask (B <= DIRT_BUCKET_MASK_MAX_BUCKETS;
-// common/constants.h): the range's bits cleared (the fill pass gives each
-// of those buckets a node).
+// DIRT_BUCKET_MASKS (dirt_ads_opts.bucket_masks, B <=
+// DIRT_BUCKET_MASK_MAX_BUCKETS; common/constants.h): the range's bits
+// cleared in the tile's bucket occupancy mask (the fill pass gives each of
+// those buckets a node).
 #include "common/layout.h"
 #include "common/rows.glsl"
 
@@ -50,9 +51,10 @@ void main()
         b1 = clamp(int(floor(float(B) * (zmax - tmin) / trange)), 0, B - 1);
     }
 #endif
-    if (B <= DIRT_BUCKET_MASK_MAX_BUCKETS)
-        dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)),
-                      ~dirt_bucket_bits(b0, b1));
+#ifdef DIRT_BUCKET_MASKS
+    dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)),
+                  ~dirt_bucket_bits(b0, b1));
+#endif
     uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
     dirt_candidate_store_zw(i, uvec2(first, uint(b0) | (uint(b1) << 16)));
 }

@@ -8,9 +8,7 @@
 // cell on the Hi-Z pyramid: a cell whose depth bounds the ray's depth span
 // misses is skipped (and the march climbs a level), otherwise the march
 // descends; at level 0 (a tile) the buckets the ray's depth span overlaps
-// that hold nodes (the tile's bucket occupancy mask, when B <= 32; a tile
-// with none of them is not walked) are walked in the ray's depth direction
-// with exact watertight
+// are walked in the ray's depth direction with exact watertight
 // ray-triangle tests. A hit counts only if it lies in the
 // tile's frustum (planes moved out by DIRT_CLIP_EPS, as in the build) and is
 // the closest so far. Scanning stops after a bucket once the best hit lies
@@ -41,6 +39,10 @@
 // with them: dirt_ads_opts.sub_tiles; common/layout.h): a node whose cells
 // the ray's segment in the tile misses is skipped before its vertices are
 // read (see g_seg_lim).
+// Bucket occupancy masks (built with DIRT_BUCKET_MASKS, for a structure
+// built with them: dirt_ads_opts.bucket_masks, B <= 32; common/constants.h):
+// a tile none of whose buckets in the ray's depth span holds a node is not
+// walked (see walk_tile).
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
 // work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
 // tests, large primitives' included) of ray i.
@@ -327,9 +329,12 @@ struct best_hit {
 };
 
 // Walks the buckets of tile `tile` (global index `gt`) that the ray's depth
-// span [wa, wb] overlaps, those that hold nodes (the tile's bucket
-// occupancy mask; none: the tile is not walked). Returns true when a hit
-// inside the tile was found.
+// span [wa, wb] overlaps. Returns true when a hit inside the tile was found.
+// DIRT_BUCKET_MASKS (a structure with bucket occupancy masks:
+// dirt_ads_opts.bucket_masks, B <= DIRT_BUCKET_MASK_MAX_BUCKETS): a tile
+// none of whose buckets in the span holds a node is not walked (exact: the
+// walk would read only empty lists); the buckets of a walked tile are
+// walked as without.
 bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 tile, uint gt,
                float wa, float wb, float tmin, inout best_hit best)
 {
@@ -350,14 +355,15 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
         bb = clamp(int(floor(float(B) * (wb - zlo) / range)), 0, B - 1);
     }
 #endif
+#ifdef DIRT_BUCKET_MASKS
     // The tile's bucket occupancy (dirt/structure.glsl): a tile with no node
     // in the span's buckets holds nothing for the ray and is not walked
     // (reading the mask is part of the level-0 Hi-Z step, not a tile
-    // walked); inside the walk an empty bucket's head is not read.
-    uint occ = dirt_bucket_occupancy(gt, B, T);
-    if (B <= DIRT_BUCKET_MASK_MAX_BUCKETS && (occ & dirt_bucket_bits(ba, bb)) == 0u)
+    // walked).
+    if ((dirt_bucket_occupancy(gt, B, T) & dirt_bucket_bits(ba, bb)) == 0u)
         return false;
     COUNT_WORK(x);
+#endif
     int step = bb >= ba ? 1 : -1;
     // The tile's NDC rectangle, moved out like the build's clip.
     ivec2 lo = tile * S, hi = min(lo + S, v.size.xy);
@@ -366,8 +372,7 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     vec2 rlo = -1.0 + 2.0 * vec2(lo) / sz - e2, rhi = -1.0 + 2.0 * vec2(hi) / sz + e2;
     bool found = false;
     for (int b = ba;; b += step) {
-        uint node = b >= DIRT_BUCKET_MASK_MAX_BUCKETS || (occ & (1u << uint(b))) != 0u
-                        ? dirt_head(uint(b) * T + gt) : DIRT_LIST_END;
+        uint node = dirt_head(uint(b) * T + gt);
         while (node != DIRT_LIST_END) {
             uvec2 n = dirt_node(node);
             COUNT_WORK(z);
@@ -507,7 +512,9 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
             continue;
         }
         if (!skip) {
-            // (walk_tile counts the tile walked unless its occupancy skips it)
+#ifndef DIRT_BUCKET_MASKS
+            COUNT_WORK(x); // (with the masks walk_tile counts it, unless it skips the tile)
+#endif
             uint gt = uint(v.placement.x + cell.y * v.size.z + cell.x);
 #ifdef DIRT_SUB_TILES
             g_seg_lim = segment_cells(co, cd, t, texit, nlo, nhi);

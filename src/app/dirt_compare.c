@@ -41,6 +41,7 @@ typedef struct options {
     int large;                  /* --large: 0 none, else up to that many */
     bool large_grid;            /* --large-grid: DIRT's large primitives through their grid */
     bool sub_tiles;             /* --sub-tiles: DIRT's list nodes with sub-tile rectangles */
+    bool bucket_masks;          /* --bucket-masks: DIRT's per-tile bucket occupancy masks */
     bool quality, images, quiet;
     bool count_work;            /* --count-work: each row's work per ray type */
     uint32_t seed;
@@ -112,6 +113,7 @@ static bool from_app(const app_opts *a, options *o)
     o->large = (int)a->large;
     o->large_grid = a->s.large_grid;
     o->sub_tiles = a->s.sub_tiles;
+    o->bucket_masks = a->s.bucket_masks;
     o->quality = !a->no_quality;
     o->count_work = a->s.count_work;
     o->images = a->images;
@@ -173,6 +175,7 @@ static int g_face; /* --face: one value for the whole sweep */
 static int g_large; /* --dirt-large: one value for the whole sweep */
 static bool g_large_grid; /* --large-grid: likewise */
 static bool g_sub_tiles;  /* --sub-tiles: likewise */
+static bool g_bucket_masks; /* --bucket-masks: likewise */
 static enum dirt_depth_buckets g_depth_buckets; /* --depth-buckets: DIRT's, the whole sweep */
 
 /* The library's messages, printed as its default sink prints them; the
@@ -290,6 +293,7 @@ static dirt_session_opts session_opts(const scene_info *si, const config *c, enu
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
         .large = g_large ? g_large : -1, .large_grid = g_large_grid, .sub_tiles = g_sub_tiles,
+        .bucket_masks = g_bucket_masks,
         .depth_buckets = e == DIRT_ENGINE_DIRT ? g_depth_buckets : DIRT_DEPTH_BUCKETS_UNIFORM,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
@@ -403,7 +407,8 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         note = "heads + id nodes equal 4 B x B x tiles + 8 B x c x n_p exactly; the depth "
                "bounds are the real pyramid levels (the formula estimates them as 1.33 x "
                "8 B per tile; depth_extra = measured - estimate); the vertex buffer and the "
-               "bucket occupancy masks (4 B per tile, B <= 32) are not in the formula";
+               "bucket occupancy masks (--bucket-masks: 4 B per tile, B <= 32) are not in the "
+               "formula";
         cJSON_AddStringToObject(j, "records_kind", "id_nodes");
         cJSON_AddNumberToObject(j, "records", (double)a->nodes);
         cJSON_AddNumberToObject(j, "samples_np", (double)a->samples);
@@ -505,6 +510,8 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
         snprintf(buf + strlen(buf), n - strlen(buf), "|G1");
     if (o->sub_tiles) /* (likewise) */
         snprintf(buf + strlen(buf), n - strlen(buf), "|T1");
+    if (o->bucket_masks) /* (likewise) */
+        snprintf(buf + strlen(buf), n - strlen(buf), "|M1");
 }
 
 static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
@@ -583,6 +590,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddNumberToObject(set, "dirt_large", o->large);
     cJSON_AddBoolToObject(set, "dirt_large_grid", o->large_grid);
     cJSON_AddBoolToObject(set, "dirt_sub_tiles", o->sub_tiles);
+    cJSON_AddBoolToObject(set, "dirt_bucket_masks", o->bucket_masks);
     cJSON_AddStringToObject(set, "dirt_depth_buckets", app_depth_buckets_names[g_depth_buckets]);
     cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
@@ -713,6 +721,7 @@ int main(int argc, char **argv)
     g_large = o.large;
     g_large_grid = o.large_grid;
     g_sub_tiles = o.sub_tiles;
+    g_bucket_masks = o.bucket_masks;
     g_depth_buckets = ao.s.depth_buckets;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {

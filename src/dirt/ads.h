@@ -73,6 +73,13 @@ typedef struct dirt_ads_opts {
                                  (logged) for frames of DIRT_SUBTILE_MAX_PRIMS or
                                  more triangles. false: plain ids, the trace
                                  without the test */
+    bool bucket_masks;        /* each build also keeps one occupancy word per tile
+                                 (bit b: bucket b holds a node; common/constants.h,
+                                 DIRT_BUCKET_MASK_*), when buckets <=
+                                 DIRT_BUCKET_MASK_MAX_BUCKETS, and the trace skips a
+                                 tile whose buckets in the ray's depth span are all
+                                 empty (fewer tiles walked, the same hits); false or
+                                 more buckets: no masks, the trace without the test */
 } dirt_ads_opts;
 
 /* The large primitives of `frame`: of the triangles whose area is at least
@@ -110,7 +117,8 @@ typedef struct dirt_ads_data {
                                  when uniform */
     uint32_t *masks;          /* bucket occupancy per tile (bit b: bucket b holds a
                                  node; common/constants.h, DIRT_BUCKET_MASK_*); NULL
-                                 when buckets > DIRT_BUCKET_MASK_MAX_BUCKETS */
+                                 without them (bucket_masks off, or buckets >
+                                 DIRT_BUCKET_MASK_MAX_BUCKETS) */
     uint32_t (*nodes)[2];     /* (primitive, next); the primitive without its
                                  rectangle (sub_tiles) */
     uint8_t *rects;           /* sub_tiles: each node's rectangle byte

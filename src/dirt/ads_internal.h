@@ -74,15 +74,16 @@ struct dirt_ads {
     size_t large_cells_size;
     /* trace */
     /* The trace's builds, [alpha | large << 1 | count << 2 | grid << 3 |
-     * sub-tiles << 4]:
+     * sub-tiles << 4 | masks << 5]:
      * DIRT_TRACE_ALPHA (alpha tests), DIRT_TRACE_LARGE (large primitives;
      * llvmpipe runs a loop's body once even when no invocation enters it, so
      * the build without them is kept for structures that have none),
      * DIRT_TRACE_COUNT (work counters), DIRT_TRACE_LARGE_GRID (with large:
      * through their grid, opts.large_grid), DIRT_SUB_TILES (the nodes'
-     * rectangles, opts.sub_tiles). [0] made at creation (and for
+     * rectangles, opts.sub_tiles), DIRT_BUCKET_MASKS (the tiles' bucket
+     * occupancy masks, ads_has_masks). [0] made at creation (and for
      * each build's layouts), the others on first use. */
-    gl_split_program prog_trace[32];
+    gl_split_program prog_trace[64];
     GLuint rays, hits, work;
     size_t rays_size, hits_size, work_size;
     gl_timer trace_timer;
@@ -149,6 +150,11 @@ void ads_bind_split(dirt_ads *a);
 /* Makes every program of the structure the one for the split arrays'
  * current layouts (the trace's: ads_trace_program). False after logging. */
 bool ads_programs(dirt_ads *a);
+
+/* Whether the structure keeps bucket occupancy masks: opts.bucket_masks
+ * and buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS (then the count pass sets
+ * them and the trace reads them: DIRT_BUCKET_MASKS). */
+bool ads_has_masks(const dirt_ads *a);
 
 /* Makes `p` the program of `label` / `paths` / `defs` for the layouts of
  * the arrays in `arrays` (ADS_ARR(enum ads_array) bits). */

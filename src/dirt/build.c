@@ -174,8 +174,13 @@ bool ads_programs(dirt_ads *a)
          !ads_program(a, &a->prog_edges, "dirt/bucket_edges.comp",
                       COMP("dirt/bucket_edges.comp"), NULL, 0, H)))
         return false;
-    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"), &ad,
-                       adapt ? 1 : 0, C | D | H) &&
+    /* the count pass: through the edges (adaptive), setting the bucket
+     * masks (ads_has_masks); the heads' array only for those */
+    bool masks = ads_has_masks(a);
+    glsl_define cd[2] = {ad, {"DIRT_BUCKET_MASKS", "1"}};
+    size_t ncd = (adapt ? 1 : 0) + (masks ? 1 : 0);
+    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"),
+                       adapt ? cd : cd + 1, ncd, adapt || masks ? C | D | H : C | D) &&
            ads_program(a, &a->prog_fill, "dirt/fill.comp", COMP("dirt/fill.comp"), NULL, 0,
                        C | N | H) &&
            ads_program(a, &a->prog_trace[0], "dirt/trace.comp", COMP("dirt/trace.comp"), &ad,
@@ -541,17 +546,17 @@ static size_t heads_per_tile(const dirt_ads *a)
                : (size_t)a->opts.buckets;
 }
 
-static bool has_masks(const dirt_ads *a)
+bool ads_has_masks(const dirt_ads *a)
 {
-    return a->opts.buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS;
+    return a->opts.bucket_masks && a->opts.buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS;
 }
 
 /* Records of the list-heads array: heads_per_tile per tile, then one
- * bucket occupancy mask per tile when B has them (common/constants.h,
- * DIRT_BUCKET_MASK_*). */
+ * bucket occupancy mask per tile when the structure has them
+ * (ads_has_masks; common/constants.h, DIRT_BUCKET_MASK_*). */
 static size_t heads_records(const dirt_ads *a, size_t tiles)
 {
-    return (heads_per_tile(a) + (has_masks(a) ? 1 : 0)) * tiles;
+    return (heads_per_tile(a) + (ads_has_masks(a) ? 1 : 0)) * tiles;
 }
 
 /* The size checks that need no pass: the scene's arrays and the views'
@@ -867,10 +872,12 @@ static bool make_graphs(dirt_ads *a)
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
     gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
     gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
-    /* (the bucket masks after the heads; with adaptive depth buckets the
-     * histogram and edges before them) */
-    gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_READ);
-    gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_WRITE);
+    if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE || ads_has_masks(a)) {
+        /* (the histogram and edges after the heads, the bucket masks after
+         * those) */
+        gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_READ);
+        gl_split_use(p, &a->heads, a->r_heads, FG_SSBO_WRITE);
+    }
     add_read_counters(a, g);
     /* fill: the lists, from the counted candidates */
     g = a->fill;
@@ -1065,7 +1072,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     st->bytes_bucket_histogram = adapt ? (uint64_t)DIRT_ADAPT_FINE * (uint64_t)a->opts.buckets *
                                              (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES
                                        : 0;
-    st->bytes_bucket_masks = has_masks(a) ? (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES : 0;
+    st->bytes_bucket_masks = ads_has_masks(a) ? (uint64_t)a->set.num_tiles * DIRT_HEAD_BYTES : 0;
     uint64_t extra_bytes = st->bytes_bucket_edges + st->bytes_bucket_histogram +
                            st->bytes_bucket_masks;
     st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
@@ -1172,7 +1179,7 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
         }
         free(w);
     }
-    if (has_masks(a)) {
+    if (ads_has_masks(a)) {
         /* (stored as the empty buckets' bits: common/constants.h) */
         size_t T = (size_t)out->num_tiles;
         out->masks = malloc(T * DIRT_HEAD_BYTES + DIRT_HEAD_BYTES);

@@ -35,16 +35,17 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, link ? a->hit_heads : 0);
     if (opts.work)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_WORK, opts.work);
-    /* Alpha-tested traversal, the large primitives and the sub-tile
-     * rectangles: each its own build of the shader (opaque scenes, and structures without large
+    /* Alpha-tested traversal, the large primitives, the sub-tile
+     * rectangles and the bucket masks: each its own build of the shader (opaque scenes, and structures without large
      * primitives, keep the trace without). */
     const dirt_trace_alpha *al = &opts.alpha;
     bool large = a->stats.num_large > 0;
     bool grid = large && a->opts.large_grid;
     gl_split_program *prog = &a->prog_trace[(al->materials ? 1 : 0) | (large ? 2 : 0) |
                                             (opts.work ? 4 : 0) | (grid ? 8 : 0) |
-                                            (a->opts.sub_tiles ? 16 : 0)];
-    glsl_define defs[6];
+                                            (a->opts.sub_tiles ? 16 : 0) |
+                                            (ads_has_masks(a) ? 32 : 0)];
+    glsl_define defs[7];
     int n = 0;
     if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE)
         defs[n++] = (glsl_define){"DIRT_ADAPTIVE", "1"};
@@ -58,6 +59,8 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         defs[n++] = (glsl_define){"DIRT_TRACE_LARGE_GRID", "1"};
     if (a->opts.sub_tiles)
         defs[n++] = (glsl_define){"DIRT_SUB_TILES", "1"};
+    if (ads_has_masks(a))
+        defs[n++] = (glsl_define){"DIRT_BUCKET_MASKS", "1"};
     const char *paths[] = {"dirt/trace.comp", NULL};
     if (!ads_program_extra(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
                            ADS_TRACE_ARRAYS, al->materials ? al->texels : NULL)) {

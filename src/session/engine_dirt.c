@@ -91,6 +91,7 @@ static bool reshape(engine *e, const engine_env *env)
                                                         .large = o->large, .build = build,
                                                         .large_grid = o->large_grid,
                                                         .sub_tiles = o->sub_tiles,
+                                                        .bucket_masks = o->bucket_masks,
                                                         .depth_buckets = o->depth_buckets});
     return d->ads != NULL;
 }

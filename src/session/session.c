@@ -283,7 +283,8 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
                   old.tile_size != n.tile_size || old.buckets != n.buckets ||
                   old.force_emulation != n.force_emulation || old.build != n.build ||
                   old.large != n.large || old.large_grid != n.large_grid ||
-                  old.depth_buckets != n.depth_buckets || old.sub_tiles != n.sub_tiles;
+                  old.depth_buckets != n.depth_buckets || old.sub_tiles != n.sub_tiles ||
+                  old.bucket_masks != n.bucket_masks;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||

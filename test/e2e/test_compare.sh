@@ -345,5 +345,24 @@ PY
 else
   fail "--count-work run: exit $?"; cat "$tmp/cw.log" >&2
 fi
+# --bucket-masks: the row says so (settings, "|M1" in its id, so earlier
+# rows without it are not reused) and DIRT's memory holds the masks; the
+# sweep's rows without it have neither.
+if "$cmp" default -o "$tmp/bm" --res 32x24 --repeat 1 --warmup 0 --no-quality --bucket-masks -q \
+    >"$tmp/bm.log" 2>&1; then
+  python3 - "$tmp/bm/results.json" "$out/results.json" <<'PY' || fail "--bucket-masks: rows"
+import json, sys
+on, off = (json.load(open(p))["configurations"] for p in sys.argv[1:])
+def masks(r):
+    return sum(b["used"] for b in r["dirt"]["memory"]["buffers"] if b["name"] == "bucket masks")
+ok = len(on) == 1 and all(r["settings"]["dirt_bucket_masks"] and r["id"].endswith("|M1") and
+                          masks(r) > 0 for r in on)
+ok = ok and all(not r["settings"]["dirt_bucket_masks"] and "|M1" not in r["id"] and
+                masks(r) == 0 for r in off)
+sys.exit(0 if ok else 1)
+PY
+else
+  fail "--bucket-masks run: exit $?"; cat "$tmp/bm.log" >&2
+fi
 [ "$fails" -eq 0 ] && echo "test_compare: all checks passed"
 [ "$fails" -eq 0 ]

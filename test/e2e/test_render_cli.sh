@@ -173,9 +173,8 @@ head -c 8 "$out/default.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' &
 grep -q "wrote $out/default.png" "$tmp/stdout" && ok || fail "output path not printed"
 
 expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --spp 2 --stats "$out/d.json"
-# The stats: figures that add up (32x24, 2 spp, DIRT's structure with its
-# bucket occupancy masks (4 bytes per tile: the heads over B, 8 on a
-# software renderer, 16 on others) + the
+# The stats: figures that add up (32x24, 2 spp, DIRT's structure (no bucket
+# occupancy masks without --bucket-masks: 0 bytes) + the
 # integrator's 360 bytes per pixel and 292 bytes (ray batch headers,
 # paths per event), its environment table, empty here (36
 # bytes), and the scene's texel buffer: the default scene has no textures,
@@ -188,7 +187,7 @@ expect_rc 0 "exr + png preview, stats" -- -o "$out/d.exr" --png -W 32 -H 24 --sp
   'all(a >= b for a, b in zip(d["paths_per_event"], d["paths_per_event"][1:]))' \
   'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
   'd["bytes_total"] == sum(d["bytes"][k] for k in ("vertices", "depth bounds", "list heads", "id nodes", "candidates", "large grid", "bucket masks")) + 32 * 24 * 360 + 292 + 36 + 16 + 16' \
-  'd["bytes"]["bucket masks"] > 0 and d["bytes"]["list heads"] in (8 * d["bytes"]["bucket masks"], 16 * d["bytes"]["bucket masks"])' \
+  'd["bytes"]["bucket masks"] == 0 and "bucket masks" not in [b["name"] for b in d["buffers"] if b["used"]]' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model tangents"] == [(16, 16)]' \
   '[b["used"] for b in d["buffers"] if b["name"] == "pt environment"] == [36]' \
   '[(b["used"], b["allocated"]) for b in d["buffers"] if b["name"] == "model texels"] == [(16, 16)]' \
@@ -257,6 +256,32 @@ for t in off:
     assert t == "visibility" or a["list_nodes"] == b["list_nodes"], t
     assert t == "visibility" or b["triangle_tests"] <= a["triangle_tests"], (t, a, b)
 assert sum(on[t]["triangle_tests"] for t in on) < sum(off[t]["triangle_tests"] for t in off)
+PY
+# Bucket occupancy masks (--bucket-masks): the same image bit for bit, alone
+# and with sub-tile rectangles, the large primitives' grid and adaptive depth
+# buckets; their bytes (4 per tile: the heads over B, 8 on a software
+# renderer, 16 on others) in the stats' sum; the same rays, no ray type
+# walking more tiles and fewer tiles in all (work counters).
+expect_rc 0 "bucket masks" -- -o "$out/bm.exr" -W 32 -H 24 --spp 2 --bucket-masks --count-work --stats "$out/bm.json"
+"$exr" --exact "$out/bm.exr" "$out/d.exr" && ok || fail "--bucket-masks changed the image"
+expect_rc 0 "bucket masks with sub-tiles, the grid, adaptive buckets" -- -o "$out/bm2.exr" -W 32 -H 24 --spp 2 --bucket-masks --sub-tiles --large-grid --depth-buckets adaptive
+"$exr" --exact "$out/bm2.exr" "$out/d.exr" && ok || fail "--bucket-masks --sub-tiles --large-grid --depth-buckets adaptive changed the image"
+"$json" "$out/bm.json" \
+  'd["bytes_total"] == sum(b["used"] for b in d["buffers"])' \
+  'd["bytes"]["bucket masks"] > 0 and d["bytes"]["list heads"] in (8 * d["bytes"]["bucket masks"], 16 * d["bytes"]["bucket masks"])' \
+  && ok || fail "bm.json: the masks' bytes"
+python3 - "$out/w.json" "$out/bm.json" <<'PY' && ok || fail "--bucket-masks' bytes: the totals differ by other than the masks"
+import json, sys
+off, on = (json.load(open(p)) for p in sys.argv[1:])
+assert on["bytes_total"] - off["bytes_total"] == on["bytes"]["bucket masks"], (off["bytes_total"], on["bytes_total"])
+PY
+python3 - "$out/w.json" "$out/bm.json" <<'PY' && ok || fail "--bucket-masks' work counts"
+import json, sys
+off, on = (json.load(open(p))["frames"][0]["work"] for p in sys.argv[1:])
+for t in off:
+    a, b = off[t], on[t]
+    assert a["rays"] == b["rays"] and b["tiles"] <= a["tiles"], (t, a, b)
+assert sum(on[t]["tiles"] for t in on) < sum(off[t]["tiles"] for t in off)
 PY
 # The ray sort (--sort-rays): the same image bit for bit, its passes ran, its
 # buffers counted (unsorted rays and batch: 36 B per pixel and a 16-byte

@@ -261,6 +261,17 @@ case "$args" in *"--sub-tiles"*) ok ;; *) fail "render_args lack --sub-tiles: $a
 if "$check" same "$tmp/sub.exr" "$tmp/v-dirt.exr"; then ok; else
   fail "the image with sub-tile rectangles is not the one without"; fi
 
+# 4f. Bucket occupancy masks turned on likewise: rebuilt, the same image, in
+#     the reported options.
+printf 'wait-samples 1\nset bucket-masks on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
+  "$tmp/masks.exr" "$tmp/masks.json" >"$tmp/s.txt"
+run_view masks --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
+  fail "bucket-masks run failed"
+args=$(json_field "$tmp/masks.json" render_args)
+case "$args" in *"--bucket-masks"*) ok ;; *) fail "render_args lack --bucket-masks: $args" ;; esac
+if "$check" same "$tmp/masks.exr" "$tmp/v-dirt.exr"; then ok; else
+  fail "the image with bucket masks is not the one without"; fi
+
 # 5. Bad input exits 2 with a one-line reason, before any window.
 expect2() {
   local what=$1; shift

@@ -162,7 +162,10 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         CHECK(r.bad_bounds == 0);
         CHECK(r.bad_list_links == 0);
         CHECK(r.bad_masks == 0);
-        CHECK((data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS));
+        /* masks only with the option and B <= 32; none: no bytes for them */
+        bool want_masks = opts->bucket_masks && opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS;
+        CHECK(st->bytes_bucket_masks == (want_masks ? (uint64_t)set->num_tiles * 4 : 0));
+        CHECK((data.masks != NULL) == want_masks);
         CHECK(r.bad_rects == 0);
         CHECK((data.rects != NULL) == opts->sub_tiles);
         CHECK(pyr == 0);
@@ -176,7 +179,7 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         ok = r.missing == 0 && r.beyond_tolerance == 0 && r.duplicates == 0 &&
              r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 &&
              r.bad_masks == 0 &&
-             (data.masks != NULL) == (opts->buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS) &&
+             (data.masks != NULL) == want_masks &&
              r.bad_rects == 0 && (data.rects != NULL) == opts->sub_tiles && pyr == 0;
         dirt_ads_data_free(&data);
     }

@@ -182,7 +182,8 @@ static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     /* the bucket occupancy masks: exactly the CPU structure's buckets with
      * an entry */
     size_t bad_masks = 0;
-    CHECK_MSG((da.masks != NULL) == (B <= DIRT_BUCKET_MASK_MAX_BUCKETS),
+    bool want_masks = o.bucket_masks && B <= DIRT_BUCKET_MASK_MAX_BUCKETS;
+    CHECK_MSG((da.masks != NULL) == want_masks,
               "%s B=%d: bucket masks %s", label, B, da.masks ? "present" : "missing");
     if (da.masks) {
         uint32_t *m = calloc((size_t)T + 1, sizeof(*m));
@@ -223,7 +224,7 @@ static void compare_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     CHECK(sa->bytes_bucket_edges == (uint64_t)(B / 2) * (uint64_t)T * 4);
     CHECK(sa->bytes_bucket_histogram == (uint64_t)DIRT_ADAPT_FINE * B * (uint64_t)T * 4);
     CHECK(su->bytes_bucket_edges == 0 && su->bytes_bucket_histogram == 0);
-    CHECK(sa->bytes_bucket_masks == (B <= DIRT_BUCKET_MASK_MAX_BUCKETS ? (uint64_t)T * 4 : 0));
+    CHECK(sa->bytes_bucket_masks == (want_masks ? (uint64_t)T * 4 : 0));
     CHECK(sa->bytes_total_used == sa->bytes_vertices + sa->bytes_depth + sa->bytes_heads +
                                       sa->bytes_nodes_used + sa->bytes_candidates_used +
                                       sa->bytes_bucket_edges + sa->bytes_bucket_histogram +
@@ -256,6 +257,7 @@ static void lists_frame(dirt_gpu *gpu, const char *label, const dirt_frame *f)
                     .views = {.mode = modes[m], .width = 48, .height = 36, .face_size = 24,
                               .tile_size = sizes[s]},
                     .buckets = buckets[b], .force_emulation = true,
+                    .bucket_masks = s != 1, /* (S = 2: without) */
                     .build = (m + s + b) & 1 ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER};
                 compare_lists(gpu, label, f, &cam, o);
             }
@@ -311,7 +313,7 @@ static void compare_hits(dirt_gpu *gpu, const char *label, dirt_scene *scene)
             dirt_ads_opts o = {
                 .views = {.mode = k & 1 ? DIRT_VIEWS_SINGLE : DIRT_VIEWS_CUBE_CAMERA,
                           .width = 64, .height = 48, .face_size = 32, .tile_size = k & 2 ? 2 : 1},
-                .buckets = 8, .force_emulation = true,
+                .buckets = 8, .force_emulation = true, .bucket_masks = k != 0,
                 .depth_buckets = a ? DIRT_DEPTH_BUCKETS_ADAPTIVE : DIRT_DEPTH_BUCKETS_UNIFORM};
             ads[a] = dirt_ads_create(gpu, &o);
             CHECK(ads[a] && dirt_ads_build(ads[a], f, &cam));
@@ -407,7 +409,7 @@ static void soup_hits(dirt_gpu *gpu)
             dirt_ads_opts o = {
                 .views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 64, .height = 48,
                           .face_size = 48, .tile_size = k & 1 ? 2 : 1},
-                .buckets = k & 2 ? 16 : 4, .force_emulation = true,
+                .buckets = k & 2 ? 16 : 4, .force_emulation = true, .bucket_masks = k != 0,
                 .depth_buckets = a ? DIRT_DEPTH_BUCKETS_ADAPTIVE : DIRT_DEPTH_BUCKETS_UNIFORM};
             dirt_ads *ads = dirt_ads_create(gpu, &o);
             dirt_trace_stats ts = {0};

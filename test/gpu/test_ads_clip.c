@@ -215,6 +215,7 @@ static void run_case(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                 .buckets = 8,
                 .force_emulation = true,
                 .large = -1,
+                .bucket_masks = true,
             };
             build_and_check(gpu, label, f, cam, &o);
             build_compare(gpu, label, f, cam, o);

@@ -30,6 +30,7 @@ static void run_scene(dirt_gpu *gpu, const char *label, dirt_scene *scene, float
                               .tile_size = sizes[s]},
                     .buckets = buckets[b],
                     .force_emulation = true,
+                    .bucket_masks = s != 1, /* (S = 2: without; build_and_check) */
                 };
                 build_and_check(gpu, label, f, &cam, &o);
             }

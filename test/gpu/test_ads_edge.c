@@ -64,6 +64,7 @@ static void test_slivers(dirt_gpu *gpu)
                 .buckets = 8,
                 .force_emulation = true,
                 .large = -1, /* every triangle in the lists */
+                .bucket_masks = true,
             };
             build_and_check(gpu, "slivers", f, &cam, &o);
             /* Every fixed degenerate triangle is in some list. */

@@ -126,7 +126,7 @@ static void test_build(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 64, .height = 48,
                                      .face_size = 32, .tile_size = 2},
                            .buckets = 8, .force_emulation = true, .large = larges[i],
-                           .build = i == 1 ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER};
+                           .bucket_masks = true, .build = i == 1 ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER};
         CHECK(build_and_check(gpu, label, f, cam, &o));
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         CHECK(ads && dirt_ads_build(ads, f, cam));

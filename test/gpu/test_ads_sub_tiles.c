@@ -92,7 +92,7 @@ static void test_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                             .build = b ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER,
                             .depth_buckets = ad ? DIRT_DEPTH_BUCKETS_ADAPTIVE
                                                 : DIRT_DEPTH_BUCKETS_UNIFORM,
-                            .sub_tiles = on};
+                            .sub_tiles = on, .bucket_masks = on};
                         if (on && !ad) {
                             char l[64];
                             snprintf(l, sizeof(l), "%s %s", label, b ? "compute" : "raster");
@@ -197,7 +197,7 @@ static void test_hits(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                     .buckets = 8, .force_emulation = true, .large_grid = k == 1,
                     .depth_buckets = k == 2 ? DIRT_DEPTH_BUCKETS_ADAPTIVE
                                             : DIRT_DEPTH_BUCKETS_UNIFORM,
-                    .build = k == 2 ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER, .sub_tiles = on};
+                    .build = k == 2 ? DIRT_BUILD_COMPUTE : DIRT_BUILD_RASTER, .sub_tiles = on, .bucket_masks = on};
                 ads[on] = dirt_ads_create(gpu, &o);
                 CHECK(ads[on] && dirt_ads_build(ads[on], f, cam));
             }

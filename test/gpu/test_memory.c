@@ -3,8 +3,9 @@
  * bytes reported as allocated are what GL really holds.
  *  - DIRT (default scene, 64x48 camera + six 32x32 faces, S = 2, B = 8):
  *    used = 96 B x primitives (vertices) + 8 B x pyramid entries (depth
- *    bounds and mips) + 4 B x B x tiles (list heads) + 4 B x tiles (bucket
- *    occupancy masks, B <= 32) + 8 B x nodes + 16 B x
+ *    bounds and mips) + 4 B x B x tiles (list heads) + with
+ *    opts.bucket_masks 4 B x tiles (bucket occupancy masks, B <= 32; none
+ *    without) + 8 B x nodes + 16 B x
  *    n_p (the build's candidates) + with opts.large_grid 8 B x large
  *    primitives x cells of their grid (per view, the first pyramid level of
  *    at most DIRT_LARGE_GRID cells per side; none without), with the nodes and the (primitive, tile)
@@ -51,12 +52,14 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam, bool grid)
+static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam, bool grid,
+                       bool masks_on)
 {
     const int B = 8;
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 64, .height = 48,
                                  .face_size = 32, .tile_size = 2},
-                       .buckets = B, .force_emulation = true, .large_grid = grid};
+                       .buckets = B, .force_emulation = true, .large_grid = grid,
+                       .bucket_masks = masks_on};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(ads && dirt_ads_build(ads, f, cam));
     if (!ads)
@@ -103,8 +106,9 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK(st->bytes_large_grid == 8 * cells * (uint64_t)st->num_large);
     CHECK(ads->large_cells_size >= st->bytes_large_grid &&
           st->bytes_large_grid_allocated == ads->large_cells_size);
-    /* the bucket occupancy masks (B <= 32): 4 B per tile, after the heads */
-    uint64_t masks = B <= DIRT_BUCKET_MASK_MAX_BUCKETS ? 4 * tiles : 0;
+    /* the bucket occupancy masks (opts.bucket_masks, B <= 32): 4 B per
+     * tile, after the heads; none without the option */
+    uint64_t masks = masks_on && B <= DIRT_BUCKET_MASK_MAX_BUCKETS ? 4 * tiles : 0;
     CHECK(st->bytes_bucket_masks == masks);
     uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + masks + 8 * walked +
                        16 * pairs + 16 * st->work_records + 8 * cells * (uint64_t)st->num_large;
@@ -123,9 +127,10 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK(split_size(&ads->nodes) == st->bytes_nodes_allocated);
     CHECK(split_size(&ads->cands) == st->bytes_candidates_allocated);
     CHECK(split_size(&ads->vertices) >= st->bytes_vertices);
-    fprintf(stderr, "DIRT%s: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
+    fprintf(stderr, "DIRT%s%s: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
                     "(walked): used %llu B = formula; Table 3 %.0f B vs structure %.0f B\n",
-            grid ? " (large primitives' grid)" : "", (unsigned long long)st->primitives,
+            grid ? " (large primitives' grid)" : "", masks_on ? " (bucket masks)" : "",
+            (unsigned long long)st->primitives,
             (unsigned long long)tiles,
             (unsigned long long)pyramid, (unsigned long long)walked,
             (unsigned long long)st->bytes_total_used, table3, ads_bytes);
@@ -177,8 +182,8 @@ int main(void)
     CHECK(f != NULL);
     if (f) {
         dirt_camera cam = f->cameras[0];
-        check_dirt(gpu, f, &cam, false);
-        check_dirt(gpu, f, &cam, true);
+        check_dirt(gpu, f, &cam, false, false);
+        check_dirt(gpu, f, &cam, true, true);
         check_mmrt(gpu, f, &cam);
     }
     CHECK(dirt_gpu_error_count(gpu) == 0);

@@ -2,14 +2,18 @@
  *  - the counting build of DIRT's trace finds the same hits as the plain
  *    build, bit for bit (primitive, view, t, u, v), for every ray type on
  *    the default scene (views single and cube+camera, large primitives on,
- *    off, on through their grid, and on with sub-tile rectangles);
+ *    off, on through their grid, on with sub-tile rectangles, and those with
+ *    the grid and bucket occupancy masks);
  *  - its counts equal a CPU count made another way: for rays that hit
  *    nothing (tmax half-way to Embree's hit, or leaving the scene), on a
  *    level-0 march of one view, the CPU cuts the ray at every tile line it
  *    crosses (double precision), so the Hi-Z steps are the pieces, the
  *    tiles walked are the pieces whose depth span meets the tile's bounds
- *    and whose buckets in the span hold a node (the lists read back: the
- *    trace skips the others by the tile's bucket occupancy mask),
+ *    and, with bucket occupancy masks (dirt_ads_opts.bucket_masks), whose
+ *    buckets in the span hold a node (the lists read back: the trace skips
+ *    the others by the tile's mask; without masks, none read back, every
+ *    such tile is walked, and the runs see some: the count before the
+ *    masks; runs with and without on the same rays),
  *    the list nodes are the lengths of the lists of the buckets the span
  *    overlaps (read back from the structure) and the triangle tests the
  *    distinct primitives among them (exact while at most four distinct ones
@@ -72,12 +76,16 @@ static dirt_frame *soup(size_t n)
     return f;
 }
 
+static size_t g_skipped, g_empty_walked; /* check_counts' empty tiles, all runs */
 static bool g_verbose; /* print the CPU count's pieces (DIRT_TEST_VERBOSE, rays that differ) */
 
 typedef struct cpu_count {
     bool ambiguous;
     uint32_t steps, tiles, nodes, distinct;
-    uint32_t skipped; /* tiles met but not walked: no node in the span's buckets */
+    uint32_t skipped; /* tiles met but not walked: no node in the span's buckets (with
+                         bucket masks) */
+    uint32_t empty;   /* tiles met whose span's buckets are all empty, walked (without
+                         bucket masks) */
     uint32_t large_steps, large_tests; /* the large primitives' (count_large) */
 } cpu_count;
 
@@ -204,15 +212,17 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
                 bb += e[k] <= fb;
             }
         }
-        /* the bucket occupancy: a tile whose lists in the span's buckets
-         * are all empty is not walked (with B <= 32) */
-        bool any = B > DIRT_BUCKET_MASK_MAX_BUCKETS;
+        /* the bucket occupancy (a structure with masks: opts.bucket_masks,
+         * B <= 32): a tile whose lists in the span's buckets are all empty
+         * is not walked; without masks it is walked (its empty lists read) */
+        bool any = false;
         for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++)
             any = any || d->heads[(size_t)b * d->num_tiles + gt] != DIRT_LIST_END;
-        if (!any) {
+        if (!any && d->masks) {
             c.skipped++;
             continue;
         }
+        c.empty += !any;
         c.tiles++;
         /* sub-tile rectangles (d->rects): the cells of the grid over the
          * tile that the piece's NDC box widened by DIRT_SUBTILE_MARGIN
@@ -363,7 +373,7 @@ static void count_large(const dirt_ads *a, const dirt_ray *r, enum large_mode mo
 static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                          const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets,
                          enum large_mode mode, enum dirt_depth_buckets depth_buckets,
-                         bool sub_tiles)
+                         bool sub_tiles, bool masks)
 {
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     dirt_ref_hit *ref = malloc(n * sizeof(*ref));
@@ -374,7 +384,8 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                                  .tile_size = 2},
                        .buckets = buckets, .force_emulation = true,
                        .large = mode == LARGE_NONE ? -1 : 0, .large_grid = mode == LARGE_GRID,
-                       .depth_buckets = depth_buckets, .sub_tiles = sub_tiles};
+                       .depth_buckets = depth_buckets, .sub_tiles = sub_tiles,
+                       .bucket_masks = masks};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(accel && ads && dirt_ads_build(ads, f, cam));
     if (ads && mode != LARGE_NONE)
@@ -384,6 +395,9 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     CHECK(have);
     if (!have || !accel)
         goto done;
+    /* masks (and the skip the CPU count models by them) only with the option */
+    CHECK_MSG((d.masks != NULL) == (masks && buckets <= DIRT_BUCKET_MASK_MAX_BUCKETS),
+              "%s: bucket masks %s", label, d.masks ? "present" : "missing");
     /* Missing rays: tmax half-way to Embree's hit. */
     dirt_ref_intersect(accel, (const dirt_ref_ray *)rays, ref, n, 0);
     for (size_t i = 0; i < n; i++) {
@@ -396,6 +410,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     CHECK(dirt_ads_trace_work(ads, miss, n, hits, &level0, &ts, w0));
     CHECK(ts.aborted == 0);
     size_t checked = 0, ambiguous = 0, hit = 0, exact_tests = 0, walked = 0, skipped = 0;
+    size_t empty = 0;
     size_t large_steps = 0, large_tests = 0;
     size_t bad[4] = {0};
     for (size_t i = 0; i < n; i++) {
@@ -412,6 +427,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         checked++;
         walked += c.tiles;
         skipped += c.skipped;
+        empty += c.empty;
         large_steps += c.large_steps;
         large_tests += c.large_tests;
         uint32_t tests = w0[i].triangle_tests - c.large_tests;
@@ -439,11 +455,13 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                         c.distinct, c.large_tests);
         }
     }
-    fprintf(stderr, "%s B=%d, %s: %zu missing rays checked (%zu tiles walked, %zu met but "
-            "empty in the span's buckets, %zu with exact triangle tests; large primitives: %zu "
+    fprintf(stderr, "%s B=%d, %s, masks %s: %zu missing rays checked (%zu tiles walked, %zu "
+            "of them empty in the span's buckets, %zu such skipped, %zu with exact triangle "
+            "tests; large primitives: %zu "
             "grid steps, %zu tests), %zu within rounding left out, %zu found a hit; differ: "
             "steps %zu, tiles %zu, nodes %zu, tests %zu\n",
-            label, buckets, large_mode_names[mode], checked, walked, skipped, exact_tests,
+            label, buckets, large_mode_names[mode], masks ? "on" : "off", checked, walked,
+            empty, skipped, exact_tests,
             large_steps,
             large_tests, ambiguous, hit, bad[0], bad[1], bad[2], bad[3]);
     CHECK_MSG(hit <= n / 100, "%s: %zu of %zu shortened rays found a hit", label, hit, n);
@@ -456,6 +474,15 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
               large_tests < checked * (size_t)ads->stats.num_large);
     for (int k = 0; k < 4; k++)
         CHECK_MSG(bad[k] == 0, "%s: count %d differs on %zu rays", label, k, bad[k]);
+    /* tiles whose span's buckets are empty: with the masks skipped, without
+     * them walked (the count before the masks); main checks that some are
+     * met each way */
+    CHECK_MSG(masks ? empty == 0 : skipped == 0, "%s, masks %s: %zu empty tiles skipped, %zu "
+              "walked", label, masks ? "on" : "off", skipped, empty);
+    if (masks)
+        g_skipped += skipped;
+    else
+        g_empty_walked += empty;
     /* The full pyramid walks the same tiles and lists in fewer steps. */
     for (int m = 0; m < 2; m++) {
         dirt_ray *rs = m ? rays : miss;
@@ -503,12 +530,14 @@ static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *
     dirt_ray *rays = malloc(n * sizeof(*rays));
     dirt_hit *a = malloc(n * sizeof(*a)), *b = malloc(n * sizeof(*b));
     dirt_trace_work *w = malloc(n * sizeof(*w));
-    for (int k = 0; k < 8; k++) { /* k >> 1: large on, off, on through their grid, on
-                                     with sub-tile rectangles */
+    for (int k = 0; k < 10; k++) { /* k >> 1: large on, off, on through their grid, on
+                                      with sub-tile rectangles, and with those and the
+                                      bucket masks */
         dirt_ads_opts o = {.views = {.mode = k & 1 ? DIRT_VIEWS_SINGLE : DIRT_VIEWS_CUBE_CAMERA,
                                      .width = 64, .height = 48, .face_size = 32, .tile_size = 2},
                            .buckets = 8, .force_emulation = true, .large = k >> 1 == 1 ? -1 : 0,
-                           .large_grid = k >> 1 == 2, .sub_tiles = k >> 1 == 3};
+                           .large_grid = k >> 1 == 2 || k >> 1 == 4,
+                           .sub_tiles = k >> 1 >= 3, .bucket_masks = k >> 1 == 4};
         dirt_ads *ads = dirt_ads_create(gpu, &o);
         CHECK(ads && dirt_ads_build(ads, f, cam));
         for (int t = 0; ads && t < DIRT_RAY_TYPES; t++) {
@@ -628,16 +657,18 @@ int main(void)
         size_t cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_DIFFUSE, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
             check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, (enum large_mode)m,
-                         DIRT_DEPTH_BUCKETS_UNIFORM, false);
+                         DIRT_DEPTH_BUCKETS_UNIFORM, false, m != LARGE_ALL);
+        check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, LARGE_NONE,
+                     DIRT_DEPTH_BUCKETS_UNIFORM, false, false);
         check_counts(gpu, "default diffuse adaptive", f, &cam, rays, cnt, 8, LARGE_NONE,
-                     DIRT_DEPTH_BUCKETS_ADAPTIVE, false);
+                     DIRT_DEPTH_BUCKETS_ADAPTIVE, false, true);
         check_counts(gpu, "default diffuse sub-tiles", f, &cam, rays, cnt, 8, LARGE_ALL,
-                     DIRT_DEPTH_BUCKETS_UNIFORM, true);
+                     DIRT_DEPTH_BUCKETS_UNIFORM, true, true);
         check_bvh("default diffuse", f, rays, cnt);
         cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_SPECULAR, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
             check_counts(gpu, "default specular", f, &cam, rays, cnt, 4, (enum large_mode)m,
-                         DIRT_DEPTH_BUCKETS_UNIFORM, false);
+                         DIRT_DEPTH_BUCKETS_UNIFORM, false, m != LARGE_NONE);
         free(rays);
         dirt_gbuffer_free(&g);
         dirt_ref_accel_destroy(accel);
@@ -650,14 +681,19 @@ int main(void)
     dirt_camera_default(s, &cam);
     dirt_ray *rays = random_rays(s, 3000);
     check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM,
-                 false);
+                 false, false);
+    check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM,
+                 false, true);
     check_counts(gpu, "soup adaptive", s, &cam, rays, 3000, 16, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_ADAPTIVE, false);
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, false, true);
     check_counts(gpu, "soup sub-tiles", s, &cam, rays, 3000, 8, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_UNIFORM, true);
+                 DIRT_DEPTH_BUCKETS_UNIFORM, true, true);
     check_counts(gpu, "soup adaptive sub-tiles", s, &cam, rays, 3000, 16, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_ADAPTIVE, true);
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, true, false);
     check_bvh("soup", s, rays, 3000);
+    /* (default diffuse and the soup, uniform buckets: hundreds each way) */
+    CHECK_MSG(g_skipped > 0 && g_empty_walked > 0, "empty tiles: %zu skipped with the masks, "
+              "%zu walked without", g_skipped, g_empty_walked);
     free(rays);
     frame_free(s);
     CHECK(dirt_gpu_error_count(gpu) == 0);

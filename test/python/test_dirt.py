@@ -160,6 +160,33 @@ def test_sub_tiles_option(scene):
         assert np.array_equal(images[True], s.image())
 
 
+def test_bucket_masks_option(scene):
+    """bucket_masks (dirt_session_opts): the same image bit for bit, no ray
+    type walking more tiles and fewer in all, 4 B per tile of masks only
+    with it; a change rebuilds the structure."""
+    images, stats = {}, {}
+    for on in (False, True):
+        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, bucket_masks=on,
+                          count_work=True, **SIZE) as s:
+            assert s.options["bucket_masks"] == on
+            s.add_samples(2)
+            images[on], stats[on] = s.image(), s.stats()
+    assert np.array_equal(images[False], images[True])
+    assert stats[False]["ads"]["bytes_bucket_masks"] == 0
+    assert stats[True]["ads"]["bytes_bucket_masks"] > 0
+    work = [stats[on]["work"] for on in (False, True)]
+    for a, b in zip(*work):
+        assert a["rays"] == b["rays"] and b["tiles"] <= a["tiles"]
+    assert sum(w["tiles"] for w in work[1]) < sum(w["tiles"] for w in work[0])
+    with dirt.Session(scene, engine="dirt", seed=2, bounces=2, **SIZE) as s:
+        s.add_samples(2)
+        s.set_options(bucket_masks=True)
+        assert s.samples == 0 and s.options["bucket_masks"]
+        s.add_samples(2)
+        assert np.array_equal(images[True], s.image())
+        assert s.stats()["ads"]["bytes_bucket_masks"] > 0
+
+
 def test_adaptive_depth_buckets_by_name(scene):
     """depth_buckets mirrors the session option: adaptive buckets (by name)
     give the uniform ones' image bit for bit, and their memory is counted."""
