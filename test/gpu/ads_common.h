@@ -123,6 +123,46 @@ static inline void set_tri(dirt_frame *f, size_t t, const float a[3], const floa
     memcpy(f->position[3 * t + 2], c, 12);
 }
 
+/* The tests' random numbers: a linear congruential step of *state, then
+ * its top 24 bits as a float in [0, 1). */
+static inline float ads_rand(uint32_t *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return (float)(*state >> 8) / 16777216.0f;
+}
+
+/* A soup of n random triangles, each within a cube of side `size` around a
+ * random point of the unit box (many primitives per tile); bounds set. */
+static inline dirt_frame *ads_soup(size_t n, float size, uint32_t *state)
+{
+    dirt_frame *f = frame_new(n);
+    for (size_t t = 0; t < n; t++) {
+        float c[3] = {ads_rand(state), ads_rand(state), ads_rand(state)}, p[3][3];
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                p[v][k] = c[k] + size * (ads_rand(state) - 0.5f);
+        set_tri(f, t, p[0], p[1], p[2]);
+    }
+    frame_bounds(f);
+    return f;
+}
+
+/* A random ray from a point inside f's bounds in a random direction
+ * (unit), over (1e-4, infinity). */
+static inline void ads_random_ray(const dirt_frame *f, uint32_t *state, dirt_ray *r)
+{
+    float d[3], l = 0;
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = f->bounds_min[k] + ads_rand(state) * (f->bounds_max[k] - f->bounds_min[k]);
+        d[k] = ads_rand(state) - 0.5f;
+        l += d[k] * d[k];
+    }
+    for (int k = 0; k < 3; k++)
+        r->dir[k] = d[k] / sqrtf(l);
+    r->tmin = 1e-4f;
+    r->tmax = INFINITY;
+}
+
 /* Builds with `opts` and checks; returns false on any discrepancy. */
 static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                             const dirt_camera *cam, const dirt_ads_opts *opts)

@@ -266,8 +266,7 @@ static void lists_frame(dirt_gpu *gpu, const char *label, const dirt_frame *f)
 static uint32_t g_rng = 777u;
 static float frand(void)
 {
-    g_rng = g_rng * 1664525u + 1013904223u;
-    return (float)(g_rng >> 8) / 16777216.0f;
+    return ads_rand(&g_rng);
 }
 
 /* Small random triangles in a unit box, denser near one corner (depth
@@ -387,16 +386,7 @@ static void soup_hits(dirt_gpu *gpu)
     enum { N = 4000 };
     dirt_ray *rays = malloc(N * sizeof(*rays));
     for (size_t i = 0; i < N; i++) {
-        float d[3], l = 0;
-        for (int k = 0; k < 3; k++) {
-            rays[i].org[k] = f->bounds_min[k] + frand() * (f->bounds_max[k] - f->bounds_min[k]);
-            d[k] = frand() - 0.5f;
-            l += d[k] * d[k];
-        }
-        for (int k = 0; k < 3; k++)
-            rays[i].dir[k] = d[k] / sqrtf(l);
-        rays[i].tmin = 1e-4f;
-        rays[i].tmax = INFINITY;
+        ads_random_ray(f, &g_rng, &rays[i]);
     }
     dirt_hit *h[2] = {malloc(N * sizeof(dirt_hit)), malloc(N * sizeof(dirt_hit))};
     dirt_ref_hit *ref = malloc(N * sizeof(*ref));

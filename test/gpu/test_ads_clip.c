@@ -56,11 +56,6 @@ static double ndc_y(double j)
     return -1.0 + 2.0 * j / H;
 }
 
-static float frand(unsigned *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return (float)(*s >> 8) / 16777216.0f;
-}
 
 /* Per tile, the sorted (primitive << 8 | bucket) pairs of a read-back
  * structure (B <= 256 here). */
@@ -240,14 +235,14 @@ static void case_inside(dirt_gpu *gpu, const dirt_camera *cam)
     dirt_frame *f = frame_new(N);
     unsigned seed = 7;
     for (int t = 0; t < N; t++) {
-        int tx = (int)(frand(&seed) * (W / 4)), ty = (int)(frand(&seed) * (H / 4));
-        float d = 0.5f + 1.5f * frand(&seed);
+        int tx = (int)(ads_rand(&seed) * (W / 4)), ty = (int)(ads_rand(&seed) * (H / 4));
+        float d = 0.5f + 1.5f * ads_rand(&seed);
         float p[3][3];
         for (int k = 0; k < 3; k++) {
-            double x = ndc_x(4 * tx + 1.2 + 1.6 * frand(&seed));
-            double y = ndc_y(4 * ty + 1.2 + 1.6 * frand(&seed));
+            double x = ndc_x(4 * tx + 1.2 + 1.6 * ads_rand(&seed));
+            double y = ndc_y(4 * ty + 1.2 + 1.6 * ads_rand(&seed));
             /* depths up to 4x apart within one triangle */
-            at_ndc(d * (1.0f + 3.0f * frand(&seed)), x, y, p[k]);
+            at_ndc(d * (1.0f + 3.0f * ads_rand(&seed)), x, y, p[k]);
         }
         set_tri(f, (size_t)t, p[0], p[1], p[2]);
     }
@@ -286,12 +281,12 @@ static void case_crossing(dirt_gpu *gpu, const dirt_camera *cam)
     dirt_frame *f = frame_new(N);
     unsigned seed = 99;
     for (int t = 0; t < N; t++) {
-        float c[3] = {frand(&seed) * 4 - 2, frand(&seed) * 3 - 1.5f, frand(&seed) * 3 - 2};
+        float c[3] = {ads_rand(&seed) * 4 - 2, ads_rand(&seed) * 3 - 1.5f, ads_rand(&seed) * 3 - 2};
         float p[3][3];
-        float size = 0.05f + 0.4f * frand(&seed);
+        float size = 0.05f + 0.4f * ads_rand(&seed);
         for (int k = 0; k < 3; k++)
             for (int i = 0; i < 3; i++)
-                p[k][i] = c[i] + size * (frand(&seed) - 0.5f) * (i == 2 ? 3.0f : 1.0f);
+                p[k][i] = c[i] + size * (ads_rand(&seed) - 0.5f) * (i == 2 ? 3.0f : 1.0f);
         set_tri(f, (size_t)t, p[0], p[1], p[2]);
     }
     frame_bounds(f);
@@ -364,13 +359,13 @@ static void case_on_tiles(dirt_gpu *gpu, const dirt_camera *cam)
         int kind = t % 4;
         double off = kind == 0 ? 0.0 : kind == 1 ? -e : kind == 2 ? e : 0.5;
         for (int k = 0; k < 3; k++) {
-            double i = 4 * (int)(frand(&seed) * (W / 4 + 1)), j = 4 * (int)(frand(&seed) * (H / 4 + 1));
+            double i = 4 * (int)(ads_rand(&seed) * (W / 4 + 1)), j = 4 * (int)(ads_rand(&seed) * (H / 4 + 1));
             double x = ndc_x(i + off), y = ndc_y(j + off);
             if (k == 2 && kind == 3) /* an edge along a tile row, third vertex off it */
                 y = ndc_y(j + 2.5);
             else if (kind == 3)
                 y = ndc_y(4 * (int)(t / 4 % (H / 4)) - e);
-            at_ndc(1.5f + 2.0f * frand(&seed), x, y, p[k]);
+            at_ndc(1.5f + 2.0f * ads_rand(&seed), x, y, p[k]);
         }
         set_tri(f, (size_t)t, p[0], p[1], p[2]);
     }

@@ -16,11 +16,6 @@
 #include "dirt/scene.h"
 #include "gpu.h"
 
-static float frand(unsigned *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return (float)(*s >> 8) / 16777216.0f;
-}
 
 static void test_slivers(dirt_gpu *gpu)
 {
@@ -45,8 +40,8 @@ static void test_slivers(dirt_gpu *gpu)
     set_tri(f, 5, (float[3]){0, 0.1f, 3.5f}, (float[3]){0.5f, 0.5f, 2.0f}, (float[3]){-0.5f, 0.2f, 2.5f});
     unsigned seed = 12345;
     for (size_t t = FIXED; t < FIXED + RANDOM; t++) {
-        float c[3] = {frand(&seed) * 3 - 1.5f, frand(&seed) * 3 - 1.5f, frand(&seed) * 2 - 1};
-        float d[3] = {frand(&seed) - 0.5f, frand(&seed) - 0.5f, frand(&seed) - 0.5f};
+        float c[3] = {ads_rand(&seed) * 3 - 1.5f, ads_rand(&seed) * 3 - 1.5f, ads_rand(&seed) * 2 - 1};
+        float d[3] = {ads_rand(&seed) - 0.5f, ads_rand(&seed) - 0.5f, ads_rand(&seed) - 0.5f};
         float w = t % 2 ? 1e-5f : 0.0f; /* half slivers, half exactly degenerate */
         float e[3] = {c[0] + d[0], c[1] + d[1], c[2] + d[2]};
         float g[3] = {c[0] + d[0] * 0.5f + w, c[1] + d[1] * 0.5f - w, c[2] + d[2] * 0.5f};

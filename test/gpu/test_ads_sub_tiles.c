@@ -35,27 +35,7 @@
 #define AGREE_T_TOL 1e-4
 #define MIN_AGREEMENT 0.999
 
-static uint32_t g_rng = 777u;
-static float frand(void)
-{
-    g_rng = g_rng * 1664525u + 1013904223u;
-    return (float)(g_rng >> 8) / 16777216.0f;
-}
-
-/* n small random triangles in a unit box: many primitives per tile. */
-static dirt_frame *soup(size_t n)
-{
-    dirt_frame *f = frame_new(n);
-    for (size_t t = 0; t < n; t++) {
-        float c[3] = {frand(), frand(), frand()}, p[3][3];
-        for (int v = 0; v < 3; v++)
-            for (int k = 0; k < 3; k++)
-                p[v][k] = c[k] + 0.06f * (frand() - 0.5f);
-        set_tri(f, t, p[0], p[1], p[2]);
-    }
-    frame_bounds(f);
-    return f;
-}
+static uint32_t g_rng = 777u; /* ads_rand's state: the soup, then the rays */
 
 /* The lists of one build without their rectangles. */
 static uint64_t *plain_triples(dirt_ads_data *d, size_t *n)
@@ -298,16 +278,7 @@ static void soup_hits(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam
     g_rng = 99u;
     for (size_t i = 0; i < n; i++) {
         dirt_ray r;
-        float d[3], l = 0;
-        for (int k = 0; k < 3; k++) {
-            r.org[k] = f->bounds_min[k] + frand() * (f->bounds_max[k] - f->bounds_min[k]);
-            d[k] = frand() - 0.5f;
-            l += d[k] * d[k];
-        }
-        for (int k = 0; k < 3; k++)
-            r.dir[k] = d[k] / sqrtf(l);
-        r.tmin = 1e-4f;
-        r.tmax = INFINITY;
+        ads_random_ray(f, &g_rng, &r);
         for (int t = 0; t < DIRT_RAY_TYPES; t++)
             rays[t][i] = r;
         rays[DIRT_RAY_VISIBILITY][i].tmax = 0.7f;
@@ -366,7 +337,7 @@ int main(void)
         snprintf(path, sizeof(path), "%s/scenes/cornell/CornellBox.glb", shared);
         run_scene(gpu, "CornellBox", dirt_scene_load(path, NULL));
     }
-    dirt_frame *s = soup(3000);
+    dirt_frame *s = ads_soup(3000, 0.06f, &g_rng);
     dirt_camera cam;
     dirt_camera_default(s, &cam);
     test_lists(gpu, "soup", s, &cam);

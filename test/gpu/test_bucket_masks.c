@@ -30,27 +30,7 @@
 #include "ref/raytypes.h"
 #include "ref/ref.h"
 
-static uint32_t g_rng = 4242u;
-static float frand(void)
-{
-    g_rng = g_rng * 1664525u + 1013904223u;
-    return (float)(g_rng >> 8) / 16777216.0f;
-}
-
-/* n small random triangles in a unit box. */
-static dirt_frame *soup(size_t n)
-{
-    dirt_frame *f = frame_new(n);
-    for (size_t t = 0; t < n; t++) {
-        float c[3] = {frand(), frand(), frand()}, p[3][3];
-        for (int v = 0; v < 3; v++)
-            for (int k = 0; k < 3; k++)
-                p[v][k] = c[k] + 0.06f * (frand() - 0.5f);
-        set_tri(f, t, p[0], p[1], p[2]);
-    }
-    frame_bounds(f);
-    return f;
-}
+static uint32_t g_rng = 4242u; /* ads_rand's state: the soup, then the rays */
 
 static bool same_bits(const dirt_hit *a, const dirt_hit *b, bool visibility)
 {
@@ -199,7 +179,7 @@ static void scene_hits(dirt_gpu *gpu, dirt_scene *scene)
  * (visibility: a short tmax). */
 static void soup_hits(dirt_gpu *gpu)
 {
-    dirt_frame *f = soup(3000);
+    dirt_frame *f = ads_soup(3000, 0.06f, &g_rng);
     dirt_camera cam;
     dirt_camera_default(f, &cam);
     size_t n = 2000;
@@ -211,16 +191,7 @@ static void soup_hits(dirt_gpu *gpu)
     }
     for (size_t i = 0; i < n; i++) {
         dirt_ray r;
-        float d[3], l = 0;
-        for (int k = 0; k < 3; k++) {
-            r.org[k] = f->bounds_min[k] + frand() * (f->bounds_max[k] - f->bounds_min[k]);
-            d[k] = frand() - 0.5f;
-            l += d[k] * d[k];
-        }
-        for (int k = 0; k < 3; k++)
-            r.dir[k] = d[k] / sqrtf(l);
-        r.tmin = 1e-4f;
-        r.tmax = INFINITY;
+        ads_random_ray(f, &g_rng, &r);
         for (int t = 0; t < DIRT_RAY_TYPES; t++)
             rays[t][i] = r;
         rays[DIRT_RAY_VISIBILITY][i].tmax = 0.3f;

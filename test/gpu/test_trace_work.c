@@ -53,28 +53,7 @@
 #include "ref/raytypes.h"
 #include "ref/ref.h"
 
-static uint32_t g_rng = 12345u;
-static float frand(void)
-{
-    g_rng = g_rng * 1664525u + 1013904223u;
-    return (float)(g_rng >> 8) / 16777216.0f;
-}
-
-/* A soup of small random triangles in a unit box (long lists, thin
- * geometry at every angle). */
-static dirt_frame *soup(size_t n)
-{
-    dirt_frame *f = frame_new(n);
-    for (size_t t = 0; t < n; t++) {
-        float c[3] = {frand(), frand(), frand()}, p[3][3];
-        for (int v = 0; v < 3; v++)
-            for (int k = 0; k < 3; k++)
-                p[v][k] = c[k] + 0.12f * (frand() - 0.5f);
-        set_tri(f, t, p[0], p[1], p[2]);
-    }
-    frame_bounds(f);
-    return f;
-}
+static uint32_t g_rng = 12345u; /* ads_rand's state: the soups and the rays */
 
 static size_t g_skipped, g_empty_walked; /* check_counts' empty tiles, all runs */
 static bool g_verbose; /* print the CPU count's pieces (DIRT_TEST_VERBOSE, rays that differ) */
@@ -622,16 +601,7 @@ static dirt_ray *random_rays(const dirt_frame *f, size_t n)
 {
     dirt_ray *r = malloc(n * sizeof(*r));
     for (size_t i = 0; i < n; i++) {
-        float d[3], l = 0;
-        for (int k = 0; k < 3; k++) {
-            r[i].org[k] = f->bounds_min[k] + frand() * (f->bounds_max[k] - f->bounds_min[k]);
-            d[k] = frand() - 0.5f;
-            l += d[k] * d[k];
-        }
-        for (int k = 0; k < 3; k++)
-            r[i].dir[k] = d[k] / sqrtf(l);
-        r[i].tmin = 1e-4f;
-        r[i].tmax = INFINITY;
+        ads_random_ray(f, &g_rng, &r[i]);
     }
     return r;
 }
@@ -676,7 +646,7 @@ int main(void)
     }
     dirt_scene_destroy(scene);
     /* A soup of 2,000 small triangles: long lists. */
-    dirt_frame *s = soup(2000);
+    dirt_frame *s = ads_soup(2000, 0.12f, &g_rng);
     dirt_camera cam;
     dirt_camera_default(s, &cam);
     dirt_ray *rays = random_rays(s, 3000);
