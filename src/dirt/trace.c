@@ -35,9 +35,10 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_HIT_HEADS, link ? a->hit_heads : 0);
     if (opts.work)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DIRT_BIND_WORK, opts.work);
-    /* Alpha-tested traversal, the large primitives, the sub-tile
-     * rectangles and the bucket masks: each its own build of the shader (opaque scenes, and structures without large
-     * primitives, keep the trace without). */
+    /* Alpha-tested traversal, the large primitives, counting, their grid,
+     * the sub-tile rectangles and the bucket masks: each its own build of
+     * the shader, compiled when first used (without them, the trace has
+     * none of their code). */
     const dirt_trace_alpha *al = &opts.alpha;
     bool large = a->stats.num_large > 0;
     bool grid = large && a->opts.large_grid;
