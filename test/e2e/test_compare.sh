@@ -346,8 +346,8 @@ else
   fail "--count-work run: exit $?"; cat "$tmp/cw.log" >&2
 fi
 # --bucket-masks: the row says so (settings, "|M1" in its id, so earlier
-# rows without it are not reused) and DIRT's memory holds the masks; the
-# sweep's rows without it have neither.
+# rows without it are not reused; "+masks" beside S in Table 2) and DIRT's
+# memory holds the masks; the sweep's rows without it have none of these.
 if "$cmp" default -o "$tmp/bm" --res 32x24 --repeat 1 --warmup 0 --no-quality --bucket-masks -q \
     >"$tmp/bm.log" 2>&1; then
   python3 - "$tmp/bm/results.json" "$out/results.json" <<'PY' || fail "--bucket-masks: rows"
@@ -359,6 +359,11 @@ ok = len(on) == 1 and all(r["settings"]["dirt_bucket_masks"] and r["id"].endswit
                           masks(r) > 0 for r in on)
 ok = ok and all(not r["settings"]["dirt_bucket_masks"] and "|M1" not in r["id"] and
                 masks(r) == 0 for r in off)
+# Table 2 says so beside S; the sweep's table does not
+import os
+on_t, off_t = (open(os.path.join(os.path.dirname(p), "table.md")).read() for p in sys.argv[1:])
+ok = ok and "| 1 +masks | 4/4 |" in on_t
+ok = ok and not any(l.startswith("| ") and "+masks" in l for l in off_t.splitlines())
 sys.exit(0 if ok else 1)
 PY
 else
