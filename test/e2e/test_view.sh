@@ -238,39 +238,20 @@ if [ -r "$anim" ]; then
     fail "turning and dimming the map changed nothing"; else ok; fi
 fi
 
-# 4d. The large primitives' grid turned on while the window is open: the
-#     structure is rebuilt, the image is the one without it bit for bit
-#     (section 1's), and the reported options carry it.
-printf 'wait-samples 1\nset large-grid on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
-  "$tmp/grid.exr" "$tmp/grid.json" >"$tmp/s.txt"
-run_view grid --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
-  fail "large-grid run failed"
-args=$(json_field "$tmp/grid.json" render_args)
-case "$args" in *"--large-grid"*) ok ;; *) fail "render_args lack --large-grid: $args" ;; esac
-if "$check" same "$tmp/grid.exr" "$tmp/v-dirt.exr"; then ok; else
-  fail "the image with the large primitives' grid is not the one without"; fi
-
-# 4e. Sub-tile rectangles turned on likewise: rebuilt, the same image, in
-#     the reported options.
-printf 'wait-samples 1\nset sub-tiles on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
-  "$tmp/sub.exr" "$tmp/sub.json" >"$tmp/s.txt"
-run_view sub --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
-  fail "sub-tiles run failed"
-args=$(json_field "$tmp/sub.json" render_args)
-case "$args" in *"--sub-tiles"*) ok ;; *) fail "render_args lack --sub-tiles: $args" ;; esac
-if "$check" same "$tmp/sub.exr" "$tmp/v-dirt.exr"; then ok; else
-  fail "the image with sub-tile rectangles is not the one without"; fi
-
-# 4f. Bucket occupancy masks turned on likewise: rebuilt, the same image, in
-#     the reported options.
-printf 'wait-samples 1\nset bucket-masks on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
-  "$tmp/masks.exr" "$tmp/masks.json" >"$tmp/s.txt"
-run_view masks --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
-  fail "bucket-masks run failed"
-args=$(json_field "$tmp/masks.json" render_args)
-case "$args" in *"--bucket-masks"*) ok ;; *) fail "render_args lack --bucket-masks: $args" ;; esac
-if "$check" same "$tmp/masks.exr" "$tmp/v-dirt.exr"; then ok; else
-  fail "the image with bucket masks is not the one without"; fi
+# 4d-4f. DIRT's trace options turned on while the window is open (the large
+#     primitives' grid, sub-tile rectangles, bucket occupancy masks), each in
+#     its own run: the structure is rebuilt, the image is the one without it
+#     bit for bit (section 1's), and the reported options carry it.
+for opt in large-grid sub-tiles bucket-masks; do
+  printf 'wait-samples 1\nset %s on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
+    "$opt" "$tmp/$opt.exr" "$tmp/$opt.json" >"$tmp/s.txt"
+  run_view "$opt" --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||
+    fail "$opt run failed"
+  args=$(json_field "$tmp/$opt.json" render_args)
+  case "$args" in *"--$opt"*) ok ;; *) fail "render_args lack --$opt: $args" ;; esac
+  if "$check" same "$tmp/$opt.exr" "$tmp/v-dirt.exr"; then ok; else
+    fail "the image with --$opt is not the one without"; fi
+done
 
 # 5. Bad input exits 2 with a one-line reason, before any window.
 expect2() {

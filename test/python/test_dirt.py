@@ -112,79 +112,63 @@ def test_structure_stats(scene):
         assert st["aborted"] == 0
 
 
-def test_large_grid_option(scene):
-    """large_grid (dirt_session_opts): the same image bit for bit, the
-    grid's bytes only with it, fewer triangle tests per ray."""
+def _trace_option(scene, name):
+    """Renders with DIRT's trace option `name` off and on (2 samples, work
+    counted) and checks the images are equal bit for bit, then turns it on
+    in an open session: the structure is rebuilt (0 samples) and 2 samples
+    give the image with it again. Returns the stats off, on, and after the
+    change."""
     images, stats = {}, {}
-    for grid in (False, True):
-        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, large_grid=grid,
-                          count_work=True, **SIZE) as s:
-            assert s.options["large_grid"] == grid
+    for on in (False, True):
+        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, count_work=True,
+                          **{name: on}, **SIZE) as s:
+            assert s.options[name] == on
             s.add_samples(2)
-            images[grid], stats[grid] = s.image(), s.stats()
+            images[on], stats[on] = s.image(), s.stats()
     assert np.array_equal(images[False], images[True])
-    assert stats[False]["ads"]["bytes_large_grid"] == 0 < stats[True]["ads"]["bytes_large_grid"]
-    work = [stats[g]["work"][0] for g in (False, True)]  # primary rays
-    assert work[0]["rays"] == work[1]["rays"] > 0
-    assert work[1]["triangle_tests"] < work[0]["triangle_tests"]
-    # A change of the option rebuilds the structure (and restarts the image).
     with dirt.Session(scene, engine="dirt", seed=2, bounces=2, **SIZE) as s:
         s.add_samples(2)
-        s.set_options(large_grid=True)
-        assert s.samples == 0 and s.options["large_grid"]
+        s.set_options(**{name: True})
+        assert s.samples == 0 and s.options[name]
         s.add_samples(2)
         assert np.array_equal(images[True], s.image())
-        assert s.stats()["ads"]["bytes_large_grid"] > 0
+        changed = s.stats()
+    return stats[False], stats[True], changed
+
+
+def test_large_grid_option(scene):
+    """large_grid (dirt_session_opts): the same image bit for bit, the
+    grid's bytes only with it, fewer triangle tests per ray; a change
+    rebuilds the structure."""
+    off, on, changed = _trace_option(scene, "large_grid")
+    assert off["ads"]["bytes_large_grid"] == 0 < on["ads"]["bytes_large_grid"]
+    work = [off["work"][0], on["work"][0]]  # primary rays
+    assert work[0]["rays"] == work[1]["rays"] > 0
+    assert work[1]["triangle_tests"] < work[0]["triangle_tests"]
+    assert changed["ads"]["bytes_large_grid"] > 0
 
 
 def test_sub_tiles_option(scene):
     """sub_tiles (dirt_session_opts): the same image bit for bit, fewer
     triangle tests per camera ray; a change rebuilds the structure."""
-    images, stats = {}, {}
-    for on in (False, True):
-        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, sub_tiles=on,
-                          count_work=True, **SIZE) as s:
-            assert s.options["sub_tiles"] == on
-            s.add_samples(2)
-            images[on], stats[on] = s.image(), s.stats()
-    assert np.array_equal(images[False], images[True])
-    work = [stats[on]["work"][0] for on in (False, True)]  # primary rays
+    off, on, _ = _trace_option(scene, "sub_tiles")
+    work = [off["work"][0], on["work"][0]]  # primary rays
     assert work[0]["rays"] == work[1]["rays"] > 0
     assert work[0]["list_nodes"] == work[1]["list_nodes"]
     assert work[1]["triangle_tests"] < work[0]["triangle_tests"]
-    with dirt.Session(scene, engine="dirt", seed=2, bounces=2, **SIZE) as s:
-        s.add_samples(2)
-        s.set_options(sub_tiles=True)
-        assert s.samples == 0 and s.options["sub_tiles"]
-        s.add_samples(2)
-        assert np.array_equal(images[True], s.image())
 
 
 def test_bucket_masks_option(scene):
     """bucket_masks (dirt_session_opts): the same image bit for bit, no ray
     type walking more tiles and fewer in all, 4 B per tile of masks only
     with it; a change rebuilds the structure."""
-    images, stats = {}, {}
-    for on in (False, True):
-        with dirt.Session(scene, engine="dirt", seed=2, bounces=2, bucket_masks=on,
-                          count_work=True, **SIZE) as s:
-            assert s.options["bucket_masks"] == on
-            s.add_samples(2)
-            images[on], stats[on] = s.image(), s.stats()
-    assert np.array_equal(images[False], images[True])
-    assert stats[False]["ads"]["bytes_bucket_masks"] == 0
-    assert stats[True]["ads"]["bytes_bucket_masks"] > 0
-    work = [stats[on]["work"] for on in (False, True)]
-    for a, b in zip(*work):
+    off, on, changed = _trace_option(scene, "bucket_masks")
+    assert off["ads"]["bytes_bucket_masks"] == 0
+    assert on["ads"]["bytes_bucket_masks"] > 0
+    for a, b in zip(off["work"], on["work"]):
         assert a["rays"] == b["rays"] and b["tiles"] <= a["tiles"]
-    assert sum(w["tiles"] for w in work[1]) < sum(w["tiles"] for w in work[0])
-    with dirt.Session(scene, engine="dirt", seed=2, bounces=2, **SIZE) as s:
-        s.add_samples(2)
-        s.set_options(bucket_masks=True)
-        assert s.samples == 0 and s.options["bucket_masks"]
-        s.add_samples(2)
-        assert np.array_equal(images[True], s.image())
-        assert s.stats()["ads"]["bytes_bucket_masks"] > 0
+    assert sum(w["tiles"] for w in on["work"]) < sum(w["tiles"] for w in off["work"])
+    assert changed["ads"]["bytes_bucket_masks"] > 0
 
 
 def test_adaptive_depth_buckets_by_name(scene):
