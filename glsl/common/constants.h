@@ -418,9 +418,10 @@
 
 /* glsl/dirt/trace.comp */
 #define DIRT_LOC_TRACE_COUNT 0       /* uint: rays */
-#define DIRT_LOC_TRACE_HIZ_TOP 1     /* int: highest level to start from; < 0 = top */
+#define DIRT_LOC_TRACE_HIZ_TOP 1     /* int: highest level a march climbs to; < 0 = top */
 #define DIRT_LOC_TRACE_ANY_HIT 2     /* int: 1 stops at the first accepted hit */
 #define DIRT_LOC_TRACE_LINK 3        /* int: 1 links hits per ADS tile (raster Fetch) */
+#define DIRT_LOC_TRACE_FROM_SURFACES 4 /* int: 1 the rays leave surfaces (march start: level 0) */
 /* glsl/views/hiz.comp */
 #define DIRT_LOC_MIP_LEVEL 0         /* int: the level written */
 /* glsl/dirt/visibility.vert */

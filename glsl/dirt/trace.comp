@@ -5,8 +5,9 @@
 // The ray is clipped to every view frustum and cut into pieces in order of
 // t, each in one view (camera view first when present, then the others by
 // the parameter at which the ray enters them); a piece is marched cell by
-// cell on the Hi-Z pyramid: a cell whose depth bounds the ray's depth span
-// misses is skipped (and the march climbs a level), otherwise the march
+// cell on the Hi-Z pyramid (from a starting level, see trace_view): a cell
+// whose depth bounds the ray's depth span misses is skipped (and the march
+// climbs a level where it leaves the parent cell), otherwise the march
 // descends; at level 0 (a tile) the buckets the ray's depth span overlaps
 // are walked in the ray's depth direction with exact watertight
 // ray-triangle tests. A hit counts only if it lies in the
@@ -102,9 +103,10 @@ uvec4 g_work = uvec4(0u);
 #endif
 
 layout(location = DIRT_LOC_TRACE_COUNT) uniform uint u_count;
-layout(location = DIRT_LOC_TRACE_HIZ_TOP) uniform int u_hiz_top;  // highest level to start from; < 0 = top
+layout(location = DIRT_LOC_TRACE_HIZ_TOP) uniform int u_hiz_top;  // highest level a march climbs to; < 0 = top
 layout(location = DIRT_LOC_TRACE_ANY_HIT) uniform int u_any_hit;  // 1: stop at the first accepted hit
 layout(location = DIRT_LOC_TRACE_LINK) uniform int u_link;     // 1: link hits per ADS tile (raster Fetch)
+layout(location = DIRT_LOC_TRACE_FROM_SURFACES) uniform int u_from_surfaces; // 1: rays leave surfaces
 
 #define MAX_STEPS 65536
 
@@ -458,7 +460,7 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
 // given up as "never", and the march went on in the wrong tile column. Both
 // let rays leave the default scene's closed room.)
 bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0, float t1,
-                inout best_hit best)
+                bool first, inout best_hit best)
 {
     dirt_gpu_view v = views[view];
     mat4 vp = view_matrix(v);
@@ -478,7 +480,26 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
     ivec2 bound = mix(ivec2(-1), v.size.zw, back);
     bool tail = false;
     float t = t0;
+    // The starting level (any level is exact: a march's skips and walks
+    // hold for cells of every level): 0 where `first` (the ray's first
+    // piece, at its origin, of a ray leaving a surface: the surface lies in
+    // its tile's bounds, so that tile is walked at once instead of after a
+    // descent from the top); else the lowest level at which one cell holds
+    // both ends of the piece (a higher cell has the same segment and looser
+    // bounds; a camera ray in the camera view stays in its pixel's tile:
+    // level 0).
     int d = top;
+    if (first) {
+        d = 0;
+    } else {
+        vec4 ca = co + t0 * cd, cb = co + t1 * cd;
+        if (ca.w > 0.0 && cb.w > 0.0) {
+            ivec2 ta = clamp(ivec2(floor((ca.xy / ca.w * 0.5 + 0.5) * tiles)), ivec2(0), v.size.zw - 1);
+            ivec2 tb = clamp(ivec2(floor((cb.xy / cb.w * 0.5 + 0.5) * tiles)), ivec2(0), v.size.zw - 1);
+            ivec2 x = ta ^ tb;
+            d = min(top, findMSB(x.x | x.y) + 1);
+        }
+    }
     for (int steps = 0; steps < MAX_STEPS; steps++) {
         if (t >= best.t)
             return true;
@@ -530,7 +551,13 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
         bvec2 left = bvec2(tx <= texit, ty <= texit);
         bound = mix(bound, past, left);
         t = texit;
-        d = min(d + 1, top);
+        // The march climbs a level only when it leaves the parent cell: the
+        // next cell of the same parent is looked at on this level (its
+        // bounds are tighter than the parent's; climbing there would look at
+        // the parent again and descend to it).
+        ivec2 nextc = cell + mix(ivec2(1), ivec2(-1), back) * ivec2(left);
+        if (any(notEqual(nextc >> 1, cell >> 1)))
+            d = min(d + 1, top);
     }
     return false;
 }
@@ -768,7 +795,8 @@ void main()
             break;
         }
 #endif
-        if (cur >= 0 && !trace_view(rs, org, dir, order[cur], tmin, t, min(end, best.t), best))
+        if (cur >= 0 && !trace_view(rs, org, dir, order[cur], tmin, t, min(end, best.t),
+                                       pieces == 0 && u_from_surfaces != 0, best))
             aborted = true;
         if (!(end > t) || end >= 1e30) {
             done = true;

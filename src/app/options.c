@@ -221,7 +221,7 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "masks\"): fewer tiles walked (mirror69k shadow rays 0.72x), the same hits and image. "
         "Off by default: on llvmpipe the frame was 3-6 % slower with it", NULL, NULL},
     [APP_OPT_HIZ_TOP] = {APP_OPT_HIZ_TOP, NULL, "--hiz-top", NULL, "L", 'l', OFF(hiz_top), -1, 15,
-        NULL, "highest Hi-Z level the march starts from; 0 = tiles only, no Hi-Z; -1 = the "
+        NULL, "highest Hi-Z level the march climbs to; 0 = tiles only, no Hi-Z; -1 = the "
         "pyramid's top", "-1", NULL},
     [APP_OPT_FETCH] = {APP_OPT_FETCH, NULL, "--fetch", NULL, "KIND", 'c', OFF(s.fetch), 0, 0,
         app_fetch_names, "DIRT's Fetch: compute, or raster (the paper's geometry pass)",

@@ -136,8 +136,12 @@ void dirt_ads_data_free(dirt_ads_data *data);
 
 /* Zero-initialised = full Hi-Z, closest hit. */
 typedef struct dirt_trace_opts {
-    int hiz_levels;   /* 0 = start at the pyramid's top; n > 0: at level n - 1 */
+    int hiz_levels;   /* the highest level a march climbs to: 0 = the pyramid's top;
+                         n > 0: level n - 1 */
     bool any_hit;     /* visibility rays: stop at the first hit found */
+    bool from_surfaces; /* every ray leaves a surface point: the march of its first
+                           piece starts at level 0 (a hint: the same hits either
+                           way; doc/dirt-trace.md, "Hi-Z march") */
     dirt_trace_alpha alpha; /* alpha-tested traversal (views/tracer.h); zero = none */
     uint32_t batch;   /* GL buffer of a ray batch the GPU sized (dirt_tracer's
                          set_batch); 0 = the call's rays 0 .. count - 1 */

@@ -73,6 +73,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glUniform1i(DIRT_LOC_TRACE_HIZ_TOP, opts.hiz_levels > 0 ? opts.hiz_levels - 1 : -1);
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
     glUniform1i(DIRT_LOC_TRACE_LINK, link ? 1 : 0);
+    glUniform1i(DIRT_LOC_TRACE_FROM_SURFACES, opts.from_surfaces ? 1 : 0);
     /* Alpha test: the integrator's tables and the per-primitive materials. */
     if (al->materials) {
         glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);

@@ -2,11 +2,13 @@
  * visibility and Fetch passes of trace.c behind the technique interface. */
 #include "dirt/ads_internal.h"
 
-static bool tr_trace(void *self, uint32_t rays, uint32_t hits, uint32_t count, bool any_hit)
+static bool tr_trace(void *self, uint32_t rays, uint32_t hits, uint32_t count, unsigned flags)
 {
     dirt_ads *a = self;
     dirt_trace_opts o = a->tracer_opts.trace;
+    bool any_hit = (flags & DIRT_TRACER_ANY_HIT) != 0;
     o.any_hit = any_hit;
+    o.from_surfaces = (flags & DIRT_TRACER_FROM_SURFACES) != 0;
     /* The raster Fetch reads the closest hits through per-tile hit lists. */
     bool link = !any_hit && a->tracer_opts.fetch == DIRT_FETCH_RASTER;
     return ads_trace_gl(a, rays, hits, count, &o, link, NULL);

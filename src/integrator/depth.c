@@ -61,7 +61,7 @@ bool pt_depth_render(dirt_gpu *gpu, const dirt_tracer *tracer, const dirt_camera
             tracer->set_alpha(tracer->self, &a);
         }
         ok = gl_buffer_write(rbuf, 0, n * sizeof(*rays), rays) &&
-             tracer->trace(tracer->self, rbuf, hbuf, (uint32_t)n, false);
+             tracer->trace(tracer->self, rbuf, hbuf, (uint32_t)n, 0);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         ok = ok && gl_buffer_read(hbuf, 0, n * sizeof(*hits), hits);
         for (size_t i = 0; ok && i < n; i++) {

@@ -504,8 +504,9 @@ static bool exec_pass(fg_ctx *ctx, void *user)
     case DIRT_PT_PASS_TRACE:
         set_alpha(pt, (uint32_t)(c->k - 1), DIRT_RNG_DIM_ALPHA_PATH);
         set_batch(pt, c->k);
+        /* (event 1's rays are the camera's; later ones leave path vertices) */
         ok = pt->tech->trace(pt->tech->self, event_rays(pt, c->k), pt->hits,
-                             (uint32_t)pt->cur_count, false);
+                             (uint32_t)pt->cur_count, c->k > 1 ? DIRT_TRACER_FROM_SURFACES : 0);
         set_batch(pt, 0);
         return ok;
     case DIRT_PT_PASS_FETCH:
@@ -527,7 +528,8 @@ static bool exec_pass(fg_ctx *ctx, void *user)
         set_alpha(pt, (uint32_t)c->k, DIRT_RNG_DIM_ALPHA_SHADOW);
         set_batch(pt, c->k);
         ok = pt->tech->trace(pt->tech->self, event_shadow_rays(pt, c->k), pt->shadow_hits,
-                             (uint32_t)pt->cur_count, true);
+                             (uint32_t)pt->cur_count,
+                             DIRT_TRACER_ANY_HIT | DIRT_TRACER_FROM_SURFACES);
         set_batch(pt, 0);
         return ok;
     case DIRT_PT_PASS_RESOLVE:

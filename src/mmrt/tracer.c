@@ -78,10 +78,10 @@ static pt_mmrt *get_state(dirt_mmrt *mmrt)
 }
 
 static bool mmrt_tech_trace(void *self, uint32_t rays, uint32_t hits, uint32_t count,
-                            bool any_hit)
+                            unsigned flags)
 {
     pt_mmrt *s = self;
-    (void)any_hit;
+    (void)flags;
     dirt_mmrt_gl g;
     dirt_mmrt_gl_buffers(s->mmrt, &g);
     gl_group_push("mmrt pt ray count");

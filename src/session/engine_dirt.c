@@ -196,7 +196,10 @@ static bool agree(engine *e, const engine_env *env, engine_agree *b)
 {
     bool vis = b->type == DIRT_RAY_VISIBILITY;
     dirt_trace_stats ts;
-    dirt_trace_opts to = {.hiz_levels = env->opts->hiz_levels, .any_hit = vis};
+    /* (every ray type but the camera's leaves a surface point, as in the
+     * path tracer's batches) */
+    dirt_trace_opts to = {.hiz_levels = env->opts->hiz_levels, .any_hit = vis,
+                          .from_surfaces = b->type != DIRT_RAY_PRIMARY};
     dirt_ref_intersect(b->accel, (const dirt_ref_ray *)b->rays, b->ref, b->count, 0);
     dirt_ads *ads = ((dirt_state *)e)->ads;
     dirt_trace_work *w = b->count_work ? malloc((b->count + 1) * sizeof(*w)) : NULL;

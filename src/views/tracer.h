@@ -48,6 +48,16 @@ typedef struct dirt_trace_alpha {
     uint32_t first_pixel; /* pixel of ray 0 of the batch */
 } dirt_trace_alpha;
 
+/* What a batch of rays handed to dirt_tracer.trace is (bits; 0 = camera
+ * rays or rays from anywhere, closest hits). */
+enum dirt_tracer_flags {
+    DIRT_TRACER_ANY_HIT = 1u << 0,       /* shadow rays: only "something in (tmin, tmax)"
+                                            matters */
+    DIRT_TRACER_FROM_SURFACES = 1u << 1, /* every ray leaves a surface point (a path's
+                                            vertex): a hint for where a march starts;
+                                            the hits are the same without it */
+};
+
 /* A technique's tracer for the structure of its last build. Owned by the
  * technique; valid until its next build, option change or destruction.
  * Buffers are OpenGL buffer names; every function issues, before its own
@@ -59,9 +69,9 @@ typedef struct dirt_tracer {
     const char *name;          /* "dirt", "mmrt" */
     void *self;
     /* Traces `count` dirt_gpu_ray records of `rays` into the dirt_gpu_hit
-     * records of `hits` (hit i's owner = i; see set_batch). any_hit: shadow
-     * rays (only "something in (tmin, tmax)" matters). */
-    bool (*trace)(void *self, uint32_t rays, uint32_t hits, uint32_t count, bool any_hit);
+     * records of `hits` (hit i's owner = i; see set_batch). flags: what the
+     * rays are (dirt_tracer_flags). */
+    bool (*trace)(void *self, uint32_t rays, uint32_t hits, uint32_t count, unsigned flags);
     /* First hits of the camera view from a visibility buffer (one ray and
      * hit per pixel of the camera view); NULL when the technique has none. */
     bool (*visibility)(void *self, uint32_t rays, uint32_t hits);

@@ -341,7 +341,7 @@ __attribute__((unused)) static inline int distinct_locations(int program, int lo
     case 2:
         switch (loc) {
             L(DIRT_LOC_TRACE_COUNT) L(DIRT_LOC_TRACE_HIZ_TOP) L(DIRT_LOC_TRACE_ANY_HIT)
-            L(DIRT_LOC_TRACE_LINK) L(DIRT_LOC_RAY_BATCH) return 1;
+            L(DIRT_LOC_TRACE_LINK) L(DIRT_LOC_TRACE_FROM_SURFACES) L(DIRT_LOC_RAY_BATCH) return 1;
         }
         break;
     case 3:
@@ -426,6 +426,7 @@ static const dirt_layout_uniform u_test_model[] = {
 static const dirt_layout_uniform u_trace[] = {
     U("u_count", DIRT_LOC_TRACE_COUNT), U("u_hiz_top", DIRT_LOC_TRACE_HIZ_TOP),
     U("u_any_hit", DIRT_LOC_TRACE_ANY_HIT), U("u_link", DIRT_LOC_TRACE_LINK),
+    U("u_from_surfaces", DIRT_LOC_TRACE_FROM_SURFACES),
     U("u_alpha", DIRT_LOC_ALPHA_ENABLED), U("u_alpha_key", DIRT_LOC_ALPHA_KEY),
     U("u_alpha_first_pixel", DIRT_LOC_ALPHA_FIRST_PIXEL), U("u_ray_batch", DIRT_LOC_RAY_BATCH)};
 static const dirt_layout_uniform u_mip[] = {U("u_level", DIRT_LOC_MIP_LEVEL)};

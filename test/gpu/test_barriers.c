@@ -151,7 +151,7 @@ static void apis(void)
     GLuint br = gl_buffer_create(gpu, N * sizeof(dirt_ray), rays, false, "barriers rays");
     GLuint bh = gl_buffer_create(gpu, N * sizeof(dirt_hit), NULL, true, "barriers hits");
     GLuint bg = gl_buffer_create(gpu, 3 * N * 32, NULL, true, "barriers gpoints");
-    CHECK(tr && tr->trace(tr->self, br, bh, N, false) && tr->fetch(tr->self, br, bh, N, bg, 0));
+    CHECK(tr && tr->trace(tr->self, br, bh, N, 0) && tr->fetch(tr->self, br, bh, N, bg, 0));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* the test's readback */
     CHECK(gl_buffer_read(bg, 0, 32, hits));
     gl_buffer_destroy(&br);

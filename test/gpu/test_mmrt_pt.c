@@ -118,7 +118,7 @@ static void shading_points(dirt_gpu *gpu)
     GLuint br = gl_buffer_create(gpu, n * sizeof(*rays), rays, false, "test rays");
     GLuint bh = gl_buffer_create(gpu, n * sizeof(*hits), NULL, true, "test hits");
     GLuint bg = gl_buffer_create(gpu, 3 * n * sizeof(*gp), NULL, true, "test gpoints");
-    bool ok = tr && br && bh && bg && tr->trace(tr->self, br, bh, (uint32_t)n, false) &&
+    bool ok = tr && br && bh && bg && tr->trace(tr->self, br, bh, (uint32_t)n, 0) &&
               tr->fetch(tr->self, br, bh, (uint32_t)n, bg, 0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     ok = ok && gl_buffer_read(bh, 0, n * sizeof(*hits), hits) &&

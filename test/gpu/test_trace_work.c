@@ -34,7 +34,11 @@
  *    is a node read but no test (rays within rounding of a cell line left
  *    out as above);
  *  - the full pyramid walks the same tiles, nodes and triangle tests as
- *    the level-0 march (rays within rounding left out as above);
+ *    the level-0 march (rays within rounding left out as above) and finds
+ *    the same hits, with and without the from_surfaces hint; with it, a ray
+ *    the level-0 march ends in one step takes one step; camera rays through
+ *    the camera view's pixel centres take one step each (their piece's
+ *    march starts at level 0);
  *  - Embree's BVH walk (ref/bvh_work.c) finds Embree's closest hits and
  *    occlusion, and its counts are bounded: an any-hit walk never does more
  *    than the closest-hit walk, no walk tests more triangles than there
@@ -462,14 +466,22 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         g_skipped += skipped;
     else
         g_empty_walked += empty;
-    /* The full pyramid walks the same tiles and lists in fewer steps. */
-    for (int m = 0; m < 2; m++) {
-        dirt_ray *rs = m ? rays : miss;
+    /* The full pyramid walks the same tiles and lists in fewer steps, and
+     * finds the same hits, with the march of a ray's first piece starting
+     * at level 0 (from_surfaces) or at the lowest level whose cell holds the
+     * piece (without): a ray the level-0 march ends in one step (its first
+     * tile held its hit, or all of it) takes one step with from_surfaces
+     * too, where a march from the top would descend to that tile first. */
+    dirt_hit *hits_f = malloc(n * sizeof(*hits_f));
+    for (int m = 0; m < 4; m++) {
+        dirt_ray *rs = m & 1 ? rays : miss;
+        dirt_trace_opts full = {.from_surfaces = m >= 2};
         CHECK(dirt_ads_trace_work(ads, rs, n, hits, &level0, NULL, w0));
-        CHECK(dirt_ads_trace_work(ads, rs, n, hits, NULL, NULL, wf));
-        size_t differ = 0, left_out = 0;
+        CHECK(dirt_ads_trace_work(ads, rs, n, hits_f, &full, NULL, wf));
+        size_t differ = 0, left_out = 0, other_hits = 0, one_step = 0, not_one = 0;
         uint64_t s0 = 0, sf = 0;
         for (size_t i = 0; i < n; i++) {
+            other_hits += memcmp(&hits[i], &hits_f[i], sizeof(hits[i])) != 0;
             cpu_count c = count_ray(dirt_ads_views(ads), &d, &rs[i]);
             count_large(ads, &rs[i], mode, &c);
             if (c.ambiguous) {
@@ -480,13 +492,27 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                       w0[i].triangle_tests != wf[i].triangle_tests;
             s0 += w0[i].hiz_steps;
             sf += wf[i].hiz_steps;
+            if (full.from_surfaces && mode != LARGE_GRID && w0[i].hiz_steps == 1) {
+                one_step++;
+                not_one += wf[i].hiz_steps != 1;
+            }
         }
-        fprintf(stderr, "%s %s rays: full pyramid %.2f steps per ray, level 0 %.2f; %zu rays "
-                "walk other tiles or lists (%zu within rounding left out)\n", label,
-                m ? "whole" : "missing", (double)sf / n, (double)s0 / n, differ, left_out);
+        fprintf(stderr, "%s %s rays%s: full pyramid %.2f steps per ray, level 0 %.2f; %zu rays "
+                "walk other tiles or lists (%zu within rounding left out), %zu other hits; "
+                "%zu rays of one level-0 step, %zu of them more with the pyramid\n", label,
+                m & 1 ? "whole" : "missing", full.from_surfaces ? " from surfaces" : "",
+                (double)sf / n, (double)s0 / n, differ, left_out, other_hits, one_step, not_one);
         CHECK_MSG(differ == 0, "%s: %zu rays differ between the pyramid and level 0", label,
                   differ);
+        CHECK_MSG(other_hits == 0, "%s: %zu hits differ between the pyramid and level 0", label,
+                  other_hits);
+        CHECK_MSG(not_one == 0, "%s: %zu of %zu rays of one level-0 step take more from "
+                  "surfaces", label, not_one, one_step);
+        if (m >= 2 && mode != LARGE_GRID)
+            CHECK_MSG(one_step > n / 50, "%s: %zu of %zu rays of one level-0 step", label,
+                      one_step, n);
     }
+    free(hits_f);
     dirt_ads_data_free(&d);
 done:
     dirt_ads_destroy(ads);
@@ -543,6 +569,47 @@ static void check_same_hits(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *
     free(b);
     free(w);
     dirt_gbuffer_free(&g);
+    dirt_ref_accel_destroy(accel);
+}
+
+/* Camera rays through the camera view's pixel centres stay in one tile of
+ * it: the march of their one piece starts at level 0 (the lowest level whose
+ * cell holds the piece) and takes one step, walked or skipped, where a march
+ * from the pyramid's top would descend to the tile first. */
+static void check_camera_steps(dirt_gpu *gpu, dirt_scene *scene, const dirt_frame *f,
+                               const dirt_camera *cam)
+{
+    enum { W = 64, H = 48 };
+    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+    dirt_gbuffer g;
+    bool have_g = accel && dirt_gbuffer_build(accel, scene, f, cam, W, H, &g);
+    CHECK(have_g);
+    dirt_ray *rays = malloc(W * H * sizeof(*rays));
+    dirt_hit *hits = malloc(W * H * sizeof(*hits));
+    dirt_trace_work *w = malloc(W * H * sizeof(*w));
+    dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_SINGLE, .width = W, .height = H,
+                                 .tile_size = 2},
+                       .buckets = 8, .force_emulation = true, .large = -1};
+    dirt_ads *ads = have_g ? dirt_ads_create(gpu, &o) : NULL;
+    CHECK(ads && dirt_ads_build(ads, f, cam));
+    if (ads && have_g) {
+        size_t cnt = dirt_rays_generate(&g, cam, DIRT_RAY_PRIMARY, 3, rays), more = 0, hit = 0;
+        CHECK(cnt == (size_t)W * H && dirt_ads_trace_work(ads, rays, cnt, hits, NULL, NULL, w));
+        for (size_t i = 0; i < cnt; i++) {
+            more += w[i].hiz_steps != 1;
+            hit += hits[i].prim != DIRT_HIT_NONE;
+        }
+        fprintf(stderr, "camera rays: %zu, %zu hit; %zu take more than one Hi-Z step\n", cnt,
+                hit, more);
+        CHECK_MSG(more == 0, "%zu of %zu camera rays take more than one Hi-Z step", more, cnt);
+        CHECK(hit > cnt / 2);
+    }
+    dirt_ads_destroy(ads);
+    free(rays);
+    free(hits);
+    free(w);
+    if (have_g)
+        dirt_gbuffer_free(&g);
     dirt_ref_accel_destroy(accel);
 }
 
@@ -618,6 +685,7 @@ int main(void)
         dirt_camera cam;
         dirt_camera_default(f, &cam);
         check_same_hits(gpu, scene, f, &cam);
+        check_camera_steps(gpu, scene, f, &cam);
         /* the G-buffer's secondary rays and random rays */
         dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
         dirt_gbuffer g;
