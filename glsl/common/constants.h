@@ -81,12 +81,17 @@
  * with B <= DIRT_BUCKET_MASK_MAX_BUCKETS, the list-heads array ends with
  * one uint per tile (tile-major, after the heads and, with adaptive depth
  * buckets, the edges and histogram: DIRT_BUCKET_MASK_INDEX(per_tile, T, t),
- * per_tile = B or DIRT_ADAPT_TILE_UINTS(B)) whose bit b is clear when bucket
- * b of the tile holds at least one node: it starts at the heads' clear value
- * DIRT_LIST_END (every bit set) and the count pass clears the bits of each
- * candidate's bucket range. The tile's occupancy is its complement (bits at
- * and above B: 0). With more buckets there are no masks. */
+ * per_tile = B or DIRT_ADAPT_TILE_UINTS(B)). It starts at the heads' clear
+ * value DIRT_LIST_END (every bit set) and the count pass clears the bits of
+ * each candidate's depth range; the tile's occupancy is its complement.
+ * Uniform depth buckets: bit s stands for the tile's depth slab s of
+ * DIRT_BUCKET_MASK_SLABS equal slabs of its bounds (whatever B; slab of a
+ * depth: dirt_mask_slab, dirt/structure.glsl), clear when some candidate's
+ * range meets it. Adaptive depth buckets: bit b is clear when bucket b holds
+ * at least one node (bits at and above B: 0). With more buckets than
+ * DIRT_BUCKET_MASK_MAX_BUCKETS there are no masks. */
 #define DIRT_BUCKET_MASK_MAX_BUCKETS 32
+#define DIRT_BUCKET_MASK_SLABS 32
 #define DIRT_BUCKET_MASK_INDEX(per_tile, T, t) ((per_tile) * (T) + (t))
 
 /* Path events of one sample the GPU path tracer can run: K = 64

@@ -12,8 +12,9 @@
 // bucket_edges.comp wrote before this pass.
 // DIRT_BUCKET_MASKS (dirt_ads_opts.bucket_masks, B <=
 // DIRT_BUCKET_MASK_MAX_BUCKETS; common/constants.h): the range's bits
-// cleared in the tile's bucket occupancy mask (the fill pass gives each of
-// those buckets a node).
+// cleared in the tile's occupancy mask: with uniform buckets those of the
+// depth slabs it meets (dirt_mask_slab), with adaptive ones those of its
+// buckets (the fill pass gives each of them a node).
 #include "common/layout.h"
 #include "common/rows.glsl"
 
@@ -52,8 +53,13 @@ void main()
     }
 #endif
 #ifdef DIRT_BUCKET_MASKS
-    dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)),
-                  ~dirt_bucket_bits(b0, b1));
+#ifdef DIRT_ADAPTIVE
+    uint bits = dirt_bucket_bits(b0, b1);
+#else
+    uint bits = dirt_bucket_bits(dirt_mask_slab(zmin, tmin, trange),
+                                 dirt_mask_slab(zmax, tmin, trange));
+#endif
+    dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)), ~bits);
 #endif
     uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
     dirt_candidate_store_zw(i, uvec2(first, uint(b0) | (uint(b1) << 16)));

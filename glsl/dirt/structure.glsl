@@ -250,12 +250,25 @@ int dirt_adapt_bucket(uint gt, int f, int B, uint T)
 // (both below DIRT_BUCKET_MASK_MAX_BUCKETS). dirt_bucket_mask_index(gt, B,
 // T): the word of tile gt's mask (B <= DIRT_BUCKET_MASK_MAX_BUCKETS; the
 // layout of the build's bucket kind: DIRT_ADAPTIVE or uniform).
-// dirt_bucket_occupancy(gt, B, T): bit b set when bucket b of tile gt holds
-// a node; every bit set (nothing known) when B has no masks.
+// dirt_bucket_occupancy(gt, B, T): uniform buckets: bit s set when some
+// candidate's depth range in tile gt meets its depth slab s (dirt_mask_slab);
+// adaptive: bit b set when bucket b holds a node; every bit set (nothing
+// known) when B has no masks. dirt_mask_slab(z, zlo, range): the slab of
+// depth z in a tile of bounds [zlo, zlo + range] (uniform buckets' masks;
+// the count pass and the trace compute it alike, so it is monotonic in z
+// for both: a range that meets a span has a slab in the span's).
 uint dirt_bucket_bits(int b0, int b1)
 {
     uint lo = uint(min(b0, b1)), hi = uint(max(b0, b1));
     return ((2u << hi) - 1u) & ~((1u << lo) - 1u);
+}
+
+int dirt_mask_slab(float z, float zlo, float range)
+{
+    if (!(range > 0.0))
+        return 0;
+    return clamp(int(floor(float(DIRT_BUCKET_MASK_SLABS) * (z - zlo) / range)), 0,
+                 DIRT_BUCKET_MASK_SLABS - 1);
 }
 
 uint dirt_bucket_mask_index(uint gt, int B, uint T)

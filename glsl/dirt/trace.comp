@@ -333,9 +333,13 @@ struct best_hit {
 // Walks the buckets of tile `tile` (global index `gt`) that the ray's depth
 // span [wa, wb] overlaps. Returns true when a hit inside the tile was found.
 // DIRT_BUCKET_MASKS (a structure with bucket occupancy masks:
-// dirt_ads_opts.bucket_masks, B <= DIRT_BUCKET_MASK_MAX_BUCKETS): a tile
-// none of whose buckets in the span holds a node is not walked (exact: the
-// walk would read only empty lists); the buckets of a walked tile are
+// dirt_ads_opts.bucket_masks, B <= DIRT_BUCKET_MASK_MAX_BUCKETS): a tile is
+// not walked when no candidate's depth range meets the span's depth slabs
+// (uniform buckets; dirt_mask_slab) or none of its buckets in the span
+// holds a node (adaptive). Exact: a hit accepted in the tile within the span
+// lies in its primitive's range there, so a slab of that range is one of the
+// span's; a hit in the tile's eps band outside the span is found in the tile
+// whose span holds it (see g_seg_lim). The buckets of a walked tile are
 // walked as without.
 bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 tile, uint gt,
                float wa, float wb, float tmin, inout best_hit best)
@@ -362,7 +366,12 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     // in the span's buckets holds nothing for the ray and is not walked
     // (reading the mask is part of the level-0 Hi-Z step, not a tile
     // walked).
-    if ((dirt_bucket_occupancy(gt, B, T) & dirt_bucket_bits(ba, bb)) == 0u)
+#ifdef DIRT_ADAPTIVE
+    uint span_bits = dirt_bucket_bits(ba, bb);
+#else
+    uint span_bits = dirt_bucket_bits(dirt_mask_slab(wa, zlo, range), dirt_mask_slab(wb, zlo, range));
+#endif
+    if ((dirt_bucket_occupancy(gt, B, T) & span_bits) == 0u)
         return false;
     COUNT_WORK(x);
 #endif

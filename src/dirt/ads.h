@@ -74,12 +74,15 @@ typedef struct dirt_ads_opts {
                                  more triangles. false: plain ids, the trace
                                  without the test */
     bool bucket_masks;        /* each build also keeps one occupancy word per tile
-                                 (bit b: bucket b holds a node; common/constants.h,
+                                 (uniform buckets: bit s: a candidate's range meets
+                                 depth slab s of DIRT_BUCKET_MASK_SLABS; adaptive:
+                                 bit b: bucket b holds a node; common/constants.h,
                                  DIRT_BUCKET_MASK_*), when buckets <=
                                  DIRT_BUCKET_MASK_MAX_BUCKETS, and the trace skips a
-                                 tile whose buckets in the ray's depth span are all
-                                 empty (fewer tiles walked, the same hits); false or
-                                 more buckets: no masks, the trace without the test */
+                                 tile that holds nothing in the ray's depth span by
+                                 its mask (fewer tiles walked, the same hits); false
+                                 or more buckets: no masks, the trace without the
+                                 test */
 } dirt_ads_opts;
 
 /* The large primitives of `frame`: of the triangles whose area is at least
@@ -115,8 +118,10 @@ typedef struct dirt_ads_data {
     uint16_t *edges;          /* adaptive buckets: (buckets + 1) per tile, e(0) = 0 ..
                                  e(B) = H (common/constants.h, DIRT_ADAPT_*); NULL
                                  when uniform */
-    uint32_t *masks;          /* bucket occupancy per tile (bit b: bucket b holds a
-                                 node; common/constants.h, DIRT_BUCKET_MASK_*); NULL
+    uint32_t *masks;          /* occupancy per tile (uniform buckets: bit s: a
+                                 candidate's range meets depth slab s; adaptive:
+                                 bit b: bucket b holds a node; common/constants.h,
+                                 DIRT_BUCKET_MASK_*); NULL
                                  without them (bucket_masks off, or buckets >
                                  DIRT_BUCKET_MASK_MAX_BUCKETS) */
     uint32_t (*nodes)[2];     /* (primitive, next); the primitive without its

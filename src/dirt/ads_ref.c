@@ -113,6 +113,16 @@ static int bucket_of(double z, double tmin, double range, int B)
     return b < 0 ? 0 : b > B - 1 ? B - 1 : (int)b;
 }
 
+/* The depth slab of z in a tile of bounds [tmin, tmin + range], as
+ * dirt_mask_slab (dirt/structure.glsl) in double. */
+static int slab_of(double z, double tmin, double range)
+{
+    if (!(range > 0))
+        return 0;
+    double s = floor(DIRT_BUCKET_MASK_SLABS * (z - tmin) / range);
+    return s < 0 ? 0 : s > DIRT_BUCKET_MASK_SLABS - 1 ? DIRT_BUCKET_MASK_SLABS - 1 : (int)s;
+}
+
 void ads_ref_box_cells(const dirt_view *v, int S, int tx, int ty, const double b[4],
                        double margin, int cells[4])
 {
@@ -214,9 +224,9 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
         qsort(gp, n, sizeof(*gp), cmp_gpu_pair);
         double tmin = d->depth[t][0], tmax = d->depth[t][1];
         double range = tmax - tmin;
-        /* The occupancy mask: the buckets of the GPU's lists exactly, those
-         * of every exact range (shrunk by tol), within those of the
-         * widened ones. */
+        /* The occupancy mask (uniform buckets: one bit per depth slab): the
+         * slabs of every exact range (shrunk by tol), within those of the
+         * widened ones, and empty exactly where the GPU's lists are. */
         uint32_t listed = 0, required = 0, allowed = 0;
         double stol = tol * fmax(fabs(tmax), 1e-6);
         for (size_t i = 0; i < n; i++)
@@ -224,17 +234,17 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
         for (uint32_t k = req.offsets[t]; d->masks && k < req.offsets[t + 1]; k++) {
             const ads_ref_entry *r = &req.entries[k];
             double lo = fmin(r->zmin + stol, r->zmax), hi = fmax(r->zmax - stol, lo);
-            for (int b = bucket_of(lo, tmin, range, B); b <= bucket_of(hi, tmin, range, B); b++)
-                required |= 1u << b;
+            for (int s = slab_of(lo, tmin, range); s <= slab_of(hi, tmin, range); s++)
+                required |= 1u << s;
         }
         for (uint32_t k = allow.offsets[t]; d->masks && k < allow.offsets[t + 1]; k++) {
             const ads_ref_entry *a = &allow.entries[k];
-            int amin = bucket_of(a->zmin - stol, tmin, range, B);
-            int amax = bucket_of(a->zmax + stol, tmin, range, B);
-            for (int b = amin; b <= amax; b++)
-                allowed |= 1u << b;
+            int amin = slab_of(a->zmin - stol, tmin, range);
+            int amax = slab_of(a->zmax + stol, tmin, range);
+            for (int s = amin; s <= amax; s++)
+                allowed |= 1u << s;
         }
-        if (d->masks && (d->masks[t] != listed || (required & ~d->masks[t]) ||
+        if (d->masks && ((d->masks[t] == 0) != (listed == 0) || (required & ~d->masks[t]) ||
                          (d->masks[t] & ~allowed)))
             rep->bad_masks++;
         /* Walk the primitives found on the GPU. */

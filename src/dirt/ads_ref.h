@@ -38,10 +38,11 @@ typedef struct ads_check_report {
     uint64_t bad_buckets;      /* buckets not exactly those the range overlaps */
     uint64_t bad_bounds;       /* tile depth bounds outside the reference sandwich */
     uint64_t bad_list_links;   /* node index out of range in a list */
-    uint64_t bad_masks;        /* tiles whose bucket occupancy mask is not exactly
-                                  the buckets with a node, or misses a bucket an
-                                  exact range overlaps, or has one no allowed
-                                  range overlaps; 0 when there are no masks */
+    uint64_t bad_masks;        /* tiles whose occupancy mask (one bit per depth
+                                  slab, uniform buckets) is empty where the lists
+                                  are not or the reverse, or misses a slab an exact
+                                  range meets, or has one no allowed range meets;
+                                  0 when there are no masks */
     uint64_t bad_rects;        /* sub-tile rectangles (dirt_ads_data.rects): a pair
                                   whose rectangle misses a cell of its exact clip's
                                   box, takes one beyond its widened clip's box

@@ -195,13 +195,34 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
                 bb += e[k] <= fb;
             }
         }
-        /* the bucket occupancy (a structure with masks: opts.bucket_masks,
-         * B <= 32): a tile whose lists in the span's buckets are all empty
-         * is not walked; without masks it is walked (its empty lists read) */
+        /* the occupancy (a structure with masks: opts.bucket_masks, B <= 32)
+         * a tile is not walked by: with adaptive buckets when its lists in
+         * the span's buckets are all empty, with uniform ones when its mask
+         * (read back) has no bit of the span's depth slabs (rays within
+         * rounding of a slab edge left out); without masks it is walked (its
+         * empty lists read) */
         bool any = false;
         for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++)
             any = any || d->heads[(size_t)b * d->num_tiles + gt] != DIRT_LIST_END;
-        if (!any && d->masks) {
+        bool walk = any;
+        if (d->masks && !d->edges) {
+            double sa = 0, sb = 0;
+            if (range > 0) {
+                sa = DIRT_BUCKET_MASK_SLABS * (wa - zlo) / range;
+                sb = DIRT_BUCKET_MASK_SLABS * (wb - zlo) / range;
+                if ((fabs(sa - round(sa)) < 1e-3 && sa > 0.5 &&
+                     sa < DIRT_BUCKET_MASK_SLABS - 0.5) ||
+                    (fabs(sb - round(sb)) < 1e-3 && sb > 0.5 && sb < DIRT_BUCKET_MASK_SLABS - 0.5))
+                    c.ambiguous = true;
+            }
+            int s0 = (int)fmin(fmax(floor(fmin(sa, sb)), 0), DIRT_BUCKET_MASK_SLABS - 1);
+            int s1 = (int)fmin(fmax(floor(fmax(sa, sb)), 0), DIRT_BUCKET_MASK_SLABS - 1);
+            uint32_t bits = 0;
+            for (int s = s0; s <= s1; s++)
+                bits |= 1u << s;
+            walk = (d->masks[gt] & bits) != 0;
+        }
+        if (!walk && d->masks) {
             c.skipped++;
             continue;
         }
@@ -439,7 +460,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
         }
     }
     fprintf(stderr, "%s B=%d, %s, masks %s: %zu missing rays checked (%zu tiles walked, %zu "
-            "of them empty in the span's buckets, %zu such skipped, %zu with exact triangle "
+            "of them empty in the span's buckets, %zu skipped by the masks, %zu with exact triangle "
             "tests; large primitives: %zu "
             "grid steps, %zu tests), %zu within rounding left out, %zu found a hit; differ: "
             "steps %zu, tiles %zu, nodes %zu, tests %zu\n",
