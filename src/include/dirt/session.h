@@ -150,12 +150,13 @@ typedef struct dirt_session_opts {
                                    (doc/dirt-build.md, "Sub-tile rectangles"): fewer
                                    triangle tests per ray; the same hits and image; scenes
                                    below 2^24 triangles. false (default): plain lists */
-    bool bucket_masks;          /* dirt: one word per tile marks which of its depth buckets
-                                   hold nodes (B <= 32), and rays skip the tiles whose
-                                   buckets in their depth span are all empty
-                                   (doc/dirt-build.md, "Bucket occupancy masks"): fewer
-                                   tiles walked; the same hits and image. false (default):
-                                   no masks (on llvmpipe they cost 3-6 % of the frame) */
+    bool bucket_masks;          /* dirt: one word per tile marks which of 32 depth slabs
+                                   of the tile hold a primitive (with adaptive buckets:
+                                   which buckets hold nodes; B <= 32), and rays skip the
+                                   tiles with nothing in their depth span
+                                   (doc/dirt-build.md, "Pass 3"): fewer tiles walked; the
+                                   same hits and image. false (default): no masks (on
+                                   llvmpipe they cost 3-6 % of the frame) */
     int hiz_levels;             /* 0 = the whole pyramid; n: levels 0 .. n-1 */
     enum dirt_fetch_mode fetch; /* dirt: compute (default) or raster Fetch */
     bool direct_visibility;     /* dirt: first hits from a visibility buffer */

@@ -123,9 +123,9 @@ typedef struct dirt_ads_stats {
      * tile; build scratch). Their passes' time is in ms[DIRT_ADS_PASS_COUNT]. */
     enum dirt_depth_buckets depth_buckets;
     uint64_t bytes_bucket_edges, bytes_bucket_histogram;
-    /* Bucket occupancy masks (B <= 32, else 0; in both totals, not in
-     * Table 3): 4 B per tile, after the heads in the list-heads buffer;
-     * the trace skips the tiles and buckets they show empty. */
+    /* Occupancy masks (B <= 32, else 0; in both totals, not in Table 3):
+     * 4 B per tile, after the heads in the list-heads buffer; the trace
+     * skips the tiles they show holding nothing in a ray's depth span. */
     uint64_t bytes_bucket_masks;
 } dirt_ads_stats;
 
