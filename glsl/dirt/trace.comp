@@ -277,6 +277,18 @@ ivec2 level_size(dirt_gpu_view v, int d)
     return (v.size.zw + (1 << d) - 1) >> d;
 }
 
+// A clip-space point's position in tile units of a view of `tiles` tiles
+// (w > 0), and the tile holding it, clamped to the view's `count` tiles.
+vec2 tile_coord(vec4 c, vec2 tiles)
+{
+    return (c.xy / c.w * 0.5 + 0.5) * tiles;
+}
+
+ivec2 tile_of(vec4 c, vec2 tiles, ivec2 count)
+{
+    return clamp(ivec2(floor(tile_coord(c, tiles))), ivec2(0), count - 1);
+}
+
 // Clips [t0, t1] to the view frustum; false when nothing is left.
 bool clip_to_view(vec4 co, vec4 cd, inout float t0, inout float t1)
 {
@@ -503,9 +515,7 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
     } else {
         vec4 ca = co + t0 * cd, cb = co + t1 * cd;
         if (ca.w > 0.0 && cb.w > 0.0) {
-            ivec2 ta = clamp(ivec2(floor((ca.xy / ca.w * 0.5 + 0.5) * tiles)), ivec2(0), v.size.zw - 1);
-            ivec2 tb = clamp(ivec2(floor((cb.xy / cb.w * 0.5 + 0.5) * tiles)), ivec2(0), v.size.zw - 1);
-            ivec2 x = ta ^ tb;
+            ivec2 x = tile_of(ca, tiles, v.size.zw) ^ tile_of(cb, tiles, v.size.zw);
             d = min(top, findMSB(x.x | x.y) + 1);
         }
     }
@@ -514,7 +524,7 @@ bool trace_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
             return true;
         COUNT_WORK(y);
         vec4 c = co + t * cd;
-        vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
+        vec2 tc = tile_coord(c, tiles);
         ivec2 size = level_size(v, d);
         // A point on a cell boundary belongs to the cell it moves into.
         ivec2 tile = ivec2(mix(floor(tc), ceil(tc) - 1.0, back));
@@ -648,7 +658,7 @@ void large_view(ray_setup rs, vec3 org, vec3 dir, int view, float tmin, float t0
             return;
         COUNT_WORK(y);
         vec4 c = co + t * cd;
-        vec2 tc = (c.xy / c.w * 0.5 + 0.5) * tiles;
+        vec2 tc = tile_coord(c, tiles);
         ivec2 tile = ivec2(mix(floor(tc), ceil(tc) - 1.0, back));
         tile = mix(max(tile, bound), min(tile, bound), back);
         tail = tail || any(mix(greaterThanEqual(bound, v.size.zw), lessThan(bound, ivec2(0)), back));
