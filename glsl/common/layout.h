@@ -85,6 +85,27 @@ struct dirt_gpu_light {
 #define DIRT_SUBTILE_MAX_PRIMS 0x01000000u
 #define DIRT_SUBTILE_MARGIN 0.05
 
+/* Node depth ranges (dirt_ads_opts.node_depths; doc/dirt-build.md, "Node
+ * depth ranges"): an id node's next word is next | d << 24, next the next
+ * node's index (DIRT_NODE_NEXT_END: none) and d = lo | hi << 4 the
+ * primitive's depth range in its bucket, in DIRT_NODE_DEPTH_SLABS sub-slabs
+ * of the bucket (dirt_node_depth_pos, dirt/structure.glsl; d =
+ * DIRT_NODE_DEPTH_FULL: the whole bucket). A build stores them only when
+ * its node count is at most DIRT_NODE_DEPTH_MAX_NODES (an index must fit 24
+ * bits); otherwise its next words are plain (dirt_ads_stats.node_depths
+ * says which). The count pass hands the fill pass the range's two ends in
+ * the candidate's w: first bucket | lo << 12 | last bucket << 16 | hi << 28
+ * (B at most DIRT_NODE_DEPTH_MAX_BUCKETS; a middle bucket's range is the
+ * whole bucket). */
+#define DIRT_NODE_DEPTH_SLABS 16
+#define DIRT_NODE_DEPTH_SHIFT 24
+#define DIRT_NODE_NEXT_MASK 0x00FFFFFFu
+#define DIRT_NODE_NEXT_END 0x00FFFFFFu
+#define DIRT_NODE_DEPTH_MAX_NODES 0x00FFFFFFu
+#define DIRT_NODE_DEPTH_FULL 0xF0u
+#define DIRT_CAND_BUCKET_MASK 0xFFFu
+#define DIRT_NODE_DEPTH_MAX_BUCKETS 4095
+
 /* One vertex of the per-frame vertex buffer (32 bytes); vertex v of
  * primitive p is entry 3p + v. */
 struct dirt_gpu_vertex {

@@ -15,6 +15,9 @@
 // cleared in the tile's occupancy mask: with uniform buckets those of the
 // depth slabs it meets (dirt_mask_slab), with adaptive ones those of its
 // buckets (the fill pass gives each of them a node).
+// DIRT_NODE_DEPTHS (dirt_ads_opts.node_depths): the range's sub-slabs in its
+// first and last buckets in the candidate's w for the fill pass
+// (common/layout.h, DIRT_NODE_DEPTH_*).
 #include "common/layout.h"
 #include "common/rows.glsl"
 
@@ -61,6 +64,22 @@ void main()
 #endif
     dirt_head_and(dirt_bucket_mask_index(c.y, B, uint(params.config.w)), ~bits);
 #endif
+    uint w = uint(b0) | (uint(b1) << 16);
+#ifdef DIRT_NODE_DEPTHS
+    // The range's sub-slab in its first bucket and in its last.
+#ifdef DIRT_ADAPTIVE
+    float qa = dirt_node_depth_q(zmin, tmin, trange, H), qb = dirt_node_depth_q(zmax, tmin, trange, H);
+    uint lo = dirt_node_depth_sub(qa, float(dirt_adapt_edge(c.y, b0, B, T)),
+                                  float(dirt_adapt_edge(c.y, b0 + 1, B, T)));
+    uint hi = dirt_node_depth_sub(qb, float(dirt_adapt_edge(c.y, b1, B, T)),
+                                  float(dirt_adapt_edge(c.y, b1 + 1, B, T)));
+#else
+    float qa = dirt_node_depth_q(zmin, tmin, trange, B), qb = dirt_node_depth_q(zmax, tmin, trange, B);
+    uint lo = dirt_node_depth_sub(qa, float(b0), float(b0 + 1));
+    uint hi = dirt_node_depth_sub(qb, float(b1), float(b1 + 1));
+#endif
+    w |= (lo << 12) | (hi << 28);
+#endif
     uint first = atomicAdd(counters.fill.x, uint(b1 - b0 + 1));
-    dirt_candidate_store_zw(i, uvec2(first, uint(b0) | (uint(b1) << 16)));
+    dirt_candidate_store_zw(i, uvec2(first, w));
 }

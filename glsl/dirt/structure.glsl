@@ -245,6 +245,39 @@ int dirt_adapt_bucket(uint gt, int f, int B, uint T)
 }
 #endif
 
+// ---- node depth ranges (common/layout.h, DIRT_NODE_DEPTH_*) ----
+// dirt_node_depth_q(z, zlo, range, n): depth z's position in a tile of
+// bounds [zlo, zlo + range] cut into n equal parts, before the floor of eq.
+// 1a/1b (n = B: uniform buckets, bucket b is [b, b + 1); n = H: adaptive,
+// bucket b is [e(b), e(b+1)) in fine bins), clamped to [-1, n + 1]; 0 when
+// range is 0. dirt_node_depth_sub(q, q0, q1): the sub-slab of position q in
+// the bucket [q0, q1), of DIRT_NODE_DEPTH_SLABS equal ones, clamped to them
+// (0 for an empty bucket). The count pass and the trace compute both alike,
+// so for one bucket they are monotonic in z for both: a primitive's range
+// that meets the ray's depth span there has a sub-slab among the span's.
+float dirt_node_depth_q(float z, float zlo, float range, int n)
+{
+    if (!(range > 0.0))
+        return 0.0;
+    return clamp(float(n) * (z - zlo) / range, -1.0, float(n + 1));
+}
+
+uint dirt_node_depth_sub(float q, float q0, float q1)
+{
+    if (!(q1 > q0))
+        return 0u;
+    float s = floor(float(DIRT_NODE_DEPTH_SLABS) * (q - q0) / (q1 - q0));
+    return uint(clamp(s, 0.0, float(DIRT_NODE_DEPTH_SLABS - 1)));
+}
+
+// The next node of raw next word `raw` of a build that stored depth ranges
+// (DIRT_LIST_END at the end of the list), and its range byte.
+uint dirt_node_next_of(uint raw)
+{
+    uint n = raw & DIRT_NODE_NEXT_MASK;
+    return n == DIRT_NODE_NEXT_END ? DIRT_LIST_END : n;
+}
+
 // ---- bucket occupancy masks (common/constants.h, DIRT_BUCKET_MASK_*) ----
 // dirt_bucket_bits(b0, b1): the bits of buckets min(b0, b1) .. max(b0, b1)
 // (both below DIRT_BUCKET_MASK_MAX_BUCKETS). dirt_bucket_mask_index(gt, B,

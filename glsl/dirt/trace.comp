@@ -44,6 +44,11 @@
 // built with them: dirt_ads_opts.bucket_masks, B <= 32; common/constants.h):
 // a tile none of whose buckets in the ray's depth span holds a node is not
 // walked (see walk_tile).
+// Node depth ranges (built with DIRT_NODE_DEPTHS, for a structure built
+// with them: dirt_ads_opts.node_depths; u_node_depths says whether this
+// build stored them, common/layout.h): a node whose depth range in its
+// bucket misses the ray's depth span there is skipped before its vertices
+// are read (see walk_tile).
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
 // work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
 // tests, large primitives' included) of ray i.
@@ -107,6 +112,9 @@ layout(location = DIRT_LOC_TRACE_HIZ_TOP) uniform int u_hiz_top;  // highest lev
 layout(location = DIRT_LOC_TRACE_ANY_HIT) uniform int u_any_hit;  // 1: stop at the first accepted hit
 layout(location = DIRT_LOC_TRACE_LINK) uniform int u_link;     // 1: link hits per ADS tile (raster Fetch)
 layout(location = DIRT_LOC_TRACE_FROM_SURFACES) uniform int u_from_surfaces; // 1: rays leave surfaces
+#ifdef DIRT_NODE_DEPTHS
+layout(location = DIRT_LOC_TRACE_NODE_DEPTHS) uniform int u_node_depths; // 1: the build stored them
+#endif
 
 #define MAX_STEPS 65536
 
@@ -353,6 +361,10 @@ struct best_hit {
 // span's; a hit in the tile's eps band outside the span is found in the tile
 // whose span holds it (see g_seg_lim). The buckets of a walked tile are
 // walked as without.
+// DIRT_NODE_DEPTHS (node depth ranges, when u_node_depths): a node whose
+// sub-slabs in its bucket (dirt_node_depth_sub) miss the span's there is
+// skipped, exact for the same reason: such a hit's depth lies in both its
+// primitive's range and the span, and the sub-slab is monotonic in depth.
 bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 tile, uint gt,
                float wa, float wb, float tmin, inout best_hit best)
 {
@@ -388,6 +400,17 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     COUNT_WORK(x);
 #endif
     int step = bb >= ba ? 1 : -1;
+#ifdef DIRT_NODE_DEPTHS
+    // The span's ends as positions in the tile (dirt_node_depth_q), nearer
+    // first; its far end moves to each hit found.
+#ifdef DIRT_ADAPTIVE
+#define NQ H
+#else
+#define NQ B
+#endif
+    float qa = dirt_node_depth_q(min(wa, wb), zlo, range, NQ);
+    float qb = dirt_node_depth_q(max(wa, wb), zlo, range, NQ);
+#endif
     // The tile's NDC rectangle, moved out like the build's clip.
     ivec2 lo = tile * S, hi = min(lo + S, v.size.xy);
     vec2 sz = vec2(v.size.xy);
@@ -396,10 +419,33 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
     bool found = false;
     for (int b = ba;; b += step) {
         uint node = dirt_head(uint(b) * T + gt);
+#ifdef DIRT_NODE_DEPTHS
+        // The span's sub-slabs in this bucket: a node whose range has none
+        // of them is skipped before its vertices are read.
+#ifdef DIRT_ADAPTIVE
+        float q0 = float(dirt_adapt_edge(gt, b, B, T)), q1 = float(dirt_adapt_edge(gt, b + 1, B, T));
+#else
+        float q0 = float(b), q1 = float(b + 1);
+#endif
+        uint ra = dirt_node_depth_sub(qa, q0, q1), rb = dirt_node_depth_sub(qb, q0, q1);
+#endif
         while (node != DIRT_LIST_END) {
             uvec2 n = dirt_node(node);
             COUNT_WORK(z);
+#ifdef DIRT_NODE_DEPTHS
+            uint d = DIRT_NODE_DEPTH_FULL;
+            if (u_node_depths != 0) {
+                d = n.y >> DIRT_NODE_DEPTH_SHIFT;
+                node = dirt_node_next_of(n.y);
+            } else {
+                node = n.y;
+            }
+            // (a read node, not a test; not kept in g_never)
+            if ((d & 15u) > rb || (d >> 4) < ra)
+                continue;
+#else
             node = n.y;
+#endif
             uint p = n.x;
 #ifdef DIRT_SUB_TILES
             // (a read node, not a test; not kept in g_never: the primitive
@@ -436,6 +482,19 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             found = true;
             if (u_any_hit != 0)
                 return true;
+#ifdef DIRT_NODE_DEPTHS
+            // The span now ends at the hit: a nearer hit (or a tie) of
+            // another primitive in this tile lies at the hit's depth or
+            // before it along the ray, inside that primitive's range, so a
+            // node whose range lies wholly beyond is skipped.
+            float qh = dirt_node_depth_q(co.w + t * cd.w, zlo, range, NQ);
+            if (cd.w > 0.0)
+                qb = min(qb, qh);
+            else if (cd.w < 0.0)
+                qa = max(qa, qh);
+            ra = dirt_node_depth_sub(qa, q0, q1);
+            rb = dirt_node_depth_sub(qb, q0, q1);
+#endif
         }
         if (node != DIRT_LIST_END)
             g_cut = true;

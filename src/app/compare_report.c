@@ -265,8 +265,8 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
     compare_bprintf(&b, "In the layout of the DIRT paper's Table 2 (MMRT / DIRT at equal "
                         "settings). Records: MMRT fragments, DIRT id nodes (c n_p). MB: the "
                         "structure's used bytes. Ratios DIRT / MMRT. S: DIRT's tile size, with "
-                        "+grid, +sub-tiles, +masks when --large-grid, --sub-tiles, "
-                        "--bucket-masks were on.\n\n");
+                        "+grid, +sub-tiles, +masks, +depths when --large-grid, --sub-tiles, "
+                        "--bucket-masks, --node-depths were on.\n\n");
     compare_bprintf(&b, "| scene | triangles | resolution | views | S | B (D/M) | thickness | spp "
                         "| MMRT fragments | MMRT MB | MMRT build ms | MMRT trace ms | DIRT entries "
                         "| DIRT MB | DIRT build ms | DIRT trace ms | entries ratio | MB ratio | "
@@ -281,10 +281,11 @@ bool compare_write_table(const char *prog, const char *dir, const cJSON *doc)
                         : compare_jd(r, "mmrt.thickness_used");
         /* DIRT's trace options, when on, beside S (its structure) */
         char opts[64];
-        snprintf(opts, sizeof(opts), "%s%s%s",
+        snprintf(opts, sizeof(opts), "%s%s%s%s",
                  cJSON_IsTrue(compare_jget(r, "settings.dirt_large_grid")) ? " +grid" : "",
                  cJSON_IsTrue(compare_jget(r, "settings.dirt_sub_tiles")) ? " +sub-tiles" : "",
-                 cJSON_IsTrue(compare_jget(r, "settings.dirt_bucket_masks")) ? " +masks" : "");
+                 cJSON_IsTrue(compare_jget(r, "settings.dirt_bucket_masks")) ? " +masks" : "",
+                 cJSON_IsTrue(compare_jget(r, "settings.dirt_node_depths")) ? " +depths" : "");
         compare_bprintf(&b, "| %s | %.0f | %.0fx%.0f | %s | %.0f%s | %.0f/%.0f | %.4g | %.0f |",
                         compare_js(r, "scene.name"), compare_jd(r, "scene.triangles"),
                         compare_jd(r, "settings.width"), compare_jd(r, "settings.height"),

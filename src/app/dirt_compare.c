@@ -42,6 +42,7 @@ typedef struct options {
     bool large_grid;            /* --large-grid: DIRT's large primitives through their grid */
     bool sub_tiles;             /* --sub-tiles: DIRT's list nodes with sub-tile rectangles */
     bool bucket_masks;          /* --bucket-masks: DIRT's per-tile bucket occupancy masks */
+    bool node_depths;           /* --node-depths: DIRT's list nodes with depth ranges */
     bool quality, images, quiet;
     bool count_work;            /* --count-work: each row's work per ray type */
     uint32_t seed;
@@ -114,6 +115,7 @@ static bool from_app(const app_opts *a, options *o)
     o->large_grid = a->s.large_grid;
     o->sub_tiles = a->s.sub_tiles;
     o->bucket_masks = a->s.bucket_masks;
+    o->node_depths = a->s.node_depths;
     o->quality = !a->no_quality;
     o->count_work = a->s.count_work;
     o->images = a->images;
@@ -176,6 +178,7 @@ static int g_large; /* --dirt-large: one value for the whole sweep */
 static bool g_large_grid; /* --large-grid: likewise */
 static bool g_sub_tiles;  /* --sub-tiles: likewise */
 static bool g_bucket_masks; /* --bucket-masks: likewise */
+static bool g_node_depths; /* --node-depths: likewise */
 static enum dirt_depth_buckets g_depth_buckets; /* --depth-buckets: DIRT's, the whole sweep */
 
 /* The library's messages, printed as its default sink prints them; the
@@ -293,7 +296,7 @@ static dirt_session_opts session_opts(const scene_info *si, const config *c, enu
         .tile_size = e == DIRT_ENGINE_DIRT ? c->tile : 0,
         .buckets = e == DIRT_ENGINE_DIRT ? c->dbuckets : c->mbuckets,
         .large = g_large ? g_large : -1, .large_grid = g_large_grid, .sub_tiles = g_sub_tiles,
-        .bucket_masks = g_bucket_masks,
+        .bucket_masks = g_bucket_masks, .node_depths = g_node_depths,
         .depth_buckets = e == DIRT_ENGINE_DIRT ? g_depth_buckets : DIRT_DEPTH_BUCKETS_UNIFORM,
         .march = (enum dirt_mmrt_march)c->march, .march_samples = c->samples,
         .thickness = thickness,
@@ -512,6 +515,8 @@ static void config_id(const options *o, const scene_info *si, const config *c, c
         snprintf(buf + strlen(buf), n - strlen(buf), "|T1");
     if (o->bucket_masks) /* (likewise) */
         snprintf(buf + strlen(buf), n - strlen(buf), "|M1");
+    if (o->node_depths) /* (likewise) */
+        snprintf(buf + strlen(buf), n - strlen(buf), "|N1");
 }
 
 static void ratio(cJSON *to, const char *name, double dirt, double mmrt)
@@ -591,6 +596,7 @@ static cJSON *run_config(dirt_gpu *gpu, const scene_info *si, const config *c,
     cJSON_AddBoolToObject(set, "dirt_large_grid", o->large_grid);
     cJSON_AddBoolToObject(set, "dirt_sub_tiles", o->sub_tiles);
     cJSON_AddBoolToObject(set, "dirt_bucket_masks", o->bucket_masks);
+    cJSON_AddBoolToObject(set, "dirt_node_depths", o->node_depths);
     cJSON_AddStringToObject(set, "dirt_depth_buckets", app_depth_buckets_names[g_depth_buckets]);
     cJSON_AddNumberToObject(set, "mmrt_buckets", c->mbuckets);
     cJSON_AddNumberToObject(set, "mmrt_thickness", th);
@@ -722,6 +728,7 @@ int main(int argc, char **argv)
     g_large_grid = o.large_grid;
     g_sub_tiles = o.sub_tiles;
     g_bucket_masks = o.bucket_masks;
+    g_node_depths = o.node_depths;
     g_depth_buckets = ao.s.depth_buckets;
     dirt_log_set_callback(log_sink, NULL);
     if (!o.num_scenes || !o.dir) {

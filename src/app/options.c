@@ -221,6 +221,12 @@ static const app_opt_def table[APP_NUM_OPTS] = {
         "depth span (doc/dirt-build.md, \"Pass 3\"): fewer tiles walked (mirror69k shadow "
         "rays 0.66x, slats69k diffuse rays 0.50x), the same hits and image. Off by default: on "
         "llvmpipe the frame was 3-6 % slower with it", NULL, NULL},
+    [APP_OPT_NODE_DEPTHS] = {APP_OPT_NODE_DEPTHS, NULL, "--node-depths", NULL, NULL, 'F',
+        OFF(s.node_depths), 0, 0, NULL, "every DIRT list node also records its primitive's "
+        "depth range in its bucket (16 sub-slabs, in the node's next word: no memory), and a "
+        "ray skips the nodes whose range its depth span in the tile misses (doc/dirt-build.md, "
+        "\"Node depth ranges\"): fewer exact triangle tests per ray where a tile lists many "
+        "primitives at different depths. The same hits and image; buckets <= 4095", NULL, NULL},
     [APP_OPT_HIZ_TOP] = {APP_OPT_HIZ_TOP, NULL, "--hiz-top", NULL, "L", 'l', OFF(hiz_top), -1, 15,
         NULL, "highest Hi-Z level the march climbs to; 0 = tiles only, no Hi-Z; -1 = the "
         "pyramid's top", "-1", NULL},

@@ -180,6 +180,8 @@ void view_render_args(const viewer *v, char *buf, size_t size)
         ADD(" --sub-tiles");
     if (o->engine == DIRT_ENGINE_DIRT && o->bucket_masks)
         ADD(" --bucket-masks");
+    if (o->engine == DIRT_ENGINE_DIRT && o->node_depths)
+        ADD(" --node-depths");
     if (o->hiz_levels)
         ADD(" --hiz-top %d", o->hiz_levels - 1);
     if (o->fetch)

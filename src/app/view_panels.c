@@ -161,6 +161,7 @@ static void panel_settings(viewer *v)
             dirt_ui_checkbox("large primitives' grid", &o->s.large_grid);
             dirt_ui_checkbox("sub-tile rectangles", &o->s.sub_tiles);
             dirt_ui_checkbox("bucket occupancy masks", &o->s.bucket_masks);
+            dirt_ui_checkbox("node depth ranges", &o->s.node_depths);
             int top = (int)o->hiz_top;
             if (dirt_ui_slider_int("Hi-Z top (-1 = all)", &top, -1, 15))
                 o->hiz_top = top;

@@ -83,6 +83,16 @@ typedef struct dirt_ads_opts {
                                  its mask (fewer tiles walked, the same hits); false
                                  or more buckets: no masks, the trace without the
                                  test */
+    bool node_depths;         /* every id node's next word also carries its primitive's
+                                 depth range in its bucket, in DIRT_NODE_DEPTH_SLABS
+                                 sub-slabs (common/layout.h, DIRT_NODE_DEPTH_*), and
+                                 the trace skips a node whose range the ray's depth
+                                 span misses (fewer triangle tests, the same hits; no
+                                 memory); B at most DIRT_NODE_DEPTH_MAX_BUCKETS. A
+                                 build of more than DIRT_NODE_DEPTH_MAX_NODES nodes
+                                 stores plain next words instead
+                                 (dirt_ads_stats.node_depths). false: plain, the trace
+                                 without the test */
 } dirt_ads_opts;
 
 /* The large primitives of `frame`: of the triangles whose area is at least
@@ -128,6 +138,9 @@ typedef struct dirt_ads_data {
                                  rectangle (sub_tiles) */
     uint8_t *rects;           /* sub_tiles: each node's rectangle byte
                                  (common/layout.h); NULL without them */
+    uint8_t *node_depths;     /* node_depths stored by the build: each node's range
+                                 byte lo | hi << 4 (common/layout.h), its next word
+                                 then plain in nodes; NULL without them */
     uint32_t num_nodes;
     int num_large;            /* the large primitives, left out of the lists */
     uint32_t large[DIRT_ADS_MAX_LARGE];

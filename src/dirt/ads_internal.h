@@ -53,6 +53,12 @@ struct dirt_ads {
     gl_split depth;           /* ADS_DEPTH */
     GLuint views, params, counters;
     size_t node_capacity;     /* nodes */
+    /* Node depth ranges (opts.node_depths): whether the last build stored
+     * them (its node count at most node_depth_max_nodes:
+     * DIRT_NODE_DEPTH_MAX_NODES, lowered by tests to reach the plain
+     * fallback). */
+    bool node_depths_stored;
+    size_t node_depth_max_nodes;
     size_t cand_capacity;     /* candidates (0: unknown, the bound pass sizes it) */
     size_t rec_capacity;      /* compute build: work records, after the candidates in
                                  the same buffer (0 for the raster build) */
@@ -74,16 +80,18 @@ struct dirt_ads {
     size_t large_cells_size;
     /* trace */
     /* The trace's builds, [alpha | large << 1 | count << 2 | grid << 3 |
-     * sub-tiles << 4 | masks << 5]:
+     * sub-tiles << 4 | masks << 5 | node depths << 6]:
      * DIRT_TRACE_ALPHA (alpha tests), DIRT_TRACE_LARGE (large primitives;
      * llvmpipe runs a loop's body once even when no invocation enters it, so
      * the build without them is kept for structures that have none),
      * DIRT_TRACE_COUNT (work counters), DIRT_TRACE_LARGE_GRID (with large:
      * through their grid, opts.large_grid), DIRT_SUB_TILES (the nodes'
      * rectangles, opts.sub_tiles), DIRT_BUCKET_MASKS (the tiles' bucket
-     * occupancy masks, ads_has_masks). [0] made at creation (and for
-     * each build's layouts), the others on first use. */
-    gl_split_program prog_trace[64];
+     * occupancy masks, ads_has_masks), DIRT_NODE_DEPTHS (the nodes' depth
+     * ranges, opts.node_depths; whether a build stored them is a uniform).
+     * [0] made at creation (and for each build's layouts), the others on
+     * first use. */
+    gl_split_program prog_trace[128];
     GLuint rays, hits, work;
     size_t rays_size, hits_size, work_size;
     gl_timer trace_timer;

@@ -104,6 +104,28 @@ static const ads_ref_entry *find_entry(const ads_ref *r, int tile, uint32_t prim
     return lo < r->offsets[tile + 1] && r->entries[lo].prim == prim ? &r->entries[lo] : NULL;
 }
 
+/* Node depth ranges (common/layout.h, DIRT_NODE_DEPTH_*): the sub-slab of
+ * depth z in bucket b of tile t, as dirt_node_depth_q and
+ * dirt_node_depth_sub (dirt/structure.glsl) in double, with the structure's
+ * buckets (uniform, or the tile's edges read back); -1 for an empty
+ * bucket (adaptive: equal edges), whose nodes' ranges say nothing (every
+ * sub-slab is 0 there, in the trace too). */
+static int node_sub_of(const dirt_ads_data *d, int t, int b, double z, double tmin, double range)
+{
+    double n = d->edges ? d->fine_bins : d->buckets, q = 0, q0 = b, q1 = b + 1;
+    if (range > 0)
+        q = fmin(fmax(n * (z - tmin) / range, -1.0), n + 1);
+    if (d->edges) {
+        const uint16_t *e = d->edges + (size_t)(d->buckets + 1) * (size_t)t;
+        q0 = e[b];
+        q1 = e[b + 1];
+    }
+    if (!(q1 > q0))
+        return -1;
+    double s = floor(DIRT_NODE_DEPTH_SLABS * (q - q0) / (q1 - q0));
+    return s < 0 ? 0 : s > DIRT_NODE_DEPTH_SLABS - 1 ? DIRT_NODE_DEPTH_SLABS - 1 : (int)s;
+}
+
 /* Bucket of depth z in a tile with bounds [tmin, tmin + range] (eq. 1a/1b). */
 static int bucket_of(double z, double tmin, double range, int B)
 {
@@ -167,6 +189,7 @@ typedef struct gpu_pair {
     uint32_t prim;
     int bucket;
     uint8_t rect;
+    uint8_t depth; /* its node's depth range byte (node depth ranges; 0 without) */
 } gpu_pair;
 
 static int cmp_gpu_pair(const void *a, const void *b)
@@ -215,7 +238,8 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
                     }
                     gp = g;
                 }
-                gp[n++] = (gpu_pair){d->nodes[node][0], b, d->rects ? d->rects[node] : 0};
+                gp[n++] = (gpu_pair){d->nodes[node][0], b, d->rects ? d->rects[node] : 0,
+                                     d->node_depths ? d->node_depths[node] : 0};
                 node = d->nodes[node][1];
             }
         }
@@ -302,6 +326,30 @@ bool ads_check(const dirt_view_set *set, const dirt_frame *f, const dirt_ads_dat
                               g[3], need[0], need[1], need[2], need[3], may[0], may[1],
                               may[2], may[3]);
                 rep->bad_rects += bad;
+            }
+            /* Node depth ranges: each node's sub-slabs hold those of the
+             * exact range (shrunk by tol) in its bucket and lie within those
+             * of the widened one. */
+            double ds = tol * fmax(fabs(tmax), 1e-6);
+            for (size_t k = i; d->node_depths && k < j; k++) {
+                int b = gp[k].bucket, lo = gp[k].depth & 15, hi = gp[k].depth >> 4;
+                bool bad = lo > hi;
+                if (node_sub_of(d, t, b, tmin, tmin, range) < 0) {
+                    rep->bad_node_depths += bad;
+                    continue;
+                }
+                if (a)
+                    bad = bad || lo < node_sub_of(d, t, b, a->zmin - ds, tmin, range) ||
+                          hi > node_sub_of(d, t, b, a->zmax + ds, tmin, range);
+                if (r) {
+                    double rl = fmin(r->zmin + ds, r->zmax), rh = fmax(r->zmax - ds, rl);
+                    bad = bad || lo > node_sub_of(d, t, b, rl, tmin, range) ||
+                          hi < node_sub_of(d, t, b, rh, tmin, range);
+                }
+                if (bad && rep->bad_node_depths < 5)
+                    DIRT_WARN("tile %d prim %u bucket %d: node depth range %d..%d", t, prim, b,
+                              lo, hi);
+                rep->bad_node_depths += bad;
             }
             i = j;
         }

@@ -48,6 +48,10 @@ typedef struct ads_check_report {
                                   box, takes one beyond its widened clip's box
                                   widened by DIRT_SUBTILE_MARGIN cells, or differs
                                   between its buckets */
+    uint64_t bad_node_depths;  /* node depth ranges (dirt_ads_data.node_depths): a
+                                  node whose sub-slabs miss one of its exact range's
+                                  in its bucket, take one beyond its widened range's,
+                                  or run backwards (lo > hi) */
 } ads_check_report;
 
 /* The cells {x0, x1, y0, y1} of the DIRT_SUBTILE_GRID grid over tile
@@ -66,7 +70,11 @@ void ads_ref_rect_cells(uint8_t r, int cells[4]);
  * compared with relative tolerance `tol`. With sub-tile rectangles
  * (data->rects) every pair's rectangle holds the cells of the exact clip's
  * NDC box (eps 0) and lies within those of the widened clip's box widened
- * by DIRT_SUBTILE_MARGIN cells (bad_rects). */
+ * by DIRT_SUBTILE_MARGIN cells (bad_rects). With node depth ranges
+ * (data->node_depths) every node's sub-slabs hold those of the pair's
+ * exact range in its bucket and lie within those of its widened range,
+ * with the structure's own buckets, uniform or adaptive
+ * (bad_node_depths). */
 bool ads_check(const dirt_view_set *set, const dirt_frame *frame, const dirt_ads_data *data,
                double tol, ads_check_report *report);
 

@@ -177,12 +177,19 @@ bool ads_programs(dirt_ads *a)
     /* the count pass: through the edges (adaptive), setting the bucket
      * masks (ads_has_masks); the heads' array only for those */
     bool masks = ads_has_masks(a);
-    glsl_define cd[2] = {ad, {"DIRT_BUCKET_MASKS", "1"}};
-    size_t ncd = (adapt ? 1 : 0) + (masks ? 1 : 0);
-    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"),
-                       adapt ? cd : cd + 1, ncd, adapt || masks ? C | D | H : C | D) &&
-           ads_program(a, &a->prog_fill, "dirt/fill.comp", COMP("dirt/fill.comp"), NULL, 0,
-                       C | N | H) &&
+    /* node depth ranges: the count pass hands them to the fill pass */
+    bool nd = a->opts.node_depths;
+    glsl_define ndd = {"DIRT_NODE_DEPTHS", "1"};
+    glsl_define cd[3] = {ad};
+    size_t ncd = adapt ? 1 : 0;
+    if (masks)
+        cd[ncd++] = (glsl_define){"DIRT_BUCKET_MASKS", "1"};
+    if (nd)
+        cd[ncd++] = ndd;
+    return ads_program(a, &a->prog_count, "dirt/count.comp", COMP("dirt/count.comp"), cd, ncd,
+                       adapt || masks || nd ? C | D | H : C | D) &&
+           ads_program(a, &a->prog_fill, "dirt/fill.comp", COMP("dirt/fill.comp"), &ndd,
+                       nd ? 1 : 0, C | N | H) &&
            ads_program(a, &a->prog_trace[0], "dirt/trace.comp", COMP("dirt/trace.comp"), &ad,
                        adapt ? 1 : 0, ADS_TRACE_ARRAYS) &&
            ads_program(a, &a->prog_fetch, "dirt/fetch.comp", COMP("dirt/fetch.comp"), NULL, 0,
@@ -239,6 +246,12 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
                    DIRT_ADAPT_MAX_BUCKETS);
         goto error;
     }
+    if (a->opts.node_depths && a->opts.buckets > DIRT_NODE_DEPTH_MAX_BUCKETS) {
+        DIRT_ERROR("%d buckets: node depth ranges take at most %d", a->opts.buckets,
+                   DIRT_NODE_DEPTH_MAX_BUCKETS);
+        goto error;
+    }
+    a->node_depth_max_nodes = DIRT_NODE_DEPTH_MAX_NODES;
     if (a->opts.views.mode < DIRT_VIEWS_SINGLE || a->opts.views.mode > DIRT_VIEWS_CUBE_CAMERA) {
         DIRT_ERROR("unknown view mode %d", (int)a->opts.views.mode);
         goto error;
@@ -740,6 +753,8 @@ static bool exec_fill(fg_ctx *ctx, void *user)
     if (n) {
         ads_bind_split(a);
         glUseProgram(a->prog_fill.id);
+        if (a->opts.node_depths)
+            glUniform1i(DIRT_LOC_FILL_NODE_DEPTHS, a->node_depths_stored ? 1 : 0);
         gl_dispatch_rows(n);
         glUseProgram(0);
     }
@@ -1047,9 +1062,15 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (!ensure_nodes(a, g) || !refresh(a))
             goto done;
     }
+    /* Node depth ranges fit the next words while every index fits 24 bits. */
+    a->node_depths_stored = a->opts.node_depths && a->counters_cpu.fill.x <= a->node_depth_max_nodes;
+    if (a->opts.node_depths && !a->node_depths_stored)
+        DIRT_INFO("%u id nodes: more than %zu, so no node depth ranges in this build",
+                  a->counters_cpu.fill.x, a->node_depth_max_nodes);
     if (!run_graph(a->fill, ms, &clock))
         goto done;
     st->fill_runs = 1;
+    st->node_depths = a->node_depths_stored;
     /* (Its readers fence: the trace, Fetch and visibility at their entry,
      * dirt_ads_read before its readback.) */
     struct dirt_gpu_ads_counters counters = a->counters_cpu;
@@ -1155,6 +1176,20 @@ bool dirt_ads_read(dirt_ads *a, dirt_ads_data *out)
             out->nodes[i][0] &= DIRT_SUBTILE_PRIM_MASK;
         }
     }
+    if (a->node_depths_stored) {
+        /* the range bytes apart, the next words plain */
+        out->node_depths = malloc((size_t)out->num_nodes + 1);
+        if (!out->node_depths) {
+            DIRT_ERROR("out of memory reading the structure back");
+            dirt_ads_data_free(out);
+            return false;
+        }
+        for (uint32_t i = 0; i < out->num_nodes; i++) {
+            uint32_t next = out->nodes[i][1] & DIRT_NODE_NEXT_MASK;
+            out->node_depths[i] = (uint8_t)(out->nodes[i][1] >> DIRT_NODE_DEPTH_SHIFT);
+            out->nodes[i][1] = next == DIRT_NODE_NEXT_END ? DIRT_LIST_END : next;
+        }
+    }
     if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE) {
         int B = out->buckets, T = out->num_tiles;
         size_t words = (size_t)DIRT_ADAPT_EDGE_WORDS(B) * (size_t)T;
@@ -1208,6 +1243,7 @@ void dirt_ads_data_free(dirt_ads_data *d)
     free(d->masks);
     free(d->nodes);
     free(d->rects);
+    free(d->node_depths);
     free(d->edges);
     memset(d, 0, sizeof(*d));
 }

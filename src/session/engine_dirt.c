@@ -92,6 +92,7 @@ static bool reshape(engine *e, const engine_env *env)
                                                         .large_grid = o->large_grid,
                                                         .sub_tiles = o->sub_tiles,
                                                         .bucket_masks = o->bucket_masks,
+                                                        .node_depths = o->node_depths,
                                                         .depth_buckets = o->depth_buckets});
     return d->ads != NULL;
 }

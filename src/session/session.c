@@ -5,6 +5,7 @@
  * rebuilds the engine, and the common figures. */
 #include "dirt/session.h"
 #include "common/constants.h"
+#include "common/layout.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -73,6 +74,9 @@ bool dirt_session_check_opts(const dirt_session_opts *o, char *why, size_t size)
     else if (o->depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE && o->buckets > DIRT_ADAPT_MAX_BUCKETS)
         snprintf(why, size, "%d buckets: adaptive depth buckets take at most %d", o->buckets,
                  DIRT_ADAPT_MAX_BUCKETS);
+    else if (o->node_depths && o->buckets > DIRT_NODE_DEPTH_MAX_BUCKETS)
+        snprintf(why, size, "%d buckets: node depth ranges take at most %d", o->buckets,
+                 DIRT_NODE_DEPTH_MAX_BUCKETS);
     else if (!session_engines[o->engine]->check_opts ||
              session_engines[o->engine]->check_opts(o, why, size))
         return true;
@@ -284,7 +288,7 @@ bool dirt_session_set_opts(dirt_session *s, const dirt_session_opts *opts, bool 
                   old.force_emulation != n.force_emulation || old.build != n.build ||
                   old.large != n.large || old.large_grid != n.large_grid ||
                   old.depth_buckets != n.depth_buckets || old.sub_tiles != n.sub_tiles ||
-                  old.bucket_masks != n.bucket_masks;
+                  old.bucket_masks != n.bucket_masks || old.node_depths != n.node_depths;
     bool tracer = old.hiz_levels != n.hiz_levels || old.fetch != n.fetch ||
                   old.direct_visibility != n.direct_visibility || old.march != n.march ||
                   old.march_samples != n.march_samples || old.thickness != n.thickness ||

@@ -183,7 +183,8 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         fprintf(stderr,
                 "%-14s %-11s S=%d B=%-2d: %6llu tiles, %7llu required pairs, %7llu on GPU, "
                 "%7llu allowed | missing %llu, beyond tol %llu, dup %llu, buckets %llu, "
-                "bounds %llu, links %llu, masks %llu, rects %llu, pyramid %llu | n_p %llu c "
+                "bounds %llu, links %llu, masks %llu, rects %llu, node depths %llu, pyramid "
+                "%llu | n_p %llu c "
                 "%.2f runs "
                 "%d/%d\n",
                 label, mode_name(opts->views.mode), set->tile_size, opts->buckets,
@@ -193,7 +194,7 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
                 (unsigned long long)r.duplicates, (unsigned long long)r.bad_buckets,
                 (unsigned long long)r.bad_bounds, (unsigned long long)r.bad_list_links,
                 (unsigned long long)r.bad_masks, (unsigned long long)r.bad_rects,
-                (unsigned long long)pyr, (unsigned long long)st->samples,
+                (unsigned long long)r.bad_node_depths, (unsigned long long)pyr, (unsigned long long)st->samples,
                 st->buckets_per_sample, st->depth_runs, st->fill_runs);
         CHECK(r.missing == 0);
         CHECK(r.beyond_tolerance == 0);
@@ -208,6 +209,9 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
         CHECK((data.masks != NULL) == want_masks);
         CHECK(r.bad_rects == 0);
         CHECK((data.rects != NULL) == opts->sub_tiles);
+        CHECK(r.bad_node_depths == 0);
+        CHECK((data.node_depths != NULL) == opts->node_depths);
+        CHECK(st->node_depths == opts->node_depths);
         CHECK(pyr == 0);
         CHECK(st->samples == r.gpu_pairs);
         /* A first build runs each pass once (the bound pass sized the
@@ -220,7 +224,9 @@ static inline bool build_and_check(dirt_gpu *gpu, const char *label, const dirt_
              r.bad_buckets == 0 && r.bad_bounds == 0 && r.bad_list_links == 0 &&
              r.bad_masks == 0 &&
              (data.masks != NULL) == want_masks &&
-             r.bad_rects == 0 && (data.rects != NULL) == opts->sub_tiles && pyr == 0;
+             r.bad_rects == 0 && (data.rects != NULL) == opts->sub_tiles &&
+             r.bad_node_depths == 0 && (data.node_depths != NULL) == opts->node_depths &&
+             pyr == 0;
         dirt_ads_data_free(&data);
     }
     dirt_ads_destroy(ads);

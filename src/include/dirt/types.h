@@ -127,6 +127,11 @@ typedef struct dirt_ads_stats {
      * 4 B per tile, after the heads in the list-heads buffer; the trace
      * skips the tiles they show holding nothing in a ray's depth span. */
     uint64_t bytes_bucket_masks;
+    /* Node depth ranges (dirt_ads_opts.node_depths, session option
+     * node_depths): whether the last build stored them in its nodes' next
+     * words (no bytes of their own); false when off, or when the build had
+     * more than 2^24 - 1 nodes and stored plain next words. */
+    bool node_depths;
 } dirt_ads_stats;
 
 /* ---- MMRT: the A-buffer (doc/mmrt.md) ---- */
