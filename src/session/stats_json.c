@@ -58,6 +58,7 @@ static void add_details(cJSON *o, const dirt_session_stats *s)
         cJSON_AddNumberToObject(o, "fill_runs", a->fill_runs);
         cJSON_AddNumberToObject(o, "depth_runs", a->depth_runs);
         cJSON_AddBoolToObject(o, "bound_pass", a->bound_pass);
+        cJSON_AddBoolToObject(o, "node_depths", a->node_depths);
         cJSON_AddStringToObject(o, "build", a->build == DIRT_BUILD_COMPUTE ? "compute" : "raster");
         cJSON_AddNumberToObject(o, "work_records", (double)a->work_records);
         cJSON_AddNumberToObject(o, "large_primitives", a->num_large);

@@ -283,6 +283,28 @@ for t in off:
     assert a["rays"] == b["rays"] and b["tiles"] <= a["tiles"], (t, a, b)
 assert sum(on[t]["tiles"] for t in on) < sum(off[t]["tiles"] for t in off)
 PY
+# Node depth ranges (--node-depths): the same image bit for bit, alone and
+# with every other trace option and adaptive depth buckets; the build says
+# it stored them; no bytes of their own; the same tiles and list nodes read
+# on closest-hit rays, no more triangle tests on any of those ray types and
+# fewer in all.
+expect_rc 0 "node depth ranges" -- -o "$out/nd.exr" -W 32 -H 24 --spp 2 --node-depths --count-work --stats "$out/nd.json"
+"$exr" --exact "$out/nd.exr" "$out/d.exr" && ok || fail "--node-depths changed the image"
+expect_rc 0 "node depth ranges with every trace option, adaptive buckets" -- -o "$out/nd2.exr" -W 32 -H 24 --spp 2 --node-depths --sub-tiles --bucket-masks --large-grid --depth-buckets adaptive
+"$exr" --exact "$out/nd2.exr" "$out/d.exr" && ok || fail "--node-depths with every option changed the image"
+python3 - "$out/w.json" "$out/nd.json" <<'PY' && ok || fail "--node-depths' work counts and bytes"
+import json, sys
+offj, onj = (json.load(open(p)) for p in sys.argv[1:])
+assert onj["node_depths"] is True and offj["node_depths"] is False
+assert onj["bytes_total"] == offj["bytes_total"], (offj["bytes_total"], onj["bytes_total"])
+off, on = offj["frames"][0]["work"], onj["frames"][0]["work"]
+for t in off:
+    a, b = off[t], on[t]
+    assert a["rays"] == b["rays"] and a["tiles"] == b["tiles"], t
+    assert t == "visibility" or a["list_nodes"] == b["list_nodes"], t
+    assert t == "visibility" or b["triangle_tests"] <= a["triangle_tests"], (t, a, b)
+assert sum(on[t]["triangle_tests"] for t in on) < sum(off[t]["triangle_tests"] for t in off)
+PY
 # The ray sort (--sort-rays): the same image bit for bit, its passes ran, its
 # buffers counted (unsorted rays and batch: 36 B per pixel and a 16-byte
 # header; scratch: a counter per bucket and a key per pixel).

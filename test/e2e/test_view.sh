@@ -238,11 +238,12 @@ if [ -r "$anim" ]; then
     fail "turning and dimming the map changed nothing"; else ok; fi
 fi
 
-# 4d-4f. DIRT's trace options turned on while the window is open (the large
-#     primitives' grid, sub-tile rectangles, bucket occupancy masks), each in
+# 4d-4g. DIRT's trace options turned on while the window is open (the large
+#     primitives' grid, sub-tile rectangles, bucket occupancy masks, node
+#     depth ranges), each in
 #     its own run: the structure is rebuilt, the image is the one without it
 #     bit for bit (section 1's), and the reported options carry it.
-for opt in large-grid sub-tiles bucket-masks; do
+for opt in large-grid sub-tiles bucket-masks node-depths; do
   printf 'wait-samples 1\nset %s on\nwait-frames 1\nwait-samples 3\nsave-image %s\nreport %s\nquit\n' \
     "$opt" "$tmp/$opt.exr" "$tmp/$opt.json" >"$tmp/s.txt"
   run_view "$opt" --window 160x120 --no-ui --engine dirt --seed 7 --bounces 3 --script "$tmp/s.txt" -q ||

@@ -171,6 +171,21 @@ def test_bucket_masks_option(scene):
     assert changed["ads"]["bytes_bucket_masks"] > 0
 
 
+def test_node_depths_option(scene):
+    """node_depths (dirt_session_opts): the same image bit for bit, the
+    build says it stored them, no bytes of their own, the same list nodes
+    read and fewer triangle tests per secondary ray; a change rebuilds the
+    structure."""
+    off, on, changed = _trace_option(scene, "node_depths")
+    assert not off["ads"]["node_depths"] and on["ads"]["node_depths"]
+    assert off["ads"]["bytes_total_used"] == on["ads"]["bytes_total_used"]
+    work = [off["work"][2], on["work"][2]]  # specular rays
+    assert work[0]["rays"] == work[1]["rays"] > 0
+    assert work[0]["list_nodes"] == work[1]["list_nodes"]
+    assert work[1]["triangle_tests"] < work[0]["triangle_tests"]
+    assert changed["ads"]["node_depths"]
+
+
 def test_adaptive_depth_buckets_by_name(scene):
     """depth_buckets mirrors the session option: adaptive buckets (by name)
     give the uniform ones' image bit for bit, and their memory is counted."""
