@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # DIRT's trace options that are bets on a GPU (each off by default, each the
 # same image bit for bit): --bucket-masks (doc/dirt-build.md, "Pass 3"),
-# --sub-tiles ("Sub-tile rectangles") and --large-grid (doc/dirt-trace.md,
-# "The large primitives' grid"), each on its own against all off.
+# --sub-tiles ("Sub-tile rectangles"), --node-depths ("Node depth ranges")
+# and --large-grid (doc/dirt-trace.md, "The large primitives' grid"), each on
+# its own against all off.
 #  - Work (--count-work, one run per arm; counts, fine on a loaded machine):
 #    per ray type tiles walked, Hi-Z steps and triangle tests per ray.
 #  - Time (REPEATS > 0; a quiet machine or a lent GPU): dirt-render of the
@@ -15,7 +16,7 @@
 # perf/gpu-check.sh runs it on the lent GPU. Record figures with their
 # command, machine and driver in perf/results/.
 #
-#   [OPTIONS='--bucket-masks --sub-tiles --large-grid'] \
+#   [OPTIONS='--bucket-masks --sub-tiles --node-depths --large-grid'] \
 #   perf/bench-options.sh [BUILD_DIR] [WxH] [SPP] [REPEATS] [SCENE...]
 #   (defaults build 256x192 4 3 default; REPEATS 0: the counts only)
 set -euo pipefail
@@ -26,7 +27,7 @@ reps=${4:-3}
 shift $(( $# > 4 ? 4 : $# ))
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(default)
-read -r -a opts <<<"${OPTIONS:---bucket-masks --sub-tiles --large-grid}"
+read -r -a opts <<<"${OPTIONS:---bucket-masks --sub-tiles --node-depths --large-grid}"
 render=$build/src/app/dirt-render
 cmp=$build/test/e2e/exr_compare
 [ -x "$render" ] || { echo "bench-options: no $render" >&2; exit 2; }

@@ -17,7 +17,8 @@
 #      Mrays/s per ray type, DIRT on the GPU vs Embree on the CPU's cores
 #      (bench-trace);
 #   4. DIRT's trace options on and off (perf/bench-options.sh:
-#      --bucket-masks, --sub-tiles, --large-grid; counts and times);
+#      --bucket-masks, --sub-tiles, --node-depths, --large-grid; counts and
+#      times);
 #   5. the scaling benchmark (perf/bench-scale.py: 10^4..10^7 triangles at
 #      1920x1080, 0.1..8 MP at 10^6, both DIRT builds, MMRT, Embree and the
 #      raster preview; the scenes are made there, which needs python3-numpy;
@@ -91,7 +92,7 @@ part "DIRT vs MMRT, $res (dirt-compare, no quality)" 150 "$build/src/app/dirt-co
   part "Mrays/s per ray type, $res: DIRT (GPU) vs Embree ($(nproc) CPU threads)" 90 \
     "$build/perf/bench-trace" "${scenes[@]}" -W "$W" -H "$H"
 # The trace options that are bets on a GPU (off by default; on llvmpipe
-# they cost time): --bucket-masks, --sub-tiles and --large-grid, each on
+# they cost time): --bucket-masks, --sub-tiles, --node-depths and --large-grid, each on
 # against all off, counts and times (the images checked bit for bit), on the
 # check's scenes and mirror69k (made here, as perf/gen-scenes.sh does; the
 # masks skip the most tiles there). OPT_REPS repeats (3; 1 on a software
@@ -101,7 +102,7 @@ opt_scenes=("${scenes[@]}")
 mkdir -p "$out/scenes"
 timeout 60 "$py" "$root/perf/make-scale-scene.py" "$out/scenes/mirror69k.glb" 69000 --kind mirror \
   >/dev/null 2>&1 && opt_scenes+=("$out/scenes/mirror69k.glb")
-part "DIRT options on/off, $res: --bucket-masks, --sub-tiles, --large-grid (bench-options)" 150 \
+part "DIRT options on/off, $res: --bucket-masks, --sub-tiles, --node-depths, --large-grid (bench-options)" 150 \
   "$root/perf/bench-options.sh" "$build" "$res" 4 "${OPT_REPS:-$([ $software = 1 ] && echo 1 || echo 3)}" \
   "${opt_scenes[@]}"
 # (the part shows the last 60 lines; the whole tables beside the report)
