@@ -33,6 +33,11 @@
  *    the cells of the piece's NDC box widened by DIRT_SUBTILE_MARGIN cells
  *    is a node read but no test (rays within rounding of a cell line left
  *    out as above);
+ *  - with node depth ranges (default scene's diffuse rays, the soup,
+ *    uniform buckets with masks and adaptive ones with rectangles) a node
+ *    whose range (read back) misses the span's sub-slabs in its bucket is a
+ *    node read but no test (rays within rounding of a sub-slab edge left
+ *    out as above);
  *  - the full pyramid walks the same tiles, nodes and triangle tests as
  *    the level-0 march (rays within rounding left out as above) and finds
  *    the same hits, with and without the from_surfaces hint; with it, a ray
@@ -248,11 +253,35 @@ static cpu_count count_ray(const dirt_view_set *set, const dirt_ads_data *d, con
                     c.ambiguous = true;
             }
         }
+        /* node depth ranges (d->node_depths): the span's sub-slabs in each
+         * bucket (its ends placed in the tile as H or B parts, then cut into
+         * the bucket's 16); a node whose sub-slabs miss them is read, not
+         * tested (these rays hit nothing: no narrowing to a hit) */
+        double qs[2] = {0, 0};
+        for (int k = 0; d->node_depths && range > 0 && k < 2; k++)
+            qs[k] = fmin(fmax(H * ((k ? hi : lo) - zlo) / range, -1.0), H + 1.0);
         for (int b = ba < bb ? ba : bb; b <= (ba < bb ? bb : ba); b++) {
+            int rs[2] = {0, DIRT_NODE_DEPTH_SLABS - 1};
+            if (d->node_depths) {
+                double q0 = b, q1 = b + 1;
+                if (d->edges) {
+                    q0 = d->edges[(size_t)(B + 1) * (size_t)gt + (size_t)b];
+                    q1 = d->edges[(size_t)(B + 1) * (size_t)gt + (size_t)b + 1];
+                }
+                for (int k = 0; k < 2; k++) {
+                    double s = q1 > q0 ? DIRT_NODE_DEPTH_SLABS * (qs[k] - q0) / (q1 - q0) : 0;
+                    if (fabs(s - round(s)) < 1e-3 && s > 0.5 && s < DIRT_NODE_DEPTH_SLABS - 0.5)
+                        c.ambiguous = true;
+                    rs[k] = (int)fmin(fmax(floor(s), 0), DIRT_NODE_DEPTH_SLABS - 1);
+                }
+            }
             for (uint32_t node = d->heads[(size_t)b * d->num_tiles + gt]; node != DIRT_LIST_END;
                  node = d->nodes[node][1]) {
                 uint32_t p = d->nodes[node][0];
                 c.nodes++;
+                if (d->node_depths &&
+                    ((d->node_depths[node] & 15) > rs[1] || (d->node_depths[node] >> 4) < rs[0]))
+                    continue;
                 if (d->rects) {
                     int g[4];
                     ads_ref_rect_cells(d->rects[node], g);
@@ -377,7 +406,7 @@ static void count_large(const dirt_ads *a, const dirt_ray *r, enum large_mode mo
 static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                          const dirt_camera *cam, dirt_ray *rays, size_t n, int buckets,
                          enum large_mode mode, enum dirt_depth_buckets depth_buckets,
-                         bool sub_tiles, bool masks)
+                         bool sub_tiles, bool masks, bool node_depths)
 {
     dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
     dirt_ref_hit *ref = malloc(n * sizeof(*ref));
@@ -389,7 +418,7 @@ static void check_counts(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                        .buckets = buckets, .force_emulation = true,
                        .large = mode == LARGE_NONE ? -1 : 0, .large_grid = mode == LARGE_GRID,
                        .depth_buckets = depth_buckets, .sub_tiles = sub_tiles,
-                       .bucket_masks = masks};
+                       .bucket_masks = masks, .node_depths = node_depths};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(accel && ads && dirt_ads_build(ads, f, cam));
     if (ads && mode != LARGE_NONE)
@@ -716,18 +745,20 @@ int main(void)
         size_t cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_DIFFUSE, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
             check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, (enum large_mode)m,
-                         DIRT_DEPTH_BUCKETS_UNIFORM, false, m != LARGE_ALL);
+                         DIRT_DEPTH_BUCKETS_UNIFORM, false, m != LARGE_ALL, false);
         check_counts(gpu, "default diffuse", f, &cam, rays, cnt, 8, LARGE_NONE,
-                     DIRT_DEPTH_BUCKETS_UNIFORM, false, false);
+                     DIRT_DEPTH_BUCKETS_UNIFORM, false, false, false);
         check_counts(gpu, "default diffuse adaptive", f, &cam, rays, cnt, 8, LARGE_NONE,
-                     DIRT_DEPTH_BUCKETS_ADAPTIVE, false, true);
+                     DIRT_DEPTH_BUCKETS_ADAPTIVE, false, true, false);
         check_counts(gpu, "default diffuse sub-tiles", f, &cam, rays, cnt, 8, LARGE_ALL,
-                     DIRT_DEPTH_BUCKETS_UNIFORM, true, true);
+                     DIRT_DEPTH_BUCKETS_UNIFORM, true, true, false);
+        check_counts(gpu, "default diffuse node depths", f, &cam, rays, cnt, 8, LARGE_NONE,
+                     DIRT_DEPTH_BUCKETS_UNIFORM, false, false, true);
         check_bvh("default diffuse", f, rays, cnt);
         cnt = dirt_rays_generate(&g, &cam, DIRT_RAY_SPECULAR, 9, rays);
         for (int m = 0; m < LARGE_MODES; m++)
             check_counts(gpu, "default specular", f, &cam, rays, cnt, 4, (enum large_mode)m,
-                         DIRT_DEPTH_BUCKETS_UNIFORM, false, m != LARGE_NONE);
+                         DIRT_DEPTH_BUCKETS_UNIFORM, false, m != LARGE_NONE, false);
         free(rays);
         dirt_gbuffer_free(&g);
         dirt_ref_accel_destroy(accel);
@@ -740,15 +771,19 @@ int main(void)
     dirt_camera_default(s, &cam);
     dirt_ray *rays = random_rays(s, 3000);
     check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM,
-                 false, false);
+                 false, false, false);
     check_counts(gpu, "soup", s, &cam, rays, 3000, 8, LARGE_NONE, DIRT_DEPTH_BUCKETS_UNIFORM,
-                 false, true);
+                 false, true, false);
     check_counts(gpu, "soup adaptive", s, &cam, rays, 3000, 16, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_ADAPTIVE, false, true);
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, false, true, false);
     check_counts(gpu, "soup sub-tiles", s, &cam, rays, 3000, 8, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_UNIFORM, true, true);
+                 DIRT_DEPTH_BUCKETS_UNIFORM, true, true, false);
     check_counts(gpu, "soup adaptive sub-tiles", s, &cam, rays, 3000, 16, LARGE_NONE,
-                 DIRT_DEPTH_BUCKETS_ADAPTIVE, true, false);
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, true, false, false);
+    check_counts(gpu, "soup node depths", s, &cam, rays, 3000, 8, LARGE_NONE,
+                 DIRT_DEPTH_BUCKETS_UNIFORM, false, true, true);
+    check_counts(gpu, "soup adaptive node depths", s, &cam, rays, 3000, 16, LARGE_NONE,
+                 DIRT_DEPTH_BUCKETS_ADAPTIVE, true, false, true);
     check_bvh("soup", s, rays, 3000);
     /* (default diffuse and the soup, uniform buckets: hundreds each way) */
     CHECK_MSG(g_skipped > 0 && g_empty_walked > 0, "empty tiles: %zu skipped with the masks, "
