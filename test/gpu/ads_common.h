@@ -11,6 +11,9 @@
 #include "common/layout.h"
 #include "dirt/ads.h"
 #include "dirt/ads_ref.h"
+#include "dirt/scene.h"
+#include "ref/raytypes.h"
+#include "ref/ref.h"
 
 /* Relative tolerance of depth-bound and bucket-edge comparisons: float
  * rounding of clip-space coordinates (24-bit mantissa, a few operations). */
@@ -161,6 +164,89 @@ static inline void ads_random_ray(const dirt_frame *f, uint32_t *state, dirt_ray
         r->dir[k] = d[k] / sqrtf(l);
     r->tmin = 1e-4f;
     r->tmax = INFINITY;
+}
+
+/* Rays of every type (enum dirt_ray_type order): rays[t], counts[t] of
+ * them. Free with ads_type_rays_free (also after a failed fill). */
+typedef struct ads_type_rays {
+    dirt_ray *rays[DIRT_RAY_TYPES];
+    size_t counts[DIRT_RAY_TYPES];
+} ads_type_rays;
+
+static inline void ads_type_rays_free(ads_type_rays *r)
+{
+    for (int t = 0; t < DIRT_RAY_TYPES; t++)
+        free(r->rays[t]);
+    memset(r, 0, sizeof(*r));
+}
+
+/* The rays of every type from the camera G-buffer of `scene` (w x h pixels,
+ * random numbers from `seed`; dirt_rays_generate). False (a failed check)
+ * when Embree or the G-buffer fails: no rays then. */
+static inline bool ads_gbuffer_rays(dirt_scene *scene, const dirt_frame *f,
+                                    const dirt_camera *cam, int w, int h, uint32_t seed,
+                                    ads_type_rays *out)
+{
+    memset(out, 0, sizeof(*out));
+    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
+    dirt_gbuffer g;
+    bool ok = accel && dirt_gbuffer_build(accel, scene, f, cam, w, h, &g);
+    CHECK(ok);
+    for (int t = 0; ok && t < DIRT_RAY_TYPES; t++) {
+        out->rays[t] = malloc((size_t)w * (size_t)h * sizeof(dirt_ray));
+        CHECK(out->rays[t] != NULL);
+        out->counts[t] = out->rays[t] ? dirt_rays_generate(&g, cam, (enum dirt_ray_type)t,
+                                                           seed, out->rays[t])
+                                      : 0;
+    }
+    if (ok)
+        dirt_gbuffer_free(&g);
+    dirt_ref_accel_destroy(accel);
+    return ok;
+}
+
+/* n random rays from inside f's bounds (ads_random_ray), the same for every
+ * type, the visibility rays' tmax set to vis_tmax. */
+static inline void ads_random_type_rays(const dirt_frame *f, uint32_t *state, size_t n,
+                                        float vis_tmax, ads_type_rays *out)
+{
+    memset(out, 0, sizeof(*out));
+    for (int t = 0; t < DIRT_RAY_TYPES; t++) {
+        out->rays[t] = malloc(n * sizeof(dirt_ray));
+        CHECK(out->rays[t] != NULL);
+        out->counts[t] = out->rays[t] ? n : 0;
+    }
+    for (size_t i = 0; i < n; i++) {
+        dirt_ray r;
+        ads_random_ray(f, state, &r);
+        for (int t = 0; t < DIRT_RAY_TYPES; t++)
+            if (out->rays[t])
+                out->rays[t][i] = r;
+        if (out->rays[DIRT_RAY_VISIBILITY])
+            out->rays[DIRT_RAY_VISIBILITY][i].tmax = vis_tmax;
+    }
+}
+
+/* Two traces' hits of one ray the same: primitive, view, t, u and v bit for
+ * bit; any-hit (visibility) rays: the same occlusion. */
+static inline bool ads_same_hit_bits(const dirt_hit *a, const dirt_hit *b, bool visibility)
+{
+    if (visibility)
+        return (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
+    return a->prim == b->prim && a->view == b->view && !memcmp(&a->t, &b->t, 4) &&
+           !memcmp(&a->u, &b->u, 4) && !memcmp(&a->v, &b->v, 4);
+}
+
+/* A DIRT hit agrees with Embree's as gpu/dirt_hits asks: both miss, or
+ * both hit the same primitive or at the same t within ADS_AGREE_T_TOL
+ * (shared edges); any-hit rays: the same occlusion. */
+#define ADS_AGREE_T_TOL 1e-4
+static inline bool ads_agree_embree(const dirt_hit *d, const dirt_ref_hit *e, bool visibility)
+{
+    bool dh = d->prim != DIRT_HIT_NONE, eh = e->prim != DIRT_REF_MISS;
+    if (visibility || !dh || !eh)
+        return dh == eh;
+    return d->prim == e->prim || fabs(d->t - e->t) <= ADS_AGREE_T_TOL * fmax(e->t, 1e-3);
 }
 
 /* Builds with `opts` and checks; returns false on any discrepancy. */

@@ -32,14 +32,6 @@
 
 static uint32_t g_rng = 4242u; /* ads_rand's state: the soup, then the rays */
 
-static bool same_bits(const dirt_hit *a, const dirt_hit *b, bool visibility)
-{
-    if (visibility)
-        return (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
-    return a->prim == b->prim && a->view == b->view && !memcmp(&a->t, &b->t, 4) &&
-           !memcmp(&a->u, &b->u, 4) && !memcmp(&a->v, &b->v, 4);
-}
-
 enum { V_PLAIN, V_SUB_TILES, V_GRID, V_ADAPTIVE, V_ALL, V_WIDE, VARIANTS };
 static const char *const variant_names[] = {
     "plain", "sub-tiles", "large grid", "adaptive, compute", "sub-tiles+grid+adaptive",
@@ -108,7 +100,7 @@ static void test_hits(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                 size_t differ = 0, more_tiles = 0;
                 uint64_t tiles[2] = {0, 0};
                 for (size_t i = 0; i < n; i++) {
-                    bool same = same_bits(&h[0][i], &h[1][i], vis);
+                    bool same = ads_same_hit_bits(&h[0][i], &h[1][i], vis);
                     differ += !same;
                     if (!same && differ <= 3)
                         fprintf(stderr, "\n  ray %zu: off prim %u t %.9g, on prim %u t %.9g", i,
@@ -154,23 +146,10 @@ static void scene_hits(dirt_gpu *gpu, dirt_scene *scene)
     dirt_frame *f = dirt_scene_evaluate(scene, 0, NULL);
     dirt_camera cam;
     dirt_camera_default(f, &cam);
-    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
-    dirt_gbuffer g;
-    bool ok = accel && dirt_gbuffer_build(accel, scene, f, &cam, 48, 36, &g);
-    CHECK(ok);
-    dirt_ray *rays[DIRT_RAY_TYPES];
-    size_t counts[DIRT_RAY_TYPES];
-    for (int t = 0; t < DIRT_RAY_TYPES; t++) {
-        rays[t] = malloc(48 * 36 * sizeof(dirt_ray));
-        counts[t] = ok ? dirt_rays_generate(&g, &cam, (enum dirt_ray_type)t, 5, rays[t]) : 0;
-    }
-    if (ok)
-        test_hits(gpu, "default", f, &cam, (const dirt_ray *const *)rays, counts);
-    for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        free(rays[t]);
-    if (ok)
-        dirt_gbuffer_free(&g);
-    dirt_ref_accel_destroy(accel);
+    ads_type_rays r;
+    if (ads_gbuffer_rays(scene, f, &cam, 48, 36, 5, &r))
+        test_hits(gpu, "default", f, &cam, (const dirt_ray *const *)r.rays, r.counts);
+    ads_type_rays_free(&r);
     dirt_frame_destroy(f);
     dirt_scene_destroy(scene);
 }
@@ -182,23 +161,10 @@ static void soup_hits(dirt_gpu *gpu)
     dirt_frame *f = ads_soup(3000, 0.06f, &g_rng);
     dirt_camera cam;
     dirt_camera_default(f, &cam);
-    size_t n = 2000;
-    dirt_ray *rays[DIRT_RAY_TYPES];
-    size_t counts[DIRT_RAY_TYPES];
-    for (int t = 0; t < DIRT_RAY_TYPES; t++) {
-        rays[t] = malloc(n * sizeof(dirt_ray));
-        counts[t] = n;
-    }
-    for (size_t i = 0; i < n; i++) {
-        dirt_ray r;
-        ads_random_ray(f, &g_rng, &r);
-        for (int t = 0; t < DIRT_RAY_TYPES; t++)
-            rays[t][i] = r;
-        rays[DIRT_RAY_VISIBILITY][i].tmax = 0.3f;
-    }
-    test_hits(gpu, "soup", f, &cam, (const dirt_ray *const *)rays, counts);
-    for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        free(rays[t]);
+    ads_type_rays r;
+    ads_random_type_rays(f, &g_rng, 2000, 0.3f, &r);
+    test_hits(gpu, "soup", f, &cam, (const dirt_ray *const *)r.rays, r.counts);
+    ads_type_rays_free(&r);
     frame_free(f);
 }
 

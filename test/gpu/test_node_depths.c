@@ -33,7 +33,6 @@
 #include "ref/raytypes.h"
 #include "ref/ref.h"
 
-#define AGREE_T_TOL 1e-4
 #define MIN_AGREEMENT 0.999
 
 static uint32_t g_rng = 4242u; /* ads_rand's state: the soup, then the rays */
@@ -145,22 +144,6 @@ static void test_lists(dirt_gpu *gpu, const char *label, const dirt_frame *f,
     }
 }
 
-static bool same_bits(const dirt_hit *a, const dirt_hit *b, bool visibility)
-{
-    if (visibility)
-        return (a->prim == DIRT_HIT_NONE) == (b->prim == DIRT_HIT_NONE);
-    return a->prim == b->prim && a->view == b->view && !memcmp(&a->t, &b->t, 4) &&
-           !memcmp(&a->u, &b->u, 4) && !memcmp(&a->v, &b->v, 4);
-}
-
-static bool agree(const dirt_hit *d, const dirt_ref_hit *e, bool visibility)
-{
-    bool dh = d->prim != DIRT_HIT_NONE, eh = e->prim != DIRT_REF_MISS;
-    if (visibility || !dh || !eh)
-        return dh == eh;
-    return d->prim == e->prim || fabs(d->t - e->t) <= AGREE_T_TOL * fmax(e->t, 1e-3);
-}
-
 /* The structure of variant k, node depth ranges on or off: 0 plain (raster
  * build), 1 adaptive depth buckets (compute), 2 every other trace option
  * on (grid, rectangles, masks), 3 the fallback: on, with a node limit below
@@ -246,9 +229,9 @@ static void test_hits(dirt_gpu *gpu, const char *label, const dirt_frame *f,
                 size_t differ = 0, agreed = 0;
                 uint64_t tests[2] = {0, 0}, nodes[2] = {0, 0};
                 for (size_t i = 0; i < n; i++) {
-                    bool same = same_bits(&h[0][i], &h[1][i], vis);
+                    bool same = ads_same_hit_bits(&h[0][i], &h[1][i], vis);
                     differ += !same;
-                    agreed += agree(&h[1][i], &ref[i], vis);
+                    agreed += ads_agree_embree(&h[1][i], &ref[i], vis);
                     for (int on = 0; on < 2; on++) {
                         tests[on] += w[on][i].triangle_tests;
                         nodes[on] += w[on][i].list_nodes;
@@ -298,47 +281,21 @@ static void test_hits(dirt_gpu *gpu, const char *label, const dirt_frame *f,
 static void scene_hits(dirt_gpu *gpu, const char *label, dirt_scene *scene, const dirt_frame *f,
                        const dirt_camera *cam)
 {
-    dirt_ref_accel *accel = dirt_ref_accel_create(f, NULL);
-    dirt_gbuffer g;
-    bool ok = accel && dirt_gbuffer_build(accel, scene, f, cam, 48, 36, &g);
-    CHECK(ok);
-    dirt_ray *rays[DIRT_RAY_TYPES];
-    size_t counts[DIRT_RAY_TYPES];
-    for (int t = 0; t < DIRT_RAY_TYPES; t++) {
-        rays[t] = malloc(48 * 36 * sizeof(dirt_ray));
-        counts[t] = ok ? dirt_rays_generate(&g, cam, (enum dirt_ray_type)t, 5, rays[t]) : 0;
-    }
-    if (ok)
-        test_hits(gpu, label, f, cam, (const dirt_ray *const *)rays, counts);
-    for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        free(rays[t]);
-    if (ok)
-        dirt_gbuffer_free(&g);
-    dirt_ref_accel_destroy(accel);
+    ads_type_rays r;
+    if (ads_gbuffer_rays(scene, f, cam, 48, 36, 5, &r))
+        test_hits(gpu, label, f, cam, (const dirt_ray *const *)r.rays, r.counts);
+    ads_type_rays_free(&r);
 }
 
 /* Random rays from inside the soup's box, every "type" the same rays
- * (visibility: a shorter segment). */
+ * (visibility: tmax 0.7). */
 static void soup_hits(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam)
 {
-    size_t n = 2000;
-    dirt_ray *rays[DIRT_RAY_TYPES];
-    size_t counts[DIRT_RAY_TYPES];
-    for (int t = 0; t < DIRT_RAY_TYPES; t++) {
-        rays[t] = malloc(n * sizeof(dirt_ray));
-        counts[t] = n;
-    }
+    ads_type_rays r;
     g_rng = 1234u;
-    for (size_t i = 0; i < n; i++) {
-        dirt_ray r;
-        ads_random_ray(f, &g_rng, &r);
-        for (int t = 0; t < DIRT_RAY_TYPES; t++)
-            rays[t][i] = r;
-        rays[DIRT_RAY_VISIBILITY][i].tmax = 0.7f;
-    }
-    test_hits(gpu, "soup", f, cam, (const dirt_ray *const *)rays, counts);
-    for (int t = 0; t < DIRT_RAY_TYPES; t++)
-        free(rays[t]);
+    ads_random_type_rays(f, &g_rng, 2000, 0.7f, &r);
+    test_hits(gpu, "soup", f, cam, (const dirt_ray *const *)r.rays, r.counts);
+    ads_type_rays_free(&r);
 }
 
 static void test_limit(dirt_gpu *gpu)
