@@ -427,8 +427,6 @@
 #define DIRT_LOC_TRACE_ANY_HIT 2     /* int: 1 stops at the first accepted hit */
 #define DIRT_LOC_TRACE_LINK 3        /* int: 1 links hits per ADS tile (raster Fetch) */
 #define DIRT_LOC_TRACE_FROM_SURFACES 4 /* int: 1 the rays leave surfaces (march start: level 0) */
-#define DIRT_LOC_TRACE_NODE_DEPTHS 5 /* int: 1 the nodes' next words carry depth ranges
-                                        (DIRT_NODE_DEPTHS builds; common/layout.h) */
 /* glsl/dirt/fill.comp (built with DIRT_NODE_DEPTHS) */
 #define DIRT_LOC_FILL_NODE_DEPTHS 0  /* int: 1 stores the nodes' depth ranges */
 /* glsl/views/hiz.comp */

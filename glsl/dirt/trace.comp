@@ -44,9 +44,10 @@
 // built with them: dirt_ads_opts.bucket_masks, B <= 32; common/constants.h):
 // a tile none of whose buckets in the ray's depth span holds a node is not
 // walked (see walk_tile).
-// Node depth ranges (built with DIRT_NODE_DEPTHS, for a structure built
-// with them: dirt_ads_opts.node_depths; u_node_depths says whether this
-// build stored them, common/layout.h): a node whose depth range in its
+// Node depth ranges (built with DIRT_NODE_DEPTHS, for a build that stored
+// them: dirt_ads_opts.node_depths, dirt_ads_stats.node_depths;
+// common/layout.h; a build that did not is traced without): a node whose
+// depth range in its
 // bucket misses the ray's depth span there is skipped before its vertices
 // are read (see walk_tile).
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
@@ -112,9 +113,6 @@ layout(location = DIRT_LOC_TRACE_HIZ_TOP) uniform int u_hiz_top;  // highest lev
 layout(location = DIRT_LOC_TRACE_ANY_HIT) uniform int u_any_hit;  // 1: stop at the first accepted hit
 layout(location = DIRT_LOC_TRACE_LINK) uniform int u_link;     // 1: link hits per ADS tile (raster Fetch)
 layout(location = DIRT_LOC_TRACE_FROM_SURFACES) uniform int u_from_surfaces; // 1: rays leave surfaces
-#ifdef DIRT_NODE_DEPTHS
-layout(location = DIRT_LOC_TRACE_NODE_DEPTHS) uniform int u_node_depths; // 1: the build stored them
-#endif
 
 #define MAX_STEPS 65536
 
@@ -361,7 +359,7 @@ struct best_hit {
 // span's; a hit in the tile's eps band outside the span is found in the tile
 // whose span holds it (see g_seg_lim). The buckets of a walked tile are
 // walked as without.
-// DIRT_NODE_DEPTHS (node depth ranges, when u_node_depths): a node whose
+// DIRT_NODE_DEPTHS (node depth ranges): a node whose
 // sub-slabs in its bucket (dirt_node_depth_sub) miss the span's there is
 // skipped, exact for the same reason: such a hit's depth lies in both its
 // primitive's range and the span, and the sub-slab is monotonic in depth.
@@ -433,13 +431,8 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             uvec2 n = dirt_node(node);
             COUNT_WORK(z);
 #ifdef DIRT_NODE_DEPTHS
-            uint d = DIRT_NODE_DEPTH_FULL;
-            if (u_node_depths != 0) {
-                d = n.y >> DIRT_NODE_DEPTH_SHIFT;
-                node = dirt_node_next_of(n.y);
-            } else {
-                node = n.y;
-            }
+            uint d = n.y >> DIRT_NODE_DEPTH_SHIFT;
+            node = dirt_node_next_of(n.y);
             // (a read node, not a test; not kept in g_never)
             if ((d & 15u) > rb || (d >> 4) < ra)
                 continue;

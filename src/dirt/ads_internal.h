@@ -88,7 +88,7 @@ struct dirt_ads {
      * through their grid, opts.large_grid), DIRT_SUB_TILES (the nodes'
      * rectangles, opts.sub_tiles), DIRT_BUCKET_MASKS (the tiles' bucket
      * occupancy masks, ads_has_masks), DIRT_NODE_DEPTHS (the nodes' depth
-     * ranges, opts.node_depths; whether a build stored them is a uniform).
+     * ranges, for a build that stored them: node_depths_stored).
      * [0] made at creation (and for each build's layouts), the others on
      * first use. */
     gl_split_program prog_trace[128];

@@ -46,7 +46,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
                                             (opts.work ? 4 : 0) | (grid ? 8 : 0) |
                                             (a->opts.sub_tiles ? 16 : 0) |
                                             (ads_has_masks(a) ? 32 : 0) |
-                                            (a->opts.node_depths ? 64 : 0)];
+                                            (a->node_depths_stored ? 64 : 0)];
     glsl_define defs[8];
     int n = 0;
     if (a->opts.depth_buckets == DIRT_DEPTH_BUCKETS_ADAPTIVE)
@@ -63,7 +63,7 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
         defs[n++] = (glsl_define){"DIRT_SUB_TILES", "1"};
     if (ads_has_masks(a))
         defs[n++] = (glsl_define){"DIRT_BUCKET_MASKS", "1"};
-    if (a->opts.node_depths)
+    if (a->node_depths_stored) /* (a build that stored none: the plain lists' build) */
         defs[n++] = (glsl_define){"DIRT_NODE_DEPTHS", "1"};
     const char *paths[] = {"dirt/trace.comp", NULL};
     if (!ads_program_extra(a, prog, "dirt/trace.comp", paths, defs, (size_t)n,
@@ -77,8 +77,6 @@ bool ads_trace_gl(dirt_ads *a, GLuint rays, GLuint hits, uint32_t count,
     glUniform1i(DIRT_LOC_TRACE_ANY_HIT, opts.any_hit ? 1 : 0);
     glUniform1i(DIRT_LOC_TRACE_LINK, link ? 1 : 0);
     glUniform1i(DIRT_LOC_TRACE_FROM_SURFACES, opts.from_surfaces ? 1 : 0);
-    if (a->opts.node_depths)
-        glUniform1i(DIRT_LOC_TRACE_NODE_DEPTHS, a->node_depths_stored ? 1 : 0);
     /* Alpha test: the integrator's tables and the per-primitive materials. */
     if (al->materials) {
         glUniform1i(DIRT_LOC_ALPHA_ENABLED, 1);
