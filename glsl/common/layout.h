@@ -89,7 +89,8 @@ struct dirt_gpu_light {
  * depth ranges"): an id node's next word is next | d << 24, next the next
  * node's index (DIRT_NODE_NEXT_END: none) and d = lo | hi << 4 the
  * primitive's depth range in its bucket, in DIRT_NODE_DEPTH_SLABS sub-slabs
- * of the bucket (dirt_node_depth_pos, dirt/structure.glsl; d =
+ * of the bucket (dirt_node_depth_q and dirt_node_depth_sub,
+ * dirt/structure.glsl; d =
  * DIRT_NODE_DEPTH_FULL: the whole bucket). A build stores them only when
  * its node count is at most DIRT_NODE_DEPTH_MAX_NODES (an index must fit 24
  * bits); otherwise its next words are plain (dirt_ads_stats.node_depths

@@ -47,9 +47,8 @@
 // Node depth ranges (built with DIRT_NODE_DEPTHS, for a build that stored
 // them: dirt_ads_opts.node_depths, dirt_ads_stats.node_depths;
 // common/layout.h; a build that did not is traced without): a node whose
-// depth range in its
-// bucket misses the ray's depth span there is skipped before its vertices
-// are read (see walk_tile).
+// depth range in its bucket misses the ray's depth span there is skipped
+// before its vertices are read (see walk_tile).
 // Work counters (built with DIRT_TRACE_COUNT; the plain build has none):
 // work[i] = (tiles walked, Hi-Z steps, list nodes read, exact triangle
 // tests, large primitives' included) of ray i.
@@ -342,6 +341,17 @@ float exit_t(vec4 co, vec4 cd, int axis, float t, float motion, float lo, float 
     return never ? 1e30 : t;
 }
 
+#ifdef DIRT_NODE_DEPTHS
+// The parts a tile's depth range is cut into to place a depth for the node
+// depth ranges (dirt_node_depth_q): its fine bins with adaptive buckets, its
+// B buckets with uniform ones (as the count pass does).
+#ifdef DIRT_ADAPTIVE
+#define NODE_Q_PARTS(B) (DIRT_ADAPT_FINE * (B))
+#else
+#define NODE_Q_PARTS(B) (B)
+#endif
+#endif
+
 struct best_hit {
     float t, u, v;
     uint prim;
@@ -359,10 +369,10 @@ struct best_hit {
 // span's; a hit in the tile's eps band outside the span is found in the tile
 // whose span holds it (see g_seg_lim). The buckets of a walked tile are
 // walked as without.
-// DIRT_NODE_DEPTHS (node depth ranges): a node whose
-// sub-slabs in its bucket (dirt_node_depth_sub) miss the span's there is
-// skipped, exact for the same reason: such a hit's depth lies in both its
-// primitive's range and the span, and the sub-slab is monotonic in depth.
+// DIRT_NODE_DEPTHS (node depth ranges): a node whose sub-slabs in its
+// bucket (dirt_node_depth_sub) miss the span's there is skipped, exact for
+// the same reason: such a hit's depth lies in both its primitive's range
+// and the span, and the sub-slab is monotonic in depth.
 bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 tile, uint gt,
                float wa, float wb, float tmin, inout best_hit best)
 {
@@ -401,13 +411,8 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
 #ifdef DIRT_NODE_DEPTHS
     // The span's ends as positions in the tile (dirt_node_depth_q), nearer
     // first; its far end moves to each hit found.
-#ifdef DIRT_ADAPTIVE
-#define NQ H
-#else
-#define NQ B
-#endif
-    float qa = dirt_node_depth_q(min(wa, wb), zlo, range, NQ);
-    float qb = dirt_node_depth_q(max(wa, wb), zlo, range, NQ);
+    float qa = dirt_node_depth_q(min(wa, wb), zlo, range, NODE_Q_PARTS(B));
+    float qb = dirt_node_depth_q(max(wa, wb), zlo, range, NODE_Q_PARTS(B));
 #endif
     // The tile's NDC rectangle, moved out like the build's clip.
     ivec2 lo = tile * S, hi = min(lo + S, v.size.xy);
@@ -480,7 +485,7 @@ bool walk_tile(ray_setup rs, vec4 co, vec4 cd, dirt_gpu_view v, int view, ivec2 
             // another primitive in this tile lies at the hit's depth or
             // before it along the ray, inside that primitive's range, so a
             // node whose range lies wholly beyond is skipped.
-            float qh = dirt_node_depth_q(co.w + t * cd.w, zlo, range, NQ);
+            float qh = dirt_node_depth_q(co.w + t * cd.w, zlo, range, NODE_Q_PARTS(B));
             if (cd.w > 0.0)
                 qb = min(qb, qh);
             else if (cd.w < 0.0)
