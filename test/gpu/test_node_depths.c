@@ -38,15 +38,19 @@
 static uint32_t g_rng = 4242u; /* ads_rand's state: the soup, then the rays */
 
 /* The lists of one build, each entry with its range byte in bits 24..31 of
- * the primitive (the tests' primitives are below 2^24), or without. */
+ * the primitive (the tests' primitives are below 2^24), or without
+ * (list_triples, which also checks the links; the caller reads a build's
+ * lists without their bytes first, so the walk with them only stays in
+ * bounds). */
 static uint64_t *depth_triples(dirt_ads_data *d, bool with, size_t *n)
 {
-    uint64_t *t = list_triples(d, n);
-    if (!t || !with || !d->node_depths)
-        return t;
-    /* list_triples sorts; rebuild with the bytes instead */
-    free(t);
-    t = malloc(((size_t)d->num_nodes + 1) * sizeof(*t));
+    if (!with || !d->node_depths)
+        return list_triples(d, n);
+    uint64_t *t = malloc(((size_t)d->num_nodes + 1) * sizeof(*t));
+    CHECK(t != NULL);
+    *n = 0;
+    if (!t)
+        return NULL;
     size_t k = 0;
     for (int b = 0; b < d->buckets; b++)
         for (int tile = 0; tile < d->num_tiles; tile++)
