@@ -52,6 +52,7 @@
 #define DIRT_DEPTH_ENTRY_BYTES 8       /* depth-bounds pyramid entry: uvec2 (zmin, zmax) bits */
 #define DIRT_HEAD_BYTES 4              /* list head: one uint */
 #define DIRT_CANDIDATE_BYTES 16        /* DIRT build candidate: uvec4 (see common/layout.h) */
+#define DIRT_WORK_RECORD_NODES 2       /* id nodes a compute build's work record (uvec4) takes */
 #define DIRT_HIT_NODE_BYTES 32         /* dirt_gpu_hit (the DIRT paper's hit node) */
 #define DIRT_MMRT_ID_UINTS 3           /* MMRT id node: {z, next, prev} uints */
 #define DIRT_MMRT_ID_NODE_BYTES 12     /* = 4 * DIRT_MMRT_ID_UINTS (the MMRT paper's size) */

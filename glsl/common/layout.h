@@ -154,7 +154,7 @@ struct dirt_gpu_ads_params {
     DIRT_IV4 config;     /* views, tile size S, buckets B, tiles */
     DIRT_UV4 pool;       /* node capacity, pyramid entries, atlas width, atlas height */
     DIRT_UV4 cand;       /* x candidate capacity (records), y work-record capacity
-                            (compute build: records after the candidates), z
+                            (compute build: the records the node pool holds), z
                             primitives, w large primitives */
     DIRT_UV4 large[DIRT_GPU_MAX_LARGE / 4]; /* the large primitives' ids, ascending,
                             cand.w of them; DIRT_LIST_END in the unused slots */
@@ -179,9 +179,10 @@ struct dirt_gpu_ads_counters {
 };
 #define DIRT_ADS_DISPATCH_OFFSET 32
 
-/* A work record of the compute build (DIRT_CANDIDATE_BYTES, at
- * DIRT_BIND_CANDIDATES after the candidate capacity: entry params.cand.x +
- * r), written by the candidate tiles pass as uvec4(primitive, view | k << 3,
+/* A work record of the compute build (a uvec4 in DIRT_WORK_RECORD_NODES id
+ * nodes of the node pool, which holds no node before the fill pass: record
+ * r is nodes 2r and 2r + 1, dirt_work_record in dirt/structure.glsl),
+ * written by the candidate tiles pass as uvec4(primitive, view | k << 3,
  * x0 | y0 << 16, nx | ny << 16): record k of the footprint of nx x ny tiles
  * from tile (x0, y0) of the view (row-major tile e = k q C .. (k+1) q C - 1,
  * C = DIRT_BUILD_CHUNK, q chunks per record, glsl/dirt/footprint.glsl).

@@ -1,7 +1,7 @@
 #version 450 core
 // DIRT compute build, depth bounds pass (the raster build's depth pass as
 // compute): DIRT_GROUP_SIZE / DIRT_BUILD_CHUNK work records per group (the
-// records dirt/tiles.comp wrote, after the candidates; launched indirectly
+// records dirt/tiles.comp wrote in the node pool; launched indirectly
 // from counters.dispatch, rows of DIRT_GROUPS_ROW groups), DIRT_BUILD_CHUNK
 // lanes per record. Lane l of record k of a footprint (dirt/footprint.glsl)
 // takes its tiles k q C + l + j C, j < q (C = DIRT_BUILD_CHUNK, q =
@@ -30,7 +30,9 @@ layout(std430, binding = DIRT_BIND_PARAMS) readonly buffer Params {
 layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
-// Candidates [0, params.cand.x), then the work records.
+// Candidates [0, params.cand.x); the work records in the node pool.
+#define DIRT_CANDIDATES_WRITEONLY
+#define DIRT_NODES_READONLY
 #include "dirt/structure.glsl"
 
 void main()
@@ -41,7 +43,7 @@ void main()
     uint lane = gl_LocalInvocationID.x % uint(DIRT_BUILD_CHUNK);
     if (rec >= min(counters.build.y, params.cand.y))
         return;
-    uvec4 w = dirt_candidate(params.cand.x + rec);
+    uvec4 w = dirt_work_record(rec);
     uint prim = w.x;
     int view = int(w.y & 7u);
     uint k = w.y >> 3;

@@ -11,7 +11,8 @@
 // (candidates only: a shader's storage blocks are limited, 16 on llvmpipe).
 // Accessors by record index: dirt_candidate(i),
 // dirt_candidate_store(i, c), dirt_candidate_store_zw(i, zw); dirt_node(i),
-// dirt_node_store(i, n); dirt_head(i), dirt_head_exchange(i, v), dirt_head_add(i, v),
+// dirt_node_store(i, n), dirt_work_record(r), dirt_work_record_store(r, w);
+// dirt_head(i), dirt_head_exchange(i, v), dirt_head_add(i, v),
 // dirt_head_and(i, v) (atomic). Bucket occupancy masks (common/constants.h,
 // DIRT_BUCKET_MASK_*): dirt_bucket_bits, dirt_bucket_occupancy.
 // Needs common/layout.h.
@@ -140,6 +141,24 @@ void dirt_node_store(uint i, uvec2 n)
     DIRT_SPLIT_STORE(DIRT_SPLIT_NODES, imageStore, dirt_nodes, uvec4(n, 0u, 0u))
 }
 #endif
+#endif
+
+// A work record of the compute build (common/layout.h) in the node pool,
+// which holds no node until the fill pass: record r is nodes 2r and 2r + 1
+// (DIRT_WORK_RECORD_NODES).
+#ifndef DIRT_NODES_WRITEONLY
+uvec4 dirt_work_record(uint r)
+{
+    return uvec4(dirt_node(uint(DIRT_WORK_RECORD_NODES) * r),
+                 dirt_node(uint(DIRT_WORK_RECORD_NODES) * r + 1u));
+}
+#endif
+#ifndef DIRT_NODES_READONLY
+void dirt_work_record_store(uint r, uvec4 w)
+{
+    dirt_node_store(uint(DIRT_WORK_RECORD_NODES) * r, w.xy);
+    dirt_node_store(uint(DIRT_WORK_RECORD_NODES) * r + 1u, w.zw);
+}
 #endif
 
 // ---- list heads ----

@@ -5,8 +5,9 @@
 // The footprint of the raster build's geometry stage (dirt/footprint.glsl:
 // the same reject, near/far clip and candidate tiles), cut into work records
 // of DIRT_BUILD_CHUNK tiles each (common/layout.h), appended at
-// counters.build.y; records past the capacity (params.cand.y) are counted,
-// not written (the host grows the buffer and runs the build again). Also
+// counters.build.y, in the node pool (dirt_work_record_store); records past
+// the capacity (params.cand.y) are counted, not written (the host grows the
+// pool and runs the build again). Also
 // adds the tiles to counters.build.x (an upper bound of the candidates: it
 // sizes their buffer) and raises counters.dispatch to the groups of the
 // range pass (dirt/range.comp) that cover every record written. The large
@@ -28,7 +29,8 @@ layout(std430, binding = DIRT_BIND_COUNTERS) buffer Counters {
     dirt_gpu_ads_counters counters;
 };
 #include "dirt/large.glsl"
-#define DIRT_CANDIDATES_WRITEONLY
+#define DIRT_CANDIDATES_NONE
+#define DIRT_NODES_WRITEONLY
 #include "dirt/structure.glsl"
 
 void main()
@@ -70,11 +72,11 @@ void main()
     uint R = (n + q * uint(DIRT_BUILD_CHUNK) - 1u) / (q * uint(DIRT_BUILD_CHUNK));
     atomicAdd(counters.build.x, n);
     uint r0 = atomicAdd(counters.build.y, R);
-    uint cap = params.cand.y, base = params.cand.x;
+    uint cap = params.cand.y;
     for (uint k = 0u; k < R && r0 + k < cap; k++)
-        dirt_candidate_store(base + r0 + k, uvec4(prim, uint(view) | (k << 3),
-                                                  uint(r.x) | (uint(r.y) << 16),
-                                                  uint(r.z) | (uint(r.w) << 16)));
+        dirt_work_record_store(r0 + k, uvec4(prim, uint(view) | (k << 3),
+                                             uint(r.x) | (uint(r.y) << 16),
+                                             uint(r.z) | (uint(r.w) << 16)));
     // The range pass's groups: DIRT_GROUP_SIZE / DIRT_BUILD_CHUNK records
     // each, in rows of DIRT_GROUPS_ROW; enough for the last record written.
     uint last = min(r0 + R, cap);

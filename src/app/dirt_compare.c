@@ -405,7 +405,9 @@ static cJSON *measure(dirt_gpu *gpu, const scene_info *si, const config *c, enum
         /* Table 3 = tiles (8 B x 1.33 + 4 B x B) + 8 B x c n_p: heads and
          * nodes are exact; the 1.33 stands for the pyramid's real levels. */
         exact_formula = formula - 8.0 * 1.33 * tiles;
-        exact_measured = (double)(a->bytes_heads + a->bytes_nodes_used);
+        /* (the nodes' bytes: the pool's used bytes are more where the
+         * compute build's work records took more of it) */
+        exact_measured = (double)a->bytes_heads + 8.0 * (double)a->nodes;
         extra = (double)a->bytes_depth - 8.0 * 1.33 * tiles;
         note = "heads + id nodes equal 4 B x B x tiles + 8 B x c x n_p exactly; the depth "
                "bounds are the real pyramid levels (the formula estimates them as 1.33 x "

@@ -40,9 +40,9 @@ typedef struct dirt_ads_opts {
     int buckets;              /* B >= 1 (default 16) */
     size_t initial_nodes;     /* first node capacity (0 = automatic; the pool is sized
                                  from the count pass before the fill pass runs) */
-    size_t initial_candidates; /* first candidate capacity, and in the compute
-                                  build as many work records (0 = from the
-                                  bound pass) */
+    size_t initial_candidates; /* first candidate capacity (0 = from the bound
+                                  pass); the compute build's work records
+                                  live in the node pool (initial_nodes) */
     bool force_emulation;     /* ignore GL_NV_conservative_raster */
     bool reference_clip;      /* Sutherland-Hodgman clip of every candidate tile (the
                                  slow reference of the exact range, for checks and

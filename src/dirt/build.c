@@ -28,6 +28,8 @@ const char *const dirt_ads_pass_names[DIRT_ADS_NUM_PASSES] = {
 };
 
 
+_Static_assert(DIRT_WORK_RECORD_NODES * DIRT_NODE_BYTES == DIRT_CANDIDATE_BYTES,
+               "a work record (uvec4, as a candidate) fills DIRT_WORK_RECORD_NODES id nodes");
 _Static_assert(DIRT_ADS_MAX_LARGE == DIRT_GPU_MAX_LARGE && DIRT_GPU_MAX_LARGE % 4 == 0,
                "one count of large primitives");
 
@@ -147,10 +149,11 @@ bool ads_programs(dirt_ads *a)
         size_t nsh = a->opts.reference_clip ? 1 : 0;
         glsl_define *rd = a->opts.reference_clip ? sh : sh + 1;
         size_t nrd = nsh + (a->opts.sub_tiles ? 1 : 0);
+        /* (the work records in the node pool) */
         if (!ads_program(a, &a->prog_tiles, "dirt/tiles.comp", COMP("dirt/tiles.comp"), sh,
-                         nsh, V | C) ||
+                         nsh, V | N) ||
             !ads_program(a, &a->prog_range, "dirt/range.comp", COMP("dirt/range.comp"), rd,
-                         nrd, V | C | D))
+                         nrd, V | C | D | N))
             return false;
     } else {
         if (a->opts.sub_tiles)
@@ -294,8 +297,6 @@ dirt_ads *dirt_ads_create(dirt_gpu *gpu, const dirt_ads_opts *opts)
         goto error;
     a->node_capacity = a->opts.initial_nodes;
     a->cand_capacity = a->opts.initial_candidates;
-    /* (at most one work record per candidate tile examined) */
-    a->rec_capacity = compute ? a->opts.initial_candidates : 0;
     return a;
 error:
     dirt_ads_destroy(a);
@@ -507,35 +508,34 @@ static bool ensure_nodes(dirt_ads *a, size_t nodes)
         return false;
     }
     a->node_capacity = a->nodes.capacity;
+    /* (the compute build's work records live in the pool until the fill) */
+    a->rec_capacity = a->opts.build == DIRT_BUILD_COMPUTE
+                          ? a->node_capacity / DIRT_WORK_RECORD_NODES : 0;
     return true;
 }
 
 /* Candidate buffer of at least `cands` candidates (at least one, so the
- * buffer always exists) followed by `recs` work records (the compute
- * build's; 0 for the raster build); false (logged) past what the GPU can
- * hold. Growing either keeps the other capacity at least what it was. */
-static bool ensure_cands(dirt_ads *a, size_t cands, size_t recs)
+ * buffer always exists, and never fewer than before); false (logged) past
+ * what the GPU can hold. */
+static bool ensure_cands(dirt_ads *a, size_t cands)
 {
     if (cands < 1)
         cands = 1;
     if (a->cands.buf[0] && cands < a->cand_capacity)
         cands = a->cand_capacity;
-    if (a->cands.buf[0] && recs < a->rec_capacity)
-        recs = a->rec_capacity;
-    if (a->cands.buf[0] && a->cand_capacity == cands && a->rec_capacity == recs)
+    if (a->cands.buf[0] && a->cand_capacity == cands)
         return true;
     gl_split_release(&a->cands);
-    a->cand_capacity = a->rec_capacity = 0;
-    if (!gl_split_ensure(a->gpu, &a->cands, ads_array_desc[ADS_CANDIDATES], cands + recs))
+    a->cand_capacity = 0;
+    if (!gl_split_ensure(a->gpu, &a->cands, ads_array_desc[ADS_CANDIDATES], cands))
         return false;
     a->cand_capacity = cands;
-    a->rec_capacity = recs;
     return true;
 }
 
 static size_t cands_bytes(const dirt_ads *a)
 {
-    return (a->cand_capacity + a->rec_capacity) * DIRT_CANDIDATE_BYTES;
+    return a->cand_capacity * DIRT_CANDIDATE_BYTES;
 }
 
 /* Grows a pool to `need` plus a quarter; not past one storage block when
@@ -594,8 +594,7 @@ static bool ensure_targets(dirt_ads *a)
         return false;
     if (!a->node_capacity)
         a->node_capacity = (size_t)s->num_tiles * 4 + 1024;
-    if (!ensure_nodes(a, a->node_capacity) ||
-        !ensure_cands(a, a->cand_capacity, a->rec_capacity))
+    if (!ensure_nodes(a, a->node_capacity) || !ensure_cands(a, a->cand_capacity))
         return false;
     return true;
 }
@@ -806,7 +805,7 @@ static void add_tiles(dirt_ads *a, fg_graph *g, int pass)
     use(p, a->r_params, FG_SSBO_READ, DIRT_BIND_PARAMS);
     use(p, a->r_counters, FG_SSBO_READ, DIRT_BIND_COUNTERS);
     use(p, a->r_counters, FG_SSBO_WRITE, DIRT_BIND_COUNTERS);
-    gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_WRITE);
+    gl_split_use(p, &a->nodes, a->r_nodes, FG_SSBO_WRITE); /* (the work records) */
 }
 
 /* The parts of the split arrays (what the graphs import). */
@@ -863,7 +862,7 @@ static bool make_graphs(dirt_ads *a)
         add_tiles(a, g, DIRT_ADS_PASS_TILES);
         p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_COMPUTE, exec_range, a);
         use(p, a->r_counters, FG_INDIRECT, 0);
-        gl_split_use(p, &a->cands, a->r_cands, FG_SSBO_READ);
+        gl_split_use(p, &a->nodes, a->r_nodes, FG_SSBO_READ); /* (the work records) */
     } else {
         p = fg_add_pass(g, dirt_ads_pass_names[DIRT_ADS_PASS_DEPTH], FG_RASTER, exec_depth, a);
         raster_size(a, p);
@@ -1015,16 +1014,17 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
             goto done;
         st->bound_pass = true;
         /* A bound past one storage block may be far above the real count:
-         * the candidates get what is left of one block beside the work
-         * records, and the depth pass grows them (split) when it counts
-         * more. */
+         * the candidates get one block, and the depth pass grows them
+         * (split) when it counts more. The compute build's work records
+         * go to the node pool. */
         size_t bound = a->counters_cpu.build.x;
         size_t recs = compute ? a->counters_cpu.build.y : 0;
         int64_t max = dirt_gpu_get_caps(a->gpu)->max_ssbo_size;
-        if (max > 0 && (int64_t)((bound + recs) * DIRT_CANDIDATE_BYTES) > max)
-            bound = (size_t)max / DIRT_CANDIDATE_BYTES > recs
-                        ? (size_t)max / DIRT_CANDIDATE_BYTES - recs : 1;
-        if (!ensure_cands(a, bound, recs) || !refresh(a))
+        if (max > 0 && (int64_t)(bound * DIRT_CANDIDATE_BYTES) > max)
+            bound = (size_t)max / DIRT_CANDIDATE_BYTES;
+        if (!ensure_cands(a, bound) ||
+            (recs > a->rec_capacity && !ensure_nodes(a, recs * DIRT_WORK_RECORD_NODES)) ||
+            !refresh(a))
             goto done;
     }
     a->cand_tiles = a->set.num_tiles;
@@ -1041,17 +1041,27 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (n <= a->cand_capacity && r <= a->rec_capacity)
             break;
         /* Work records past their capacity leave candidates out (the range
-         * pass never saw them): both grow, the graph reruns. */
+         * pass never saw them): the candidates and the node pool grow, the
+         * graph reruns. */
         size_t g = n > a->cand_capacity ? grown(a, n, DIRT_CANDIDATE_BYTES) : a->cand_capacity;
         /* (then the candidates the missing records hold are not counted
          * either: the tiles the records cover bound them) */
         if (r > a->rec_capacity && a->counters_cpu.build.x > g)
             g = a->counters_cpu.build.x;
-        size_t gr = r > a->rec_capacity ? grown(a, r, DIRT_CANDIDATE_BYTES) : a->rec_capacity;
-        DIRT_INFO("candidate buffer grew from %zu + %zu to %zu + %zu records (%.1f MB); depth "
-                  "pass rerun", a->cand_capacity, a->rec_capacity, g, gr,
-                  (g + gr) * DIRT_CANDIDATE_BYTES / 1e6);
-        if (!ensure_cands(a, g, gr) || !refresh(a))
+        if (g > a->cand_capacity) {
+            DIRT_INFO("candidate buffer grew from %zu to %zu records (%.1f MB); depth pass "
+                      "rerun", a->cand_capacity, g, g * DIRT_CANDIDATE_BYTES / 1e6);
+            if (!ensure_cands(a, g))
+                goto done;
+        }
+        if (r > a->rec_capacity) {
+            size_t gn = grown(a, r * DIRT_WORK_RECORD_NODES, DIRT_NODE_BYTES);
+            DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB) for %zu work records; "
+                      "depth pass rerun", a->node_capacity, gn, gn * DIRT_NODE_BYTES / 1e6, r);
+            if (!ensure_nodes(a, gn))
+                goto done;
+        }
+        if (!refresh(a))
             goto done;
     }
     /* The node pool from the count, then the one fill pass. */
@@ -1097,9 +1107,13 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
     uint64_t extra_bytes = st->bytes_bucket_edges + st->bytes_bucket_histogram +
                            st->bytes_bucket_masks;
     st->bytes_nodes_allocated = (uint64_t)a->node_capacity * DIRT_NODE_BYTES;
-    st->bytes_nodes_used = st->nodes * DIRT_NODE_BYTES;
+    /* (the pool held the work records before the nodes) */
+    uint64_t pool_used = st->work_records * DIRT_WORK_RECORD_NODES;
+    if (pool_used < st->nodes)
+        pool_used = st->nodes;
+    st->bytes_nodes_used = pool_used * DIRT_NODE_BYTES;
     st->bytes_candidates_allocated = cands_bytes(a);
-    st->bytes_candidates_used = (st->samples + st->work_records) * DIRT_CANDIDATE_BYTES;
+    st->bytes_candidates_used = st->samples * DIRT_CANDIDATE_BYTES;
     st->bytes_large_grid = a->large_entries * sizeof(*a->large_staging);
     st->bytes_large_grid_allocated = a->large_cells_size;
     st->bytes_total_allocated = st->bytes_vertices + st->bytes_depth + st->bytes_heads +

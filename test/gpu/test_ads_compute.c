@@ -153,9 +153,12 @@ static void run_scene(dirt_gpu *gpu, const char *label, dirt_scene *scene, float
 }
 
 /* Pools of the compute build: a second build of the same frame runs no
- * bound pass and one depth pass; a candidate buffer of 1 (no bound pass, no
- * work-record capacity) reruns the depth pass once; the lists are the same
- * in every case. */
+ * bound pass and one depth pass; its work records use the node pool (the
+ * pool's used bytes are the larger of the nodes' and the records', the
+ * candidate buffer's the candidates' alone); a candidate buffer of 1 (no
+ * bound pass) with a node pool of 1 (no room for a record), and ample
+ * candidates with a node pool of 1, rerun the depth pass once; the lists
+ * are the same in every case. */
 static void test_pools(dirt_gpu *gpu)
 {
     dirt_scene *scene = dirt_scene_create_default();
@@ -165,34 +168,39 @@ static void test_pools(dirt_gpu *gpu)
                   .tile_size = 2},
         .buckets = 8, .force_emulation = true, .build = DIRT_BUILD_COMPUTE,
     };
-    dirt_ads_data d[2];
-    size_t n[2] = {0, 0};
-    uint64_t *tri[2] = {NULL, NULL};
-    for (int i = 0; i < 2; i++) {
-        o.initial_candidates = i == 1 ? 1 : 0;
+    enum { CASES = 3 };
+    dirt_ads_data d[CASES];
+    size_t n[CASES] = {0};
+    uint64_t *tri[CASES] = {NULL};
+    for (int i = 0; i < CASES; i++) {
+        o.initial_candidates = i == 1 ? 1 : i == 2 ? (size_t)1 << 16 : 0;
         o.initial_nodes = 1;
         dirt_ads *ads = ads_build_read(gpu, &o, f, &f->cameras[0], &d[i]);
         if (!ads)
             continue;
         const dirt_ads_stats *st = dirt_ads_get_stats(ads);
-        fprintf(stderr, "compute pools case %d: %llu candidates, %llu records, bound %d, depth "
-                "runs %d, fill runs %d\n", i, (unsigned long long)st->samples,
-                (unsigned long long)st->work_records, st->bound_pass, st->depth_runs,
-                st->fill_runs);
-        CHECK(st->bound_pass == (i == 0) && st->depth_runs == (i == 1 ? 2 : 1) &&
+        fprintf(stderr, "compute pools case %d: %llu candidates, %llu records, %llu nodes, "
+                "bound %d, depth runs %d, fill runs %d\n", i, (unsigned long long)st->samples,
+                (unsigned long long)st->work_records, (unsigned long long)st->nodes,
+                st->bound_pass, st->depth_runs, st->fill_runs);
+        CHECK(st->bound_pass == (i == 0) && st->depth_runs == (i == 0 ? 1 : 2) &&
               st->fill_runs == 1);
-        CHECK(st->bytes_candidates_used ==
-                  (st->samples + st->work_records) * DIRT_CANDIDATE_BYTES &&
+        uint64_t pool = st->work_records * DIRT_WORK_RECORD_NODES > st->nodes
+                            ? st->work_records * DIRT_WORK_RECORD_NODES : st->nodes;
+        CHECK(st->work_records > 0 && st->bytes_nodes_used == pool * DIRT_NODE_BYTES &&
+              st->bytes_nodes_used <= st->bytes_nodes_allocated);
+        CHECK(st->bytes_candidates_used == st->samples * DIRT_CANDIDATE_BYTES &&
               st->bytes_candidates_used <= st->bytes_candidates_allocated);
         tri[i] = list_triples(&d[i], &n[i]);
         CHECK(dirt_ads_build(ads, f, &f->cameras[0]));
         CHECK(!st->bound_pass && st->depth_runs == 1 && st->fill_runs == 1);
         dirt_ads_destroy(ads);
     }
-    CHECK(tri[0] && tri[1] && n[0] == n[1] && n[0] > 0 &&
-          memcmp(tri[0], tri[1], n[0] * sizeof(uint64_t)) == 0);
-    CHECK(memcmp(d[0].depth, d[1].depth, (size_t)d[0].pyramid_size * 8) == 0);
-    for (int i = 0; i < 2; i++) {
+    for (int i = 1; i < CASES; i++)
+        CHECK(tri[0] && tri[i] && n[0] == n[i] && n[0] > 0 &&
+              memcmp(tri[0], tri[i], n[0] * sizeof(uint64_t)) == 0 &&
+              memcmp(d[0].depth, d[i].depth, (size_t)d[0].pyramid_size * 8) == 0);
+    for (int i = 0; i < CASES; i++) {
         free(tri[i]);
         dirt_ads_data_free(&d[i]);
     }
@@ -200,10 +208,6 @@ static void test_pools(dirt_gpu *gpu)
     dirt_scene_destroy(scene);
 }
 
-/* Frame after frame (BoxAnimated, one compute structure whose capacities
- * the first frame sized): each build equals a fresh raster structure's
- * build of that frame, lists and bounds, also when the candidates or the
- * work records outgrow their buffer and the depth pass reruns. */
 static void test_animation(dirt_gpu *gpu, const char *shared)
 {
     char path[4096];

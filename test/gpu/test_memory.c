@@ -1,17 +1,19 @@
 /* Memory accounting: the bytes the structures report as used equal the
  * analytic formulas evaluated with independently measured counts, and the
  * bytes reported as allocated are what GL really holds.
- *  - DIRT (default scene, 64x48 camera + six 32x32 faces, S = 2, B = 8):
+ *  - DIRT (default scene, 64x48 camera + six 32x32 faces, S = 2, B = 8;
+ *    raster and compute builds):
  *    used = 96 B x primitives (vertices) + 8 B x pyramid entries (depth
  *    bounds and mips) + 4 B x B x tiles (list heads) + with
  *    opts.bucket_masks 4 B x tiles (bucket occupancy masks, B <= 32; none
- *    without) + 8 B x nodes + 16 B x
+ *    without) + 8 B x the larger of the nodes and 2 x the compute build's
+ *    work records (the node pool holds the records first) + 16 B x
  *    n_p (the build's candidates) + with opts.large_grid 8 B x large
  *    primitives x cells of their grid (per view, the first pyramid level of
  *    at most DIRT_LARGE_GRID cells per side; none without), with the nodes and the (primitive, tile)
  *    pairs n_p counted by walking every list of the structure read back (not
  *    the GPU's counters); the DIRT paper's Table 3 (8 B x 1.33 + 4 B x B per tile
- *    + 8 B x c x n_p) then differs from the structure's bytes only by the
+ *    + 8 B x c x n_p) then differs from the depth, heads and nodes only by the
  *    mip factor: the pyramid holds between 1 and 1.34 entries per tile.
  *  - MMRT (same views, B = 4): used = vertices + 8 B x pyramid + 2 x 4 B x B
  *    x pixels (heads and tails) + (12 + 32) B x fragments; the MMRT paper's
@@ -53,13 +55,13 @@ static int cmp_u32(const void *a, const void *b)
 }
 
 static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *cam, bool grid,
-                       bool masks_on)
+                       bool masks_on, enum dirt_build_mode build)
 {
     const int B = 8;
     dirt_ads_opts o = {.views = {.mode = DIRT_VIEWS_CUBE_CAMERA, .width = 64, .height = 48,
                                  .face_size = 32, .tile_size = 2},
                        .buckets = B, .force_emulation = true, .large_grid = grid,
-                       .bucket_masks = masks_on};
+                       .bucket_masks = masks_on, .build = build};
     dirt_ads *ads = dirt_ads_create(gpu, &o);
     CHECK(ads && dirt_ads_build(ads, f, cam));
     if (!ads)
@@ -91,7 +93,10 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK_MSG(walked == st->nodes, "lists hold %llu nodes, stats say %llu",
               (unsigned long long)walked, (unsigned long long)st->nodes);
     uint64_t tiles = (uint64_t)set->num_tiles, pyramid = (uint64_t)set->pyramid_size;
-    /* (the compute build's work records, 16 B each, follow the candidates) */
+    /* the node pool: the compute build's work records (16 B each) use it
+     * before the nodes */
+    uint64_t pool = 2 * st->work_records > walked ? 2 * st->work_records : walked;
+    CHECK(build == DIRT_BUILD_COMPUTE ? st->work_records > 0 : st->work_records == 0);
     /* the large primitives' grid (only with opts.large_grid): 8 B per
      * large primitive and cell, the cells of the first pyramid level of at
      * most DIRT_LARGE_GRID per side */
@@ -110,13 +115,13 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
      * tile, after the heads; none without the option */
     uint64_t masks = masks_on && B <= DIRT_BUCKET_MASK_MAX_BUCKETS ? 4 * tiles : 0;
     CHECK(st->bytes_bucket_masks == masks);
-    uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + masks + 8 * walked +
-                       16 * pairs + 16 * st->work_records + 8 * cells * (uint64_t)st->num_large;
+    uint64_t formula = 96 * st->primitives + 8 * pyramid + 4 * (uint64_t)B * tiles + masks + 8 * pool +
+                       16 * pairs + 8 * cells * (uint64_t)st->num_large;
     CHECK_MSG(st->bytes_total_used == formula, "DIRT used %llu B, formula %llu B",
               (unsigned long long)st->bytes_total_used, (unsigned long long)formula);
     double per_tile = (double)pyramid / (double)tiles;
     CHECK_MSG(per_tile >= 1.0 && per_tile <= 1.34, "pyramid: %.3f entries per tile", per_tile);
-    double ads_bytes = (double)(st->bytes_depth + st->bytes_heads + st->bytes_nodes_used);
+    double ads_bytes = (double)(st->bytes_depth + st->bytes_heads + 8 * walked);
     double table3 = (double)tiles * (8.0 * 1.33 + 4.0 * B) + 8.0 * st->buckets_per_sample *
                                                                  (double)st->samples;
     CHECK_NEAR(st->bytes_table3, table3, 1e-6 * table3);
@@ -127,13 +132,16 @@ static void check_dirt(dirt_gpu *gpu, const dirt_frame *f, const dirt_camera *ca
     CHECK(split_size(&ads->nodes) == st->bytes_nodes_allocated);
     CHECK(split_size(&ads->cands) == st->bytes_candidates_allocated);
     CHECK(split_size(&ads->vertices) >= st->bytes_vertices);
-    fprintf(stderr, "DIRT%s%s: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
-                    "(walked): used %llu B = formula; Table 3 %.0f B vs structure %.0f B\n",
+    fprintf(stderr, "DIRT%s%s%s: %llu primitives, %llu tiles, %llu pyramid entries, %llu nodes "
+                    "(walked), %llu work records: used %llu B = formula; Table 3 %.0f B vs "
+                    "structure %.0f B\n",
+            build == DIRT_BUILD_COMPUTE ? " (compute build)" : "",
             grid ? " (large primitives' grid)" : "", masks_on ? " (bucket masks)" : "",
             (unsigned long long)st->primitives,
             (unsigned long long)tiles,
             (unsigned long long)pyramid, (unsigned long long)walked,
-            (unsigned long long)st->bytes_total_used, table3, ads_bytes);
+            (unsigned long long)st->work_records, (unsigned long long)st->bytes_total_used,
+            table3, ads_bytes);
     dirt_ads_destroy(ads);
 }
 
@@ -182,8 +190,9 @@ int main(void)
     CHECK(f != NULL);
     if (f) {
         dirt_camera cam = f->cameras[0];
-        check_dirt(gpu, f, &cam, false, false);
-        check_dirt(gpu, f, &cam, true, true);
+        check_dirt(gpu, f, &cam, false, false, DIRT_BUILD_RASTER);
+        check_dirt(gpu, f, &cam, true, true, DIRT_BUILD_RASTER);
+        check_dirt(gpu, f, &cam, false, false, DIRT_BUILD_COMPUTE);
         check_mmrt(gpu, f, &cam);
     }
     CHECK(dirt_gpu_error_count(gpu) == 0);

@@ -101,10 +101,11 @@ typedef struct dirt_ads_stats {
     uint64_t bytes_vertices;  /* vertex buffer */
     uint64_t bytes_depth;     /* depth bounds incl. pyramid: 8 B per entry */
     uint64_t bytes_heads;     /* 4 B * B * tiles */
-    uint64_t bytes_nodes_allocated, bytes_nodes_used; /* 8 B per node */
+    uint64_t bytes_nodes_allocated, bytes_nodes_used; /* the node pool: 8 B per node;
+                                 the compute build's work records (16 B each) use it
+                                 before the nodes, so used = the larger of the two */
     uint64_t bytes_candidates_allocated, bytes_candidates_used; /* 16 B per candidate
-                                 (build scratch: n_p records, not in Table 3), and
-                                 per work record in the compute build */
+                                 (build scratch: n_p records, not in Table 3) */
     uint64_t bytes_total_allocated, bytes_total_used;
     /* DIRT paper Table 3 per tile: 8 B * 1.33 (depth + mips) + 4 B * B
      * (heads) + 8 B * c * n_p / tiles (nodes), times the tiles. */
