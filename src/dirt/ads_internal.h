@@ -60,9 +60,6 @@ struct dirt_ads {
     bool node_depths_stored;
     size_t node_depth_max_nodes;
     size_t cand_capacity;     /* candidates (0: unknown, the bound pass sizes it) */
-    size_t rec_capacity;      /* compute build: the work records the node pool holds
-                                 (node_capacity / DIRT_WORK_RECORD_NODES; 0 for the
-                                 raster build) */
     int cand_tiles;           /* tiles and primitives the capacity was bounded for */
     size_t cand_prims;
     dirt_view_set set;

@@ -392,13 +392,20 @@ static void upload_views(dirt_ads *a)
     glNamedBufferSubData(a->views, 0, (GLsizeiptr)sizeof(gv), gv);
 }
 
+/* The compute build's work records the node pool holds (they live there
+ * until the fill pass); 0 for the raster build, which has none. */
+static size_t rec_capacity(const dirt_ads *a)
+{
+    return a->opts.build == DIRT_BUILD_COMPUTE ? a->node_capacity / DIRT_WORK_RECORD_NODES : 0;
+}
+
 static void upload_params(dirt_ads *a)
 {
     struct dirt_gpu_ads_params p = {
         .config = {a->set.count, a->set.tile_size, a->opts.buckets, a->set.num_tiles},
         .pool = {(unsigned)a->node_capacity, (unsigned)a->set.pyramid_size,
                  (unsigned)a->set.atlas_width, (unsigned)a->set.atlas_height},
-        .cand = {(unsigned)a->cand_capacity, (unsigned)a->rec_capacity,
+        .cand = {(unsigned)a->cand_capacity, (unsigned)rec_capacity(a),
                  (unsigned)a->num_primitives, (unsigned)a->stats.num_large},
     };
     for (int v = 0; v < DIRT_GPU_MAX_VIEWS; v++)
@@ -508,9 +515,6 @@ static bool ensure_nodes(dirt_ads *a, size_t nodes)
         return false;
     }
     a->node_capacity = a->nodes.capacity;
-    /* (the compute build's work records live in the pool until the fill) */
-    a->rec_capacity = a->opts.build == DIRT_BUILD_COMPUTE
-                          ? a->node_capacity / DIRT_WORK_RECORD_NODES : 0;
     return true;
 }
 
@@ -1023,7 +1027,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         if (max > 0 && (int64_t)(bound * DIRT_CANDIDATE_BYTES) > max)
             bound = (size_t)max / DIRT_CANDIDATE_BYTES;
         if (!ensure_cands(a, bound) ||
-            (recs > a->rec_capacity && !ensure_nodes(a, recs * DIRT_WORK_RECORD_NODES)) ||
+            (recs > rec_capacity(a) && !ensure_nodes(a, recs * DIRT_WORK_RECORD_NODES)) ||
             !refresh(a))
             goto done;
     }
@@ -1038,7 +1042,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         st->depth_runs++;
         size_t n = a->counters_cpu.fill.y;
         size_t r = compute ? a->counters_cpu.build.y : 0;
-        if (n <= a->cand_capacity && r <= a->rec_capacity)
+        if (n <= a->cand_capacity && r <= rec_capacity(a))
             break;
         /* Work records past their capacity leave candidates out (the range
          * pass never saw them): the candidates and the node pool grow, the
@@ -1046,7 +1050,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
         size_t g = n > a->cand_capacity ? grown(a, n, DIRT_CANDIDATE_BYTES) : a->cand_capacity;
         /* (then the candidates the missing records hold are not counted
          * either: the tiles the records cover bound them) */
-        if (r > a->rec_capacity && a->counters_cpu.build.x > g)
+        if (r > rec_capacity(a) && a->counters_cpu.build.x > g)
             g = a->counters_cpu.build.x;
         if (g > a->cand_capacity) {
             DIRT_INFO("candidate buffer grew from %zu to %zu records (%.1f MB); depth pass "
@@ -1054,7 +1058,7 @@ bool dirt_ads_build(dirt_ads *a, const dirt_frame *f, const dirt_camera *cam)
             if (!ensure_cands(a, g))
                 goto done;
         }
-        if (r > a->rec_capacity) {
+        if (r > rec_capacity(a)) {
             size_t gn = grown(a, r * DIRT_WORK_RECORD_NODES, DIRT_NODE_BYTES);
             DIRT_INFO("node pool grew from %zu to %zu nodes (%.1f MB) for %zu work records; "
                       "depth pass rerun", a->node_capacity, gn, gn * DIRT_NODE_BYTES / 1e6, r);
